@@ -1,0 +1,76 @@
+# armctl — the README's commands. Each target does its own setup on a fresh Debian 12.
+#   make demo   build armctl and drive the embedded simulated arm
+#   make test   build with ASan+UBSan and run the whole test suite (CTest)
+#   make bench  build optimised and run the benchmarks (BENCH lines)
+#   make fuzz   run the libFuzzer targets for longer (FUZZ_SECONDS=60)
+#   make firmware / make flash PORT=/dev/ttyUSB0 JOINT=3
+
+# Debian packages and why they are here: see README.md "Dependencies".
+DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
+  libgtest-dev libgmock-dev libbenchmark-dev \
+  libcli11-dev libfmt-dev nlohmann-json3-dev \
+  libhidapi-dev libgpiod-dev \
+  gcc-avr avr-libc binutils-avr avrdude simavr libsimavr-dev libelf-dev \
+  clang libclang-rt-14-dev
+
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+JOBS ?= 2
+BUILD := build
+BENCH_BUILD := build/bench-release
+FUZZ_BUILD := build/fuzz
+FUZZ_SECONDS ?= 60
+
+.PHONY: all deps configure build test demo bench fuzz firmware flash install clean format
+
+all: build
+
+# Install only what is missing, so repeated runs cost nothing and need no network.
+deps:
+	@missing=$$(for p in $(DEB_PACKAGES); do \
+	    dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing Debian packages: $$missing"; \
+	  $(SUDO) apt-get update && \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y --no-install-recommends $$missing; \
+	fi
+
+$(BUILD)/build.ninja: | deps
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DARMCTL_SANITIZE=ON
+
+configure: deps $(BUILD)/build.ninja
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600
+
+demo: build
+	./scripts/demo.sh $(BUILD)/armctl
+
+bench: deps
+	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF
+	cmake --build $(BENCH_BUILD) -j $(JOBS)
+	./scripts/bench.sh $(BENCH_BUILD)
+
+fuzz: deps
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARMCTL_FUZZ=ON
+	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+	./scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+
+firmware: deps
+	$(MAKE) -C firmware
+
+flash: firmware
+	$(MAKE) -C firmware flash PORT=$(PORT) JOINT=$(JOINT)
+
+install: build
+	$(SUDO) install -m 0644 udev/50-armctl.rules /etc/udev/rules.d/50-armctl.rules
+	$(SUDO) install -m 0755 $(BUILD)/armctl /usr/local/bin/armctl
+	-$(SUDO) udevadm control --reload-rules && $(SUDO) udevadm trigger
+
+format:
+	find src tests bench fuzz firmware -name '*.[ch]pp' -o -name '*.[ch]' | xargs clang-format -i
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,16 @@
+// Each armctl subcommand lives in its own file and registers itself here. Subcommands stay
+// thin: they parse and validate arguments, call the SDK or a device, and print.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace armctl::cli {
+
+void add_bus_command(CLI::App& app);         // bus_command.cpp: joint bus master
+void add_sim_command(CLI::App& app);         // sim_command.cpp: long-lived simulated arms
+void add_xarm_command(CLI::App& app);        // xarm_command.cpp: Robot Commands SDK
+void add_emulate_command(CLI::App& app);     // emulate_command.cpp: xArm board emulator
+void add_list_command(CLI::App& app);        // list_command.cpp: attached boards and ports
+void add_controller_command(CLI::App& app);  // controller_command.cpp: the arm controller
+
+}  // namespace armctl::cli
