@@ -19,6 +19,7 @@ BUILD := build
 BENCH_BUILD := build/bench-release
 FUZZ_BUILD := build/fuzz
 FUZZ_SECONDS ?= 60
+TEST_FUZZ_SECONDS ?= 10
 
 .PHONY: all deps configure build test demo bench fuzz firmware flash install clean format
 
@@ -44,6 +45,7 @@ build: configure
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600
+	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(TEST_FUZZ_SECONDS)
 
 demo: build
 	./scripts/demo.sh $(BUILD)/armctl
@@ -55,7 +57,7 @@ bench: deps
 
 fuzz: deps
 	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARMCTL_FUZZ=ON
-	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target armctl_fuzz_all
 	./scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 firmware: deps
