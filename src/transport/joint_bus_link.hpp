@@ -1,5 +1,5 @@
 // The bus master's view of a joint bus: one shared UART plus one select line per joint.
-// Implementations: the simulated bus (devices/joint_bus/sim_bus), a Linux serial port with
+// Implementations: the simulated bus (devices/joint_sim/sim_bus), a Linux serial port with
 // GPIO select lines (serial_joint_bus_link), and a remote simulated arm (sim_link_client).
 #pragma once
 

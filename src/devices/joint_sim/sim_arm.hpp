@@ -1,0 +1,44 @@
+// The simulated SCARA arm: the joints of an ArmConfig (SimJoint = portable JointController
+// + motor model) on one SimBus. The bus master talks to link(); tests and the real-time
+// simulator (`armctl sim scara`) run it forward with run_until()/advance().
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "devices/joint_sim/arm_config.hpp"
+#include "devices/joint_sim/sim_bus.hpp"
+#include "devices/joint_sim/sim_joint.hpp"
+
+namespace armctl::joint_sim {
+
+class SimArm {
+ public:
+  explicit SimArm(ArmConfig config);
+  // config/scara.json from the source tree.
+  static std::unique_ptr<SimArm> from_default_config();
+
+  SimArm(const SimArm&) = delete;
+  SimArm& operator=(const SimArm&) = delete;
+
+  transport::JointBusLink& link() { return *bus_; }
+  SimBus& bus() { return *bus_; }
+  const ArmConfig& config() const { return config_; }
+
+  TimePoint now() const { return bus_->now(); }
+  void run_until(TimePoint t) { bus_->run_until(t); }
+  void advance(Duration d) { bus_->advance(d); }
+
+  int joint_count() const { return static_cast<int>(joints_.size()); }
+  // Joint by number (1..7), brought up to now. Throws invalid_argument if absent.
+  SimJoint& joint(int number);
+
+  void set_fault_plan(FaultPlan plan) { bus_->set_fault_plan(std::move(plan)); }
+
+ private:
+  ArmConfig config_;
+  std::vector<std::unique_ptr<SimJoint>> joints_;  // index = number - 1 (null if absent)
+  std::unique_ptr<SimBus> bus_;
+};
+
+}  // namespace armctl::joint_sim

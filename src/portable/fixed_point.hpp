@@ -1,0 +1,41 @@
+// Small integer helpers for the fixed-point loop code. int is 16 bits on the AVR, so every
+// helper works on explicit int32_t/uint32_t.
+#pragma once
+
+#include <stdint.h>
+
+namespace armctl {
+namespace joint_bus {
+
+inline int32_t clamp32(int32_t v, int32_t lo, int32_t hi) {
+  return v < lo ? lo : (v > hi ? hi : v);
+}
+
+inline uint32_t abs32(int32_t v) {
+  return v < 0 ? static_cast<uint32_t>(0) - static_cast<uint32_t>(v) : static_cast<uint32_t>(v);
+}
+
+// floor(sqrt(v)), bit by bit: 16 iterations of shifts and adds, no division.
+inline uint32_t isqrt32(uint32_t v) {
+  uint32_t result = 0;
+  uint32_t bit = static_cast<uint32_t>(1) << 30;
+  while (bit > v) bit >>= 2;
+  while (bit != 0) {
+    if (v >= result + bit) {
+      v -= result + bit;
+      result = (result >> 1) + bit;
+    } else {
+      result >>= 1;
+    }
+    bit >>= 2;
+  }
+  return result;
+}
+
+// Q16 -> integer, rounding half away from zero (no shifts of negative values).
+inline int32_t round_q16(int32_t v) {
+  return v >= 0 ? (v + INT32_C(32768)) / INT32_C(65536) : -((-v + INT32_C(32768)) / INT32_C(65536));
+}
+
+}  // namespace joint_bus
+}  // namespace armctl

@@ -1,0 +1,40 @@
+// Moves the loop's setpoint toward the target under a velocity limit and an acceleration
+// limit (a trapezoidal profile computed one tick at a time), so a new target never makes
+// the motor jump. Fixed point: positions and velocities in Q8 clicks (1/256 click),
+// velocity per tick, acceleration per tick^2; one tick = 1 ms.
+#pragma once
+
+#include <stdint.h>
+
+namespace armctl {
+namespace joint_bus {
+
+class SetpointRamp {
+ public:
+  // accel_q8: acceleration limit in Q8 clicks/tick^2 (>= 1). top_speed_q8: velocity at
+  // 100 % in Q8 clicks/tick (<= 51200, i.e. 200 clicks/tick).
+  void configure(int32_t top_speed_q8, int32_t accel_q8);
+  // Velocity limit as a percentage of the top speed (0..100; 0 holds: the setpoint comes
+  // to rest at the acceleration limit and stays there).
+  void set_speed_percent(uint8_t percent);
+  // Jump to a position at rest (start-up, home, loop off, loop re-enabled).
+  void reset(int32_t position_q8);
+  // One tick toward target_q8. Returns the new setpoint.
+  int32_t step(int32_t target_q8);
+
+  int32_t setpoint_q8() const { return setpoint_q8_; }
+  int32_t velocity_q8() const { return velocity_q8_; }
+  int32_t speed_limit_q8() const { return speed_limit_q8_; }
+  int32_t accel_q8() const { return accel_q8_; }
+
+ private:
+  int32_t top_speed_q8_ = 0;
+  int32_t accel_q8_ = 1;
+  int32_t speed_limit_q8_ = 0;
+  uint32_t no_brake_distance_q8_ = 0;  // beyond this distance braking never limits speed
+  int32_t setpoint_q8_ = 0;
+  int32_t velocity_q8_ = 0;
+};
+
+}  // namespace joint_bus
+}  // namespace armctl
