@@ -60,11 +60,15 @@ fuzz: deps
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target armctl_fuzz_all
 	./scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
+# Joint controller firmware into build/firmware/ (docs/firmware.md). flash programs one
+# board through its bootloader and sets its joint number in EEPROM:
+#   make flash PORT=/dev/ttyUSB0 JOINT=3 [BOOTLOADER_BAUD=57600 for old Nano bootloaders]
+#              [JOINT_BAUD=115200 for a 115200 baud joint bus]
 firmware: deps
-	$(MAKE) -C firmware
+	$(MAKE) -C firmware BUILD_DIR=$(CURDIR)/$(BUILD)/firmware
 
-flash: firmware
-	$(MAKE) -C firmware flash PORT=$(PORT) JOINT=$(JOINT)
+flash: deps
+	$(MAKE) -C firmware flash BUILD_DIR=$(CURDIR)/$(BUILD)/firmware
 
 install: build
 	$(SUDO) install -m 0644 udev/50-armctl.rules /etc/udev/rules.d/50-armctl.rules

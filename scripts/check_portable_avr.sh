@@ -50,6 +50,8 @@ int main() {
     sink = joint.tx_enabled();
     joint.on_encoder_edge(sink & 1, sink & 2);
     armctl::joint_bus::DriveOutput out = joint.control_tick();
+    joint.control_sample();
+    out = joint.control_compute();
     sink = static_cast<uint8_t>(out.duty);
     sink = static_cast<uint8_t>(joint.position() + joint.target() + joint.loop_enabled());
     now += 1000;

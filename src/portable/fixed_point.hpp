@@ -32,10 +32,15 @@ inline uint32_t isqrt32(uint32_t v) {
   return result;
 }
 
-// Q16 -> integer, rounding half away from zero (no shifts of negative values).
+// Q16 -> integer, rounding half away from zero. Shifts of unsigned values only: no division
+// (a 32-bit division is a ~600-cycle library call on the AVR) and no shift of a negative.
 inline int32_t round_q16(int32_t v) {
-  return v >= 0 ? (v + INT32_C(32768)) / INT32_C(65536) : -((-v + INT32_C(32768)) / INT32_C(65536));
+  if (v >= 0) return static_cast<int32_t>((static_cast<uint32_t>(v) + UINT32_C(32768)) >> 16);
+  return -static_cast<int32_t>((abs32(v) + UINT32_C(32768)) >> 16);
 }
+
+// Negate when `negative`, without a multiplication (sign * v is a library call on the AVR).
+inline int32_t with_sign(int32_t v, bool negative) { return negative ? -v : v; }
 
 }  // namespace joint_bus
 }  // namespace armctl

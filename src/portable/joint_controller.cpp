@@ -21,6 +21,7 @@ bool JointController::begin(uint8_t joint_number, const JointTuning& tuning, uin
   configured_ = joint_number >= 1 && joint_number <= max_joints && baud != 0;
   joint_number_ = joint_number;
   decoder_.set_count(0);
+  sampled_count_ = 0;
   decoder_.clear_errors();
   loop_.begin(tuning, 0);
   if (!configured_) loop_.set_enabled(false, 0);
@@ -37,9 +38,9 @@ void JointController::on_rx_byte(uint8_t byte, uint32_t now_us) {
   }
 }
 
-DriveOutput JointController::control_tick() {
+DriveOutput JointController::control_compute() {
   if (!configured_) return DriveOutput{0, false};
-  last_output_ = loop_.tick(decoder_.count());
+  last_output_ = loop_.tick(sampled_count_);
   return last_output_;
 }
 
@@ -52,6 +53,7 @@ CommandResult JointController::execute(int16_t command, int16_t data) {
     case cmd_ping: return answer(command, data);
     case cmd_home:
       decoder_.set_count(0);
+      sampled_count_ = 0;  // a sample taken before home must not reach the homed loop
       loop_.home();
       return success(command);
     case cmd_set_pid_state:

@@ -6,14 +6,37 @@
 // and carries out what it asks for:
 //   bus:     on_select(), on_rx_byte(), poll()  ->  next_tx_byte(), tx_enabled()
 //   encoder: on_encoder_edge(a, b) on every edge of A or B
-//   control: control_tick() every 1 ms  ->  DriveOutput (PWM duty + H-bridge enable)
+//   control: every 1 ms, either control_tick() (one call), or on the AVR
+//            control_sample() with interrupts masked, then control_compute() with
+//            interrupts enabled  ->  DriveOutput (PWM duty + H-bridge enable)
 //
-// Interrupt rules on the AVR (docs/joint-controller.md, "ISR sharing"): AVR interrupts do
-// not nest, so calls made from an ISR need nothing more. Every call made from the main loop
-// (poll, next_tx_byte, tx_enabled, the views, or bus calls if the board polls the UART)
-// must run with interrupts masked (ATOMIC_BLOCK), because the encoder ISR writes the 32-bit
-// count, the UART RX ISR changes target/zone/speed/loop state and the transaction, and the
-// timer ISR writes the loop state and (with the loop off) the target.
+// Firmware entry point for the 1 ms control step (ATmega328P), so that encoder edges are
+// not lost while the loop computes (worst ~1,400 cycles with default tuning, up to ~1,800
+// with extreme tuning; docs/joint-controller.md "Figures"):
+//   ISR(TIMER0_COMPA_vect) {            // interrupts are masked on entry
+//     joint.control_sample();           // copies the encoder count: a few cycles
+//     TIMSK0 &= ~(1 << OCIE0A);         // this ISR must not nest in itself
+//     sei();                            // encoder (and select/UART byte-queue) ISRs may run
+//     const DriveOutput out = joint.control_compute();
+//     cli(); TIMSK0 |= (1 << OCIE0A);
+//     h_bridge_apply(out.duty, out.enable);
+//   }
+// Rules for that split: while control_compute() runs, interrupts may call
+// on_encoder_edge(), on_select(), poll(), next_tx_byte(), tx_enabled() - never
+// on_rx_byte() (a command changes loop state), execute(), begin() or the views. A board that
+// calls on_rx_byte() from its UART RX ISR must therefore keep RXCIE0 off during
+// control_compute() (the UART buffers 2 bytes, ~2 ms at 9600 baud). Running control_tick()
+// or the pair from the main loop on a 1 ms flag (bus bytes also handled in the main loop)
+// is equally fine: then control_sample()
+// (reads the int32 count) needs ATOMIC_BLOCK and control_compute() needs nothing.
+//
+// Other interrupt rules on the AVR (docs/joint-controller.md, "ISR sharing"): AVR
+// interrupts do not nest unless an ISR re-enables them, so calls made from an ISR need
+// nothing more. Every call made from the main loop (poll, next_tx_byte, tx_enabled, the
+// views, or bus calls if the board polls the UART) must run with interrupts masked
+// (ATOMIC_BLOCK), because the encoder ISR writes the 32-bit count, the UART RX ISR (if the
+// board uses one for on_rx_byte) changes target/zone/speed/loop state and the transaction,
+// and the timer ISR writes the loop state and (with the loop off) the target.
 //
 // Encoder count and position: the count is int32 (it cannot overflow in practice); the
 // position the bus sees is that count saturated to int16, and the loop works on the int32
@@ -63,8 +86,21 @@ class JointController {
   // Encoder: call on every edge of A or B with both levels (ISR-safe, a table look-up).
   void on_encoder_edge(bool a, bool b) { decoder_.on_edge(a, b); }
 
-  // Control: call exactly every 1 ms. Returns what the H-bridge should do.
-  DriveOutput control_tick();
+  // Control, once every 1 ms, in one of two forms (docs/joint-controller.md, "ISR sharing"):
+  //  * control_tick(): sample and compute in one call (host simulator, tests, or firmware
+  //    that accepts the encoder interrupt waiting for the whole computation);
+  //  * control_sample() with interrupts masked (a few cycles: copies the int32 encoder
+  //    count), then control_compute() with interrupts enabled, so encoder edges are served
+  //    during the computation. While control_compute() runs, only on_encoder_edge(),
+  //    on_select(), poll(), next_tx_byte() and tx_enabled() may interrupt it; on_rx_byte(),
+  //    execute(), begin(), init_encoder() and the views must not (they touch or read loop
+  //    state that the computation writes).
+  DriveOutput control_tick() {
+    control_sample();
+    return control_compute();
+  }
+  void control_sample() { sampled_count_ = decoder_.count(); }
+  DriveOutput control_compute();
 
   // Run one command against the joint state (what the bus does once COMMAND/DATA are in).
   CommandResult execute(int16_t command, int16_t data);
@@ -89,6 +125,7 @@ class JointController {
 
  private:
   QuadratureDecoder decoder_;
+  int32_t sampled_count_ = 0;  // the count control_compute() works on
   PositionLoop loop_;
   BusTransaction transaction_;
   DriveOutput last_output_ = DriveOutput{0, false};

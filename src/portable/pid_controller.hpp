@@ -27,9 +27,10 @@ class PidController {
   int32_t integral_q16() const { return integral_q16_; }
 
  private:
-  int32_t kp_q8_ = 0;
-  int32_t ki_q8_ = 0;
-  int32_t kd_q8_ = 0;
+  // Gains fit 16 bits, so each product is a 16 x 32-bit multiply (cheaper on the AVR).
+  uint16_t kp_q8_ = 0;
+  uint16_t ki_q8_ = 0;
+  uint16_t kd_q8_ = 0;
   int32_t output_max_q16_ = 0;
   // Largest |input| of each product that keeps the product within +-2^28.
   int32_t p_input_max_ = 0;

@@ -19,8 +19,12 @@ class SetpointRamp {
   void set_speed_percent(uint8_t percent);
   // Jump to a position at rest (start-up, home, loop off, loop re-enabled).
   void reset(int32_t position_q8);
-  // One tick toward target_q8. Returns the new setpoint.
-  int32_t step(int32_t target_q8);
+  // One tick toward target_q8. Returns the new setpoint. (At rest on the target nothing
+  // changes: checked inline, so a holding joint pays no call.)
+  int32_t step(int32_t target_q8) {
+    if (velocity_q8_ == 0 && target_q8 == setpoint_q8_) return setpoint_q8_;
+    return step_moving(target_q8);
+  }
 
   int32_t setpoint_q8() const { return setpoint_q8_; }
   int32_t velocity_q8() const { return velocity_q8_; }
@@ -28,10 +32,22 @@ class SetpointRamp {
   int32_t accel_q8() const { return accel_q8_; }
 
  private:
+  int32_t step_moving(int32_t target_q8);
+  // Fastest speed toward the target that still stops within `distance` (see step()),
+  // limited to [floor, ceiling): the caller needs it only inside that window.
+  int32_t brake_speed_within(uint32_t distance, int32_t floor, int32_t ceiling) const;
+
   int32_t top_speed_q8_ = 0;
   int32_t accel_q8_ = 1;
   int32_t speed_limit_q8_ = 0;
   uint32_t no_brake_distance_q8_ = 0;  // beyond this distance braking never limits speed
+  // Per-configuration constants, so a tick has no division and few 32-bit products.
+  uint16_t half_accel_q8_ = 0;          // a / 2
+  uint16_t twice_accel_q8_ = 2;         // 2 a
+  uint32_t quarter_accel_sq_ = 0;       // a^2 / 4
+  // top speed = 100 x top_per_percent_ + top_remainder_ (set_speed without a 32-bit division)
+  uint16_t top_per_percent_ = 0;
+  uint8_t top_remainder_ = 0;
   int32_t setpoint_q8_ = 0;
   int32_t velocity_q8_ = 0;
 };

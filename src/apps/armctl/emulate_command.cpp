@@ -1,8 +1,110 @@
+// armctl emulate xarm: an emulated xArm board on a pty, until SIGINT/SIGTERM.
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <system_error>
+
+#include <fmt/core.h>
+
 #include "apps/armctl/commands.hpp"
+#include "core/error.hpp"
+#include "devices/xarm_emulator/emulator_runner.hpp"
+#include "transport/serial_port.hpp"
 
 namespace armctl::cli {
+namespace {
 
-// Not built yet: registers nothing, so 'armctl emulate' is reported as an unknown subcommand.
-void add_emulate_command(CLI::App& /*app*/) {}
+struct EmulateXarmArgs {
+  std::string link;
+  std::string state_dir;
+  std::uint32_t baud = 9600;
+  bool wire_timing = false;
+  unsigned battery = 7500;
+};
+
+xarm::EmulatorRunner* g_runner = nullptr;  // for the signal handler only
+
+extern "C" void on_stop_signal(int) {
+  if (g_runner) g_runner->request_stop();  // async-signal-safe: a flag and a pipe write
+}
+
+void run_emulate_xarm(const EmulateXarmArgs& args) {
+  if (args.battery < 4500 || args.battery > 12000)
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      fmt::format("--battery {} mV is outside 4500..12000", args.battery));
+  if (!transport::baud_constant(args.baud))
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      fmt::format("--baud {} is not a standard rate (allowed: {})", args.baud,
+                                  transport::standard_bauds_text()));
+  xarm::EmulatorRunnerOptions options;
+  if (!args.state_dir.empty()) options.emulator.state_dir = args.state_dir;
+  options.emulator.battery_millivolts = static_cast<std::uint16_t>(args.battery);
+  options.wire_timing = args.wire_timing;
+  options.baud = args.baud;
+
+  xarm::EmulatorRunner runner(
+      options, [](const std::string& m) { fmt::print(stderr, "emulate xarm: {}\n", m); });
+
+  namespace fs = std::filesystem;
+  if (!args.link.empty()) {
+    std::error_code ec;
+    if (fs::is_symlink(fs::symlink_status(args.link, ec))) fs::remove(args.link, ec);
+    fs::create_symlink(runner.device_path(), args.link, ec);
+    if (ec)
+      throw ArmctlError(ErrorKind::io, fmt::format("cannot create link {} -> {}: {}", args.link,
+                                                   runner.device_path(), ec.message()));
+  }
+
+  g_runner = &runner;
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  struct sigaction old_int {
+  }, old_term{};
+  sigaction(SIGINT, &action, &old_int);
+  sigaction(SIGTERM, &action, &old_term);
+
+  fmt::print("{}\n", runner.device_path());
+  fmt::print(stderr, "emulated xArm (servos 1..6) on {}{}{}; Ctrl-C to stop\n",
+             runner.device_path(), args.link.empty() ? "" : " linked from " + args.link,
+             args.wire_timing ? fmt::format(", wire timing {} baud", args.baud) : "");
+  std::fflush(stdout);
+
+  runner.run();
+
+  sigaction(SIGINT, &old_int, nullptr);
+  sigaction(SIGTERM, &old_term, nullptr);
+  g_runner = nullptr;
+  if (!args.link.empty()) {
+    std::error_code ec;
+    fs::remove(args.link, ec);
+  }
+  auto s = runner.stats();
+  fmt::print(stderr,
+             "emulate xarm: stopped; {} frames, {} handled, {} ignored, {} bytes discarded\n",
+             s.frames, s.handled, s.ignored(), s.discarded_bytes);
+}
+
+}  // namespace
+
+void add_emulate_command(CLI::App& app) {
+  auto* emulate = app.add_subcommand("emulate", "Emulated boards on a pty (for tools and tests)");
+  emulate->require_subcommand(1);
+  auto args = std::make_shared<EmulateXarmArgs>();
+  auto* xarm = emulate->add_subcommand(
+      "xarm",
+      "An emulated xArm board (six bus servos) speaking Robot Commands on a pty; prints "
+      "the pty path and runs until Ctrl-C");
+  xarm->add_option("--link", args->link, "Also create this symlink to the pty (removed on exit)");
+  xarm->add_option("--state-dir", args->state_dir,
+                   "Keep action groups and saved servo settings here (default: in memory)");
+  xarm->add_option("--baud", args->baud, "Line rate for --wire-timing (default 9600)");
+  xarm->add_flag("--wire-timing", args->wire_timing,
+                 "Bytes take as long as on a real 8N1 line at --baud");
+  xarm->add_option("--battery", args->battery, "Battery voltage in mV, 4500..12000 (default 7500)");
+  xarm->callback([args] { run_emulate_xarm(*args); });
+}
 
 }  // namespace armctl::cli

@@ -1,8 +1,74 @@
+// armctl sim scara [--listen PATH] [--baud N] [--config FILE]
+// Runs the simulated SCARA arm as a long-lived process, paced to the wall clock, serving its
+// joint bus on a unix socket so that `armctl bus --device unix:PATH ...` keeps the arm's
+// state between invocations. SIGINT/SIGTERM stop it cleanly (socket file removed).
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <fmt/core.h>
+
 #include "apps/armctl/commands.hpp"
+#include "core/error.hpp"
+#include "devices/joint_bus/sim_link_server.hpp"
+#include "devices/joint_sim/sim_arm.hpp"
+#include "transport/serial_port.hpp"
 
 namespace armctl::cli {
 
-// Not built yet: registers nothing, so 'armctl sim' is reported as an unknown subcommand.
-void add_sim_command(CLI::App& /*app*/) {}
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+void on_sim_stop_signal(int /*sig*/) { g_stop.store(true); }
+
+struct SimArgs {
+  std::string listen = "/tmp/armctl-scara.sock";
+  std::uint32_t baud = 0;  // 0: the config's
+  std::string config;
+};
+
+void run_sim_scara(const SimArgs& args) {
+  if (args.baud != 0 && !transport::baud_constant(args.baud)) {
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      fmt::format("--baud {} is not a standard rate ({})", args.baud, transport::standard_bauds_text()));
+  }
+  joint_sim::ArmConfig config = args.config.empty() ? joint_sim::load_arm_config(joint_sim::default_arm_config_path())
+                                                    : joint_sim::load_arm_config(args.config);
+  if (args.baud != 0) config.baud = args.baud;
+  joint_sim::SimArm arm(std::move(config));
+  joint_bus::SimLinkServer server(arm.link(), args.listen);
+  server.set_tick([&arm] { arm.bus().sync(); });
+  server.set_log([](const std::string& line) { fmt::print("sim scara: {}\n", line); std::fflush(stdout); });
+
+  struct sigaction sa{};
+  sa.sa_handler = on_sim_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  std::signal(SIGPIPE, SIG_IGN);
+
+  fmt::print("sim scara: {} joints at {} baud, listening on {} (Ctrl-C to stop)\n", arm.joint_count(),
+             arm.config().baud, args.listen);
+  std::fflush(stdout);
+  server.run(g_stop);
+  fmt::print("sim scara: stopped ({} masters served, {} bytes to masters)\n", server.stats().clients,
+             server.stats().bytes_to_master);
+}
+
+}  // namespace
+
+void add_sim_command(CLI::App& app) {
+  auto args = std::make_shared<SimArgs>();
+  CLI::App* sim = app.add_subcommand("sim", "Long-lived simulated arms");
+  sim->require_subcommand(1);
+  CLI::App* scara = sim->add_subcommand("scara", "The simulated SCARA arm (7 joints on a joint bus) on a unix socket");
+  scara->add_option("--listen", args->listen, "Unix socket path (default /tmp/armctl-scara.sock)");
+  scara->add_option("--baud", args->baud, "Joint bus baud (default: the config's, 9600)");
+  scara->add_option("--config", args->config, "Arm config file (default config/scara.json)");
+  scara->callback([args] { run_sim_scara(*args); });
+}
 
 }  // namespace armctl::cli

@@ -1,8 +1,358 @@
+// `armctl xarm`: drive an xArm (or our arm controller) over Robot Commands through the SDK.
+// Thin: parse and validate arguments, call robot_commands::Client, print text or JSON.
+#include <atomic>
+#include <csignal>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/xarm_args.hpp"
+#include "apps/armctl/xarm_session.hpp"
+#include "motion/action_group_file.hpp"
+#include "protocol/robot_commands/units.hpp"
 
 namespace armctl::cli {
+namespace {
 
-// Not built yet: registers nothing, so 'armctl xarm' is reported as an unknown subcommand.
-void add_xarm_command(CLI::App& /*app*/) {}
+using robot_commands::Client;
+using robot_commands::GroupEvent;
+
+struct XarmCli {
+  std::string device;
+  bool json = false;
+  int servo_count = 6;
+  int timeout_ms = 500;
+
+  // per-subcommand arguments
+  std::vector<std::string> targets;
+  int time_ms = 1000;
+  bool wait = false;
+  std::vector<std::string> servos;
+  std::string servo;
+  std::string offset;
+  std::string mode;
+  int speed = 0;
+  std::string file;
+  std::string group;
+  int times = 1;
+  std::string percent;
+  int interval_ms = 200;
+  robot_commands::BusServoInfoWrite info;
+};
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void on_sigint(int) { g_interrupted = true; }
+
+template <typename T>
+T check(Result<T> r) {
+  return std::move(r).value();  // throws ArmctlError with the SDK's message
+}
+
+void print_json(const nlohmann::json& j) { fmt::print("{}\n", j.dump()); }
+
+nlohmann::json positions_json(const std::vector<robot_commands::ServoPosition>& ps) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto& p : ps) {
+    a.push_back({{"servo", p.servo},
+                 {"position", p.position},
+                 {"degrees", rc::position_to_degrees(p.position)}});
+  }
+  return a;
+}
+
+void print_positions(const XarmCli& o, const std::vector<robot_commands::ServoPosition>& ps) {
+  if (o.json) return print_json({{"positions", positions_json(ps)}});
+  for (const auto& p : ps) {
+    fmt::print("servo {}: {:4} ({:+.1f} deg)\n", p.servo, p.position,
+               rc::position_to_degrees(p.position));
+  }
+}
+
+nlohmann::json event_json(const GroupEvent& e) {
+  nlohmann::json j{{"event", robot_commands::to_string(e.kind)}, {"variant", e.variant}};
+  if (e.group) j["group"] = *e.group;
+  if (e.count) j["count"] = *e.count;
+  return j;
+}
+
+void print_events(const XarmCli& o, Client& c) {
+  while (auto e = c.next_event()) {
+    if (o.json) print_json(event_json(*e));
+    else fmt::print("{}\n", robot_commands::describe(*e));
+  }
+}
+
+void done(const XarmCli& o, const std::string& text) {
+  if (o.json) print_json({{"ok", true}, {"done", text}});
+  else fmt::print("{}\n", text);
+}
+
+std::unique_ptr<XarmSession> open(const XarmCli& o) {
+  return open_xarm_session(o.device, o.servo_count, o.timeout_ms);
+}
+
+void run_move(const XarmCli& o) {
+  std::vector<robot_commands::ServoTarget> targets;
+  for (const auto& t : o.targets) targets.push_back(xarm_args::parse_target(t, o.servo_count));
+  auto s = open(o);
+  check(s->client->move(targets, static_cast<std::uint16_t>(o.time_ms)));
+  if (!o.wait) return done(o, fmt::format("moving {} servos over {} ms", targets.size(), o.time_ms));
+  auto& c = *s->client;
+  c.pump_events(c.clock().now() + std::chrono::milliseconds(o.time_ms + 50));
+  std::vector<std::uint8_t> ids;
+  for (const auto& t : targets) ids.push_back(t.servo);
+  print_positions(o, check(c.read_positions(ids)));
+  print_events(o, c);
+}
+
+void run_positions(const XarmCli& o) {
+  const auto ids = xarm_args::parse_servos(o.servos, o.servo_count);
+  auto s = open(o);
+  print_positions(o, check(s->client->read_positions(ids)));
+}
+
+void run_off(const XarmCli& o) {
+  const auto ids = xarm_args::parse_servos(o.servos, o.servo_count);
+  auto s = open(o);
+  check(s->client->servos_off(ids));
+  done(o, fmt::format("torque off for {} servos", ids.size()));
+}
+
+void run_battery(const XarmCli& o) {
+  auto s = open(o);
+  const auto mv = check(s->client->battery_millivolts());
+  if (o.json) return print_json({{"millivolts", mv}});
+  fmt::print("battery: {} mV ({:.2f} V)\n", mv, mv / 1000.0);
+}
+
+void run_offset_read(const XarmCli& o) {
+  const auto ids = xarm_args::parse_servos(o.servos, o.servo_count);
+  auto s = open(o);
+  const auto offsets = check(s->client->read_offsets(ids));
+  if (o.json) {
+    nlohmann::json a = nlohmann::json::array();
+    for (const auto& x : offsets) a.push_back({{"servo", x.servo}, {"offset", x.offset}});
+    return print_json({{"offsets", a}});
+  }
+  for (const auto& x : offsets) fmt::print("servo {}: offset {:+}\n", x.servo, x.offset);
+}
+
+void run_offset_adjust(const XarmCli& o) {
+  const auto servo = xarm_args::parse_servo(o.servo, o.servo_count);
+  const auto offset = xarm_args::parse_int(o.offset, rc::kOffsetMin, rc::kOffsetMax, "offset");
+  auto s = open(o);
+  check(s->client->adjust_offset(servo, static_cast<int>(offset)));
+  done(o, fmt::format("servo {} offset set to {:+} (until power-off; `offset save` keeps it)",
+                      servo, offset));
+}
+
+void run_offset_save(const XarmCli& o) {
+  const auto ids = xarm_args::parse_servos(o.servos, o.servo_count);
+  auto s = open(o);
+  check(s->client->save_offsets(ids));
+  done(o, fmt::format("offsets saved for {} servos", ids.size()));
+}
+
+void run_mode(const XarmCli& o) {
+  const auto servo = xarm_args::parse_servo(o.servo, o.servo_count);
+  rc::ServoMode mode;
+  if (o.mode == "servo") mode = rc::ServoMode::servo;
+  else if (o.mode == "motor") mode = rc::ServoMode::motor;
+  else throw ArmctlError(ErrorKind::invalid_argument,
+                         fmt::format("mode \"{}\" is not allowed (servo or motor)", o.mode));
+  auto s = open(o);
+  check(s->client->set_mode(servo, mode, static_cast<std::uint16_t>(o.speed)));
+  done(o, fmt::format("servo {} in {} mode", servo, o.mode));
+}
+
+void run_info_read(const XarmCli& o) {
+  auto s = open(o);
+  const auto i = check(s->client->read_bus_servo_info());
+  nlohmann::json j{{"id", i.id},
+                   {"position_min", i.position_min},
+                   {"position_max", i.position_max},
+                   {"millivolts_min", i.millivolts_min},
+                   {"millivolts_max", i.millivolts_max},
+                   {"temp_max", i.temp_max},
+                   {"led_status", i.led_status},
+                   {"led_warning", i.led_warning},
+                   {"offset", i.offset},
+                   {"position", i.position},
+                   {"temp", i.temp},
+                   {"millivolts", i.millivolts}};
+  if (o.json) return print_json(j);
+  for (auto it = j.begin(); it != j.end(); ++it) fmt::print("{}: {}\n", it.key(), it->dump());
+}
+
+void run_info_write(const XarmCli& o) {
+  auto s = open(o);
+  check(s->client->write_bus_servo_info(o.info));
+  done(o, fmt::format("bus servo info written (ID {})", o.info.servo));
+}
+
+void run_group_download(const XarmCli& o) {
+  const auto group = xarm_args::parse_group(o.group, false);
+  const auto file = check(motion::read_action_group_file(o.file));
+  auto s = open(o);
+  check(s->client->download_group(group, file.actions));
+  done(o, fmt::format("group {}: {} actions downloaded", group, file.actions.size()));
+}
+
+void run_group_run(const XarmCli& o) {
+  const auto group = xarm_args::parse_group(o.group, false);
+  auto s = open(o);
+  check(s->client->run_group(group, static_cast<std::uint16_t>(o.times)));
+  done(o, o.times == 0 ? fmt::format("group {} running until stopped", group)
+                       : fmt::format("group {} running {} times", group, o.times));
+  s->client->pump_events(s->client->clock().now() + std::chrono::milliseconds(200));
+  if (s->client->pending_events() == 0 && !o.json) {
+    fmt::print(stderr, "warning: no 'started' notification within 200 ms (is group {} empty on "
+                       "this board?)\n", group);
+  }
+  print_events(o, *s->client);
+}
+
+void run_group_stop(const XarmCli& o) {
+  auto s = open(o);
+  check(s->client->stop_group());
+  s->client->pump_events(s->client->clock().now() + std::chrono::milliseconds(100));
+  print_events(o, *s->client);
+  done(o, "group stopped");
+}
+
+void run_group_erase(const XarmCli& o) {
+  const auto group = xarm_args::parse_group(o.group, true);
+  auto s = open(o);
+  check(s->client->erase_group(group));
+  done(o, group == 255 ? std::string("all groups erased") : fmt::format("group {} erased", group));
+}
+
+void run_group_speed(const XarmCli& o) {
+  const auto group = xarm_args::parse_group(o.group, true);
+  const auto pct = xarm_args::parse_int(o.percent, rc::kSpeedPercentMin, rc::kSpeedPercentMax,
+                                        "speed percentage");
+  auto s = open(o);
+  check(s->client->set_group_speed(group, static_cast<std::uint16_t>(pct)));
+  done(o, fmt::format("group {} speed {} %", o.group, pct));
+}
+
+void run_watch(const XarmCli& o) {
+  auto s = open(o);
+  auto& c = *s->client;
+  g_interrupted = false;
+  auto previous = std::signal(SIGINT, on_sigint);
+  while (!g_interrupted) {
+    auto ps = c.read_all_positions();
+    if (!ps) {
+      std::signal(SIGINT, previous);
+      throw ArmctlError(ps.error());
+    }
+    if (o.json) {
+      print_json({{"positions", positions_json(*ps)}});
+    } else {
+      std::string line;
+      for (const auto& p : *ps) line += fmt::format("{}={:<5}", p.servo, p.position);
+      fmt::print("{}\n", line);
+    }
+    print_events(o, c);
+    std::fflush(stdout);
+    c.pump_events(c.clock().now() + std::chrono::milliseconds(o.interval_ms));
+    print_events(o, c);
+  }
+  std::signal(SIGINT, previous);
+}
+
+}  // namespace
+
+void add_xarm_command(CLI::App& app) {
+  auto o = std::make_shared<XarmCli>();
+  auto* x = app.add_subcommand("xarm", "Drive an xArm board (or the arm controller) over Robot "
+                                       "Commands; without --device an embedded emulated xArm");
+  x->require_subcommand(1);
+  x->fallthrough();  // --device/--json may also follow the subcommand
+  x->add_option("--device", o->device,
+                "hid | hid:SERIAL | hid:/dev/hidrawN | serial:/dev/ttyUSB0[?baud=115200] | /dev/PATH");
+  x->add_flag("--json", o->json, "Machine-readable output (one JSON object per line)");
+  x->add_option("--servos", o->servo_count, "Servos on the board (6 = xArm, 7 = SCARA controller)")
+      ->check(CLI::Range(1, 19));
+  x->add_option("--timeout", o->timeout_ms, "Reply timeout in ms")->check(CLI::Range(1, 60000));
+
+  auto* move = x->add_subcommand("move", "Move servos: 1=500 2=30deg 3=keep");
+  move->add_option("targets", o->targets, "SERVO=POSITION (0..1000, -120deg..120deg, keep)")
+      ->required();
+  move->add_option("--time", o->time_ms, "Move time in ms")->check(CLI::Range(0, 30000));
+  move->add_flag("--wait", o->wait, "Wait for the move, then print the positions");
+  move->callback([o] { run_move(*o); });
+
+  auto* positions = x->add_subcommand("positions", "Read servo positions");
+  positions->add_option("servos", o->servos, "Servo IDs (default: all)");
+  positions->callback([o] { run_positions(*o); });
+
+  auto* off = x->add_subcommand("off", "Remove torque (the next move restores it)");
+  off->add_option("servos", o->servos, "Servo IDs (default: all)");
+  off->callback([o] { run_off(*o); });
+
+  x->add_subcommand("battery", "Battery voltage")->callback([o] { run_battery(*o); });
+
+  auto* offset = x->add_subcommand("offset", "Servo offsets (-125..125)");
+  offset->require_subcommand(1);
+  auto* oread = offset->add_subcommand("read", "Read offsets");
+  oread->add_option("servos", o->servos, "Servo IDs (default: all)");
+  oread->callback([o] { run_offset_read(*o); });
+  auto* oadj = offset->add_subcommand("adjust", "Set an offset now (lost at power-off)");
+  oadj->add_option("servo", o->servo)->required();
+  oadj->add_option("offset", o->offset, "-125..125")->required();
+  oadj->callback([o] { run_offset_adjust(*o); });
+  auto* osave = offset->add_subcommand("save", "Keep the current offsets across power-off");
+  osave->add_option("servos", o->servos, "Servo IDs (default: all)");
+  osave->callback([o] { run_offset_save(*o); });
+
+  auto* mode = x->add_subcommand("mode", "Servo or motor mode (ServoSpeed)");
+  mode->add_option("servo", o->servo)->required();
+  mode->add_option("mode", o->mode, "servo | motor")->required();
+  mode->add_option("--speed", o->speed, "The ServoSpeed value (u16)")->check(CLI::Range(0, 65535));
+  mode->callback([o] { run_mode(*o); });
+
+  auto* info = x->add_subcommand("info", "Bus-servo info (one servo on the bus)");
+  info->require_subcommand(1);
+  info->add_subcommand("read", "Read limits and readings")->callback([o] { run_info_read(*o); });
+  auto* iw = info->add_subcommand("write", "Write ID, limits and LED settings");
+  iw->add_option("--id", o->info.servo, "Servo ID to give")->required();
+  iw->add_option("--position-min", o->info.position_min);
+  iw->add_option("--position-max", o->info.position_max);
+  iw->add_option("--millivolts-min", o->info.millivolts_min);
+  iw->add_option("--millivolts-max", o->info.millivolts_max);
+  iw->add_option("--temp-max", o->info.temp_max);
+  iw->add_option("--led-status", o->info.led_status, "0 enable, 1 disable");
+  iw->add_option("--led-warning", o->info.led_warning, "bits: 1 overheat, 2 overvoltage, 4 overposition");
+  iw->callback([o] { run_info_write(*o); });
+
+  auto* group = x->add_subcommand("group", "Action groups");
+  group->require_subcommand(1);
+  auto* gd = group->add_subcommand("download", "Download a group file (docs/action-groups.md)");
+  gd->add_option("file", o->file)->required();
+  gd->add_option("--group", o->group, "Group number 0..254")->default_val("0");
+  gd->callback([o] { run_group_download(*o); });
+  auto* gr = group->add_subcommand("run", "Run a group");
+  gr->add_option("group", o->group)->required();
+  gr->add_option("--times", o->times, "0 = until stopped")->check(CLI::Range(0, 65535));
+  gr->callback([o] { run_group_run(*o); });
+  group->add_subcommand("stop", "Stop the running group")->callback([o] { run_group_stop(*o); });
+  auto* ge = group->add_subcommand("erase", "Erase a group (or all)");
+  ge->add_option("group", o->group, "0..254 | all")->required();
+  ge->callback([o] { run_group_erase(*o); });
+  auto* gs = group->add_subcommand("speed", "Playback speed in % (100 = as recorded)");
+  gs->add_option("group", o->group, "0..254 | all")->required();
+  gs->add_option("percent", o->percent, "1..1000")->required();
+  gs->callback([o] { run_group_speed(*o); });
+
+  auto* watch = x->add_subcommand("watch", "Live positions and notifications until Ctrl-C");
+  watch->add_option("--interval", o->interval_ms, "ms between reads")->check(CLI::Range(10, 60000));
+  watch->callback([o] { run_watch(*o); });
+}
 
 }  // namespace armctl::cli

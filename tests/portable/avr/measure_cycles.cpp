@@ -24,6 +24,8 @@ struct Stat {
   uint32_t count;
 };
 Stat tick_stat, sample_stat, compute_stat, edge_stat, rx_stat;
+// control_compute() per tuning: the default one, and everything at its upper bound.
+Stat default_tuning_stat, strong_tuning_stat;
 uint16_t overhead;
 
 inline uint16_t now_cycles() { return TCNT1; }
@@ -197,6 +199,7 @@ int main() {
       out = joint.control_compute();
       t1 = now_cycles();
       record(&compute_stat, t0, t1);
+      record(tick < 15000 ? &default_tuning_stat : &strong_tuning_stat, t0, t1);
     }
     motor_step(out);
   }
@@ -204,6 +207,8 @@ int main() {
   put_stat("control_tick", tick_stat);
   put_stat("control_sample", sample_stat);
   put_stat("control_compute", compute_stat);
+  put_stat("compute_default", default_tuning_stat);
+  put_stat("compute_strongest", strong_tuning_stat);
   put_stat("on_encoder_edge", edge_stat);
   put_stat("on_rx_byte", rx_stat);
   put_text("done\n");

@@ -1,0 +1,110 @@
+// Firmware budgets: flash and static RAM from the ELF (avr-size), and worst-case cycle
+// counts measured on emulated silicon (libsimavr) while all seven joints run step moves at
+// 115200 baud with bus traffic. One line per figure:
+//   BENCH <name> <value> <unit> limit <L> ratio <value/L>   (lower ratio is better)
+// Cycle counts: from the interrupt's dispatch to the end of its RETI as simavr counts
+// cycles, plus the 4-cycle hardware interrupt response simavr leaves out. The control tick
+// runs with interrupts enabled; its figure is its own cycles (time spent in encoder/UART
+// ISRs that nested inside it is subtracted and printed separately on the "# also" line).
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "devices/joint_avr/atmega328p.hpp"
+#include "devices/joint_avr/avr_arm.hpp"
+#include "devices/joint_bus/bus_master.hpp"
+#include "devices/joint_sim/arm_config.hpp"
+
+namespace {
+
+using namespace armctl;
+namespace m = joint_avr::atmega328p;
+
+void bench_line(const char* name, double value, const char* unit, double limit) {
+  std::printf("BENCH %s %.0f %s limit %.0f ratio %.3f\n", name, value, unit, limit, value / limit);
+}
+
+struct Sizes {
+  unsigned long text = 0, data = 0, bss = 0, noinit = 0;
+  bool ok = false;
+};
+
+Sizes elf_sizes(const std::string& elf) {
+  Sizes s;
+  const std::string cmd = "avr-size -A '" + elf + "'";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (p == nullptr) return s;
+  char name[64];
+  unsigned long size = 0, addr = 0;
+  char line[256];
+  while (std::fgets(line, sizeof line, p) != nullptr) {
+    if (std::sscanf(line, "%63s %lu %lu", name, &size, &addr) != 3) continue;
+    const std::string n = name;
+    if (n == ".text") s.text = size;
+    if (n == ".data") s.data = size;
+    if (n == ".bss") s.bss = size;
+    if (n == ".noinit") s.noinit = size;
+  }
+  s.ok = pclose(p) == 0 && s.text > 0;
+  return s;
+}
+
+}  // namespace
+
+int main() {
+  const std::string elf = joint_avr::default_firmware_elf();
+  const Sizes sizes = elf_sizes(elf);
+  if (!sizes.ok) {
+    std::fprintf(stderr, "bench_firmware: cannot read sizes of %s with avr-size\n", elf.c_str());
+    return 1;
+  }
+  bench_line("fw_flash", double(sizes.text + sizes.data), "bytes", 8192);
+  bench_line("fw_static_ram", double(sizes.data + sizes.bss + sizes.noinit), "bytes", 512);
+
+  joint_sim::ArmConfig config = joint_sim::load_arm_config(joint_sim::default_arm_config_path());
+  config.baud = 115200;
+  joint_avr::AvrArm arm(config);
+  arm.advance(std::chrono::milliseconds(20));
+  joint_bus::BusMaster master(arm.link());
+  int failures = 0;
+  // Six back-and-forth step moves on every joint at once, with pings and position reads in
+  // between: encoder edges at full speed, control ticks under load, bus replies.
+  for (int round = 0; round < 6; ++round) {
+    const std::int16_t target = round % 2 == 0 ? 3000 : -1000;
+    for (int j = 1; j <= 7; ++j) failures += master.drive_to(j, target).ok() ? 0 : 1;
+    for (int step = 0; step < 40; ++step) {
+      for (int j = 1; j <= 7; ++j) {
+        failures += master.ping(j, static_cast<std::int16_t>(step * 7 + j)).ok() ? 0 : 1;
+        failures += master.get_position(j).ok() ? 0 : 1;
+      }
+      arm.advance(std::chrono::milliseconds(10));
+    }
+  }
+  std::uint64_t tick = 0, tick_gross = 0, encoder = 0, turnaround = 0, rx_isr = 0, select_isr = 0, edges = 0;
+  for (int j = 1; j <= 7; ++j) {
+    const joint_avr::AvrJoint& joint = arm.joint(j);
+    const joint_avr::AvrChip& chip = joint.chip();
+    tick = std::max(tick, chip.isr_stats(m::vector_timer0_compa).max_own_cycles);
+    tick_gross = std::max(tick_gross, chip.isr_stats(m::vector_timer0_compa).max_cycles);
+    encoder = std::max({encoder, chip.isr_stats(m::vector_int0).max_cycles,
+                        chip.isr_stats(m::vector_int1).max_cycles});
+    edges += chip.isr_stats(m::vector_int0).count + chip.isr_stats(m::vector_int1).count;
+    rx_isr = std::max(rx_isr, chip.isr_stats(m::vector_usart_rx).max_cycles);
+    select_isr = std::max(select_isr, chip.isr_stats(m::vector_pcint0).max_cycles);
+    turnaround = std::max(turnaround, joint.rx_to_tx().max_cycles);
+  }
+  // One word (2 bytes of 10 bits) at 115200 baud, in CPU cycles at 16 MHz.
+  const double word_cycles = 20.0 * m::clock_hz / 115200.0;
+  bench_line("fw_control_tick_worst", double(tick), "cycles", 1600);
+  bench_line("fw_encoder_isr_worst", double(encoder), "cycles", 100);
+  bench_line("fw_turnaround_worst", double(turnaround), "cycles", word_cycles);
+  std::printf("# also: control tick with nested ISRs %llu cycles, uart rx isr %llu cycles, "
+              "select isr %llu cycles, %llu encoder edges, %d failed transactions, %llu bus "
+              "contentions\n",
+              (unsigned long long)tick_gross, (unsigned long long)rx_isr, (unsigned long long)select_isr,
+              (unsigned long long)edges, failures,
+              (unsigned long long)arm.bus().stats().contentions);
+  return failures == 0 ? 0 : 1;
+}

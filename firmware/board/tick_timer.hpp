@@ -1,0 +1,17 @@
+// Timer0: the 1 kHz control tick and the free-running microsecond clock.
+// CTC mode, prescaler 64, OCR0A 249: one compare match every 250 x 4 us = 1 ms.
+#pragma once
+
+#include <stdint.h>
+
+namespace board {
+
+void tick_timer_begin();
+// Call first thing in the TIMER0_COMPA ISR (interrupts off there).
+void tick_timer_count_from_isr();
+// Milliseconds since start (wraps); read atomically.
+uint32_t tick_timer_ms();
+// Microseconds since start, 4 us resolution, wraps after 71.6 minutes.
+uint32_t tick_timer_us();
+
+}  // namespace board

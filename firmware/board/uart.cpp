@@ -1,0 +1,127 @@
+#include "board/uart.hpp"
+
+#include <avr/interrupt.h>
+#include <avr/io.h>
+#include <util/atomic.h>
+
+#include "board/bus_events.hpp"
+#include "board/pins.hpp"
+#include "board/ring_buffer.hpp"
+
+namespace board {
+namespace {
+// A reply is at most 2 words in flight (RESPONSE, then STATUS later): 8 bytes is plenty.
+RingBuffer<uint8_t, 8> tx_ring;
+volatile bool tx_written_since_enable = false;
+volatile uint8_t rx_errors = 0;
+
+void write_udr(uint8_t byte) {
+  // Clear TXC0 (write one) so it tells when *this* byte has left; keep U2X0 set.
+  UCSR0A = static_cast<uint8_t>((UCSR0A & _BV(U2X0)) | _BV(TXC0));
+  UDR0 = byte;
+  tx_written_since_enable = true;
+}
+}  // namespace
+
+void uart_begin(uint32_t baud) {
+  UCSR0B = 0;
+  // TX pin as input without pull-up: high-Z whenever the transmitter is off.
+  DDRD &= static_cast<uint8_t>(~_BV(uart_tx_bit));
+  PORTD &= static_cast<uint8_t>(~_BV(uart_tx_bit));
+  // U2X0 before UBRR0: the chip does not care, but simavr computes the bit time only when
+  // UBRR0L is written and would otherwise run the emulated UART at half speed.
+  UCSR0A = _BV(U2X0);
+  const uint32_t ubrr = (F_CPU + 4UL * baud) / (8UL * baud) - 1UL;
+  UBRR0H = static_cast<uint8_t>(ubrr >> 8);
+  UBRR0L = static_cast<uint8_t>(ubrr);
+  UCSR0C = _BV(UCSZ01) | _BV(UCSZ00);  // 8N1
+  UCSR0B = _BV(RXEN0) | _BV(RXCIE0);
+}
+
+void uart_end() {
+  UCSR0B = 0;
+  tx_ring.clear();
+}
+
+void uart_enable_transmitter() {
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+    UCSR0B &= static_cast<uint8_t>(~_BV(TXCIE0));  // allowed again: no release pending
+    if (!(UCSR0B & _BV(TXEN0))) {
+      tx_written_since_enable = false;
+      UCSR0B |= _BV(TXEN0);
+    }
+  }
+}
+
+bool uart_transmitter_enabled() { return (UCSR0B & _BV(TXEN0)) != 0; }
+
+bool uart_release_transmitter_when_idle() {
+  if (!(UCSR0B & _BV(TXEN0))) return true;
+  bool idle;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+    idle = tx_ring.empty() && !(UCSR0B & _BV(UDRIE0)) &&
+           (!tx_written_since_enable || (UCSR0A & _BV(TXC0)));
+    if (idle) {
+      UCSR0B &= static_cast<uint8_t>(~(_BV(TXEN0) | _BV(TXCIE0)));
+    } else {
+      // Release from the TX-complete ISR the moment the last stop bit has left, rather than
+      // at the next wake-up of the main loop (up to 1 ms later, while the master may
+      // already be talking to the next joint).
+      UCSR0B |= _BV(TXCIE0);
+    }
+  }
+  return idle;
+}
+
+bool uart_tx_has_room() { return !tx_ring.full(); }
+
+bool uart_queue_tx(uint8_t byte) {
+  if (!tx_ring.push(byte)) return false;
+  // The UDRE ISR moves it to the hardware (and clears UDRIE0 itself: mask while we set it).
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { UCSR0B |= _BV(UDRIE0); }
+  return true;
+}
+
+void uart_discard_tx() { tx_ring.clear(); }
+
+uint8_t uart_rx_errors() { return rx_errors; }
+
+}  // namespace board
+
+namespace board {
+namespace {
+void take_received_byte() {
+  const uint8_t status = UCSR0A;
+  const uint8_t byte = UDR0;
+  if (status & (_BV(FE0) | _BV(DOR0))) {
+    if (rx_errors != 0xFF) rx_errors = static_cast<uint8_t>(rx_errors + 1);
+  }
+  // A byte with a framing error is still handed on: the controller rejects what it cannot
+  // parse, and dropping it would shift every later word by one byte.
+  bus_event_push_from_isr(byte);
+}
+}  // namespace
+
+void uart_take_received_from_isr() {
+  while (UCSR0A & _BV(RXC0)) take_received_byte();
+}
+}  // namespace board
+
+ISR(USART_RX_vect) { board::take_received_byte(); }
+
+ISR(USART_UDRE_vect) {
+  uint8_t byte;
+  if (board::tx_ring.pop(&byte)) {
+    board::write_udr(byte);
+  } else {
+    UCSR0B &= static_cast<uint8_t>(~_BV(UDRIE0));
+  }
+}
+
+// TX complete: the shift register is empty and nothing is waiting. Armed only while the main
+// loop wants the transmitter released (uart_release_transmitter_when_idle).
+ISR(USART_TX_vect) {
+  if (board::tx_ring.empty() && !(UCSR0B & _BV(UDRIE0))) {
+    UCSR0B &= static_cast<uint8_t>(~(_BV(TXEN0) | _BV(TXCIE0)));
+  }
+}

@@ -1,0 +1,59 @@
+// The interrupt handlers of the joint controller. Board code (board/) only moves bytes and
+// edges; this file is where the hardware events meet the portable controller.
+//
+// Sharing rules (src/portable/joint_controller.hpp): every controller call is made with
+// interrupts masked, or from an ISR that nothing else touching the controller can preempt.
+//
+// Encoder edges: the INT0/INT1 ISR only samples both channel levels (one PIND read) into a
+// queue, which keeps it short enough that a burst of edges is never missed. The levels are
+// handed to the decoder (JointController::on_encoder_edge), in order and with interrupts
+// masked, by the main loop as soon as it wakes (every ISR wakes it) and by the control tick
+// just before it runs, so control_tick() always sees every edge up to its start.
+//
+// The 1 kHz control tick (about 1,400 cycles) re-enables interrupts while it computes, so
+// encoder edges are sampled on time and bus bytes are not delayed; none of the ISRs that
+// can nest inside it touches the controller (they fill queues), so control_tick() never
+// sees controller state change under it.
+#include <avr/interrupt.h>
+#include <avr/io.h>
+
+#include "board/encoder_input.hpp"
+#include "board/h_bridge.hpp"
+#include "board/tick_timer.hpp"
+#include "joint_firmware.hpp"
+
+namespace firmware {
+
+board::RingBuffer<uint8_t, 32> encoder_levels_queue;
+volatile uint8_t encoder_edges_lost = 0;
+
+void apply_encoder_edges() {
+  uint8_t levels;
+  while (encoder_levels_queue.pop(&levels)) {
+    joint.on_encoder_edge((levels & 1) != 0, (levels & 2) != 0);
+  }
+}
+
+}  // namespace firmware
+
+// Any change on A (INT0) or B (INT1).
+ISR(INT0_vect) {
+  if (!firmware::encoder_levels_queue.push(board::encoder_levels(PIND))) {
+    if (firmware::encoder_edges_lost != 0xFF) firmware::encoder_edges_lost = firmware::encoder_edges_lost + 1;
+  }
+}
+
+ISR(INT1_vect, ISR_ALIASOF(INT0_vect));
+
+// The 1 kHz control tick (Timer0 compare match A).
+ISR(TIMER0_COMPA_vect) {
+  board::tick_timer_count_from_isr();
+  if (!firmware::joint_running) return;
+  firmware::apply_encoder_edges();
+  TIMSK0 &= static_cast<uint8_t>(~_BV(OCIE0A));  // no re-entry while interrupts are on
+  sei();
+  const armctl::joint_bus::DriveOutput out = firmware::joint.control_tick();
+  board::h_bridge_apply(out.duty, out.enable);
+  cli();
+  TIMSK0 |= _BV(OCIE0A);
+}

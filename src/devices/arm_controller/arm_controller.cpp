@@ -1,0 +1,396 @@
+#include "devices/arm_controller/arm_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/core.h>
+
+#include "devices/joint_bus/bus_connection.hpp"
+
+namespace armctl::arm_controller {
+
+namespace {
+
+constexpr int kFaultLogEvery = 100;  // a dead joint fails every sweep: log changes, then 1 in 100
+
+}  // namespace
+
+ArmController::ArmController(transport::JointBusLink& link, joint_bus::MasterOptions master_options,
+                             ControllerConfig config, ControllerOptions options)
+    : link_(link), master_(link, master_options), config_(std::move(config)), options_(std::move(options)) {
+  if (config_.joints.empty())
+    throw ArmctlError(ErrorKind::invalid_config, "arm config names no joints");
+  for (const auto& jc : config_.joints) {
+    if (jc.number > master_.joint_count())
+      throw ArmctlError(ErrorKind::invalid_config,
+                        fmt::format("arm config joint {} ({}) has no select line: the bus has joints 1..{}",
+                                    int(jc.number), jc.name, master_.joint_count()));
+    ids_.push_back(jc.number);
+    Joint j;
+    j.config = jc;
+    j.profile = as_quantized_by_joint(JointProfile{jc.max_speed_cps, jc.max_accel_cps2});
+    joints_.push_back(std::move(j));
+    JointSettings s;
+    s.limits.servo = jc.number;
+    settings_.joints[jc.number] = s;
+  }
+  settings_.info_joint = ids_.front();
+  if (options_.state_dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(*options_.state_dir, ec);
+    if (ec)
+      throw ArmctlError(ErrorKind::io, fmt::format("cannot create state dir {}: {}",
+                                                   options_.state_dir->string(), ec.message()));
+    auto loaded = load_settings(*options_.state_dir, settings_);
+    if (!loaded) throw ArmctlError(loaded.error());
+    settings_ = *loaded;
+  }
+  for (auto& j : joints_) j.offset = settings_.joints[j.config.number].saved_offset;
+  const std::uint32_t baud = link_.baud();
+  min_txn_ = wire_time(8, baud);
+  txn_estimate_ = min_txn_ + wire_time(2, baud);
+  now_ = clock().now();
+}
+
+ArmController::Joint& ArmController::at(int joint) {
+  for (auto& j : joints_)
+    if (j.config.number == joint) return j;
+  throw ArmctlError(ErrorKind::invalid_argument, fmt::format("joint {} is not configured", joint));
+}
+const ArmController::Joint& ArmController::at(int joint) const {
+  return const_cast<ArmController*>(this)->at(joint);
+}
+
+void ArmController::log(const std::string& line) const {
+  if (options_.log) options_.log(line);
+}
+
+void ArmController::start() {
+  for (auto& j : joints_) {
+    timed([&] {
+      auto r = master_.set_zone(j.config.number, j.config.zone_clicks);
+      if (r) note_success(j);
+      else note_fault(j, r.failure(), "set_zone");
+    });
+  }
+  for (std::size_t i = 0; i < joints_.size(); ++i) poll_next();
+}
+
+// ---------------------------------------------------------------- mapping
+
+std::int32_t ArmController::target_clicks(ServoId servo, std::uint16_t position) const {
+  const Joint& j = at(servo);
+  return j.config.map.to_clicks(double(position) + j.offset);
+}
+
+rc_board::PositionRange ArmController::position_range(ServoId servo) const {
+  const Joint& j = at(servo);
+  const auto& limits = settings_.joints.at(servo).limits;
+  // The map is monotonic, so the allowed positions are one interval: find its ends exactly.
+  int lo = -1, hi = -1;
+  for (int p = limits.position_min; p <= limits.position_max; ++p) {
+    std::int32_t c = target_clicks(servo, static_cast<std::uint16_t>(p));
+    if (c >= j.config.soft_min && c <= j.config.soft_max) {
+      if (lo < 0) lo = p;
+      hi = p;
+    }
+  }
+  if (lo < 0) return rc_board::PositionRange{1, 0};  // nothing allowed (empty range)
+  return rc_board::PositionRange{static_cast<std::uint16_t>(lo), static_cast<std::uint16_t>(hi)};
+}
+
+std::int16_t ArmController::position(ServoId servo) const {
+  const Joint& j = at(servo);
+  const std::int32_t clicks = j.status.clicks.value_or(0);
+  return static_cast<std::int16_t>(std::clamp<std::int32_t>(j.config.map.to_rc(clicks), -32768, 32767));
+}
+
+// ---------------------------------------------------------------- scheduling
+
+void ArmController::schedule(TimePoint due, int joint, OpKind kind, std::int16_t value) {
+  Op op{due, next_seq_++, joint, kind, value};
+  auto it = std::upper_bound(ops_.begin(), ops_.end(), op, [](const Op& a, const Op& b) {
+    return a.due != b.due ? a.due < b.due : a.seq < b.seq;
+  });
+  ops_.insert(it, op);
+}
+
+void ArmController::cancel_ops(int joint) {
+  std::erase_if(ops_, [&](const Op& op) { return op.joint == joint; });
+}
+
+std::optional<TimePoint> ArmController::next_due() const {
+  if (ops_.empty()) return std::nullopt;
+  return ops_.front().due;
+}
+
+void ArmController::advance_to(TimePoint now) { now_ = std::max(now_, now); }
+
+double ArmController::plan_start_clicks(const Joint& j, TimePoint start) const {
+  // After a finished move the joint's setpoint rests on the last target (its position may
+  // still lag by the tracking error); otherwise the best knowledge is the polled position.
+  const JointStatus& s = j.status;
+  if (s.target && s.loop_on && !s.jogging && s.arrive_at <= start) return *s.target;
+  return s.clicks.value_or(0);
+}
+
+Duration ArmController::move(std::span<const rc_board::ServoTarget> targets, Duration time,
+                             TimePoint now) {
+  advance_to(now);
+  for (const auto& t : targets) {
+    const Joint& j = at(t.servo);
+    if (!j.status.answering || !j.status.clicks) {
+      ++stats_.refused_moves;
+      log(fmt::format("MultiServoMove refused: joint {} ({}) is not answering ({}); no joint moved",
+                      int(t.servo), j.config.name,
+                      j.status.last_fault.empty() ? "never read" : j.status.last_fault));
+      return time;
+    }
+  }
+  ++stats_.moves;
+  const TimePoint bus_now = clock().now();
+  const TimePoint start = now;
+  const std::uint32_t baud = link_.baud();
+  // drive_to takes effect once READY, COMMAND and DATA have crossed the wire.
+  const Duration effect = wire_time(6, baud);
+
+  std::vector<PlanInput> inputs;
+  std::vector<std::int16_t> clicks;
+  int loop_ons = 0;
+  for (const auto& t : targets) {
+    Joint& j = at(t.servo);
+    cancel_ops(t.servo);
+    const std::int32_t c = target_clicks(t.servo, t.position);
+    clicks.push_back(static_cast<std::int16_t>(c));
+    inputs.push_back(PlanInput{t.servo, std::abs(c - plan_start_clicks(j, start)), j.profile});
+    if (!j.status.loop_on) ++loop_ons;
+  }
+  // Each joint gets set_speed then drive_to back to back (a speed change on its own would
+  // set an old target moving again); loop-on commands go first.
+  const Duration lag = std::max(Duration::zero(), bus_now - start);
+  const Duration setup = lag + txn_estimate_ * (loop_ons + 1) + effect;
+  last_plan_ = plan_synchronized_move(inputs, time, setup, txn_estimate_ * 2);
+  last_move_start_ = start;
+
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const int n = targets[i].servo;
+    Joint& j = at(n);
+    const PlannedJoint& p = last_plan_.joints[i];
+    if (!j.status.loop_on) schedule(bus_now, n, OpKind::loop_on, 1);
+    const TimePoint drive_due = start + p.start - effect;
+    schedule(drive_due - txn_estimate_, n, OpKind::speed, static_cast<std::int16_t>(p.percent));
+    schedule(drive_due, n, OpKind::drive_to, clicks[i]);
+    j.status.loop_on = true;
+    j.status.jogging = false;
+    j.status.target = clicks[i];
+    j.status.arrive_at = start + last_plan_.total;
+  }
+  return last_plan_.total;
+}
+
+void ArmController::torque_off(std::span<const ServoId> servos) {
+  const TimePoint bus_now = clock().now();
+  for (ServoId s : servos) {
+    Joint& j = at(s);
+    cancel_ops(s);
+    schedule(bus_now, s, OpKind::loop_off, 0);
+    j.status.loop_on = false;
+    j.status.jogging = false;
+    j.status.target.reset();
+  }
+}
+
+void ArmController::halt(TimePoint now) {
+  advance_to(now);
+  ops_.clear();
+  // 0 % brings each joint's setpoint to rest at its acceleration limit and holds it there.
+  const TimePoint bus_now = clock().now();
+  for (auto& j : joints_) {
+    schedule(bus_now, j.config.number, OpKind::speed, 0);
+    j.status.jogging = false;
+    j.status.target.reset();
+  }
+}
+
+void ArmController::set_mode(ServoId servo, rc_board::ServoMode mode, std::int16_t speed,
+                             TimePoint now) {
+  advance_to(now);
+  Joint& j = at(servo);
+  const TimePoint bus_now = clock().now();
+  if (mode == rc_board::ServoMode::servo) {
+    if (j.status.jogging) {
+      cancel_ops(servo);
+      schedule(bus_now, servo, OpKind::speed, 0);
+      j.status.jogging = false;
+      j.status.target.reset();
+    }
+    return;
+  }
+  // Motor mode: a velocity jog toward the soft limit in the direction asked; the joint
+  // stops there at the latest. Speed 1000 = the joint's top speed.
+  cancel_ops(servo);
+  if (!j.status.loop_on) schedule(bus_now, servo, OpKind::loop_on, 1);
+  j.status.loop_on = true;
+  j.status.jogging = true;
+  j.status.target.reset();
+  const int percent = (std::abs(int(speed)) + 9) / 10;
+  schedule(bus_now, servo, OpKind::speed, static_cast<std::int16_t>(percent));
+  if (speed != 0) {
+    const bool up = (speed > 0) == (j.config.map.clicks_per_unit() > 0);
+    schedule(bus_now, servo, OpKind::drive_to, up ? j.config.soft_max : j.config.soft_min);
+  }
+}
+
+// ---------------------------------------------------------------- settings
+
+std::uint16_t ArmController::battery_millivolts() const {
+  return options_.supply_millivolts ? options_.supply_millivolts() : config_.supply_millivolts;
+}
+
+void ArmController::adjust_offset(ServoId servo, std::int8_t offset) { at(servo).offset = offset; }
+
+std::int8_t ArmController::offset(ServoId servo) const { return at(servo).offset; }
+
+bool ArmController::save_offsets(std::span<const ServoId> servos) {
+  ControllerSettings before = settings_;
+  for (ServoId s : servos) settings_.joints[s].saved_offset = at(s).offset;
+  if (!options_.state_dir) return true;
+  Status st = save_settings(*options_.state_dir, settings_);
+  if (!st) {
+    settings_ = before;
+    log(fmt::format("ServoOffsetWrite: {}", st.error().message));
+    return false;
+  }
+  return true;
+}
+
+rc_board::BusServoInfo ArmController::bus_servo_info() const {
+  const int n = settings_.info_joint;
+  rc_board::BusServoInfo info;
+  info.limits = settings_.joints.at(n).limits;
+  info.offset = at(n).offset;
+  info.position = position(static_cast<ServoId>(n));
+  info.temp = 0;  // the joint controllers have no temperature sensor
+  info.millivolts = battery_millivolts();
+  return info;
+}
+
+bool ArmController::write_bus_servo_info(const rc_board::BusServoLimits& limits) {
+  if (!config_.joint(limits.servo)) return false;  // joints cannot be renumbered from here
+  ControllerSettings before = settings_;
+  settings_.joints[limits.servo].limits = limits;
+  settings_.info_joint = limits.servo;
+  if (options_.state_dir) {
+    Status st = save_settings(*options_.state_dir, settings_);
+    if (!st) {
+      settings_ = before;
+      log(fmt::format("BusServoInfoWrite: {}", st.error().message));
+      return false;
+    }
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------- bus work
+
+void ArmController::timed(const std::function<void()>& transaction) {
+  const TimePoint t0 = clock().now();
+  const auto failures = master_.counters().failures;
+  transaction();
+  const Duration took = clock().now() - t0;
+  if (master_.counters().failures == failures) {
+    // Successful transactions teach how long one takes on this link (a slow one counts
+    // fully: better a plan that starts a joint early than one that keeps it waiting).
+    txn_estimate_ = std::max(min_txn_, took > txn_estimate_ ? took : (txn_estimate_ * 7 + took) / 8);
+  }
+}
+
+void ArmController::note_success(Joint& j) {
+  if (!j.status.answering && j.status.faults > 0)
+    log(fmt::format("joint {} ({}) answers again", int(j.config.number), j.config.name));
+  j.status.answering = true;
+}
+
+void ArmController::note_fault(Joint& j, const joint_bus::JointFailure& f, const char* doing) {
+  ++j.status.faults;
+  const bool changed = j.status.answering || j.status.last_fault != f.message || j.status.faults == 1;
+  j.status.answering = false;
+  j.status.last_fault = f.message;
+  if (changed || j.status.faults % kFaultLogEvery == 0)
+    log(fmt::format("joint fault ({}, {} so far on joint {} {}): {}", doing, j.status.faults,
+                    int(j.config.number), j.config.name, f.message));
+}
+
+void ArmController::run_op(const Op& op) {
+  Joint& j = at(op.joint);
+  ++stats_.commands;
+  const char* name = "";
+  std::optional<joint_bus::JointFailure> failure;
+  timed([&] {
+    joint_bus::BusResult<joint_bus::Done> r = joint_bus::Done{};
+    switch (op.kind) {
+      case OpKind::loop_on: name = "set_pid_state 1"; r = master_.set_pid_state(op.joint, true); break;
+      case OpKind::loop_off: name = "set_pid_state 0"; r = master_.set_pid_state(op.joint, false); break;
+      case OpKind::speed: name = "set_speed"; r = master_.set_speed(op.joint, op.value); break;
+      case OpKind::drive_to: name = "drive_to"; r = master_.drive_to(op.joint, op.value); break;
+    }
+    if (!r) failure = r.failure();
+  });
+  if (failure) {
+    ++stats_.command_failures;
+    note_fault(j, *failure, name);
+    if (op.kind == OpKind::speed || op.kind == OpKind::loop_on) {
+      // The drive that should follow would run at a wrong speed or not at all: drop it.
+      std::erase_if(ops_, [&](const Op& o) { return o.joint == op.joint && o.kind == OpKind::drive_to; });
+      j.status.target.reset();
+    }
+  } else {
+    note_success(j);
+  }
+}
+
+void ArmController::poll_next() {
+  Joint& j = joints_[poll_index_];
+  ++stats_.polls;
+  timed([&] {
+    auto r = master_.get_position(j.config.number);
+    if (r) {
+      j.status.clicks = *r;
+      j.status.read_at = clock().now();
+      ++j.status.reads;
+      note_success(j);
+    } else {
+      ++stats_.poll_failures;
+      note_fault(j, r.failure(), "get_position");
+    }
+  });
+  if (++poll_index_ == joints_.size()) {
+    poll_index_ = 0;
+    ++stats_.sweeps;
+  }
+}
+
+void ArmController::wait_until(TimePoint t) {
+  const TimePoint now = clock().now();
+  if (t > now) joint_bus::idle(link_, t - now);
+}
+
+void ArmController::service(TimePoint limit) {
+  const TimePoint now = clock().now();
+  advance_to(now);
+  if (!ops_.empty() && ops_.front().due <= now) {
+    Op op = ops_.front();
+    ops_.erase(ops_.begin());
+    run_op(op);
+    return;
+  }
+  if (!ops_.empty() && ops_.front().due - now < txn_estimate_) {
+    // A poll now would make the next command late: keep the bus free for it.
+    wait_until(std::min(limit, ops_.front().due));
+    return;
+  }
+  poll_next();
+}
+
+}  // namespace armctl::arm_controller

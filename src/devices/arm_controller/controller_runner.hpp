@@ -1,0 +1,70 @@
+// Serves a ControllerDevice to a host over a byte stream (a pty it creates, or a serial
+// port): Robot Commands frames in the serial form upstream, the joint bus downstream. One
+// thread, one loop: read what the host sent, let the board act, send replies and
+// notifications, then one bus step (a due command, a short wait, or a position poll), so a
+// request waits at most one bus transaction before it is handled.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "devices/arm_controller/controller_device.hpp"
+#include "transport/fd_stream.hpp"
+#include "transport/pty.hpp"
+#include "transport/serial_port.hpp"
+
+namespace armctl::arm_controller {
+
+// Where the host is: "pty" (create one) or "serial:/dev/ttyS0[?baud=N]" / a bare /dev path.
+struct Upstream {
+  bool pty = false;
+  std::string path;
+  std::uint32_t baud = 9600;
+};
+// Throws ArmctlError(invalid_argument) naming what was wrong and the accepted forms.
+Upstream parse_upstream(const std::string& text);
+
+struct RunnerStats {
+  rc_board::BoardStats board;
+  ControllerStats controller;
+  std::size_t dropped_output_bytes = 0;
+};
+
+class ControllerRunner {
+ public:
+  // Opens the upstream (throws ArmctlError io). `device` must outlive the runner; its
+  // output must be routed to on_output() (use make_output()).
+  explicit ControllerRunner(const Upstream& upstream);
+  ~ControllerRunner();
+  ControllerRunner(const ControllerRunner&) = delete;
+  ControllerRunner& operator=(const ControllerRunner&) = delete;
+
+  // What the device's Board::Output should be.
+  rc_board::Board::Output make_output();
+  // The path a host opens: the pty slave, or the serial port's path.
+  const std::string& host_path() const { return host_path_; }
+
+  // Serves until request_stop() (async-signal-safe).
+  void run(ControllerDevice& device);
+  void request_stop() { stop_ = true; }
+  std::size_t dropped_output_bytes() const { return dropped_; }
+
+ private:
+  void read_upstream(ControllerDevice& device);
+  void flush_output();
+
+  std::optional<transport::Pty> pty_;
+  std::unique_ptr<transport::SerialPort> serial_;
+  transport::FdStream* stream_ = nullptr;
+  std::string host_path_;
+  std::deque<std::uint8_t> output_;
+  std::size_t dropped_ = 0;
+  std::atomic<bool> stop_{false};
+};
+
+}  // namespace armctl::arm_controller

@@ -1,0 +1,35 @@
+// What the controller keeps per joint across restarts: the saved zero offset
+// (ServoOffsetWrite) and the limits set with BusServoInfoWrite, plus which joint
+// BusServoInfoRead/Write address. Stored as <state dir>/controller-settings.json, replaced
+// crash-safely (rc_board/atomic_file.hpp). A corrupt file is an error naming what is wrong,
+// never silently replaced by defaults.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+
+#include "core/error.hpp"
+#include "devices/rc_board/arm_backend.hpp"
+
+namespace armctl::arm_controller {
+
+struct JointSettings {
+  std::int8_t saved_offset = 0;
+  rc_board::BusServoLimits limits;  // limits.servo = the joint's number
+  bool operator==(const JointSettings&) const = default;
+};
+
+struct ControllerSettings {
+  std::map<int, JointSettings> joints;  // by joint number
+  int info_joint = 1;
+  bool operator==(const ControllerSettings&) const = default;
+};
+
+std::filesystem::path settings_path(const std::filesystem::path& state_dir);
+// Nothing stored yet: `defaults`. Errors: io, invalid_config (naming the key).
+Result<ControllerSettings> load_settings(const std::filesystem::path& state_dir,
+                                         const ControllerSettings& defaults);
+Status save_settings(const std::filesystem::path& state_dir, const ControllerSettings& settings);
+
+}  // namespace armctl::arm_controller

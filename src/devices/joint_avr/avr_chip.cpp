@@ -1,0 +1,324 @@
+#include "devices/joint_avr/avr_chip.hpp"
+
+#include <algorithm>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <vector>
+
+#include "core/error.hpp"
+#include "devices/joint_avr/atmega328p.hpp"
+
+extern "C" {
+#include <avr_eeprom.h>
+#include <avr_extint.h>
+#include <avr_ioport.h>
+#include <avr_uart.h>
+#include <sim_avr.h>
+#include <sim_elf.h>
+#include <sim_io.h>
+}
+
+namespace armctl::joint_avr {
+namespace {
+
+namespace m = atmega328p;
+
+// simavr's default sleep callback usleep()s to keep pace with the wall clock; the harness
+// runs on simulated time only, so sleeping just lets cycles pass.
+void no_wall_clock_sleep(avr_t*, avr_cycle_count_t) {}
+
+// Lets run_to_cycle() stop a sleeping core at its target: a sleeping core skips straight to
+// the next cycle timer, and this is one. It re-arms itself one cycle later, because simavr
+// processes the due timers first and then sleeps until the *next* one: a one-shot timer
+// would let the core sleep on to the following timer event (up to 1 ms past the target).
+avr_cycle_count_t stop_here(avr_t*, avr_cycle_count_t when, void*) { return when + 1; }
+
+// simavr logs through one process-wide function; keep errors, drop its chatter ("Loaded
+// 7274 .text ...", traces).
+void quiet_logger(avr_t*, const int level, const char* format, va_list args) {
+  if (level > LOG_ERROR) return;
+  std::vfprintf(stderr, format, args);
+}
+
+void free_firmware(elf_firmware_t& f) {
+  std::free(f.flash);
+  std::free(f.eeprom);
+  std::free(f.fuse);
+  std::free(f.lockbits);
+#if ELF_SYMBOLS
+  for (std::uint32_t i = 0; i < f.symbolcount; ++i) std::free(f.symbol[i]);
+  std::free(f.symbol);
+#endif
+}
+
+int port_index(char port) {
+  if (port == 'B') return 0;
+  if (port == 'D') return 1;
+  throw ArmctlError(ErrorKind::invalid_argument,
+                    std::string("AvrChip: input port '") + port + "' is not wired (use B or D)");
+}
+
+}  // namespace
+
+AvrChip::AvrChip(const std::string& elf_path) {
+  static std::once_flag logger_installed;
+  std::call_once(logger_installed, [] { avr_global_logger_set(quiet_logger); });
+  elf_firmware_t firmware;
+  std::memset(&firmware, 0, sizeof firmware);
+  if (elf_read_firmware(elf_path.c_str(), &firmware) != 0 || firmware.flashsize == 0) {
+    free_firmware(firmware);
+    throw ArmctlError(ErrorKind::io, "cannot read the firmware ELF '" + elf_path +
+                                         "' (build it: cmake --build <dir> --target armctl_firmware)");
+  }
+  avr_ = avr_make_mcu_by_name("atmega328p");
+  if (avr_ == nullptr) {
+    free_firmware(firmware);
+    throw ArmctlError(ErrorKind::unsupported, "this libsimavr has no atmega328p core");
+  }
+  avr_init(avr_);
+  avr_->log = LOG_ERROR;
+  avr_load_firmware(avr_, &firmware);
+  free_firmware(firmware);
+  avr_->frequency = m::clock_hz;
+  avr_->sleep = no_wall_clock_sleep;
+  // INT0/INT1 start in "low level" mode (EICRA = 0 at reset); simavr then polls the pin on
+  // every cycle while it is low, and keeps polling after the firmware switches to "any
+  // change". The firmware never uses level mode, so level polling is turned off.
+  avr_extint_set_strict_lvl_trig(avr_, 0, 0);
+  avr_extint_set_strict_lvl_trig(avr_, 1, 0);
+  connect();
+  apply_reset_values();
+}
+
+AvrChip::~AvrChip() {
+  if (avr_ != nullptr) {
+    avr_terminate(avr_);
+    std::free(avr_);
+  }
+}
+
+void AvrChip::connect() {
+  // No console dump of UART bytes, and no usleep() when the firmware polls the UART.
+  std::uint32_t flags = 0;
+  avr_ioctl(avr_, AVR_IOCTL_UART_SET_FLAGS('0'), &flags);
+  for (avr_io_t* io = avr_->io_port; io != nullptr; io = io->next) {
+    if (std::strcmp(io->kind, "uart") == 0) uart_ = reinterpret_cast<avr_uart_t*>(io);
+  }
+  if (uart_ == nullptr) throw ArmctlError(ErrorKind::unsupported, "simavr atmega328p without UART");
+  avr_irq_register_notify(avr_io_getirq(avr_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT),
+                          &AvrChip::on_uart_output_irq, this);
+  for (int v = 1; v < m::vector_count; ++v) {
+    avr_irq_t* irq = avr_get_interrupt_irq(avr_, static_cast<std::uint8_t>(v));
+    if (irq == nullptr) continue;
+    probes_[static_cast<std::size_t>(v)] = VectorProbe{this, v, 0, 0};
+    avr_irq_register_notify(irq + AVR_INT_IRQ_RUNNING, &AvrChip::on_isr_running_irq,
+                            &probes_[static_cast<std::size_t>(v)]);
+  }
+}
+
+void AvrChip::on_uart_output_irq(avr_irq_t*, std::uint32_t value, void* param) {
+  auto* self = static_cast<AvrChip*>(param);
+  if (self->uart_output_) self->uart_output_(static_cast<std::uint8_t>(value), self->avr_->cycle);
+}
+
+void AvrChip::on_isr_running_irq(avr_irq_t*, std::uint32_t value, void* param) {
+  auto* probe = static_cast<VectorProbe*>(param);
+  AvrChip* self = probe->chip;
+  if (value != 0) {
+    probe->entered_at = self->avr_->cycle;
+    probe->nested_cycles = 0;
+    if (self->running_depth_ < static_cast<int>(self->running_.size())) {
+      self->running_[static_cast<std::size_t>(self->running_depth_++)] = probe->vector;
+    }
+    return;
+  }
+  const std::uint64_t cycles = self->avr_->cycle - probe->entered_at + m::interrupt_response_cycles;
+  if (self->running_depth_ > 0) --self->running_depth_;
+  if (self->running_depth_ > 0) {
+    const int outer = self->running_[static_cast<std::size_t>(self->running_depth_ - 1)];
+    self->probes_[static_cast<std::size_t>(outer)].nested_cycles += cycles;
+  }
+  IsrStats& s = self->isr_stats_[static_cast<std::size_t>(probe->vector)];
+  ++s.count;
+  s.total_cycles += cycles;
+  s.max_cycles = std::max(s.max_cycles, cycles);
+  s.max_own_cycles = std::max(s.max_own_cycles, cycles - std::min(cycles, probe->nested_cycles));
+}
+
+void AvrChip::clear_isr_stats() { isr_stats_ = {}; }
+
+void AvrChip::write_eeprom(std::uint16_t address, std::span<const std::uint8_t> bytes) {
+  constexpr std::size_t eeprom_bytes = 1024;
+  if (bytes.empty()) return;
+  if (address + bytes.size() > eeprom_bytes) {
+    throw ArmctlError(ErrorKind::invalid_argument, "AvrChip: EEPROM write outside 0..1023");
+  }
+  std::vector<std::uint8_t> copy(bytes.begin(), bytes.end());
+  avr_eeprom_desc_t desc;
+  desc.ee = copy.data();
+  desc.offset = address;
+  desc.size = static_cast<std::uint32_t>(copy.size());
+  // simavr 1.6 answers -1 ("not mine, keep asking") even when its EEPROM took the data;
+  // the range was checked above.
+  avr_ioctl(avr_, AVR_IOCTL_EEPROM_SET, &desc);
+}
+
+void AvrChip::apply_reset_values() {
+  // simavr 1.6 sets TXEN0 at reset so that debug printf works without UART set-up; on the
+  // real chip UCSR0B resets to 0 (TX pin high-Z until the firmware enables it).
+  avr_->data[m::ucsr0b] = 0;
+}
+
+void AvrChip::reset() {
+  avr_reset(avr_);
+  running_depth_ = 0;
+  apply_reset_values();
+  reapply_pins();
+}
+
+void AvrChip::set_held_in_reset(bool held) {
+  if (held == held_in_reset_) return;
+  held_in_reset_ = held;
+  // Entering reset clears every I/O register (pins become inputs); leaving it starts the
+  // firmware from the reset vector.
+  avr_reset(avr_);
+  running_depth_ = 0;
+  apply_reset_values();
+  reapply_pins();
+}
+
+void AvrChip::correct_uart_frame_time() {
+  // simavr 1.6 times a frame as start + data + parity + stop bits even when parity is off:
+  // 11 bit times for 8N1 instead of 10. Real UDRE/TXC timing matters here (the firmware
+  // releases TX on TXC), so bring it back to 10 bits whenever the firmware has set a baud.
+  const std::uint8_t ucsr0c = avr_->data[m::ucsr0c];
+  const bool parity_on = (ucsr0c & 0x30u) != 0;
+  if (parity_on || uart_->cycles_per_byte == corrected_cycles_per_byte_) return;
+  if (uart_->cycles_per_byte % 11 != 0) return;
+  corrected_cycles_per_byte_ = uart_->cycles_per_byte / 11 * 10;
+  uart_->cycles_per_byte = corrected_cycles_per_byte_;
+}
+
+std::uint64_t AvrChip::cycle() const { return avr_->cycle; }
+
+bool AvrChip::stopped() const {
+  return avr_->state == cpu_Done || avr_->state == cpu_Crashed || avr_->state == cpu_Stopped;
+}
+
+bool AvrChip::run_to_cycle(std::uint64_t target) {
+  if (avr_->cycle >= target) return !stopped();
+  if (held_in_reset_ || stopped()) {
+    avr_->cycle = target;  // time passes, nothing runs
+    return !stopped();
+  }
+  avr_cycle_timer_register(avr_, target - avr_->cycle, stop_here, this);
+  while (avr_->cycle < target) {
+    correct_uart_frame_time();
+    const int state = avr_run(avr_);
+    if (state == cpu_Done || state == cpu_Crashed || state == cpu_Stopped) {
+      avr_cycle_timer_cancel(avr_, stop_here, this);
+      avr_->cycle = target;
+      return false;
+    }
+  }
+  avr_cycle_timer_cancel(avr_, stop_here, this);
+  return true;
+}
+
+void AvrChip::drive_pin(char port, int bit, bool level) {
+  const int index = port_index(port);
+  if (bit < 0 || bit > 7) throw ArmctlError(ErrorKind::invalid_argument, "AvrChip: pin bit must be 0..7");
+  auto& mask = driven_mask_[static_cast<std::size_t>(index)];
+  auto& levels = driven_level_[static_cast<std::size_t>(index)];
+  const auto bit_mask = static_cast<std::uint8_t>(1u << bit);
+  const bool known = (mask & bit_mask) != 0;
+  const bool old_level = (levels & bit_mask) != 0;
+  mask = static_cast<std::uint8_t>(mask | bit_mask);
+  levels = static_cast<std::uint8_t>(level ? (levels | bit_mask) : (levels & ~bit_mask));
+  // The "external" level keeps a pin at what we drive even when the firmware rewrites the
+  // port register (simavr would otherwise re-assert the internal pull-up level).
+  avr_ioport_external_t ext;
+  ext.name = static_cast<unsigned long>(port);
+  ext.mask = mask;
+  ext.value = levels;
+  avr_ioctl(avr_, AVR_IOCTL_IOPORT_SET_EXTERNAL(port), &ext);
+  if (known && old_level == level) return;
+  avr_raise_irq(avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(port), bit), level ? 1 : 0);
+}
+
+void AvrChip::reapply_pins() {
+  const char ports[2] = {'B', 'D'};
+  for (std::size_t i = 0; i < 2; ++i) {
+    avr_ioport_external_t ext;
+    ext.name = static_cast<unsigned long>(ports[i]);
+    ext.mask = driven_mask_[i];
+    ext.value = driven_level_[i];
+    avr_ioctl(avr_, AVR_IOCTL_IOPORT_SET_EXTERNAL(ports[i]), &ext);
+    for (int bit = 0; bit < 8; ++bit) {
+      if (driven_mask_[i] & (1u << bit)) {
+        avr_raise_irq(avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(ports[i]), bit),
+                      (driven_level_[i] >> bit) & 1u);
+      }
+    }
+  }
+}
+
+void AvrChip::uart_receive(std::uint8_t byte) {
+  if (held_in_reset_ || !uart_receiver_enabled()) return;  // a disabled receiver sees nothing
+  avr_raise_irq(avr_io_getirq(avr_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT), byte);
+  // simavr would flag the byte one byte time after it was handed over; the bus hands it
+  // over when its stop bit ends, which is when real hardware sets RXC.
+  if (!avr_regbit_get(avr_, uart_->rxc.raised)) {
+    uart_->rxc_raise_time = avr_->cycle;
+    uart_->rx_cnt = 0;
+    avr_raise_interrupt(avr_, &uart_->rxc);
+  }
+}
+
+bool AvrChip::uart_transmitter_enabled() const {
+  return !held_in_reset_ && (avr_->data[m::ucsr0b] & (1u << m::txen0)) != 0;
+}
+
+bool AvrChip::uart_receiver_enabled() const {
+  return (avr_->data[m::ucsr0b] & (1u << m::rxen0)) != 0;
+}
+
+std::uint8_t AvrChip::read_data(std::uint16_t address) const { return avr_->data[address]; }
+
+bool AvrChip::output_pin(std::uint16_t ddr, std::uint16_t port, int bit) const {
+  // An input pin is high-Z: the board's pull-downs hold the H-bridge inputs LOW.
+  return ((avr_->data[ddr] >> bit) & 1u) != 0 && ((avr_->data[port] >> bit) & 1u) != 0;
+}
+
+BridgeInputs AvrChip::bridge_inputs() const {
+  BridgeInputs in;
+  if (held_in_reset_) return in;
+  const std::uint8_t* d = avr_->data;
+  // Left = OC1B (PB2). Timer1 in 8-bit phase-correct PWM: duty = OCR1B / 255.
+  const unsigned com1b = (d[m::tccr1a] >> m::com1b0) & 3u;
+  const bool pb2_output = ((d[m::ddrb] >> 2) & 1u) != 0;
+  if (com1b >= 2 && pb2_output) {
+    const double duty = d[m::ocr1bl] / 255.0;
+    in.left = com1b == 2 ? duty : 1.0 - duty;
+  } else {
+    in.left = output_pin(m::ddrb, m::portb, 2) ? 1.0 : 0.0;
+  }
+  // Right = OC2A (PB3). Timer2 phase-correct PWM, TOP 0xFF: duty = OCR2A / 255.
+  const unsigned com2a = (d[m::tccr2a] >> m::com2a0) & 3u;
+  const bool pb3_output = ((d[m::ddrb] >> 3) & 1u) != 0;
+  if (com2a >= 2 && pb3_output) {
+    const double duty = d[m::ocr2a] / 255.0;
+    in.right = com2a == 2 ? duty : 1.0 - duty;
+  } else {
+    in.right = output_pin(m::ddrb, m::portb, 3) ? 1.0 : 0.0;
+  }
+  in.enable = output_pin(m::ddrd, m::portd, 4);
+  return in;
+}
+
+bool AvrChip::led() const { return !held_in_reset_ && output_pin(m::ddrb, m::portb, 5); }
+
+}  // namespace armctl::joint_avr

@@ -1,0 +1,91 @@
+#include "devices/joint_bus/bus_connection.hpp"
+
+#include <chrono>
+
+#include <fmt/core.h>
+
+#include "devices/joint_bus/sim_link_client.hpp"
+#include "devices/joint_sim/sim_arm.hpp"
+#include "transport/gpiod_select_lines.hpp"
+#include "transport/serial_joint_bus_link.hpp"
+#include "transport/serial_port.hpp"
+
+namespace armctl::joint_bus {
+
+namespace {
+
+class EmbeddedSim final : public BusConnection {
+ public:
+  explicit EmbeddedSim(const SimDevice& d) {
+    joint_sim::ArmConfig config = d.config.empty()
+                                      ? joint_sim::load_arm_config(joint_sim::default_arm_config_path())
+                                      : joint_sim::load_arm_config(d.config);
+    if (d.baud) config.baud = *d.baud;
+    arm_ = std::make_unique<joint_sim::SimArm>(std::move(config));
+  }
+  transport::JointBusLink& link() override { return arm_->link(); }
+  MasterOptions default_options() const override { return {}; }
+  std::string description() const override {
+    return fmt::format("embedded simulated arm at {} baud", arm_->config().baud);
+  }
+
+ private:
+  std::unique_ptr<joint_sim::SimArm> arm_;
+};
+
+class RemoteSim final : public BusConnection {
+ public:
+  explicit RemoteSim(const UnixDevice& d) : path_(d.path), client_(d.path) {}
+  transport::JointBusLink& link() override { return client_; }
+  MasterOptions default_options() const override {
+    MasterOptions o;
+    // The arm runs paced to the wall clock in another process: a turnaround covers the
+    // socket round trip and the arm's 1 ms pacing steps, with room for a loaded machine
+    // (either process may be descheduled for tens of milliseconds).
+    o.timing.turnaround = std::chrono::milliseconds(200);
+    return o;
+  }
+  std::string description() const override { return fmt::format("simulated arm at {}", path_); }
+
+ private:
+  std::string path_;
+  SimLinkClient client_;
+};
+
+class RealBus final : public BusConnection {
+ public:
+  explicit RealBus(const SerialDevice& d) : device_(d) {
+    auto select = transport::GpiodSelectLines::open(d.chip, d.select);
+    auto port = transport::SerialPort::open(d.path, d.baud);
+    link_ = std::make_unique<transport::SerialJointBusLink>(std::move(port), std::move(select), d.baud);
+  }
+  transport::JointBusLink& link() override { return *link_; }
+  MasterOptions default_options() const override {
+    MasterOptions o;
+    o.dialect = device_.dialect;
+    // Linux scheduling and USB/UART FIFOs add latency a microcontroller master would not see.
+    o.timing.turnaround = std::chrono::milliseconds(20);
+    return o;
+  }
+  std::string description() const override { return describe(DeviceUri{device_}); }
+
+ private:
+  SerialDevice device_;
+  std::unique_ptr<transport::SerialJointBusLink> link_;
+};
+
+}  // namespace
+
+std::unique_ptr<BusConnection> open_bus(const DeviceUri& uri) {
+  if (const auto* s = std::get_if<SimDevice>(&uri)) return std::make_unique<EmbeddedSim>(*s);
+  if (const auto* u = std::get_if<UnixDevice>(&uri)) return std::make_unique<RemoteSim>(*u);
+  return std::make_unique<RealBus>(std::get<SerialDevice>(uri));
+}
+
+void idle(transport::JointBusLink& link, Duration d) {
+  const TimePoint until = link.clock().now() + d;
+  while (link.read_byte(until)) {
+  }
+}
+
+}  // namespace armctl::joint_bus

@@ -1,0 +1,30 @@
+// Opens the joint bus a DeviceUri names: the link the master talks through, whatever owns
+// it (an embedded simulated arm, a serial port and GPIO lines, a socket), and the master
+// options that suit that link (dialect; a turnaround that covers a socket round trip).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "devices/joint_bus/bus_master.hpp"
+#include "devices/joint_bus/device_uri.hpp"
+#include "transport/joint_bus_link.hpp"
+
+namespace armctl::joint_bus {
+
+class BusConnection {
+ public:
+  virtual ~BusConnection() = default;
+  virtual transport::JointBusLink& link() = 0;
+  virtual MasterOptions default_options() const = 0;
+  virtual std::string description() const = 0;
+};
+
+// Throws ArmctlError (io, invalid_config, invalid_argument) naming what failed.
+std::unique_ptr<BusConnection> open_bus(const DeviceUri& uri);
+
+// Lets time pass on the link's clock without a transaction (simulated links advance the
+// arm; real links wait). Bytes that arrive meanwhile are stray and discarded.
+void idle(transport::JointBusLink& link, Duration d);
+
+}  // namespace armctl::joint_bus

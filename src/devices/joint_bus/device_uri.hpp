@@ -1,0 +1,45 @@
+// Where the joint bus is: parsed and validated `--device` URIs.
+//   sim                      an embedded simulated SCARA arm, in this process (default);
+//                            optional ?baud=N&config=FILE
+//   unix:/path               a running `armctl sim scara --listen /path`
+//   serial:/dev/ttyAMA0?baud=115200&chip=gpiochip0&select=17,27,22,5,6,13,19[&dialect=legacy]
+//                            a real bus: UART + one GPIO line per joint (joints 1..N in
+//                            the order given); baud defaults to 9600, chip to gpiochip0
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "devices/joint_bus/status_dialect.hpp"
+
+namespace armctl::joint_bus {
+
+struct SimDevice {
+  std::optional<std::uint32_t> baud;  // empty: the config's baud
+  std::string config;  // empty: the built-in config/scara.json
+};
+
+struct UnixDevice {
+  std::string path;
+};
+
+struct SerialDevice {
+  std::string path;
+  std::uint32_t baud = 9600;
+  std::string chip = "gpiochip0";
+  std::vector<unsigned> select;  // GPIO line offset for joints 1..N
+  Dialect dialect = Dialect::standard;
+};
+
+using DeviceUri = std::variant<SimDevice, UnixDevice, SerialDevice>;
+
+// Throws ArmctlError(invalid_argument) naming what was wrong and what is allowed.
+DeviceUri parse_device_uri(std::string_view uri);
+
+std::string describe(const DeviceUri& uri);  // for messages: "serial /dev/ttyAMA0 at 115200 baud"
+
+}  // namespace armctl::joint_bus

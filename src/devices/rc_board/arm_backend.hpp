@@ -1,0 +1,115 @@
+// What an arm does, as seen by the board side of Robot Commands. The Board (board.hpp)
+// validates every request and then calls a backend: the emulated xArm drives six bus
+// servos, the arm controller drives seven joints over the joint bus. The Board only ever
+// passes values it has already checked against what the backend reports (servo IDs present,
+// position ranges), so backends need not re-validate wire input.
+//
+// Robot Commands calls every addressable thing a "servo"; on the arm controller a servo ID
+// is a joint number. Backends are single-threaded and driven by time: the Board passes the
+// current time into every call that starts or observes motion, so tests use SimClock.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "core/clock.hpp"
+
+namespace armctl::rc_board {
+
+using ServoId = std::uint8_t;
+
+// One servo's target. In a stored action the position may be 0xFF00 ("leave alone",
+// kLeaveAlone in action_group.hpp); move() never receives that marker: the Board drops
+// those entries first.
+struct ServoTarget {
+  ServoId servo = 0;
+  std::uint16_t position = 0;
+  bool operator==(const ServoTarget&) const = default;
+};
+
+// Inclusive range of positions a servo accepts as move targets.
+struct PositionRange {
+  std::uint16_t min = 0;
+  std::uint16_t max = 1000;
+  bool contains(std::uint16_t p) const { return p >= min && p <= max; }
+};
+
+enum class ServoMode : std::uint8_t { servo = 0, motor = 1 };
+
+// BusServoInfoWrite: limits and LED settings of the servo on the bus.
+struct BusServoLimits {
+  ServoId servo = 1;               // ID to give / address
+  std::uint16_t position_min = 0;  // 0..1000, <= position_max
+  std::uint16_t position_max = 1000;
+  std::uint16_t millivolts_min = 4500;  // 4500..12000, <= millivolts_max
+  std::uint16_t millivolts_max = 12000;
+  std::uint16_t temp_max = 85;   // 50..100 C
+  std::uint8_t led_status = 0;   // 0 enable, 1 disable
+  std::uint8_t led_warning = 0;  // bit0 overheat, bit1 overvoltage, bit2 overposition
+  bool operator==(const BusServoLimits&) const = default;
+};
+
+// BusServoInfoRead: the limits plus live readings.
+struct BusServoInfo {
+  BusServoLimits limits;
+  std::int8_t offset = 0;
+  std::int16_t position = 0;
+  std::uint8_t temp = 0;
+  std::uint16_t millivolts = 0;
+  bool operator==(const BusServoInfo&) const = default;
+};
+
+class ArmBackend {
+ public:
+  virtual ~ArmBackend() = default;
+
+  // IDs present, ascending. Fixed for the backend's lifetime.
+  virtual std::span<const ServoId> servos() const = 0;
+  bool has_servo(ServoId id) const {
+    for (ServoId s : servos())
+      if (s == id) return true;
+    return false;
+  }
+  // Targets this servo accepts (its limits); a move outside is refused by the Board.
+  virtual PositionRange position_range(ServoId servo) const = 0;
+
+  // Advances the arm's own state (motion, battery) to `now`. Called by the Board before
+  // every request and on every poll; `now` never goes backwards.
+  virtual void advance_to(TimePoint now) = 0;
+
+  // One synchronized move starting at `now`: every listed servo moves linearly from where
+  // it is and arrives `time` later (0 = as fast as it can). Servos not listed keep what they
+  // are doing. Restores torque of listed servos. Returns how long the move really takes
+  // (>= time; a backend may be slower than asked when `time` is shorter than it can do).
+  virtual Duration move(std::span<const ServoTarget> targets, Duration time, TimePoint now) = 0;
+
+  // Current position (may read slightly outside 0..1000 after offsets: signed).
+  virtual std::int16_t position(ServoId servo) const = 0;
+
+  // Removes torque (position loop off); the next move of that servo restores it.
+  virtual void torque_off(std::span<const ServoId> servos) = 0;
+
+  // Stops every servo where it is now (GroupStop).
+  virtual void halt(TimePoint now) = 0;
+
+  virtual std::uint16_t battery_millivolts() const = 0;
+
+  // Offsets, -125..125. adjust: takes effect at once, volatile. save: persists the current
+  // offset of each listed servo (may fail: I/O). read: current (volatile) offset.
+  virtual void adjust_offset(ServoId servo, std::int8_t offset) = 0;
+  virtual bool save_offsets(std::span<const ServoId> servos) = 0;
+  virtual std::int8_t offset(ServoId servo) const = 0;
+
+  // ServoSpeed: servo mode (value ignored) or motor mode turning at `speed`
+  // (-1000..1000, sign = direction) until the next move, torque off or halt.
+  virtual void set_mode(ServoId servo, ServoMode mode, std::int16_t speed, TimePoint now) = 0;
+
+  // BusServoInfoRead/Write address "the servo on the bus". Which servo that is on a
+  // multi-servo arm is the backend's decision (documented by each backend).
+  virtual BusServoInfo bus_servo_info() const = 0;
+  virtual bool write_bus_servo_info(const BusServoLimits& limits) = 0;  // false: refused
+};
+
+}  // namespace armctl::rc_board

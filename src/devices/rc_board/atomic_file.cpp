@@ -1,0 +1,118 @@
+#include "devices/rc_board/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include <fmt/core.h>
+
+namespace armctl::rc_board {
+namespace {
+
+Error io_error(std::string_view what, const std::filesystem::path& path, int err) {
+  return Error{ErrorKind::io, fmt::format("{} {}: {}", what, path.string(), std::strerror(err))};
+}
+
+// Closes a file descriptor on every path out of a function.
+class Fd {
+ public:
+  explicit Fd(int fd) : fd_(fd) {}
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  ~Fd() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  int get() const { return fd_; }
+  int release() {
+    int fd = fd_;
+    fd_ = -1;
+    return fd;
+  }
+
+ private:
+  int fd_;
+};
+
+Status fsync_directory(const std::filesystem::path& dir) {
+  Fd fd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (fd.get() < 0) return io_error("cannot open directory", dir, errno);
+  if (::fsync(fd.get()) != 0) return io_error("cannot fsync directory", dir, errno);
+  return Ok{};
+}
+
+std::filesystem::path parent_of(const std::filesystem::path& path) {
+  auto parent = path.parent_path();
+  return parent.empty() ? std::filesystem::path(".") : parent;
+}
+
+}  // namespace
+
+Status write_file_atomically(const std::filesystem::path& path,
+                             std::span<const std::uint8_t> bytes) {
+  auto temp = path;
+  temp += fmt::format(".tmp-{}", ::getpid());
+  Fd fd(::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+  if (fd.get() < 0) return io_error("cannot create", temp, errno);
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    ssize_t n = ::write(fd.get(), bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      int err = errno;
+      ::unlink(temp.c_str());
+      return io_error("cannot write", temp, err);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd.get()) != 0) {
+    int err = errno;
+    ::unlink(temp.c_str());
+    return io_error("cannot fsync", temp, err);
+  }
+  if (::close(fd.release()) != 0) {
+    int err = errno;
+    ::unlink(temp.c_str());
+    return io_error("cannot close", temp, err);
+  }
+  if (::rename(temp.c_str(), path.c_str()) != 0) {
+    int err = errno;
+    ::unlink(temp.c_str());
+    return io_error("cannot rename into place", path, err);
+  }
+  return fsync_directory(parent_of(path));
+}
+
+Status remove_file_durably(const std::filesystem::path& path) {
+  if (::unlink(path.c_str()) != 0) {
+    if (errno == ENOENT) return Ok{};
+    return io_error("cannot remove", path, errno);
+  }
+  return fsync_directory(parent_of(path));
+}
+
+Result<std::optional<std::vector<std::uint8_t>>> read_whole_file(
+    const std::filesystem::path& path) {
+  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (fd.get() < 0) {
+    if (errno == ENOENT) return std::optional<std::vector<std::uint8_t>>{};
+    return io_error("cannot open", path, errno);
+  }
+  std::vector<std::uint8_t> bytes;
+  std::uint8_t buffer[4096];
+  for (;;) {
+    ssize_t n = ::read(fd.get(), buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return io_error("cannot read", path, errno);
+    if (n == 0) break;
+    bytes.insert(bytes.end(), buffer, buffer + n);
+  }
+  return std::optional<std::vector<std::uint8_t>>{std::move(bytes)};
+}
+
+bool is_temporary_name(std::string_view file_name) {
+  return file_name.find(".tmp-") != std::string_view::npos;
+}
+
+}  // namespace armctl::rc_board

@@ -1,0 +1,337 @@
+#include "devices/robot_commands/client.hpp"
+
+#include <fmt/core.h>
+
+namespace armctl::robot_commands {
+namespace {
+
+std::string servo_list_text(const std::vector<std::uint8_t>& servos) {
+  std::string out;
+  for (auto s : servos) {
+    if (!out.empty()) out += ',';
+    out += std::to_string(s);
+  }
+  return out;
+}
+
+
+}  // namespace
+
+Client::Client(RcLink& link, ClientOptions options)
+    : link_(link), options_(options), servos_(rc::ServoRange::of_count(options.servo_count)) {
+  if (options.servo_count < 1 || options.servo_count > static_cast<int>(rc::kMaxServosPerFrame)) {
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      fmt::format("servo count {} is out of range (allowed 1..{})",
+                                  options.servo_count, rc::kMaxServosPerFrame));
+  }
+}
+
+std::vector<std::uint8_t> Client::all_servos() const {
+  std::vector<std::uint8_t> out;
+  for (int s = servos_.first; s <= servos_.last; ++s) out.push_back(static_cast<std::uint8_t>(s));
+  return out;
+}
+
+Result<rc::Frame> Client::build(const rc::Request& request) const {
+  return rc::encode(request, servos_);
+}
+
+Status Client::send(const rc::Frame& frame) {
+  link_.send(frame);  // throws ArmctlError(io)
+  ++stats_.frames_sent;
+  return Ok{};
+}
+
+void Client::deliver(const rc::GroupNotification& n) {
+  GroupEvent e;
+  e.group = n.group;
+  e.count = n.count;
+  e.received = link_.clock().now();
+  switch (n.kind) {
+    case rc::GroupEventKind::started:
+      e.kind = GroupEventKind::started;
+      e.variant = !n.group;
+      stop_sent_ = false;
+      break;
+    case rc::GroupEventKind::stopped:
+      // A bare CMD 7 answers our GroupStop; if we sent none, it is a board telling us the
+      // group finished (spec "Action groups": real-board variant).
+      e.kind = stop_sent_ ? GroupEventKind::stopped : GroupEventKind::finished;
+      e.variant = !stop_sent_;
+      stop_sent_ = false;
+      break;
+    case rc::GroupEventKind::finished:
+      e.kind = GroupEventKind::finished;
+      break;
+  }
+  events_.push_back(e);
+  if (callback_) callback_(e);
+}
+
+std::optional<rc::BoardMessage> Client::take(const rc::Frame& frame) {
+  ++stats_.frames_received;
+  auto msg = rc::decode_board_message(frame);
+  if (!msg) {
+    ++stats_.unreadable_frames;
+    return std::nullopt;
+  }
+  if (auto* n = std::get_if<rc::GroupNotification>(&msg.value())) {
+    deliver(*n);
+    return std::nullopt;
+  }
+  return msg.value();
+}
+
+Result<rc::BoardMessage> Client::transact(const rc::Frame& frame, std::optional<std::uint8_t> sub,
+                                          Duration timeout) {
+  send(frame);
+  const TimePoint deadline = link_.clock().now() + timeout;
+  const char* name = "reply";
+  if (auto c = rc::command_from_byte(frame.cmd)) name = rc::command_name(*c);
+  for (;;) {
+    auto incoming = link_.receive(deadline);
+    if (!incoming) {
+      return Error{ErrorKind::timeout,
+                   fmt::format("no {} reply (CMD {}{}) from {} within {} ms", name, frame.cmd,
+                               sub ? fmt::format(" sub {}", *sub) : std::string(),
+                               link_.describe(),
+                               std::chrono::duration_cast<std::chrono::milliseconds>(timeout)
+                                   .count())};
+    }
+    if (incoming->cmd == frame.cmd) {
+      // Same CMD: a reply, or (CMD 8 with DATA) a notification, or garbage we must report.
+      auto msg = rc::decode_board_message(*incoming);
+      if (!msg) {
+        ++stats_.frames_received;
+        ++stats_.unreadable_frames;
+        return Error{ErrorKind::protocol,
+                     fmt::format("{} reply from {} is malformed ({}): {}", name, link_.describe(),
+                                 rc::to_hex(rc::encode_frame(*incoming)), msg.error().message)};
+      }
+    }
+    auto reply = take(*incoming);
+    if (!reply) continue;
+    if (rc::cmd_byte_of(*reply) != frame.cmd) {
+      ++stats_.stale_replies;
+      continue;
+    }
+    if (sub) {
+      const auto* ack = std::get_if<rc::GroupDownloadAck>(&*reply);
+      if (!ack || ack->sub != *sub) {
+        ++stats_.stale_replies;
+        continue;
+      }
+    }
+    return *reply;
+  }
+}
+
+// ------------------------------------------------------------------------------- servos
+
+Status Client::move(const std::vector<ServoTarget>& targets, std::uint16_t time_ms) {
+  auto f = build(rc::MultiServoMove{time_ms, targets});
+  if (!f) return f.error();
+  return send(*f);
+}
+
+Result<std::vector<ServoPosition>> Client::read_positions(const std::vector<std::uint8_t>& servos) {
+  auto f = build(rc::ServoPositionRead{servos});
+  if (!f) return f.error();
+  auto reply = transact(*f, std::nullopt, options_.reply_timeout);
+  if (!reply) return reply.error();
+  const auto& positions = std::get<rc::ServoPositionReply>(*reply).positions;
+  std::vector<std::uint8_t> answered;
+  for (const auto& p : positions) answered.push_back(p.servo);
+  if (answered != servos) {
+    return Error{ErrorKind::protocol,
+                 fmt::format("ServoPositionRead: asked for servos {}, {} answered for {}",
+                             servo_list_text(servos), link_.describe(),
+                             servo_list_text(answered))};
+  }
+  return positions;
+}
+
+Result<std::vector<ServoPosition>> Client::read_all_positions() {
+  return read_positions(all_servos());
+}
+
+Status Client::servos_off(const std::vector<std::uint8_t>& servos) {
+  auto f = build(rc::MultiServoOff{servos});
+  if (!f) return f.error();
+  return send(*f);
+}
+
+Result<std::uint16_t> Client::battery_millivolts() {
+  auto f = build(rc::GetBatteryVoltage{});
+  if (!f) return f.error();
+  auto reply = transact(*f, std::nullopt, options_.reply_timeout);
+  if (!reply) return reply.error();
+  return std::get<rc::BatteryVoltageReply>(*reply).millivolts;
+}
+
+Result<std::vector<ServoOffset>> Client::read_offsets(const std::vector<std::uint8_t>& servos) {
+  auto f = build(rc::ServoOffsetRead{servos});
+  if (!f) return f.error();
+  auto reply = transact(*f, std::nullopt, options_.reply_timeout);
+  if (!reply) return reply.error();
+  const auto& offsets = std::get<rc::ServoOffsetReply>(*reply).offsets;
+  std::vector<std::uint8_t> answered;
+  for (const auto& o : offsets) answered.push_back(o.servo);
+  if (answered != servos) {
+    return Error{ErrorKind::protocol,
+                 fmt::format("ServoOffsetRead: asked for servos {}, {} answered for {}",
+                             servo_list_text(servos), link_.describe(),
+                             servo_list_text(answered))};
+  }
+  return offsets;
+}
+
+Status Client::adjust_offset(std::uint8_t servo, int offset) {
+  if (offset < rc::kOffsetMin || offset > rc::kOffsetMax) {
+    return Error{ErrorKind::invalid_argument,
+                 fmt::format("ServoOffsetAdjust: offset {} is out of range (allowed {}..{})",
+                             offset, rc::kOffsetMin, rc::kOffsetMax)};
+  }
+  auto f = build(rc::ServoOffsetAdjust{servo, static_cast<std::int16_t>(offset)});
+  if (!f) return f.error();
+  return send(*f);
+}
+
+Status Client::save_offsets(const std::vector<std::uint8_t>& servos) {
+  auto f = build(rc::ServoOffsetWrite{servos});
+  if (!f) return f.error();
+  return send(*f);
+}
+
+Status Client::set_mode(std::uint8_t servo, ServoMode mode, std::uint16_t milliseconds) {
+  auto f = build(rc::ServoSpeed{servo, mode, milliseconds});
+  if (!f) return f.error();
+  return send(*f);
+}
+
+Result<BusServoInfoReply> Client::read_bus_servo_info() {
+  auto f = build(rc::BusServoInfoRead{});
+  if (!f) return f.error();
+  auto reply = transact(*f, std::nullopt, options_.reply_timeout);
+  if (!reply) return reply.error();
+  return std::get<rc::BusServoInfoReply>(*reply);
+}
+
+Status Client::write_bus_servo_info(const BusServoInfoWrite& info) {
+  auto f = build(info);
+  if (!f) return f.error();
+  return send(*f);
+}
+
+// ------------------------------------------------------------------------ action groups
+
+Result<std::vector<rc::Frame>> Client::group_download_frames(
+    std::uint8_t group, const std::vector<GroupAction>& actions) const {
+  if (actions.empty() || actions.size() > static_cast<std::size_t>(rc::kActionsMax)) {
+    return Error{ErrorKind::invalid_argument,
+                 fmt::format("GroupDownload: {} actions given (allowed 1..{})", actions.size(),
+                             rc::kActionsMax)};
+  }
+  const std::size_t per_action = actions.front().targets.size();
+  for (std::size_t i = 0; i < actions.size(); ++i) {
+    if (actions[i].targets.size() != per_action) {
+      return Error{ErrorKind::invalid_argument,
+                   fmt::format("GroupDownload: action {} has {} servos but action 1 has {} (every "
+                               "action of a group needs the same number)",
+                               i + 1, actions[i].targets.size(), per_action)};
+    }
+  }
+  std::vector<rc::Request> requests;
+  requests.push_back(rc::GroupDownloadBegin{group, static_cast<std::uint16_t>(actions.size())});
+  requests.push_back(rc::GroupDownloadServoCount{group, static_cast<std::uint8_t>(per_action)});
+  requests.push_back(
+      rc::GroupDownloadBlocks{group, rc::blocks_for_actions(static_cast<int>(actions.size()))});
+  for (std::size_t i = 0; i < actions.size(); ++i) {
+    requests.push_back(rc::GroupDownloadAction{
+        group, static_cast<std::uint8_t>(i / rc::kActionsPerBlock),
+        static_cast<std::uint8_t>(i % rc::kActionsPerBlock), actions[i].time_ms,
+        actions[i].targets});
+  }
+  requests.push_back(rc::GroupDownloadEnd{group});
+  std::vector<rc::Frame> frames;
+  for (std::size_t i = 0; i < requests.size(); ++i) {
+    auto f = build(requests[i]);
+    if (!f) {
+      // Name the action so a user can find it in a long group file.
+      if (i >= 3 && i < 3 + actions.size()) {
+        return Error{f.error().kind, fmt::format("action {}: {}", i - 2, f.error().message)};
+      }
+      return f.error();
+    }
+    frames.push_back(std::move(f.value()));
+  }
+  return frames;
+}
+
+Status Client::download_group(std::uint8_t group, const std::vector<GroupAction>& actions) {
+  auto frames = group_download_frames(group, actions);
+  if (!frames) return frames.error();
+  for (const auto& f : *frames) {
+    auto ack = transact(f, f.data.at(0), options_.download_timeout);
+    if (!ack) return ack.error();
+  }
+  return Ok{};
+}
+
+Status Client::run_group(std::uint8_t group, std::uint16_t times) {
+  auto f = build(rc::GroupRun{group, times});
+  if (!f) return f.error();
+  stop_sent_ = false;
+  return send(*f);
+}
+
+Status Client::stop_group() {
+  auto f = build(rc::GroupStop{});
+  if (!f) return f.error();
+  stop_sent_ = true;
+  return send(*f);
+}
+
+Status Client::erase_group(std::uint8_t group) {
+  auto f = build(rc::GroupErase{group});
+  if (!f) return f.error();
+  auto reply = transact(*f, std::nullopt, options_.download_timeout);
+  if (!reply) return reply.error();
+  return Ok{};
+}
+
+Status Client::set_group_speed(std::uint8_t group, std::uint16_t percent) {
+  auto f = build(rc::GroupSpeed{group, percent});
+  if (!f) return f.error();
+  return send(*f);
+}
+
+// ------------------------------------------------------------------------ notifications
+
+std::optional<GroupEvent> Client::next_event() {
+  if (events_.empty()) return std::nullopt;
+  GroupEvent e = events_.front();
+  events_.pop_front();
+  return e;
+}
+
+std::size_t Client::pump_events(TimePoint deadline) {
+  std::size_t delivered = 0;
+  while (auto f = link_.receive(deadline)) {
+    const std::size_t queued = events_.size();
+    if (take(*f)) ++stats_.stale_replies;
+    delivered += events_.size() - queued;
+  }
+  return delivered;
+}
+
+std::optional<GroupEvent> Client::wait_event(TimePoint deadline) {
+  while (events_.empty()) {
+    auto f = link_.receive(deadline);
+    if (!f) break;
+    if (take(*f)) ++stats_.stale_replies;
+  }
+  return next_event();
+}
+
+}  // namespace armctl::robot_commands

@@ -1,0 +1,125 @@
+// The Robot Commands host SDK: a typed API over any RcLink (serial, HID, in-memory).
+//
+// Every call validates its arguments against the client's servo range and the spec's
+// ranges before anything is sent; a refused call sends nothing. Calls that have a reply
+// wait for the frame with the same CMD (and, for GroupDownload, the same sub-command),
+// bounded by reply_timeout. Notifications that arrive meanwhile are queued as GroupEvents
+// (and passed to the callback, if set); nothing is lost. Not thread-safe: one thread uses
+// one Client.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "core/error.hpp"
+#include "devices/robot_commands/group_event.hpp"
+#include "devices/robot_commands/rc_link.hpp"
+#include "protocol/robot_commands/messages.hpp"
+#include "protocol/robot_commands/units.hpp"
+
+namespace armctl::robot_commands {
+
+using rc::BusServoInfoReply;
+using rc::BusServoInfoWrite;
+using rc::ServoMode;
+using rc::ServoOffset;
+using rc::ServoPosition;
+using rc::ServoTarget;
+
+struct ClientOptions {
+  int servo_count = 6;  // 6 for the xArm, 7 for our SCARA arm controller
+  Duration reply_timeout = std::chrono::milliseconds(500);
+  // A GroupDownload ack can take longer on a real board (flash writes).
+  Duration download_timeout = std::chrono::milliseconds(2000);
+};
+
+// One action of a group: a MultiServoMove (time + positions).
+struct GroupAction {
+  std::uint16_t time_ms = 0;
+  std::vector<ServoTarget> targets;
+  bool operator==(const GroupAction&) const = default;
+};
+
+struct ClientStats {
+  std::size_t frames_sent = 0;
+  std::size_t frames_received = 0;
+  std::size_t unreadable_frames = 0;  // did not decode as any board message
+  std::size_t stale_replies = 0;      // a reply nobody was waiting for (e.g. after a timeout)
+};
+
+class Client {
+ public:
+  using EventCallback = std::function<void(const GroupEvent&)>;
+
+  // `link` must outlive the Client. Throws ArmctlError(invalid_argument) for a servo count
+  // outside 1..19.
+  explicit Client(RcLink& link, ClientOptions options = {});
+
+  // ---- servos
+  // Moves the listed servos over `time_ms` (0..30000). A target without a position is sent
+  // as 0xFF00: that servo is left where it is.
+  Status move(const std::vector<ServoTarget>& targets, std::uint16_t time_ms);
+  Result<std::vector<ServoPosition>> read_positions(const std::vector<std::uint8_t>& servos);
+  Result<std::vector<ServoPosition>> read_all_positions();
+  Status servos_off(const std::vector<std::uint8_t>& servos);
+  Result<std::uint16_t> battery_millivolts();
+  Result<std::vector<ServoOffset>> read_offsets(const std::vector<std::uint8_t>& servos);
+  Status adjust_offset(std::uint8_t servo, int offset);  // -125..125, lost at power-off
+  Status save_offsets(const std::vector<std::uint8_t>& servos);
+  Status set_mode(std::uint8_t servo, ServoMode mode, std::uint16_t milliseconds);
+  Result<BusServoInfoReply> read_bus_servo_info();
+  Status write_bus_servo_info(const BusServoInfoWrite& info);
+
+  // ---- action groups
+  // Downloads 1..1,020 actions (all with the same number of servos) as sub-commands 1..5,
+  // each acknowledged. Every frame is built and validated before the first is sent.
+  Status download_group(std::uint8_t group, const std::vector<GroupAction>& actions);
+  Status run_group(std::uint8_t group, std::uint16_t times);  // 0 = continuous
+  Status stop_group();
+  Status erase_group(std::uint8_t group);  // 255 = all
+  Status set_group_speed(std::uint8_t group, std::uint16_t percent);  // 255 = all groups
+
+  // ---- notifications
+  void set_event_callback(EventCallback callback) { callback_ = std::move(callback); }
+  // Queued events, oldest first (also filled when a callback is set).
+  std::optional<GroupEvent> next_event();
+  std::size_t pending_events() const { return events_.size(); }
+  // Receives (and queues) notifications until `deadline`; returns how many arrived.
+  std::size_t pump_events(TimePoint deadline);
+  // Waits for the next event until `deadline`.
+  std::optional<GroupEvent> wait_event(TimePoint deadline);
+
+  // ---- misc
+  rc::ServoRange servos() const { return servos_; }
+  std::vector<std::uint8_t> all_servos() const;
+  const ClientStats& stats() const { return stats_; }
+  RcLink& link() { return link_; }
+  const Clock& clock() const { return link_.clock(); }
+
+  // Every frame download_group would send, validated, in order (for inspection/tests).
+  Result<std::vector<rc::Frame>> group_download_frames(std::uint8_t group,
+                                                       const std::vector<GroupAction>& actions) const;
+
+ private:
+  Result<rc::Frame> build(const rc::Request& request) const;
+  Status send(const rc::Frame& frame);
+  // Sends `frame` and waits for the reply with `cmd` (and `sub` for GroupDownload acks).
+  Result<rc::BoardMessage> transact(const rc::Frame& frame, std::optional<std::uint8_t> sub,
+                                    Duration timeout);
+  // Handles one incoming frame; returns the board message if it is a reply.
+  std::optional<rc::BoardMessage> take(const rc::Frame& frame);
+  void deliver(const rc::GroupNotification& n);
+
+  RcLink& link_;
+  ClientOptions options_;
+  rc::ServoRange servos_;
+  std::deque<GroupEvent> events_;
+  EventCallback callback_;
+  bool stop_sent_ = false;  // tells "stopped" from "finished" for a bare CMD 7
+  ClientStats stats_;
+};
+
+}  // namespace armctl::robot_commands

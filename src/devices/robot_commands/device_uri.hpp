@@ -1,0 +1,26 @@
+// Where a Robot Commands board is: `hid` (first xArm board), `hid:SERIAL`,
+// `hid:/dev/hidrawN`, `serial:/dev/ttyUSB0[?baud=115200]`, or a bare /dev path (serial).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/error.hpp"
+#include "devices/robot_commands/rc_link.hpp"
+
+namespace armctl::robot_commands {
+
+struct DeviceUri {
+  enum class Kind { hid, serial } kind = Kind::serial;
+  std::string target;         // hid: serial number or hidraw path ("" = first); serial: path
+  std::uint32_t baud = 9600;  // serial only
+};
+
+// Errors (invalid_argument) name what was wrong and list the accepted forms.
+Result<DeviceUri> parse_device_uri(const std::string& text);
+
+// Opens the link. Throws ArmctlError(io) if the device cannot be opened.
+std::unique_ptr<RcLink> open_link(const DeviceUri& uri);
+
+}  // namespace armctl::robot_commands

@@ -1,0 +1,172 @@
+#include "devices/xarm_emulator/emulator_runner.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <optional>
+
+#include <fmt/core.h>
+
+#include "core/error.hpp"
+#include "protocol/robot_commands/frame.hpp"
+#include "transport/serial_port.hpp"
+
+namespace armctl::xarm {
+namespace {
+
+// A host that never reads must not make the emulator block or grow without bound.
+constexpr std::size_t kMaxQueuedOutput = 64 * 1024;
+
+}  // namespace
+
+EmulatorRunner::EmulatorRunner(EmulatorRunnerOptions options, Log log)
+    : options_(std::move(options)),
+      log_(std::move(log)),
+      pty_(transport::Pty::open()),
+      emulator_(clock_, options_.emulator, [this](const rc::Frame& f) { on_output(f); }) {
+  if (options_.wire_timing && !transport::baud_constant(options_.baud))
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      fmt::format("baud {} is not a standard rate ({})", options_.baud,
+                                  transport::standard_bauds_text()));
+  if (::pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0)
+    throw ArmctlError(ErrorKind::io, fmt::format("pipe: {}", std::strerror(errno)));
+  if (log_) emulator_.board().set_log([this](const std::string& m) { log_(m); });
+  for (const std::string& problem : emulator_.groups().problems())
+    if (log_) log_("state dir: " + problem);
+}
+
+EmulatorRunner::~EmulatorRunner() {
+  stop();
+  for (int fd : wake_pipe_)
+    if (fd >= 0) ::close(fd);
+}
+
+Duration EmulatorRunner::byte_time() const {
+  return wire_time(1, options_.baud);
+}
+
+void EmulatorRunner::start() {
+  if (thread_.joinable()) return;
+  stop_ = false;
+  thread_ = std::thread([this] { run(); });
+}
+
+void EmulatorRunner::stop() {
+  request_stop();
+  if (thread_.joinable()) thread_.join();
+}
+
+void EmulatorRunner::request_stop() {
+  stop_ = true;
+  const char byte = 1;
+  [[maybe_unused]] ssize_t n = ::write(wake_pipe_[1], &byte, 1);  // full pipe: already awake
+}
+
+rc_board::BoardStats EmulatorRunner::stats() const {
+  std::lock_guard lock(stats_mutex_);
+  return stats_;
+}
+
+void EmulatorRunner::on_output(const rc::Frame& frame) {
+  auto bytes = rc::encode_frame(frame);
+  TimePoint now = clock_.now();
+  if (!options_.wire_timing) {
+    output_.push_back({now, std::move(bytes)});
+  } else {
+    for (std::uint8_t b : bytes) {
+      output_free_ = std::max(output_free_, now) + byte_time();
+      output_.push_back({output_free_, {b}});  // each byte leaves when its 10 bits are sent
+    }
+  }
+  std::size_t queued = 0;
+  for (const Timed& t : output_) queued += t.bytes.size();
+  while (queued > kMaxQueuedOutput && !output_.empty()) {
+    queued -= output_.front().bytes.size();
+    dropped_output_ += output_.front().bytes.size();
+    output_.pop_front();
+  }
+}
+
+void EmulatorRunner::read_input(TimePoint now) {
+  std::uint8_t buffer[512];
+  for (;;) {
+    ssize_t n = ::read(pty_.master().fd(), buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;  // EAGAIN: drained; EIO: no host has the pty open
+    if (!options_.wire_timing) {
+      emulator_.receive(std::span(buffer, static_cast<std::size_t>(n)));
+      continue;
+    }
+    for (ssize_t i = 0; i < n; ++i) {
+      input_free_ = std::max(input_free_, now) + byte_time();
+      input_.push_back({input_free_, {buffer[i]}});
+    }
+  }
+}
+
+void EmulatorRunner::flush_output(TimePoint now) {
+  while (!output_.empty() && output_.front().at <= now) {
+    auto& bytes = output_.front().bytes;
+    ssize_t n = ::write(pty_.master().fd(), bytes.data(), bytes.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return;  // EAGAIN: the host is not reading; try again when writable
+    bytes.erase(bytes.begin(), bytes.begin() + n);
+    if (bytes.empty()) output_.pop_front();
+  }
+}
+
+void EmulatorRunner::run() {
+  const int fd = pty_.master().fd();
+  while (!stop_) {
+    TimePoint now = clock_.now();
+    while (!input_.empty() && input_.front().at <= now) {
+      emulator_.receive(input_.front().bytes);
+      input_.pop_front();
+    }
+    emulator_.poll();
+    {  // before the replies leave, so a host that has its reply sees up-to-date counters
+      std::lock_guard lock(stats_mutex_);
+      stats_ = emulator_.board().stats();
+    }
+    flush_output(now);
+
+    std::optional<TimePoint> wake = emulator_.board().next_wakeup();
+    auto earliest = [&](TimePoint t) { wake = wake ? std::min(*wake, t) : t; };
+    if (!input_.empty()) earliest(input_.front().at);
+    bool blocked = !output_.empty() && output_.front().at <= now;  // pty full
+    if (!output_.empty() && !blocked) earliest(output_.front().at);
+
+    pollfd fds[2] = {{fd, static_cast<short>(POLLIN | (blocked ? POLLOUT : 0)), 0},
+                     {wake_pipe_[0], POLLIN, 0}};
+    timespec timeout{};
+    timespec* timeout_ptr = nullptr;
+    if (wake) {
+      auto left = std::max(Duration::zero(), *wake - clock_.now());
+      timeout.tv_sec = static_cast<time_t>(left.count() / 1'000'000'000);
+      timeout.tv_nsec = static_cast<long>(left.count() % 1'000'000'000);
+      timeout_ptr = &timeout;
+    }
+    int r = ::ppoll(fds, 2, timeout_ptr, nullptr);
+    if (r < 0 && errno != EINTR) {
+      if (log_) log_(fmt::format("poll: {}", std::strerror(errno)));
+      return;
+    }
+    if (r > 0 && (fds[1].revents & POLLIN)) {
+      char drain[64];
+      while (::read(wake_pipe_[0], drain, sizeof drain) > 0) {
+      }
+    }
+    if (r > 0 && (fds[0].revents & POLLIN)) read_input(clock_.now());
+    if (r > 0 && (fds[0].revents & (POLLHUP | POLLERR)) && !(fds[0].revents & POLLIN)) {
+      // No host on the other side: nothing to read; do not spin on the hang-up.
+      pollfd wait_only{wake_pipe_[0], POLLIN, 0};
+      ::poll(&wait_only, 1, 10);
+    }
+  }
+}
+
+}  // namespace armctl::xarm

@@ -1,0 +1,226 @@
+#include "devices/xarm_emulator/xarm_servos.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include <fmt/core.h>
+
+#include "core/error.hpp"
+#include "devices/rc_board/atomic_file.hpp"
+#include "devices/rc_board/crc32.hpp"
+
+namespace armctl::xarm {
+namespace {
+
+constexpr char kMagic[8] = {'A', 'R', 'M', 'S', 'R', 'V', '1', '\n'};
+constexpr std::size_t kPerServo = 14;
+constexpr const char* kSettingsFile = "xarm-servos.dat";
+
+double seconds(Duration d) {
+  return std::chrono::duration<double>(d).count();
+}
+
+void put16(std::vector<std::uint8_t>& out, std::uint16_t v) {
+  out.push_back(static_cast<std::uint8_t>(v & 0xFF));
+  out.push_back(static_cast<std::uint8_t>(v >> 8));
+}
+
+}  // namespace
+
+XarmServos::XarmServos(XarmServosOptions options, TimePoint now)
+    : options_(std::move(options)), now_(now) {
+  for (std::size_t i = 0; i < kServoCount; ++i) {
+    servos_[i].limits.servo = ids_[i];
+    servos_[i].start = servos_[i].end = now;
+  }
+  if (options_.state_dir) load_settings();
+}
+
+PositionRange XarmServos::position_range(ServoId servo) const {
+  const auto& l = at(servo).limits;
+  return {l.position_min, l.position_max};
+}
+
+bool XarmServos::moving(ServoId servo) const {
+  const Servo& s = at(servo);
+  return s.torque && ((s.mode == ServoMode::motor && s.motor_speed != 0) || now_ < s.end);
+}
+
+void XarmServos::advance_to(TimePoint now) {
+  if (now <= now_) return;
+  double dt = seconds(now - now_);
+  for (Servo& s : servos_) {
+    if (!s.torque) continue;
+    if (s.mode == ServoMode::motor) {
+      double p = std::fmod(s.position + s.motor_speed * kMotorUnitsPerSpeed * dt, kTurn);
+      s.position = p < 0 ? p + kTurn : p;
+    } else if (now >= s.end) {
+      s.position = s.target;
+    } else {
+      double f = seconds(now - s.start) / seconds(s.end - s.start);
+      s.position = s.from + (s.target - s.from) * f;
+    }
+  }
+  now_ = now;
+}
+
+Duration XarmServos::move(std::span<const ServoTarget> targets, Duration time, TimePoint now) {
+  advance_to(now);
+  Duration longest = time;
+  for (const ServoTarget& t : targets) {
+    double distance = std::abs(t.position - at(t.servo).position);
+    auto fastest =
+        std::chrono::duration_cast<Duration>(std::chrono::duration<double>(distance / kMaxSpeed));
+    longest = std::max(longest, fastest);
+  }
+  // One synchronized move: every servo arrives at the same moment (the slowest decides).
+  for (const ServoTarget& t : targets) {
+    Servo& s = at(t.servo);
+    s.torque = true;
+    s.mode = ServoMode::servo;
+    s.motor_speed = 0;
+    s.from = s.position;
+    s.target = t.position;
+    s.start = now_;
+    s.end = now_ + longest;
+    if (longest == Duration::zero()) s.position = s.target;
+  }
+  return longest;
+}
+
+std::int16_t XarmServos::position(ServoId servo) const {
+  const Servo& s = at(servo);
+  return static_cast<std::int16_t>(std::lround(s.position) + s.offset);
+}
+
+void XarmServos::torque_off(std::span<const ServoId> ids) {
+  for (ServoId id : ids) {
+    Servo& s = at(id);
+    s.torque = false;
+    s.mode = ServoMode::servo;
+    s.motor_speed = 0;
+    s.from = s.target = s.position;
+    s.end = now_;
+  }
+}
+
+void XarmServos::halt(TimePoint now) {
+  advance_to(now);
+  for (Servo& s : servos_) {
+    s.mode = ServoMode::servo;
+    s.motor_speed = 0;
+    s.from = s.target = s.position;
+    s.end = now_;
+  }
+}
+
+std::uint16_t XarmServos::battery_millivolts() const {
+  int moving_servos = 0;
+  for (ServoId id : ids_) moving_servos += moving(id) ? 1 : 0;
+  int mv = options_.battery_millivolts - moving_servos * kSagPerMovingServo;
+  return static_cast<std::uint16_t>(std::max(mv, 0));
+}
+
+void XarmServos::adjust_offset(ServoId servo, std::int8_t offset) {
+  at(servo).offset = offset;
+}
+
+std::int8_t XarmServos::offset(ServoId servo) const {
+  return at(servo).offset;
+}
+
+bool XarmServos::save_offsets(std::span<const ServoId> ids) {
+  std::array<std::int8_t, kServoCount> before{};
+  for (std::size_t i = 0; i < kServoCount; ++i) before[i] = servos_[i].saved_offset;
+  for (ServoId id : ids) at(id).saved_offset = at(id).offset;
+  if (save_settings()) return true;
+  for (std::size_t i = 0; i < kServoCount; ++i) servos_[i].saved_offset = before[i];
+  return false;
+}
+
+void XarmServos::set_mode(ServoId servo, ServoMode mode, std::int16_t speed, TimePoint now) {
+  advance_to(now);
+  Servo& s = at(servo);
+  s.mode = mode;
+  s.motor_speed = mode == ServoMode::motor ? speed : std::int16_t{0};
+  s.torque = true;
+  s.from = s.target = s.position;
+  s.end = now_;
+}
+
+BusServoInfo XarmServos::bus_servo_info() const {
+  const Servo& s = at(info_servo_);
+  return BusServoInfo{s.limits, s.offset, position(info_servo_), options_.temperature,
+                      battery_millivolts()};
+}
+
+bool XarmServos::write_bus_servo_info(const BusServoLimits& limits) {
+  if (!has_servo(limits.servo)) return false;
+  Servo& s = at(limits.servo);
+  BusServoLimits before = s.limits;
+  ServoId info_before = info_servo_;
+  s.limits = limits;
+  info_servo_ = limits.servo;
+  if (save_settings()) return true;
+  s.limits = before;
+  info_servo_ = info_before;
+  return false;
+}
+
+bool XarmServos::save_settings() {
+  if (!options_.state_dir) return true;
+  std::vector<std::uint8_t> out(kMagic, kMagic + sizeof kMagic);
+  out.push_back(static_cast<std::uint8_t>(kServoCount));
+  for (const Servo& s : servos_) {
+    const auto& l = s.limits;
+    out.push_back(l.servo);
+    out.push_back(static_cast<std::uint8_t>(s.saved_offset));
+    for (std::uint16_t v :
+         {l.position_min, l.position_max, l.millivolts_min, l.millivolts_max, l.temp_max})
+      put16(out, v);
+    out.push_back(l.led_status);
+    out.push_back(l.led_warning);
+  }
+  std::uint32_t crc = rc_board::crc32(out);
+  for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::uint8_t>(crc >> (8 * i)));
+  std::error_code ec;
+  std::filesystem::create_directories(*options_.state_dir, ec);
+  auto status = rc_board::write_file_atomically(*options_.state_dir / kSettingsFile, out);
+  last_save_error_ = status ? std::string() : status.error().message;
+  return status.ok();
+}
+
+void XarmServos::load_settings() {
+  auto path = *options_.state_dir / kSettingsFile;
+  auto bytes = rc_board::read_whole_file(path);
+  if (!bytes) throw ArmctlError(bytes.error());
+  if (!*bytes) return;  // nothing saved yet: factory settings
+  const auto& b = **bytes;
+  auto corrupt = [&](const char* why) {
+    return ArmctlError(
+        ErrorKind::invalid_config,
+        fmt::format("{}: {} (delete it to return to factory settings)", path.string(), why));
+  };
+  if (b.size() != sizeof kMagic + 1 + kServoCount * kPerServo + 4 ||
+      std::memcmp(b.data(), kMagic, sizeof kMagic) != 0 || b[8] != kServoCount)
+    throw corrupt("not an xArm servo settings file");
+  std::uint32_t stored = 0;
+  for (int i = 0; i < 4; ++i) stored |= std::uint32_t{b[b.size() - 4 + i]} << (8 * i);
+  if (rc_board::crc32(std::span(b).first(b.size() - 4)) != stored) throw corrupt("CRC mismatch");
+  auto get16 = [&](std::size_t at) { return static_cast<std::uint16_t>(b[at] | (b[at + 1] << 8)); };
+  for (std::size_t i = 0; i < kServoCount; ++i) {
+    std::size_t at = sizeof kMagic + 1 + i * kPerServo;
+    BusServoLimits l{b[at],         get16(at + 2),  get16(at + 4), get16(at + 6),
+                     get16(at + 8), get16(at + 10), b[at + 12],    b[at + 13]};
+    auto offset = static_cast<std::int8_t>(b[at + 1]);
+    if (l.servo != ids_[i] || l.position_min > l.position_max || l.position_max > 1000 ||
+        offset < -125 || offset > 125)
+      throw corrupt("servo entry out of range");
+    servos_[i].limits = l;
+    servos_[i].saved_offset = servos_[i].offset = offset;
+  }
+}
+
+}  // namespace armctl::xarm

@@ -1,0 +1,131 @@
+// `armctl bus` and `armctl sim scara` end to end: the real binary (ARMCTL_BINARY_DIR/armctl),
+// its output, its exit status, and its error messages for bad arguments.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+struct CliRun {
+  int status;
+  std::string out;  // stdout and stderr together
+};
+
+CliRun armctl(const std::string& args) {
+  const std::string cmd = std::string(ARMCTL_BINARY_DIR) + "/armctl " + args + " 2>&1";
+  FILE* p = ::popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+  const int st = ::pclose(p);
+  return CliRun{WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+std::string stdout_only(const std::string& args) {
+  const std::string cmd = std::string(ARMCTL_BINARY_DIR) + "/armctl " + args + " 2>/dev/null";
+  FILE* p = ::popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+  ::pclose(p);
+  return out;
+}
+
+TEST(BusCli, ReadsEveryJointOfTheEmbeddedSim) {
+  const CliRun r = armctl("bus position all");
+  EXPECT_EQ(r.status, 0) << r.out;
+  for (int j = 1; j <= 7; ++j) EXPECT_NE(r.out.find("joint " + std::to_string(j) + ": position 0"), std::string::npos) << r.out;
+}
+
+TEST(BusCli, JsonOutputIsOneDocument) {
+  const auto doc = nlohmann::json::parse(stdout_only("bus --json ping 3 -77"));
+  EXPECT_EQ(doc["command"], "ping");
+  EXPECT_TRUE(doc["ok"].get<bool>());
+  ASSERT_EQ(doc["joints"].size(), 1u);
+  EXPECT_EQ(doc["joints"][0]["joint"], 3);
+  EXPECT_EQ(doc["joints"][0]["value"], -77);
+}
+
+TEST(BusCli, EveryCommandRunsOnTheEmbeddedSim) {
+  for (const char* args : {"ping all", "home 1", "pid all on", "pid 2 off", "target all", "number 7", "drive-dist 1 10",
+                           "drive-dist-max all -5", "drive-to all 100", "speed all 50", "zone 3 4", "reached all",
+                           "wait all --timeout 5", "--verify --retries 2 drive-to 2 300"}) {
+    const CliRun r = armctl(std::string("bus ") + args);
+    EXPECT_EQ(r.status, 0) << args << "\n" << r.out;
+  }
+}
+
+TEST(BusCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"bus drive-to 3 abc", "VALUE 'abc'"},
+      {"bus drive-to 3 40000", "-32768..32767"},
+      {"bus speed 1 150", "0..100"},
+      {"bus zone 1 -1", "0..32767"},
+      {"bus position 9", "JOINT"},
+      {"bus position 0", "JOINT"},
+      {"bus pid 1 maybe", "on or off"},
+      {"bus --device tcp:1.2.3.4 position", "unknown kind of device"},
+      {"bus --device serial:/dev/ttyAMA0 position", "needs select="},
+      {"bus --device unix:/tmp/armctl-no-such.sock position", "armctl sim scara"},
+      {"bus frobnicate", "subcommand"},
+      {"bus drive-to 3", "value"},
+      {"bus", "subcommand"},
+  };
+  for (const auto& [args, want] : cases) {
+    const CliRun r = armctl(args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_NE(r.out.find(want), std::string::npos) << args << "\n" << r.out;
+  }
+}
+
+TEST(SimScaraCli, KeepsStateBetweenCommandsAndStopsCleanly) {
+  const std::string sock = "/tmp/armctl-cli-test-" + std::to_string(::getpid()) + ".sock";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string bin = std::string(ARMCTL_BINARY_DIR) + "/armctl";
+    ::freopen("/dev/null", "w", stdout);
+    ::execl(bin.c_str(), bin.c_str(), "sim", "scara", "--listen", sock.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Wait for the socket to appear (bounded; the process needs a moment to start).
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (::access(sock.c_str(), F_OK) != 0 && std::chrono::steady_clock::now() < until) {
+    std::this_thread::yield();
+  }
+  ASSERT_EQ(::access(sock.c_str(), F_OK), 0) << "armctl sim scara did not listen";
+  const std::string dev = "bus --device unix:" + sock + " ";
+  EXPECT_EQ(armctl(dev + "drive-to 2 600").status, 0);
+  const CliRun w = armctl(dev + "wait 2 --timeout 10");
+  EXPECT_EQ(w.status, 0) << w.out;
+  const CliRun t = armctl(dev + "target 2");
+  EXPECT_NE(t.out.find("target 600"), std::string::npos) << t.out;
+  const CliRun p = armctl(dev + "--json position 2");
+  const auto pos = nlohmann::json::parse(p.out.substr(p.out.find('{')));
+  EXPECT_LE(std::abs(pos["joints"][0]["value"].get<int>() - 600), 10) << p.out;
+
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  int st = 0;
+  ASSERT_EQ(::waitpid(pid, &st, 0), pid);
+  EXPECT_TRUE(WIFEXITED(st)) << "killed by a signal instead of exiting";
+  EXPECT_EQ(WEXITSTATUS(st), 0);
+  EXPECT_NE(::access(sock.c_str(), F_OK), 0) << "socket file left behind";
+}
+
+TEST(SimScaraCli, BadBaudIsRefused) {
+  const CliRun r = armctl("sim scara --listen /tmp/armctl-never.sock --baud 12345");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("not a standard rate"), std::string::npos) << r.out;
+}
+
+}  // namespace

@@ -1,0 +1,60 @@
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "devices/joint_bus/device_uri.hpp"
+
+namespace armctl::test {
+namespace {
+
+using namespace joint_bus;
+
+TEST(DeviceUri, AcceptsTheThreeForms) {
+  EXPECT_FALSE(std::get<SimDevice>(parse_device_uri("sim")).baud.has_value());
+  EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim?baud=115200")).baud, 115200u);
+  EXPECT_EQ(std::get<UnixDevice>(parse_device_uri("unix:/tmp/a.sock")).path, "/tmp/a.sock");
+  const auto s = std::get<SerialDevice>(
+      parse_device_uri("serial:/dev/ttyAMA0?baud=115200&chip=gpiochip0&select=17,27,22,5,6,13,19&dialect=legacy"));
+  EXPECT_EQ(s.path, "/dev/ttyAMA0");
+  EXPECT_EQ(s.baud, 115200u);
+  EXPECT_EQ(s.chip, "gpiochip0");
+  EXPECT_EQ(s.select, (std::vector<unsigned>{17, 27, 22, 5, 6, 13, 19}));
+  EXPECT_EQ(s.dialect, Dialect::legacy);
+  const auto d = std::get<SerialDevice>(parse_device_uri("serial:/dev/ttyUSB0?select=4"));
+  EXPECT_EQ(d.baud, 9600u);
+  EXPECT_EQ(d.chip, "gpiochip0");
+  EXPECT_EQ(d.dialect, Dialect::standard);
+}
+
+TEST(DeviceUri, RefusesBadInputWithAMessageNamingIt) {
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"", "unknown kind"},
+      {"tcp:1.2.3.4", "unknown kind"},
+      {"sim?baud=12345", "not a standard rate"},
+      {"sim?speed=1", "unknown option 'speed'"},
+      {"unix:", "needs a socket path"},
+      {"unix:/a?x=1", "takes no options"},
+      {"serial:/dev/ttyAMA0", "needs select="},
+      {"serial:ttyAMA0?select=1", "absolute device path"},
+      {"serial:/dev/ttyAMA0?select=17,17", "given twice"},
+      {"serial:/dev/ttyAMA0?select=1,2,3,4,5,6,7,8", "1..7 joints"},
+      {"serial:/dev/ttyAMA0?select=a", "not a whole number"},
+      {"serial:/dev/ttyAMA0?select=", "not a whole number"},
+      {"serial:/dev/ttyAMA0?select=1&dialect=old", "neither standard nor legacy"},
+      {"serial:/dev/ttyAMA0?select=1&baud=-1", "not a whole number"},
+      {"serial:/dev/ttyAMA0?select=1&select=2", "given twice"},
+      {"serial:/dev/ttyAMA0?select", "not key=value"},
+  };
+  for (const auto& [uri, why] : bad) {
+    try {
+      parse_device_uri(uri);
+      ADD_FAILURE() << "accepted " << uri;
+    } catch (const ArmctlError& e) {
+      EXPECT_EQ(e.error().kind, ErrorKind::invalid_argument) << uri;
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << uri << ": " << e.what();
+      EXPECT_NE(std::string(e.what()).find("allowed:"), std::string::npos) << uri;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace armctl::test
