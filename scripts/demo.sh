@@ -1,34 +1,54 @@
 #!/usr/bin/env bash
-# make demo: start the simulated SCARA arm in the background, drive all seven joints through
-# a few moves over the joint bus, wait for each move, and print the positions as they go.
+# make demo: one program, two arms, one SDK. Starts the simulated SCARA arm (seven joints on
+# a simulated joint bus, driven by the arm controller: a Robot Commands device on a pty) and
+# the emulated xArm (six bus servos, Robot Commands on a pty), then runs the same short
+# program on both with `armctl xarm` (a few synchronized moves and an action group) and
+# prints what each arm did.
 set -euo pipefail
 armctl=${1:-build/armctl}
 dir=$(mktemp -d)
-sock="$dir/scara.sock"
+pids=()
+cleanup() {
+  for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
+  for p in "${pids[@]}"; do wait "$p" 2>/dev/null || true; done
+  rm -rf "$dir"
+}
+trap cleanup EXIT
 
-"$armctl" sim scara --listen "$sock" > "$dir/sim.log" 2>&1 &
-sim_pid=$!
-trap 'kill "$sim_pid" 2>/dev/null; wait "$sim_pid" 2>/dev/null; rm -rf "$dir"' EXIT
+"$armctl" sim scara --robot-commands --link "$dir/scara" > /dev/null 2> "$dir/scara.log" &
+pids+=($!)
+"$armctl" emulate xarm --link "$dir/xarm" > /dev/null 2> "$dir/xarm.log" &
+pids+=($!)
+for _ in $(seq 100); do [ -e "$dir/scara" ] && [ -e "$dir/xarm" ] && break; sleep 0.1; done
+[ -e "$dir/scara" ] || { echo "demo: the SCARA arm did not start:"; cat "$dir/scara.log"; exit 1; }
+[ -e "$dir/xarm" ] || { echo "demo: the xArm emulator did not start:"; cat "$dir/xarm.log"; exit 1; }
 
-for _ in $(seq 50); do [ -S "$sock" ] && break; sleep 0.1; done
-[ -S "$sock" ] || { echo "demo: the simulated arm did not start:"; cat "$dir/sim.log"; exit 1; }
+# The program: the same for both arms (servos 1..6; the SCARA's joint 7, the gripper, too).
+cat > "$dir/wave.grp" <<'GROUP'
+# wave: three joints, three actions of one second
+servos 3
+1000  1=550 2=450 3=550
+1000  1=450 2=550 3=450
+1000  1=500 2=500 3=500
+GROUP
 
-bus() { "$armctl" bus --device "unix:$sock" "$@"; }
+program() {  # name device servo-count
+  local name=$1 device=$2 servos=$3
+  local x=("$armctl" xarm --device "serial:$device" --servos "$servos")
+  echo "== $name: battery"
+  "${x[@]}" battery
+  echo "== $name: synchronized move of six servos in 1.5 s"
+  "${x[@]}" move 1=600 2=550 3=400 4=600 5=450 6=550 --time 1500 --wait
+  echo "== $name: and back in 1.5 s"
+  "${x[@]}" move 1=400 2=450 3=600 4=400 5=550 6=450 --time 1500 --wait
+  echo "== $name: action group 1 (wave) downloaded, run once"
+  "${x[@]}" group download "$dir/wave.grp" --group 1
+  "${x[@]}" group run 1 --times 1 --wait
+  echo "== $name: positions at the end"
+  "${x[@]}" positions
+}
 
-echo "== every joint answers"
-bus ping all
-echo "== speed 60 %, zone 5 clicks"
-bus speed all 60 > /dev/null
-bus zone all 5 > /dev/null
-for target in 3000 -1500 0; do
-  echo "== drive-to all $target"
-  bus drive-to all "$target" > /dev/null
-  bus position all
-  bus wait all --timeout 10
-  bus position all
-done
-echo "== relative move of joint 2 by +800, joint 3 by -800"
-bus drive-dist 2 800 > /dev/null
-bus drive-dist 3 -800 > /dev/null
-bus wait all --timeout 10 > /dev/null
-bus position all
+program "SCARA (arm controller, 7 joints)" "$dir/scara" 7
+program "xArm (emulated, 6 servos)" "$dir/xarm" 6
+echo "== what the SCARA controller logged"
+grep -v "^sim scara: joint [0-9] " "$dir/scara.log" || true

@@ -8,13 +8,26 @@
 #include "devices/robot_commands/client.hpp"
 #include "devices/robot_commands/device_uri.hpp"
 #include "devices/xarm_emulator/emulator_runner.hpp"
+#include "protocol/robot_commands/messages.hpp"
 
 namespace {
 
 using namespace armctl;
 using namespace std::chrono_literals;
 
-// Mean seconds per GetBatteryVoltage round trip (request 4 bytes, reply 6 bytes).
+// Bytes on the wire for one GetBatteryVoltage round trip, counted from the encoder rather
+// than written down: request `55 55 02 0F` (4) + reply `55 55 04 0F lo hi` (6).
+std::size_t round_trip_bytes() {
+  const auto request = rc::encode(rc::GetBatteryVoltage{}, rc::ServoRange::of_count(6)).value();
+  const auto reply = rc::encode(rc::BoardMessage{rc::BatteryVoltageReply{7500}}).value();
+  return rc::encode_frame(request).size() + rc::encode_frame(reply).size();
+}
+
+// The honest floor: every byte is 10 bits (start + 8 data + stop) at `baud`, each direction
+// once, no slack added. Anything above it is host, pty and emulator time.
+Duration wire_floor(std::uint32_t baud) { return wire_time(round_trip_bytes(), baud); }
+
+// Mean seconds per GetBatteryVoltage round trip.
 double measure(bool wire_timing, std::uint32_t baud, int rounds) {
   xarm::EmulatorRunnerOptions options;
   options.wire_timing = wire_timing;
@@ -35,7 +48,7 @@ double measure(bool wire_timing, std::uint32_t baud, int rounds) {
 }
 
 void report_wire(const char* name, std::uint32_t baud, int rounds) {
-  const double floor_s = std::chrono::duration<double>(wire_time(4 + 6, baud)).count();
+  const double floor_s = std::chrono::duration<double>(wire_floor(baud)).count();
   const double measured = measure(true, baud, rounds);
   std::printf("BENCH rc_rtt_%s %.3f ms limit %.3f ratio %.3f\n", name, measured * 1e3,
               floor_s * 1e3, floor_s / measured);
@@ -51,7 +64,7 @@ int main() {
   // Without wire timing: what the host side (SDK, pty, emulator loop) costs per command.
   // Limit: one 115200-baud wire floor, which host overhead should stay well under.
   const double overhead = measure(false, 115200, 2000);
-  const double limit_us = std::chrono::duration<double>(wire_time(4 + 6, 115200)).count() * 1e6;
+  const double limit_us = std::chrono::duration<double>(wire_floor(115200)).count() * 1e6;
   std::printf("BENCH rc_host_overhead %.1f us limit %.1f ratio %.3f\n", overhead * 1e6, limit_us,
               limit_us / (overhead * 1e6));
   return 0;

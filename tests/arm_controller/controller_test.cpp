@@ -3,6 +3,7 @@
 // arrival, groups, faults, soft limits, persistence.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -45,26 +46,39 @@ std::map<int, TimePoint> watch_arrivals(Rig& rig, const std::map<int, int>& targ
   return last_outside;
 }
 
-void expect_synchronized_arrival(std::uint32_t baud, std::uint16_t time_ms, double tolerance_ms) {
+void expect_synchronized_arrival(std::uint32_t baud, std::uint16_t time_ms, double tolerance_ms,
+                                 std::vector<ServoTarget> targets) {
   Rig rig(std::nullopt, baud);
-  std::vector<ServoTarget> targets{{1, 800}, {2, 300}, {3, 650}, {4, 100}, {5, 520}, {6, 900}, {7, 400}};
   std::map<int, int> clicks;
   for (auto& t : targets) clicks[t.servo] = rig.controller().target_clicks(t.servo, *t.position);
   const TimePoint start = rig.now();
   ASSERT_TRUE(rig.client->move(targets, time_ms).ok());
+  rig.device->step(rig.now() + 1ms);  // the board has planned the move
+  const double planned = ms_of(rig.controller().last_plan().total);
+  EXPECT_NEAR(planned, time_ms, 0.5) << "every move here is within the joints' reach";
   auto arrivals = watch_arrivals(rig, clicks, start + std::chrono::milliseconds(time_ms) + 1500ms);
+  double earliest = 1e9, latest = -1e9;
   for (auto& [j, at] : arrivals) {
-    double late = ms_of(at - start) - time_ms;
+    double late = ms_of(at - start) - planned;
+    earliest = std::min(earliest, late);
+    latest = std::max(latest, late);
     EXPECT_LE(std::abs(late), tolerance_ms) << fmt::format("joint {} arrived {:+.1f} ms from the asked {} ms at {} baud", j, late, time_ms, baud);
     EXPECT_LE(std::abs(rig.clicks(j) - clicks[j]), rig.controller().config().joint(j)->zone_clicks) << j;
   }
+  std::printf("arrival in zone, %u baud, %u ms move: %+.1f .. %+.1f ms from the planned instant\n", baud,
+              time_ms, earliest, latest);
 }
 
-// Tolerance stated in docs/arm-controller.md: every joint is in its zone within 5 % of the
-// move time or 40 ms, whichever is larger, of the instant asked for.
-TEST(SynchronizedMove, AllJointsArriveTogetherAt9600) { expect_synchronized_arrival(9600, 2000, 100); }
-TEST(SynchronizedMove, AllJointsArriveTogetherAt115200) { expect_synchronized_arrival(115200, 1500, 75); }
-TEST(SynchronizedMove, ShortMoveAt115200) { expect_synchronized_arrival(115200, 800, 40); }
+// Tolerance stated in docs/arm-controller.md: every joint is in its zone (20 clicks) within
+// 5 % of the move time or 75 ms, whichever is larger, of the instant asked for. (A joint
+// decelerating at 15625 clicks/s^2 needs 50 ms for the last 20 clicks, so it always enters
+// its zone a little before the profile ends.)
+const std::vector<ServoTarget> kLongMove{{1, 800}, {2, 300}, {3, 650}, {4, 100}, {5, 520}, {6, 900}, {7, 400}};
+const std::vector<ServoTarget> kShortMove{{1, 540}, {2, 480}, {3, 530}, {4, 450}, {5, 505}, {6, 600}, {7, 300}};
+TEST(SynchronizedMove, AllJointsArriveTogetherAt9600) { expect_synchronized_arrival(9600, 2000, 100, kLongMove); }
+TEST(SynchronizedMove, AllJointsArriveTogetherAt115200) { expect_synchronized_arrival(115200, 2000, 100, kLongMove); }
+TEST(SynchronizedMove, ShortMoveAt9600) { expect_synchronized_arrival(9600, 800, 75, kShortMove); }
+TEST(SynchronizedMove, ShortMoveAt115200) { expect_synchronized_arrival(115200, 800, 75, kShortMove); }
 
 TEST(SynchronizedMove, ZeroTimeMeansAsFastAsTheSlowestJointCan) {
   Rig rig;
@@ -179,16 +193,23 @@ TEST(Commands, BusServoInfoReadsAndSetsPerJointLimits) {
   ASSERT_TRUE(rig.client->move({{6, 800}}, 200).ok());
   rig.run_for(600ms);
   EXPECT_EQ(rig.clicks(6), 0) << "outside the new limit: refused";
-  w.servo = 9;  // not a joint of this arm
-  EXPECT_TRUE(rig.client->write_bus_servo_info(w).ok());  // sent; the board ignores it
-  rig.run_for(100ms);
+  // Not a joint of this arm: the SDK (7 servos) refuses; sent raw, the board ignores it.
+  w.servo = 9;
+  EXPECT_FALSE(rig.client->write_bus_servo_info(w).ok());
+  rig.device->handle(*rc::encode(rc::Request{w}, rc::ServoRange{0, 255}));
   EXPECT_EQ(rig.device->board().stats().unknown_servo, 1u);
 }
 
+// Every action within the joints' reach at 100 % (square) and at 200 % (small_square).
 std::vector<GroupAction> square() {
-  return {{400, {{1, 600}, {2, 600}, {3, 400}}},
-          {400, {{1, 400}, {2, 600}, {3, 600}}},
-          {400, {{1, 500}, {2, 500}, {3, 500}}}};
+  return {{1000, {{1, 600}, {2, 550}, {3, 400}}},
+          {1000, {{1, 400}, {2, 550}, {3, 600}}},
+          {1000, {{1, 500}, {2, 500}, {3, 500}}}};
+}
+std::vector<GroupAction> small_square() {
+  return {{1000, {{1, 525}, {2, 510}, {3, 475}}},
+          {1000, {{1, 475}, {2, 510}, {3, 525}}},
+          {1000, {{1, 500}, {2, 500}, {3, 500}}}};
 }
 
 TEST(Groups, RunPlaysSynchronizedMovesAndNotifies) {
@@ -200,13 +221,16 @@ TEST(Groups, RunPlaysSynchronizedMovesAndNotifies) {
   EXPECT_EQ(started->kind, GroupEventKind::started);
   const TimePoint t0 = rig.now();
   // Mid-first action: joint 1 on its way to 600 (4000 clicks).
-  rig.device->run_until(t0 + 400ms);
-  EXPECT_NEAR(rig.clicks(1), 4000, 300);
-  auto finished = rig.client->wait_event(t0 + 5s);
+  rig.device->run_until(t0 + 500ms);
+  EXPECT_NEAR(rig.clicks(1), 2000, 300) << "half way to 600 (4000 clicks)";
+  rig.device->run_until(t0 + 1000ms);
+  EXPECT_NEAR(rig.clicks(1), 4000, 40);
+  EXPECT_NEAR(rig.clicks(3), -4000, 40);
+  auto finished = rig.client->wait_event(t0 + 8s);
   ASSERT_TRUE(finished);
   EXPECT_EQ(finished->kind, GroupEventKind::finished);
   EXPECT_EQ(finished->count, 2);
-  EXPECT_NEAR(ms_of(rig.now() - t0), 2 * 1200, 60);
+  EXPECT_NEAR(ms_of(rig.now() - t0), 2 * 3000, 60);
   rig.run_for(300ms);
   EXPECT_NEAR(rig.clicks(1), 0, 20);
   EXPECT_NEAR(rig.clicks(3), 0, 20);
@@ -214,18 +238,27 @@ TEST(Groups, RunPlaysSynchronizedMovesAndNotifies) {
 
 TEST(Groups, SpeedScalesAndContinuousPlayStopsWhereItIs) {
   Rig rig;
-  ASSERT_TRUE(rig.client->download_group(1, square()).ok());
+  ASSERT_TRUE(rig.client->download_group(1, small_square()).ok());
   ASSERT_TRUE(rig.client->set_group_speed(1, 200).ok());
   ASSERT_TRUE(rig.client->run_group(1, 0).ok());
+  // Read the "started" notification now: the SDK takes a CMD 7 that arrives after a
+  // "started" it had not yet read as the real-board "finished" variant.
+  auto started = rig.client->wait_event(rig.now() + 100ms);
+  ASSERT_TRUE(started);
+  EXPECT_EQ(started->kind, GroupEventKind::started);
   const TimePoint t0 = rig.now();
-  rig.device->run_until(t0 + 200ms);  // half of the first action at 200 %: at 600
-  EXPECT_NEAR(rig.clicks(1), 4000, 300);
-  rig.device->run_until(t0 + 3000ms);  // five passes of 600 ms
+  rig.device->run_until(t0 + 500ms);  // the first action (1000 ms at 200 %) has ended
+  EXPECT_NEAR(rig.clicks(1), 1000, 25);
+  rig.device->run_until(t0 + 1000ms);
+  EXPECT_NEAR(rig.clicks(1), -1000, 25);
+  rig.device->run_until(t0 + 4700ms);  // in the fourth pass of 1500 ms: moving
   EXPECT_TRUE(rig.device->board().running_group());
   ASSERT_TRUE(rig.client->stop_group().ok());
   bool stopped = false;
-  while (auto e = rig.client->wait_event(rig.now() + 500ms))
+  while (auto e = rig.client->wait_event(rig.now() + 500ms)) {
     if (e->kind == GroupEventKind::stopped) stopped = true;
+    EXPECT_NE(e->kind, GroupEventKind::finished) << robot_commands::describe(*e);
+  }
   EXPECT_TRUE(stopped);
   EXPECT_FALSE(rig.device->board().running_group());
   rig.run_for(600ms);  // decelerating to rest
@@ -261,7 +294,7 @@ TEST(Persistence, GroupsOffsetsAndLimitsSurviveARestart) {
   EXPECT_EQ(info->position_max, 900);
   ASSERT_TRUE(rig.client->run_group(4, 1).ok());
   bool finished = false;
-  while (auto e = rig.client->wait_event(rig.now() + 3s))
+  while (auto e = rig.client->wait_event(rig.now() + 5s))
     if (e->kind == GroupEventKind::finished) finished = true;
   EXPECT_TRUE(finished);
 }
@@ -291,8 +324,8 @@ TEST(JointFaults, DeadJointIsReportedAndAMoveNamingItIsRefused) {
   EXPECT_EQ(rig.clicks(2), 0) << "refused whole: no joint moved";
   EXPECT_EQ(rig.controller().stats().refused_moves, 1u);
   // The others still work, and positions of the others are still read.
-  ASSERT_TRUE(rig.client->move({{2, 600}}, 300).ok());
-  rig.run_for(800ms);
+  ASSERT_TRUE(rig.client->move({{2, 600}}, 1500).ok());
+  rig.run_for(2000ms);
   EXPECT_NEAR(rig.clicks(2), 4000, 20);
   auto p = rig.client->read_positions({2});
   ASSERT_TRUE(p.ok());

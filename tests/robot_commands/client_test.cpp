@@ -32,6 +32,16 @@ TEST(ClientRefuses, BadInputSendsNothing) {
   EXPECT_FALSE(c.adjust_offset(1, -126));
   EXPECT_FALSE(c.save_offsets({}));
   EXPECT_FALSE(c.set_mode(9, ServoMode::motor, 100));
+  // ServoSpeed: the board accepts a signed speed -1000..1000 only; the SDK refuses the rest.
+  for (std::int16_t speed : {1001, -1001, 32767, -32768}) {
+    auto refused = c.set_mode(1, ServoMode::motor, speed);
+    ASSERT_FALSE(refused) << speed;
+    EXPECT_EQ(refused.error().kind, ErrorKind::invalid_argument);
+    EXPECT_NE(refused.error().message.find("ServoSpeed: speed " + std::to_string(speed)),
+              std::string::npos) << refused.error().message;
+    EXPECT_NE(refused.error().message.find("-1000..1000"), std::string::npos);
+  }
+  EXPECT_FALSE(c.set_mode(1, ServoMode::servo, 2000));
   EXPECT_FALSE(c.write_bus_servo_info(BusServoInfoWrite{1, 0, 1000, 4500, 12000, 40, 0, 0}));
   EXPECT_FALSE(c.download_group(1, {}));
   EXPECT_FALSE(c.download_group(1, std::vector<GroupAction>(1021, GroupAction{100, {{1, 5}}})));
@@ -303,6 +313,13 @@ TEST(ClientOnEmulator, EveryCommand) {
   ASSERT_TRUE(c.set_mode(2, ServoMode::motor, 500));
   c.pump_events(link.sim_clock().now() + 1ms);
   EXPECT_EQ(servos.mode(2), rc_board::ServoMode::motor);
+  // Full speed in reverse travels as two's complement (-1000 = FC18) and the board obeys it.
+  ASSERT_TRUE(c.set_mode(5, ServoMode::motor, -1000));
+  EXPECT_EQ(link.sent.back().data, (std::vector<std::uint8_t>{5, 1, 0x18, 0xFC}));
+  const double before = servos.commanded_position(5);
+  c.pump_events(link.sim_clock().now() + 100ms);
+  EXPECT_EQ(servos.mode(5), rc_board::ServoMode::motor);
+  EXPECT_NEAR(servos.commanded_position(5), before - 150.0, 2.0);  // 1.5 units/s per speed unit
 
   auto info = c.read_bus_servo_info();
   ASSERT_TRUE(info) << info.error().message;

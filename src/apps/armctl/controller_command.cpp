@@ -1,8 +1,49 @@
+// armctl controller --upstream URI [--bus URI] [--arm CONFIG] [--link PATH] [--state-dir DIR]
+// The arm controller as a daemon: Robot Commands from a host on a pty or serial port,
+// seven joints on the joint bus (docs/arm-controller.md).
+#include <memory>
+#include <string>
+
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/controller_serve.hpp"
+#include "devices/arm_controller/controller_config.hpp"
+#include "devices/joint_bus/bus_connection.hpp"
+#include "devices/joint_bus/device_uri.hpp"
 
 namespace armctl::cli {
 
-// Not built yet: registers nothing, so 'armctl controller' is reported as an unknown subcommand.
-void add_controller_command(CLI::App& /*app*/) {}
+namespace {
+
+struct ControllerArgs {
+  ControllerServeArgs serve;
+  std::string bus = "sim";
+  std::string arm;
+};
+
+void run_controller(const ControllerArgs& args) {
+  auto config = args.arm.empty()
+                    ? arm_controller::load_controller_config(arm_controller::default_controller_config_path())
+                    : arm_controller::load_controller_config(args.arm);
+  auto connection = joint_bus::open_bus(joint_bus::parse_device_uri(args.bus));
+  serve_controller(connection->link(), connection->default_options(), std::move(config), args.serve);
+}
+
+}  // namespace
+
+void add_controller_command(CLI::App& app) {
+  auto args = std::make_shared<ControllerArgs>();
+  auto* c = app.add_subcommand(
+      "controller", "The arm controller: Robot Commands upstream (pty or serial), the joint bus "
+                    "downstream; prints the pty path and runs until Ctrl-C");
+  c->add_option("--upstream", args->serve.upstream,
+                "pty | serial:/dev/ttyS0[?baud=9600] | /dev/PATH (default pty)");
+  c->add_option("--bus", args->bus,
+                "Joint bus: sim[?baud=N&config=FILE] | unix:/path | serial:/dev/ttyAMA0?baud=N&select=... (default sim)");
+  c->add_option("--arm", args->arm, "Arm config (default config/scara-arm.json)");
+  c->add_option("--link", args->serve.link, "Also create this symlink to the pty (removed on exit)");
+  c->add_option("--state-dir", args->serve.state_dir,
+                "Keep action groups, offsets and limits here (default: in memory)");
+  c->callback([args] { run_controller(*args); });
+}
 
 }  // namespace armctl::cli

@@ -11,6 +11,7 @@
 #include <fmt/core.h>
 
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/controller_serve.hpp"
 #include "core/error.hpp"
 #include "devices/joint_bus/sim_link_server.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
@@ -28,6 +29,11 @@ struct SimArgs {
   std::string listen = "/tmp/armctl-scara.sock";
   std::uint32_t baud = 0;  // 0: the config's
   std::string config;
+  // --robot-commands: the whole arm as a Robot Commands device on a pty (SimArm + arm
+  // controller in this process) instead of the joint bus on a unix socket.
+  bool robot_commands = false;
+  std::string arm;  // controller's arm config (default config/scara-arm.json)
+  ControllerServeArgs serve{"pty", "", "", "sim scara"};
 };
 
 void run_sim_scara(const SimArgs& args) {
@@ -39,6 +45,14 @@ void run_sim_scara(const SimArgs& args) {
                                                     : joint_sim::load_arm_config(args.config);
   if (args.baud != 0) config.baud = args.baud;
   joint_sim::SimArm arm(std::move(config));
+  if (args.robot_commands) {
+    auto controller_config = args.arm.empty()
+        ? arm_controller::load_controller_config(arm_controller::default_controller_config_path())
+        : arm_controller::load_controller_config(args.arm);
+    const auto supply_mv = static_cast<std::uint16_t>(arm.config().joints.front().hardware.motor.supply_v * 1000.0);
+    serve_controller(arm.link(), {}, std::move(controller_config), args.serve, [supply_mv] { return supply_mv; });
+    return;
+  }
   joint_bus::SimLinkServer server(arm.link(), args.listen);
   server.set_tick([&arm] { arm.bus().sync(); });
   server.set_log([](const std::string& line) { fmt::print("sim scara: {}\n", line); std::fflush(stdout); });
@@ -68,6 +82,11 @@ void add_sim_command(CLI::App& app) {
   scara->add_option("--listen", args->listen, "Unix socket path (default /tmp/armctl-scara.sock)");
   scara->add_option("--baud", args->baud, "Joint bus baud (default: the config's, 9600)");
   scara->add_option("--config", args->config, "Arm config file (default config/scara.json)");
+  scara->add_flag("--robot-commands", args->robot_commands,
+                  "Serve the whole arm as a Robot Commands device on a pty (arm controller inside; prints the pty path)");
+  scara->add_option("--link", args->serve.link, "With --robot-commands: also create this symlink to the pty");
+  scara->add_option("--arm", args->arm, "With --robot-commands: controller arm config (default config/scara-arm.json)");
+  scara->add_option("--state-dir", args->serve.state_dir, "With --robot-commands: keep groups, offsets, limits here");
   scara->callback([args] { run_sim_scara(*args); });
 }
 

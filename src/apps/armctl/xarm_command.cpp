@@ -35,7 +35,7 @@ struct XarmCli {
   std::string servo;
   std::string offset;
   std::string mode;
-  int speed = 0;
+  std::string speed = "0";
   std::string file;
   std::string group;
   int times = 1;
@@ -79,11 +79,14 @@ nlohmann::json event_json(const GroupEvent& e) {
   return j;
 }
 
+void print_event(const XarmCli& o, const GroupEvent& e) {
+  if (o.json) print_json(event_json(e));
+  else fmt::print("{}\n", robot_commands::describe(e));
+  std::fflush(stdout);
+}
+
 void print_events(const XarmCli& o, Client& c) {
-  while (auto e = c.next_event()) {
-    if (o.json) print_json(event_json(*e));
-    else fmt::print("{}\n", robot_commands::describe(*e));
-  }
+  while (auto e = c.next_event()) print_event(o, *e);
 }
 
 void done(const XarmCli& o, const std::string& text) {
@@ -165,7 +168,8 @@ void run_mode(const XarmCli& o) {
   else throw ArmctlError(ErrorKind::invalid_argument,
                          fmt::format("mode \"{}\" is not allowed (servo or motor)", o.mode));
   auto s = open(o);
-  check(s->client->set_mode(servo, mode, static_cast<std::uint16_t>(o.speed)));
+  const auto speed = xarm_args::parse_int(o.speed, -1000, 1000, "--speed");
+  check(s->client->set_mode(servo, mode, static_cast<std::int16_t>(speed)));
   done(o, fmt::format("servo {} in {} mode", servo, o.mode));
 }
 
@@ -202,12 +206,41 @@ void run_group_download(const XarmCli& o) {
   done(o, fmt::format("group {}: {} actions downloaded", group, file.actions.size()));
 }
 
+// `group run --wait`: prints notifications until the run finishes or is stopped (or Ctrl-C).
+// Needed with the embedded board, which plays only while this command runs.
+void wait_for_group_end(const XarmCli& o, Client& c, std::uint8_t group) {
+  g_interrupted = false;
+  auto previous = std::signal(SIGINT, on_sigint);
+  const TimePoint start_deadline = c.clock().now() + std::chrono::milliseconds(500);
+  bool started = false;
+  while (!g_interrupted) {
+    auto e = c.wait_event(c.clock().now() + std::chrono::milliseconds(100));
+    if (!e) {
+      if (!started && c.clock().now() >= start_deadline) {
+        std::signal(SIGINT, previous);
+        throw ArmctlError(ErrorKind::timeout,
+                          fmt::format("no 'started' notification for group {} within 500 ms (is "
+                                      "group {} empty on this board?)",
+                                      group, group));
+      }
+      continue;
+    }
+    print_event(o, *e);
+    if (e->kind == robot_commands::GroupEventKind::started) started = true;
+    if (e->kind == robot_commands::GroupEventKind::finished ||
+        e->kind == robot_commands::GroupEventKind::stopped)
+      break;
+  }
+  std::signal(SIGINT, previous);
+}
+
 void run_group_run(const XarmCli& o) {
   const auto group = xarm_args::parse_group(o.group, false);
   auto s = open(o);
   check(s->client->run_group(group, static_cast<std::uint16_t>(o.times)));
   done(o, o.times == 0 ? fmt::format("group {} running until stopped", group)
                        : fmt::format("group {} running {} times", group, o.times));
+  if (o.wait) return wait_for_group_end(o, *s->client, group);
   s->client->pump_events(s->client->clock().now() + std::chrono::milliseconds(200));
   if (s->client->pending_events() == 0 && !o.json) {
     fmt::print(stderr, "warning: no 'started' notification within 200 ms (is group {} empty on "
@@ -272,6 +305,14 @@ void add_xarm_command(CLI::App& app) {
   auto o = std::make_shared<XarmCli>();
   auto* x = app.add_subcommand("xarm", "Drive an xArm board (or the arm controller) over Robot "
                                        "Commands; without --device an embedded emulated xArm");
+  x->footer(
+      "Without --device each command talks to an emulated xArm embedded in this process. Like a\n"
+      "real board it keeps action groups, saved offsets and servo limits between commands, in\n"
+      "$ARMCTL_STATE_DIR/xarm-emulator, else $XDG_STATE_HOME/armctl/xarm-emulator, else\n"
+      "~/.local/state/armctl/xarm-emulator. Servo positions are not kept: every command starts\n"
+      "with all servos at centre (500), and a group plays only while its command runs (use\n"
+      "`group run N --wait`). For one long-lived board: `armctl emulate xarm --link /tmp/xarm`\n"
+      "and --device /tmp/xarm.");
   x->require_subcommand(1);
   x->fallthrough();  // --device/--json may also follow the subcommand
   x->add_option("--device", o->device,
@@ -314,7 +355,7 @@ void add_xarm_command(CLI::App& app) {
   auto* mode = x->add_subcommand("mode", "Servo or motor mode (ServoSpeed)");
   mode->add_option("servo", o->servo)->required();
   mode->add_option("mode", o->mode, "servo | motor")->required();
-  mode->add_option("--speed", o->speed, "The ServoSpeed value (u16)")->check(CLI::Range(0, 65535));
+  mode->add_option("--speed", o->speed, "Motor-mode speed -1000..1000 (negative = reverse)");
   mode->callback([o] { run_mode(*o); });
 
   auto* info = x->add_subcommand("info", "Bus-servo info (one servo on the bus)");
@@ -340,6 +381,8 @@ void add_xarm_command(CLI::App& app) {
   auto* gr = group->add_subcommand("run", "Run a group");
   gr->add_option("group", o->group)->required();
   gr->add_option("--times", o->times, "0 = until stopped")->check(CLI::Range(0, 65535));
+  gr->add_flag("--wait", o->wait,
+               "Print notifications until the run finishes or is stopped (or Ctrl-C)");
   gr->callback([o] { run_group_run(*o); });
   group->add_subcommand("stop", "Stop the running group")->callback([o] { run_group_stop(*o); });
   auto* ge = group->add_subcommand("erase", "Erase a group (or all)");

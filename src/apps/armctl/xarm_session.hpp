@@ -2,6 +2,7 @@
 // embedded in this process, served on a pty and reached like a serial board.
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -16,6 +17,11 @@ struct XarmSession {
   std::unique_ptr<robot_commands::Client> client;
   ~XarmSession();
 };
+
+// Where the embedded emulated xArm keeps its stored state (groups, saved offsets, servo
+// limits): $ARMCTL_STATE_DIR/xarm-emulator, else $XDG_STATE_HOME/armctl/xarm-emulator, else
+// ~/.local/state/armctl/xarm-emulator. Throws ArmctlError(invalid_config) if none applies.
+std::filesystem::path embedded_state_dir();
 
 // Throws ArmctlError for a bad URI or a device that cannot be opened.
 std::unique_ptr<XarmSession> open_xarm_session(const std::string& device, int servo_count,

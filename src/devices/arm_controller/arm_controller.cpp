@@ -163,7 +163,8 @@ Duration ArmController::move(std::span<const rc_board::ServoTarget> targets, Dur
     cancel_ops(t.servo);
     const std::int32_t c = target_clicks(t.servo, t.position);
     clicks.push_back(static_cast<std::int16_t>(c));
-    inputs.push_back(PlanInput{t.servo, std::abs(c - plan_start_clicks(j, start)), j.profile});
+    inputs.push_back(PlanInput{t.servo, std::abs(c - plan_start_clicks(j, start)), j.profile,
+                               double(j.config.zone_clicks)});
     if (!j.status.loop_on) ++loop_ons;
   }
   // Each joint gets set_speed then drive_to back to back (a speed change on its own would

@@ -58,9 +58,12 @@ SyncPlan plan_synchronized_move(std::span<const PlanInput> inputs, Duration want
     const PlanInput& in = inputs[i];
     const double earliest = t_setup + double(slot) * t_txn;
     const double available = total - earliest;
-    // Slowest percentage that fits (gentlest on the mechanics).
+    // Slowest percentage that fits (gentlest on the mechanics), but fast enough to cross
+    // the zone in kZoneCrossing.
+    const int floor_percent = std::clamp(
+        int(std::ceil(100.0 * in.zone / (to_seconds(kZoneCrossing) * in.profile.max_speed_cps))), 1, 100);
     int lowest = 100;
-    for (int p = 1; p <= 100; ++p) {
+    for (int p = floor_percent; p <= 100; ++p) {
       if (move_seconds(in.distance, p, in.profile) <= available + 1e-9) {
         lowest = p;
         break;

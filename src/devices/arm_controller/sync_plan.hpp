@@ -35,7 +35,12 @@ struct PlanInput {
   int joint = 0;
   double distance = 0;  // clicks, absolute
   JointProfile profile;
+  double zone = 0;      // clicks: the joint counts as arrived this close to its target
 };
+
+// A joint must not creep through its zone: the planner never picks a speed at which the
+// last `zone` clicks take longer than this (else a slow joint "arrives" early).
+inline constexpr Duration kZoneCrossing = std::chrono::milliseconds(20);
 
 struct PlannedJoint {
   int joint = 0;

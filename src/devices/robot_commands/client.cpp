@@ -5,6 +5,10 @@
 namespace armctl::robot_commands {
 namespace {
 
+// The motor-mode speed a board accepts (the LX bus-servo convention; rc_board::Board ignores
+// a ServoSpeed frame outside it).
+constexpr int kMotorSpeedLimit = 1000;
+
 std::string servo_list_text(const std::vector<std::uint8_t>& servos) {
   std::string out;
   for (auto s : servos) {
@@ -203,8 +207,14 @@ Status Client::save_offsets(const std::vector<std::uint8_t>& servos) {
   return send(*f);
 }
 
-Status Client::set_mode(std::uint8_t servo, ServoMode mode, std::uint16_t milliseconds) {
-  auto f = build(rc::ServoSpeed{servo, mode, milliseconds});
+Status Client::set_mode(std::uint8_t servo, ServoMode mode, std::int16_t speed) {
+  if (speed < -kMotorSpeedLimit || speed > kMotorSpeedLimit) {
+    return Error{ErrorKind::invalid_argument,
+                 fmt::format("ServoSpeed: speed {} is out of range (allowed -{}..{}; negative "
+                             "turns in reverse, servo mode ignores it)",
+                             speed, kMotorSpeedLimit, kMotorSpeedLimit)};
+  }
+  auto f = build(rc::ServoSpeed{servo, mode, static_cast<std::uint16_t>(speed)});
   if (!f) return f.error();
   return send(*f);
 }

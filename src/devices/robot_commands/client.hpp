@@ -69,7 +69,11 @@ class Client {
   Result<std::vector<ServoOffset>> read_offsets(const std::vector<std::uint8_t>& servos);
   Status adjust_offset(std::uint8_t servo, int offset);  // -125..125, lost at power-off
   Status save_offsets(const std::vector<std::uint8_t>& servos);
-  Status set_mode(std::uint8_t servo, ServoMode mode, std::uint16_t milliseconds);
+  // ServoSpeed. `speed` is the motor-mode speed, -1000..1000 (negative = reverse; a board
+  // ignores the value in servo mode); it travels as the spec's u16 in two's complement, so
+  // a raw u16 such as static_cast<std::uint16_t>(-500) converts to the same speed. Values
+  // outside -1000..1000 are refused before sending (a board ignores such a frame).
+  Status set_mode(std::uint8_t servo, ServoMode mode, std::int16_t speed);
   Result<BusServoInfoReply> read_bus_servo_info();
   Status write_bus_servo_info(const BusServoInfoWrite& info);
 

@@ -134,7 +134,7 @@ struct ServoOffsetAdjust {
 struct ServoSpeed {
   std::uint8_t servo = 0;
   ServoMode mode = ServoMode::servo;
-  std::uint16_t milliseconds = 0;  // the spec's u16; no range given, any value is sent
+  std::uint16_t milliseconds = 0;  // the spec's u16 (no range); the SDK sends -1000..1000 as i16
   bool operator==(const ServoSpeed&) const = default;
 };
 struct BusServoInfoWrite {

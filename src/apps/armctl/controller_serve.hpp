@@ -1,0 +1,28 @@
+// Serving the arm controller to a host (shared by `armctl controller` and
+// `armctl sim scara --robot-commands`): opens the upstream, prints the path a host opens,
+// serves until SIGINT/SIGTERM, prints what happened.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "devices/arm_controller/controller_config.hpp"
+#include "devices/joint_bus/bus_master.hpp"
+#include "transport/joint_bus_link.hpp"
+
+namespace armctl::cli {
+
+struct ControllerServeArgs {
+  std::string upstream = "pty";
+  std::string link;       // optional symlink to the pty
+  std::string state_dir;  // empty: in memory
+  std::string label = "controller";
+};
+
+// `link` may be a simulated bus: it is then paced to the wall clock.
+void serve_controller(transport::JointBusLink& link, joint_bus::MasterOptions master_options,
+                      arm_controller::ControllerConfig config, const ControllerServeArgs& args,
+                      std::function<std::uint16_t()> supply_millivolts = {});
+
+}  // namespace armctl::cli
