@@ -28,6 +28,10 @@ std::filesystem::path embedded_state_dir() {
 }
 
 XarmSession::~XarmSession() {
+  // The embedded board ends with this command. Commands without a reply (move, offset save,
+  // info write, group speed, ...) may still sit unread in the pty: one request with a reply
+  // first, answered only after every earlier frame was handled, so none is lost.
+  if (emulator && client) (void)client->battery_millivolts();
   client.reset();
   link.reset();
   if (emulator) emulator->stop();

@@ -74,7 +74,7 @@ rc_board::BoardStats EmulatorRunner::stats() const {
 
 void EmulatorRunner::on_output(const rc::Frame& frame) {
   auto bytes = rc::encode_frame(frame);
-  TimePoint now = clock_.now();
+  const TimePoint now = reply_origin_.value_or(clock_.now());
   if (!options_.wire_timing) {
     output_.push_back({now, std::move(bytes)});
   } else {
@@ -142,9 +142,14 @@ void EmulatorRunner::run() {
   while (!stop_) {
     TimePoint now = clock_.now();
     while (!input_.empty() && input_.front().at <= now) {
+      // The emulated board answers at the instant the byte has arrived, not when this loop
+      // got round to it: a reply's bytes are timed from there, so the loop's own wake-up
+      // latency is not added on top of the wire time (late bytes go out at once, together).
+      reply_origin_ = input_.front().at;
       emulator_.receive(input_.front().bytes);
       input_.pop_front();
     }
+    reply_origin_.reset();
     emulator_.poll();
     {  // before the replies leave, so a host that has its reply sees up-to-date counters
       std::lock_guard lock(stats_mutex_);

@@ -15,6 +15,7 @@
 #include <deque>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -80,6 +81,7 @@ class EmulatorRunner {
   TimePoint input_free_{};    // when the incoming line is next idle
   std::deque<Timed> output_;  // bytes not yet due (wire timing) or not yet accepted by the pty
   TimePoint output_free_{};
+  std::optional<TimePoint> reply_origin_;  // while handling a wire-timed byte: its arrival
 };
 
 }  // namespace armctl::xarm

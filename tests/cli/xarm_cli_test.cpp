@@ -1,0 +1,414 @@
+// `armctl xarm` end to end: the real binary (ARMCTL_BINARY_DIR/armctl) against (a) its
+// embedded emulated xArm, whose stored state lives in $ARMCTL_STATE_DIR (a temp dir here),
+// and (b) a separate `armctl emulate xarm` process reached through its --link symlink.
+// Checks output, --json documents, exit status, and the messages for bad arguments.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kArmctl = std::string(ARMCTL_BINARY_DIR) + "/armctl";
+
+struct Outcome {
+  int status = -1;  // exit status; -1 if killed by a signal
+  std::string out;
+  std::string err;
+};
+
+// A started armctl process with its stdout and stderr on pipes.
+class Process {
+ public:
+  Process(const std::vector<std::string>& args, const std::string& state_dir) {
+    int out[2], err[2];
+    if (::pipe2(out, O_CLOEXEC) != 0 || ::pipe2(err, O_CLOEXEC) != 0) std::abort();
+    pid_ = ::fork();
+    if (pid_ < 0) std::abort();
+    if (pid_ == 0) {
+      ::dup2(out[1], 1);
+      ::dup2(err[1], 2);
+      ::setenv("ARMCTL_STATE_DIR", state_dir.c_str(), 1);
+      std::vector<char*> argv{const_cast<char*>(kArmctl.c_str())};
+      for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+      argv.push_back(nullptr);
+      ::execv(kArmctl.c_str(), argv.data());
+      ::_exit(127);
+    }
+    ::close(out[1]);
+    ::close(err[1]);
+    out_ = out[0];
+    err_ = err[0];
+  }
+  ~Process() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+    if (out_ >= 0) ::close(out_);
+    if (err_ >= 0) ::close(err_);
+  }
+  Process(const Process&) = delete;
+  Process& operator=(const Process&) = delete;
+
+  pid_t pid() const { return pid_; }
+
+  // Reads stdout until a whole line has arrived (blocking on the pipe: no sleeps, no
+  // polling loop); nothing if stdout closed first.
+  std::optional<std::string> read_line() {
+    for (;;) {
+      if (auto nl = out_text_.find('\n', line_pos_); nl != std::string::npos) {
+        std::string line = out_text_.substr(line_pos_, nl - line_pos_);
+        line_pos_ = nl + 1;
+        return line;
+      }
+      if (!read_some(out_, out_text_)) return std::nullopt;
+    }
+  }
+
+  // Reads both pipes to the end, waits for the exit and returns everything.
+  Outcome finish() {
+    pollfd fds[2] = {{out_, POLLIN, 0}, {err_, POLLIN, 0}};
+    bool open[2] = {true, true};
+    while (open[0] || open[1]) {
+      for (int i = 0; i < 2; ++i) fds[i].fd = open[i] ? (i == 0 ? out_ : err_) : -1;
+      if (::poll(fds, 2, -1) < 0 && errno != EINTR) break;
+      if (open[0] && (fds[0].revents & (POLLIN | POLLHUP))) open[0] = read_some(out_, out_text_);
+      if (open[1] && (fds[1].revents & (POLLIN | POLLHUP))) open[1] = read_some(err_, err_text_);
+    }
+    int st = 0;
+    ::waitpid(pid_, &st, 0);
+    pid_ = -1;
+    return Outcome{WIFEXITED(st) ? WEXITSTATUS(st) : -1, out_text_, err_text_};
+  }
+
+ private:
+  static bool read_some(int fd, std::string& into) {
+    char buf[4096];
+    for (;;) {
+      const ssize_t n = ::read(fd, buf, sizeof buf);
+      if (n > 0) {
+        into.append(buf, static_cast<std::size_t>(n));
+        return true;
+      }
+      if (n < 0 && errno == EINTR) continue;
+      return false;
+    }
+  }
+
+  pid_t pid_ = -1;
+  int out_ = -1;
+  int err_ = -1;
+  std::string out_text_;
+  std::string err_text_;
+  std::size_t line_pos_ = 0;
+};
+
+std::vector<std::string> split_args(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> args;
+  for (std::string a; in >> a;) args.push_back(a);
+  return args;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// Every non-empty stdout line must be one JSON document.
+std::vector<nlohmann::json> json_lines(const std::string& out) {
+  std::vector<nlohmann::json> docs;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) docs.push_back(nlohmann::json::parse(line));  // throws if not JSON
+  }
+  return docs;
+}
+
+class XarmCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "armctl-xarm-cli-XXXXXX").string();
+    ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+    dir_ = pattern;
+    state_ = (dir_ / "state").string();
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+
+  // `armctl xarm ARGS` (ARGS split at spaces) with ARMCTL_STATE_DIR = our temp dir.
+  Outcome xarm(const std::string& args) {
+    auto argv = split_args(args);
+    argv.insert(argv.begin(), "xarm");
+    return Process(argv, state_).finish();
+  }
+  std::string write_file(const std::string& name, const std::string& text) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+
+  fs::path dir_;
+  std::string state_;
+};
+
+const char* kWave =
+    "# two servos, three actions\n"
+    "servos 2\n"
+    "100 1=400 2=30deg\n"
+    "100 1=600 2=keep\n"
+    "50  2=500 1=500\n";
+
+// ------------------------------------------------------------------ embedded board
+
+TEST_F(XarmCli, MoveWithWaitReachesTheTargetsInDegreesAndUnits) {
+  const Outcome r = xarm("move 1=30deg 2=300 6=keep --time 200 --wait");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_TRUE(contains(r.out, "servo 1:  625 (+30.0 deg)")) << r.out;  // 500 + 30 x 1000/240
+  EXPECT_TRUE(contains(r.out, "servo 2:  300")) << r.out;
+  EXPECT_TRUE(contains(r.out, "servo 6:  500")) << r.out;  // keep: left where it was
+}
+
+TEST_F(XarmCli, JsonOutputParses) {
+  const Outcome b = xarm("--json battery");
+  ASSERT_EQ(b.status, 0) << b.err;
+  auto docs = json_lines(b.out);
+  ASSERT_EQ(docs.size(), 1u) << b.out;
+  EXPECT_EQ(docs[0]["millivolts"], 7500);
+
+  const Outcome m = xarm("--json move 3=-15deg --time 100 --wait");
+  ASSERT_EQ(m.status, 0) << m.err;
+  docs = json_lines(m.out);
+  ASSERT_EQ(docs.size(), 1u) << m.out;
+  ASSERT_EQ(docs[0]["positions"].size(), 1u);
+  EXPECT_EQ(docs[0]["positions"][0]["servo"], 3);
+  EXPECT_EQ(docs[0]["positions"][0]["position"], 438);  // 500 - 15 x 1000/240 = 437.5 -> 438
+  EXPECT_NEAR(docs[0]["positions"][0]["degrees"].get<double>(), -15.0, 0.2);
+
+  const Outcome p = xarm("positions --json 1 2");  // --json after the subcommand works too
+  ASSERT_EQ(p.status, 0) << p.err;
+  docs = json_lines(p.out);
+  ASSERT_EQ(docs.size(), 1u);
+  ASSERT_EQ(docs[0]["positions"].size(), 2u);
+
+  const Outcome i = xarm("--json info read");
+  ASSERT_EQ(i.status, 0) << i.err;
+  docs = json_lines(i.out);
+  ASSERT_EQ(docs.size(), 1u);
+  EXPECT_EQ(docs[0]["position_max"], 1000);
+  EXPECT_EQ(docs[0]["temp"], 35);
+
+  const Outcome o = xarm("--json offset read 4");
+  ASSERT_EQ(o.status, 0) << o.err;
+  docs = json_lines(o.out);
+  ASSERT_EQ(docs.size(), 1u);
+  EXPECT_EQ(docs[0]["offsets"][0]["servo"], 4);
+  EXPECT_EQ(docs[0]["offsets"][0]["offset"], 0);
+
+  const Outcome off = xarm("--json off 1 2");
+  ASSERT_EQ(off.status, 0) << off.err;
+  docs = json_lines(off.out);
+  ASSERT_EQ(docs.size(), 1u);
+  EXPECT_TRUE(docs[0]["ok"].get<bool>());
+}
+
+TEST_F(XarmCli, EveryCommandRunsOnTheEmbeddedBoard) {
+  const std::string wave = write_file("wave.grp", kWave);
+  for (const std::string& args : std::vector<std::string>{"battery", "positions", "positions 2 5", "off", "off 3", "move 1=500 2=250 --time 0",
+        "offset read", "offset adjust 2 -30", "offset save 2", "mode 2 motor --speed 700",
+        "mode 2 motor --speed=-1000", "mode 2 servo", "info read",
+        "info write --id 1 --temp-max 80", "group download " + wave + " --group 7",
+        "group run 7", "group stop", "group speed 7 150", "group speed all 100",
+        "group erase 7", "group erase all"}) {
+    const Outcome r = xarm(args);
+    EXPECT_EQ(r.status, 0) << args << "\n" << r.out << r.err;
+  }
+}
+
+TEST_F(XarmCli, EmbeddedBoardKeepsGroupsOffsetsAndLimitsButNotPositions) {
+  const std::string wave = write_file("wave.grp", kWave);
+  // A group downloaded by one command runs in the next one.
+  const Outcome d = xarm("group download " + wave + " --group 3");
+  ASSERT_EQ(d.status, 0) << d.err;
+  EXPECT_TRUE(contains(d.out, "group 3: 3 actions downloaded")) << d.out;
+  EXPECT_TRUE(fs::exists(fs::path(state_) / "xarm-emulator" / "group-003.grp"));
+
+  const Outcome run = xarm("--json group run 3 --times 2 --wait");
+  ASSERT_EQ(run.status, 0) << run.out << run.err;
+  auto docs = json_lines(run.out);
+  ASSERT_EQ(docs.size(), 3u) << run.out;  // done, started, finished
+  EXPECT_EQ(docs[1]["event"], "started");
+  EXPECT_EQ(docs[1]["group"], 3);
+  EXPECT_EQ(docs[1]["count"], 2);
+  EXPECT_EQ(docs[2]["event"], "finished");
+  EXPECT_EQ(docs[2]["group"], 3);
+
+  // Speed is volatile on the board (100 % after a restart); the command itself is accepted.
+  EXPECT_EQ(xarm("group speed 3 200").status, 0);
+
+  // Erased in one command: gone for the next.
+  ASSERT_EQ(xarm("group erase 3").status, 0);
+  const Outcome gone = xarm("group run 3 --wait");
+  EXPECT_NE(gone.status, 0);
+  EXPECT_TRUE(contains(gone.err, "is group 3 empty")) << gone.err;
+
+  // Saved limits persist (like a servo's EEPROM).
+  ASSERT_EQ(xarm("info write --id 1 --position-min 100 --position-max 900").status, 0);
+  docs = json_lines(xarm("--json info read").out);
+  ASSERT_EQ(docs.size(), 1u);
+  EXPECT_EQ(docs[0]["position_min"], 100);
+  EXPECT_EQ(docs[0]["position_max"], 900);
+
+  // An adjusted offset is volatile (a new command is a power cycle) ...
+  ASSERT_EQ(xarm("offset adjust 4 -20").status, 0);
+  EXPECT_TRUE(contains(xarm("offset read 4").out, "servo 4: offset +0"));
+
+  // ... and positions always start at centre.
+  ASSERT_EQ(xarm("move 5=900 --time 0 --wait").status, 0);
+  EXPECT_TRUE(contains(xarm("positions 5").out, "servo 5:  500"));
+}
+
+TEST_F(XarmCli, WatchRunsUntilSigint) {
+  Process watch({"xarm", "watch", "--interval", "20"}, state_);
+  for (int i = 0; i < 3; ++i) {
+    auto line = watch.read_line();
+    ASSERT_TRUE(line) << "watch ended early";
+    EXPECT_TRUE(contains(*line, "1=500")) << *line;
+    EXPECT_TRUE(contains(*line, "6=500")) << *line;
+  }
+  ASSERT_EQ(::kill(watch.pid(), SIGINT), 0);
+  const Outcome r = watch.finish();
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
+TEST_F(XarmCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
+  const std::string bad_group = write_file("bad.grp", "servos 2\n100 1=500 2=500\n100 1=500 2=abc\n");
+  const std::string mixed = write_file("mixed.grp", "100 1=500 2=500\n100 1=500\n");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"move 7=500", "servo 7 is out of range (allowed 1..6)"},
+      {"positions 0", "servo 0 is out of range (allowed 1..6)"},
+      {"move 1=1001", "servo 1 position 1001 is out of range (allowed 0..1000)"},
+      {"move 1=130deg", "-120deg..120deg"},
+      {"move 1", "SERVO=POSITION"},
+      {"--device bogus:thing battery", "bogus:thing"},
+      {"--device serial:/dev/armctl-no-such-port battery", "/dev/armctl-no-such-port"},
+      {"group download " + bad_group, bad_group + ":3:"},
+      {"group download " + mixed, mixed + ":2:"},
+      {"group download " + (dir_ / "missing.grp").string(), "missing.grp"},
+      {"group run 255", "group 255 is out of range (allowed 0..254)"},
+      {"group erase 300", "allowed 0..255"},
+      {"group speed 1 0", "speed percentage 0 is out of range (allowed 1..1000)"},
+      {"offset adjust 1 200", "offset 200 is out of range (allowed -125..125)"},
+      {"mode 1 motor --speed 5000", "--speed 5000 is out of range (allowed -1000..1000)"},
+      {"mode 1 turbo", "servo or motor"},
+      {"frobnicate", "subcommand is required"},
+  };
+  for (const auto& [args, want] : cases) {
+    const Outcome r = xarm(args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_TRUE(contains(r.out + r.err, want)) << args << "\n" << r.out << r.err;
+  }
+  // Nothing was downloaded by the refused files.
+  EXPECT_FALSE(fs::exists(fs::path(state_) / "xarm-emulator" / "group-000.grp"));
+}
+
+// ------------------------------------------------- `armctl emulate xarm` as a process
+
+TEST_F(XarmCli, AgainstAnEmulateXarmProcess) {
+  const std::string link = (dir_ / "xarm").string();
+  const std::string board_state = (dir_ / "board").string();
+  auto emulator = std::make_unique<Process>(
+      std::vector<std::string>{"emulate", "xarm", "--link", link, "--state-dir", board_state},
+      state_);
+  // Ready once it prints the pty path (it creates the link before printing).
+  auto pty = emulator->read_line();
+  ASSERT_TRUE(pty) << "armctl emulate xarm ended before printing its pty";
+  EXPECT_EQ(pty->rfind("/dev/pts/", 0), 0u) << *pty;
+  ASSERT_EQ(fs::read_symlink(link).string(), *pty);
+
+  const std::string dev = "--device " + link + " ";
+  // Positions persist between commands here: one board for all of them.
+  const Outcome m = xarm(dev + "move 1=30deg 2=300 --time 150 --wait");
+  ASSERT_EQ(m.status, 0) << m.err;
+  EXPECT_TRUE(contains(m.out, "servo 1:  625")) << m.out;
+  EXPECT_TRUE(contains(xarm(dev + "positions 1 2").out, "servo 2:  300"));
+
+  auto docs = json_lines(xarm(dev + "--json battery").out);
+  ASSERT_EQ(docs.size(), 1u);
+  EXPECT_EQ(docs[0]["millivolts"], 7500);
+
+  // Offsets: adjust acts at once and survives between commands on a live board; save.
+  ASSERT_EQ(xarm(dev + "offset adjust 3 -20").status, 0);
+  EXPECT_TRUE(contains(xarm(dev + "offset read 3").out, "servo 3: offset -20"));
+  ASSERT_EQ(xarm(dev + "offset save 3").status, 0);
+
+  EXPECT_EQ(xarm(dev + "off 1").status, 0);
+  EXPECT_EQ(xarm(dev + "mode 4 motor --speed=-500").status, 0);
+  EXPECT_EQ(xarm(dev + "mode 4 servo").status, 0);
+  EXPECT_EQ(xarm(dev + "info write --id 1 --temp-max 70").status, 0);
+  docs = json_lines(xarm(dev + "--json info read").out);
+  ASSERT_EQ(docs.size(), 1u);
+  EXPECT_EQ(docs[0]["temp_max"], 70);
+
+  // Groups: download, run to the end, run continuously and stop, speed, erase.
+  const std::string wave = write_file("wave.grp", kWave);
+  ASSERT_EQ(xarm(dev + "group download " + wave + " --group 5").status, 0);
+  const Outcome run = xarm(dev + "group run 5 --wait");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_TRUE(contains(run.out, "started")) << run.out;
+  EXPECT_TRUE(contains(run.out, "finished")) << run.out;
+  ASSERT_EQ(xarm(dev + "group speed 5 300").status, 0);
+  const Outcome forever = xarm(dev + "group run 5 --times 0");
+  ASSERT_EQ(forever.status, 0) << forever.err;
+  EXPECT_TRUE(contains(forever.out, "started")) << forever.out;
+  const Outcome stop = xarm(dev + "--json group stop");
+  ASSERT_EQ(stop.status, 0) << stop.err;
+  docs = json_lines(stop.out);
+  ASSERT_FALSE(docs.empty());
+  EXPECT_EQ(docs.front()["event"], "stopped") << stop.out;
+  ASSERT_EQ(xarm(dev + "group erase all").status, 0);
+  EXPECT_NE(xarm(dev + "group run 5 --wait").status, 0);
+
+  // A watch on the live board, ended by SIGINT.
+  {
+    Process watch({"xarm", "--device", link, "watch", "--interval", "20"}, state_);
+    ASSERT_TRUE(watch.read_line());
+    ASSERT_EQ(::kill(watch.pid(), SIGINT), 0);
+    EXPECT_EQ(watch.finish().status, 0);
+  }
+
+  ASSERT_EQ(::kill(emulator->pid(), SIGTERM), 0);
+  const Outcome end = emulator->finish();
+  EXPECT_EQ(end.status, 0) << end.err;
+  EXPECT_FALSE(fs::exists(fs::symlink_status(link))) << "link left behind";
+  EXPECT_TRUE(contains(end.err, "stopped;")) << end.err;
+
+  // The saved offset is on the board's state dir: a new board process starts with it.
+  emulator = std::make_unique<Process>(
+      std::vector<std::string>{"emulate", "xarm", "--link", link, "--state-dir", board_state},
+      state_);
+  ASSERT_TRUE(emulator->read_line());
+  EXPECT_TRUE(contains(xarm(dev + "offset read 3").out, "servo 3: offset -20"));
+  ASSERT_EQ(::kill(emulator->pid(), SIGTERM), 0);
+  EXPECT_EQ(emulator->finish().status, 0);
+}
+
+}  // namespace
