@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# make demo: one program, two arms, one SDK. Starts the simulated SCARA arm (seven joints on
+# make demo. Part 1 drives the simulated SCARA arm's seven joints over the joint bus.
+# Part 2: one program, two arms, one SDK. Starts the simulated SCARA arm (seven joints on
 # a simulated joint bus, driven by the arm controller: a Robot Commands device on a pty) and
 # the emulated xArm (six bus servos, Robot Commands on a pty), then runs the same short
 # program on both with `armctl xarm` (a few synchronized moves and an action group) and
@@ -15,6 +16,27 @@ cleanup() {
 }
 trap cleanup EXIT
 
+# Part 1: the SCARA arm at the joint-bus level: a simulated arm that keeps its state, driven
+# joint by joint with `armctl bus` (what the arm controller does underneath).
+"$armctl" sim scara --listen "$dir/bus.sock" > "$dir/bus.log" 2>&1 &
+bus_pid=$!
+pids+=($bus_pid)
+for _ in $(seq 50); do [ -S "$dir/bus.sock" ] && break; sleep 0.1; done
+[ -S "$dir/bus.sock" ] || { echo "demo: the simulated arm did not start:"; cat "$dir/bus.log"; exit 1; }
+bus() { "$armctl" bus --device "unix:$dir/bus.sock" "$@"; }
+echo "== joint bus: every joint answers"
+bus ping all
+bus speed all 60 > /dev/null
+bus zone all 5 > /dev/null
+for target in 3000 0; do
+  echo "== joint bus: drive-to all $target clicks at 60 % speed, wait, read back"
+  bus drive-to all "$target" > /dev/null
+  bus wait all --timeout 10
+  bus position all
+done
+kill "$bus_pid"; wait "$bus_pid" 2>/dev/null || true
+
+# Part 2: one program, two arms, one SDK.
 "$armctl" sim scara --robot-commands --link "$dir/scara" > /dev/null 2> "$dir/scara.log" &
 pids+=($!)
 "$armctl" emulate xarm --link "$dir/xarm" > /dev/null 2> "$dir/xarm.log" &

@@ -77,9 +77,9 @@ TEST(BusCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
       {"bus --device tcp:1.2.3.4 position", "unknown kind of device"},
       {"bus --device serial:/dev/ttyAMA0 position", "needs select="},
       {"bus --device unix:/tmp/armctl-no-such.sock position", "armctl sim scara"},
-      {"bus frobnicate", "subcommand"},
+      {"bus frobnicate", "unknown command 'frobnicate'; allowed: ping"},
       {"bus drive-to 3", "value"},
-      {"bus", "subcommand"},
+      {"bus", "a command is required; allowed: ping"},
   };
   for (const auto& [args, want] : cases) {
     const CliRun r = armctl(args);

@@ -319,7 +319,7 @@ TEST_F(XarmCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
       {"offset adjust 1 200", "offset 200 is out of range (allowed -125..125)"},
       {"mode 1 motor --speed 5000", "--speed 5000 is out of range (allowed -1000..1000)"},
       {"mode 1 turbo", "servo or motor"},
-      {"frobnicate", "subcommand is required"},
+      {"frobnicate", "unknown command 'frobnicate'; allowed: move"},
   };
   for (const auto& [args, want] : cases) {
     const Outcome r = xarm(args);

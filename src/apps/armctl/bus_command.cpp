@@ -37,13 +37,14 @@ struct BusArgs {
   throw ArmctlError(ErrorKind::invalid_argument, message);
 }
 
-long parse_integer(const std::string& command, const std::string& text, long lo, long hi,
-                   const std::string& meaning) {
+// `what` names the argument as the usage line does (JOINT or VALUE).
+long parse_integer(const std::string& command, const char* what, const std::string& text, long lo,
+                   long hi, const std::string& meaning) {
   long v = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (text.empty() || ec != std::errc{} || end != text.data() + text.size() || v < lo || v > hi) {
-    usage_error(fmt::format("{}: VALUE '{}' is not allowed: {} is a whole number {}..{}", command, text,
-                            meaning, lo, hi));
+    usage_error(fmt::format("{}: {} '{}' is not allowed: {} is a whole number {}..{}", command, what,
+                            text, meaning, lo, hi));
   }
   return v;
 }
@@ -55,7 +56,7 @@ std::vector<int> parse_joints(const std::string& command, const std::string& tex
     for (int j = 1; j <= joint_count; ++j) all.push_back(j);
     return all;
   }
-  const long j = parse_integer(command, text, 1, 7, "JOINT (or 'all')");
+  const long j = parse_integer(command, "JOINT", text, 1, 7, "a joint (or 'all')");
   if (j > joint_count) {
     usage_error(fmt::format("{}: joint {} is not on this bus: joints are 1..{} (or 'all')", command, j,
                             joint_count));
@@ -115,7 +116,7 @@ class BusRunner {
 
     if (command == "ping") {
       const auto v = static_cast<std::int16_t>(
-          args_.value.empty() ? 1234 : parse_integer(command, args_.value, -32768, 32767, "the ping value"));
+          args_.value.empty() ? 1234 : parse_integer(command, "VALUE", args_.value, -32768, 32767, "the ping value"));
       each([&](int j) {
         return row_from<std::int16_t>(j, m.ping(j, v), [](BusRow& row, const std::int16_t& echo) {
           row.value = echo;
@@ -145,8 +146,7 @@ class BusRunner {
       const auto kind = command == "drive-to"         ? joint_bus::Drive::to
                         : command == "drive-dist-max" ? joint_bus::Drive::dist_max
                                                       : joint_bus::Drive::dist;
-      const auto v = static_cast<std::int16_t>(parse_integer(
-          command, args_.value, -32768, 32767, command == "drive-to" ? "a position in clicks" : "a distance in clicks"));
+      const auto v = static_cast<std::int16_t>(parse_integer(command, "VALUE", args_.value, -32768, 32767, command == "drive-to" ? "a position in clicks" : "a distance in clicks"));
       if (args_.joint == "all") {
         // All joints told back to back so they start together.
         const std::vector<std::int16_t> values(static_cast<std::size_t>(m.joint_count()), v);
@@ -161,12 +161,11 @@ class BusRunner {
       }
     } else if (command == "speed") {
       const int max = joint_bus::max_speed_value(dialect);
-      const auto v = static_cast<std::int16_t>(parse_integer(
-          command, args_.value, 0, max,
+      const auto v = static_cast<std::int16_t>(parse_integer(command, "VALUE", args_.value, 0, max,
           dialect == joint_bus::Dialect::legacy ? "the legacy PWM cap" : "the speed limit in percent"));
       each([&](int j) { return row_from<joint_bus::Done>(j, m.set_speed(j, v), [v](BusRow& r, const auto&) { r.value = v; r.text = fmt::format("speed {}", v); }); });
     } else if (command == "zone") {
-      const auto v = static_cast<std::int16_t>(parse_integer(command, args_.value, 0, 32767, "the zone in clicks"));
+      const auto v = static_cast<std::int16_t>(parse_integer(command, "VALUE", args_.value, 0, 32767, "the zone in clicks"));
       each([&](int j) { return row_from<joint_bus::Done>(j, m.set_zone(j, v), [v](BusRow& r, const auto&) { r.value = v; r.text = fmt::format("zone {}", v); }); });
     } else if (command == "reached") {
       each([&](int j) {

@@ -1,12 +1,71 @@
 // armctl: drive, simulate and program robot arms. See README.md.
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
 #include "apps/armctl/commands.hpp"
 #include "core/error.hpp"
+
+namespace {
+
+// CLI11 answers an unknown subcommand ("armctl bus frobnicate") with "A subcommand is
+// required", which hides the typo. Let such commands parse with no subcommand, so the typo
+// is reported as an unexpected argument, and report a truly missing one with the choices.
+std::string display_name(const CLI::App& app) {
+  return app.get_parent() == nullptr ? "armctl" : app.get_name();
+}
+
+std::string subcommand_names(CLI::App& app) {
+  std::string names;
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  }
+  return names;
+}
+
+// Follows argv down the subcommand tree; the first word that should name a subcommand and
+// does not is reported with the allowed names ("armctl bus frobnicate").
+void check_command_words(CLI::App& app, int argc, char** argv) {
+  CLI::App* current = &app;
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (current->get_subcommands({}).empty() || word == "--") return;
+    if (word.size() > 1 && word[0] == '-') {
+      const CLI::Option* option = current->get_option_no_throw(word.substr(0, word.find('=')));
+      if (option != nullptr && word.find('=') == std::string::npos &&
+          option->get_items_expected_min() > 0) {
+        ++i;  // the option's value
+      }
+      continue;
+    }
+    CLI::App* sub = nullptr;
+    for (CLI::App* candidate : current->get_subcommands({})) {
+      if (candidate->check_name(word)) sub = candidate;
+    }
+    if (sub == nullptr) {
+      throw CLI::ValidationError(fmt::format("{}: unknown command '{}'; allowed: {}",
+                                             display_name(*current), word, subcommand_names(*current)));
+    }
+    current = sub;
+  }
+}
+
+void name_missing_subcommands(CLI::App& app) {
+  for (CLI::App* sub : app.get_subcommands({})) name_missing_subcommands(*sub);
+  if (app.get_require_subcommand_min() == 0) return;
+  app.require_subcommand(0, app.get_require_subcommand_max());
+  app.parse_complete_callback([&app] {
+    if (!app.get_subcommands().empty()) return;
+    throw CLI::ValidationError(fmt::format("{}: a command is required; allowed: {}",
+                                           display_name(app), subcommand_names(app)));
+  });
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"armctl: drive, simulate and program robot arms (xArm, SCARA joint bus)"};
@@ -17,7 +76,9 @@ int main(int argc, char** argv) {
   armctl::cli::add_emulate_command(app);
   armctl::cli::add_list_command(app);
   armctl::cli::add_controller_command(app);
+  name_missing_subcommands(app);
   try {
+    check_command_words(app, argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);  // usage errors: message on stderr, exit status 2 (106 for CLI11 internals)
