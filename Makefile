@@ -73,6 +73,8 @@ flash: deps
 install: build
 	$(SUDO) install -m 0644 udev/50-armctl.rules /etc/udev/rules.d/50-armctl.rules
 	$(SUDO) install -m 0755 $(BUILD)/armctl /usr/local/bin/armctl
+	$(SUDO) install -d /usr/local/share/armctl
+	$(SUDO) install -m 0644 config/scara.json config/scara-arm.json /usr/local/share/armctl/
 	-$(SUDO) udevadm control --reload-rules && $(SUDO) udevadm trigger
 
 format:

@@ -1,5 +1,7 @@
 #include "devices/arm_controller/controller_config.hpp"
 
+#include "core/config_files.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -178,6 +180,6 @@ ControllerConfig load_controller_config(const std::filesystem::path& path) {
   return parse_controller_config(text.str(), path.string());
 }
 
-std::filesystem::path default_controller_config_path() { return ARMCTL_SCARA_ARM_CONFIG; }
+std::filesystem::path default_controller_config_path() { return find_config_file("scara-arm.json"); }
 
 }  // namespace armctl::arm_controller

@@ -47,7 +47,7 @@ struct ControllerConfig {
 ControllerConfig parse_controller_config(std::string_view json_text,
                                          const std::string& source = "<string>");
 ControllerConfig load_controller_config(const std::filesystem::path& path);
-// config/scara-arm.json in the source tree.
+// config/scara-arm.json: $ARMCTL_CONFIG_DIR, the installed copy, or the source tree.
 std::filesystem::path default_controller_config_path();
 
 }  // namespace armctl::arm_controller

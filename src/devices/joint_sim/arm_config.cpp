@@ -1,5 +1,7 @@
 #include "devices/joint_sim/arm_config.hpp"
 
+#include "core/config_files.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -323,6 +325,6 @@ ArmConfig load_arm_config(const std::filesystem::path& path) {
   return parse_arm_config(text.str(), path.string());
 }
 
-std::filesystem::path default_arm_config_path() { return ARMCTL_SCARA_CONFIG; }
+std::filesystem::path default_arm_config_path() { return find_config_file("scara.json"); }
 
 }  // namespace armctl::joint_sim

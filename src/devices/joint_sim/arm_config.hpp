@@ -33,7 +33,7 @@ struct ArmConfig {
 // `source` names the input in error messages (a path, "<string>").
 ArmConfig parse_arm_config(std::string_view json_text, const std::string& source = "<string>");
 ArmConfig load_arm_config(const std::filesystem::path& path);
-// config/scara.json from the source tree (ARMCTL_SCARA_CONFIG, a compile definition).
+// config/scara.json: $ARMCTL_CONFIG_DIR, the installed copy, or the source tree.
 std::filesystem::path default_arm_config_path();
 
 }  // namespace armctl::joint_sim
