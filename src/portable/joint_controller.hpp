@@ -11,8 +11,8 @@
 //            interrupts enabled  ->  DriveOutput (PWM duty + H-bridge enable)
 //
 // Firmware entry point for the 1 ms control step (ATmega328P), so that encoder edges are
-// not lost while the loop computes (worst ~1,400 cycles with default tuning, up to ~1,800
-// with extreme tuning; docs/joint-controller.md "Figures"):
+// not lost while the loop computes (worst ~1,160 cycles with default tuning, ~1,320 at the
+// upper bounds of every tuning field; docs/joint-controller.md "Figures"):
 //   ISR(TIMER0_COMPA_vect) {            // interrupts are masked on entry
 //     joint.control_sample();           // copies the encoder count: a few cycles
 //     TIMSK0 &= ~(1 << OCIE0A);         // this ISR must not nest in itself

@@ -11,8 +11,8 @@ namespace joint_bus {
 // touches floating point. begin() clamps every field into the range noted here (the ranges
 // keep every fixed-point product inside int32; see docs/joint-controller.md).
 struct JointTuning {
-  int32_t max_speed_cps;   // velocity at set_speed 100 %, clicks/s          [1, 200000]
-  int32_t max_accel_cps2;  // acceleration limit of the setpoint, clicks/s^2 [3906, 20000000]
+  int32_t max_speed_cps;   // velocity at set_speed 100 %, clicks/s          [1, 50000]
+  int32_t max_accel_cps2;  // acceleration limit of the setpoint, clicks/s^2 [3906, 1000000]
   // PID gains in Q8 fixed point (value = gain * 256). Error in clicks, output in PWM counts.
   int32_t kp_q8;  // PWM counts per click of error                           [0, 65535]
   int32_t ki_q8;  // PWM counts per click of error per tick (1 ms)           [0, 65535]
@@ -20,6 +20,12 @@ struct JointTuning {
                   //                                                         [0, 65535]
   int16_t pwm_max;  // full-scale duty (255 for the 8-bit timers of the ATmega328P) [1, 4095]
 };
+
+// The accepted ranges of the ramp fields (begin() clamps into them). Why these bounds:
+// docs/joint-controller.md, "Tuning ranges".
+const int32_t max_speed_cps_limit = 50000;
+const int32_t min_accel_cps2_limit = 3906;  // 1 Q8 click/tick^2
+const int32_t max_accel_cps2_limit = 1000000;
 
 // A reasonable starting point for a 24 V DC joint with a ~2000 click/rev motor encoder
 // behind the 20.23:1 gearbox. The simulator tunes per-joint gains against its motor model.

@@ -20,9 +20,10 @@ class PidController {
   // Forget integral and derivative history; the next update takes measurement_q8 as the
   // previous measurement (so it produces no derivative kick either).
   void reset(int32_t measurement_q8);
-  // One tick. Positions in Q8 clicks within +-2^29, setpoint velocity in Q8 clicks/tick.
-  // Returns the duty in PWM counts, within +-output_max.
-  int16_t update(int32_t setpoint_q8, int32_t setpoint_velocity_q8, int32_t measurement_q8);
+  // One tick. Positions in Q8 clicks within +-2^29, setpoint velocity in Q8 clicks/tick
+  // (within +-12800, SetpointRamp::top_speed_max_q8). Returns the duty in PWM counts,
+  // within +-output_max.
+  int16_t update(int32_t setpoint_q8, int16_t setpoint_velocity_q8, int32_t measurement_q8);
 
   int32_t integral_q16() const { return integral_q16_; }
 
@@ -33,9 +34,8 @@ class PidController {
   uint16_t kd_q8_ = 0;
   int32_t output_max_q16_ = 0;
   // Largest |input| of each product that keeps the product within +-2^28.
-  int32_t p_input_max_ = 0;
-  int32_t i_input_max_ = 0;
-  int32_t d_input_max_ = 0;
+  int32_t error_input_max_ = 0;  // for P and I: 2^28 / max(kp, ki)
+  int16_t d_input_max_ = 0;  // also <= 32767 (the D input is 16-bit)
   int32_t integral_q16_ = 0;
   int32_t previous_measurement_q8_ = 0;
 };

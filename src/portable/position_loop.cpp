@@ -17,8 +17,10 @@ int32_t count_to_q8(int32_t count) {
 
 JointTuning clamped(const JointTuning& t) {
   JointTuning c = t;
-  c.max_speed_cps = clamp32(t.max_speed_cps, 1, INT32_C(200000));
-  c.max_accel_cps2 = clamp32(t.max_accel_cps2, INT32_C(3906), INT32_C(20000000));
+  // Ranges: docs/joint-controller.md "Tuning ranges" (what the SCARA joints need, and what
+  // keeps the tick inside its cycle budget). They convert exactly to the ramp's bounds.
+  c.max_speed_cps = clamp32(t.max_speed_cps, 1, max_speed_cps_limit);
+  c.max_accel_cps2 = clamp32(t.max_accel_cps2, min_accel_cps2_limit, max_accel_cps2_limit);
   c.kp_q8 = clamp32(t.kp_q8, 0, INT32_C(65535));
   c.ki_q8 = clamp32(t.ki_q8, 0, INT32_C(65535));
   c.kd_q8 = clamp32(t.kd_q8, 0, INT32_C(65535));
@@ -55,7 +57,7 @@ DriveOutput PositionLoop::tick(int32_t count) {
     return DriveOutput{0, false};
   }
   const int32_t setpoint = ramp_.step(static_cast<int32_t>(target_) * 256);
-  return DriveOutput{pid_.update(setpoint, ramp_.velocity_q8(), count_to_q8(count)), true};
+  return DriveOutput{pid_.update(setpoint, static_cast<int16_t>(ramp_.velocity_q8()), count_to_q8(count)), true};
 }
 
 void PositionLoop::set_enabled(bool on, int32_t count) {

@@ -48,5 +48,32 @@ TEST(SyncPlan, TooShortATimeIsStretchedToWhatTheSlowestJointCanDo) {
   EXPECT_EQ(plan.joints[0].percent, 100);
 }
 
+TEST(SyncPlan, MovingStartArrivesAtTheCommonInstantWithoutTurning) {
+  // A joint cruising at 6000 clicks/s toward 20000, re-targeted to 3000 clicks ahead in 800 ms.
+  joint_bus::SetpointRamp ramp;
+  ramp.configure((12000 * 32 + 62) / 125, (40000 * 32 + 62500) / 125000);
+  ramp.set_speed_percent(50);
+  ramp.reset(0);
+  for (int i = 0; i < 400; ++i) ramp.step(20000 * 256);
+  ASSERT_GT(ramp.velocity_q8(), 0);
+  const std::int32_t from = ramp.setpoint_q8();
+  std::vector<PlanInput> in(1);
+  in[0].joint = 1;
+  in[0].profile = as_quantized_by_joint(kProfile);
+  in[0].zone = 20;
+  in[0].moving = MovingStart{ramp, 20000 * 256, 0ms};
+  in[0].target_q8 = from + 3000 * 256;
+  in[0].distance = 3000;
+  SyncPlan plan = plan_synchronized_move(in, 800ms, 10ms, 12ms);
+  ASSERT_EQ(plan.total, 800ms);
+  const PlannedJoint& j = plan.joints[0];
+  EXPECT_TRUE(j.drive_first);
+  auto arrival = moving_arrival(*in[0].moving, in[0].target_q8, j.start, j.speed_at, j.percent, j.switch_percent,
+                                j.switch_at, 2000ms);
+  ASSERT_TRUE(arrival);
+  EXPECT_LE(std::chrono::abs(*arrival - 800ms), 3ms);
+  EXPECT_EQ(j.start + j.duration, *arrival);
+}
+
 }  // namespace
 }  // namespace armctl::arm_controller

@@ -86,10 +86,14 @@ TEST(SetpointRamp, RandomProfilesStayWithinLimitsAndLandExactly) {
   std::mt19937 rng(7);
   for (int trial = 0; trial < 400; ++trial) {
     SetpointRamp ramp;
-    const int32_t top = 1 + static_cast<int32_t>(rng() % 51200);
-    const int32_t accel = 1 + static_cast<int32_t>(rng() % (trial % 2 ? 50 : 5120));
+    // Speed limit >= 64 Q8 (250 clicks/s), so that the last move (<= 65536 clicks + what
+    // the earlier ones left) ends within the 400,000 ticks below; limit < accel is common.
+    const int32_t top = 64 + static_cast<int32_t>(rng() % (12800 - 63));
+    const int32_t accel = 1 + static_cast<int32_t>(rng() % (trial % 2 ? 50 : 256));
     ramp.configure(top, accel);
-    ramp.set_speed_percent(static_cast<uint8_t>(1 + rng() % 100));
+    int percent = static_cast<int>(1 + rng() % 100);
+    while (top * percent / 100 < 64) ++percent;
+    ramp.set_speed_percent(static_cast<uint8_t>(percent));
     ramp.reset(static_cast<int32_t>(rng() % 2000000) - 1000000);
     const int32_t vmax = ramp.speed_limit_q8();
     int32_t target = 0, last_v = 0;
@@ -237,8 +241,8 @@ TEST(PidController, ProportionalAndSaturation) {
   pid.configure(65535, 65535, 65535, 4095);  // extreme gains must not overflow
   pid.reset(0);
   const int32_t far = INT32_C(1) << 29;
-  EXPECT_EQ(pid.update(far, 51200, -far), 4095);
-  EXPECT_EQ(pid.update(-far, -51200, far), -4095);
+  EXPECT_EQ(pid.update(far, 12800, -far), 4095);
+  EXPECT_EQ(pid.update(-far, -12800, far), -4095);
 }
 
 TEST_F(PositionLoopTest, PositionSaturatesAtInt16WhileTheLoopUsesTheFullCount) {
@@ -258,14 +262,18 @@ TEST_F(PositionLoopTest, PositionSaturatesAtInt16WhileTheLoopUsesTheFullCount) {
 
 TEST_F(PositionLoopTest, NoFloatNeededForTuningConversions) {
   JointTuning t = default_tuning();
-  t.max_speed_cps = 1000000;     // clamped to 200000
+  t.max_speed_cps = 1000000;     // clamped to 50000
   t.max_accel_cps2 = 1;          // clamped to 3906
   t.pwm_max = 30000;             // clamped to 4095
   ASSERT_TRUE(joint.begin(1, t, 9600));
-  EXPECT_EQ(joint.loop().tuning().max_speed_cps, 200000);
-  EXPECT_EQ(joint.loop().ramp().speed_limit_q8(), 51200);
+  EXPECT_EQ(joint.loop().tuning().max_speed_cps, 50000);
+  EXPECT_EQ(joint.loop().ramp().speed_limit_q8(), 12800);
   EXPECT_EQ(joint.loop().ramp().accel_q8(), 1);
   EXPECT_EQ(joint.loop().tuning().pwm_max, 4095);
+  t.max_accel_cps2 = 20000000;   // clamped to 1,000,000 = 256 Q8 clicks/tick^2
+  ASSERT_TRUE(joint.begin(1, t, 9600));
+  EXPECT_EQ(joint.loop().tuning().max_accel_cps2, 1000000);
+  EXPECT_EQ(joint.loop().ramp().accel_q8(), 256);
 }
 
 }  // namespace

@@ -30,6 +30,7 @@ ArmController::ArmController(transport::JointBusLink& link, joint_bus::MasterOpt
     Joint j;
     j.config = jc;
     j.profile = as_quantized_by_joint(JointProfile{jc.max_speed_cps, jc.max_accel_cps2});
+    j.model = JointMotionModel(JointProfile{jc.max_speed_cps, jc.max_accel_cps2});
     joints_.push_back(std::move(j));
     JointSettings s;
     s.limits.servo = jc.number;
@@ -127,12 +128,16 @@ std::optional<TimePoint> ArmController::next_due() const {
 
 void ArmController::advance_to(TimePoint now) { now_ = std::max(now_, now); }
 
-double ArmController::plan_start_clicks(const Joint& j, TimePoint start) const {
-  // After a finished move the joint's setpoint rests on the last target (its position may
-  // still lag by the tracking error); otherwise the best knowledge is the polled position.
-  const JointStatus& s = j.status;
-  if (s.target && s.loop_on && !s.jogging && s.arrive_at <= start) return *s.target;
-  return s.clicks.value_or(0);
+void ArmController::anchor_model(Joint& j, TimePoint t) {
+  // Nothing known about the setpoint (start-up, after a failed command): take the polled
+  // position as at rest, as a move planned now will.
+  if (!j.model.known() && j.status.loop_on) j.model.rest_at(j.status.clicks.value_or(0), t);
+}
+
+TimePoint ArmController::effect_instant() const {
+  // Called right after a command's transaction: it took effect when its DATA word had
+  // crossed the wire, before the two STATUS bytes.
+  return clock().now() - wire_time(2, link_.baud());
 }
 
 Duration ArmController::move(std::span<const rc_board::ServoTarget> targets, Duration time,
@@ -160,15 +165,32 @@ Duration ArmController::move(std::span<const rc_board::ServoTarget> targets, Dur
   int loop_ons = 0;
   for (const auto& t : targets) {
     Joint& j = at(t.servo);
-    cancel_ops(t.servo);
+    cancel_ops(t.servo);  // what was not sent yet never happens: the model has only what was
     const std::int32_t c = target_clicks(t.servo, t.position);
     clicks.push_back(static_cast<std::int16_t>(c));
-    inputs.push_back(PlanInput{t.servo, std::abs(c - plan_start_clicks(j, start)), j.profile,
-                               double(j.config.zone_clicks)});
+    PlanInput in;
+    in.joint = t.servo;
+    in.profile = j.profile;
+    in.zone = double(j.config.zone_clicks);
+    in.target_q8 = c * 256;
+    anchor_model(j, bus_now);
+    if (j.status.loop_on && !j.model.settled_at(bus_now)) {
+      // Still moving (or held short of its target): plan from the modelled setpoint.
+      TimePoint tick{};
+      MovingStart m{j.model.ramp_at(bus_now, &tick), j.model.target_q8(), tick - start};
+      in.distance = std::abs(double(c) - m.ramp.setpoint_q8() / 256.0);
+      in.moving = m;
+      ++stats_.moving_starts;
+    } else {
+      const double from = j.status.loop_on ? j.model.setpoint_clicks_at(bus_now) : j.status.clicks.value_or(0);
+      in.distance = std::abs(double(c) - from);
+    }
+    inputs.push_back(in);
     if (!j.status.loop_on) ++loop_ons;
   }
-  // Each joint gets set_speed then drive_to back to back (a speed change on its own would
-  // set an old target moving again); loop-on commands go first.
+  // A joint at rest gets set_speed then drive_to back to back (a speed change on its own
+  // would set an old target moving again); a moving one drive_to then set_speed (see
+  // PlannedJoint); loop-on commands go first.
   const Duration lag = std::max(Duration::zero(), bus_now - start);
   const Duration setup = lag + txn_estimate_ * (loop_ons + 1) + effect;
   last_plan_ = plan_synchronized_move(inputs, time, setup, txn_estimate_ * 2);
@@ -180,8 +202,17 @@ Duration ArmController::move(std::span<const rc_board::ServoTarget> targets, Dur
     const PlannedJoint& p = last_plan_.joints[i];
     if (!j.status.loop_on) schedule(bus_now, n, OpKind::loop_on, 1);
     const TimePoint drive_due = start + p.start - effect;
-    schedule(drive_due - txn_estimate_, n, OpKind::speed, static_cast<std::int16_t>(p.percent));
-    schedule(drive_due, n, OpKind::drive_to, clicks[i]);
+    if (p.drive_first) {
+      schedule(drive_due, n, OpKind::drive_to, clicks[i]);
+      // Streaming hosts often ask for the same speed again: save the bus the transaction.
+      if (j.model.speed_percent() != p.percent)
+        schedule(start + p.speed_at - effect, n, OpKind::speed, static_cast<std::int16_t>(p.percent));
+    } else {
+      schedule(drive_due - txn_estimate_, n, OpKind::speed, static_cast<std::int16_t>(p.percent));
+      schedule(drive_due, n, OpKind::drive_to, clicks[i]);
+    }
+    if (p.switch_percent)
+      schedule(start + p.switch_at - effect, n, OpKind::speed, static_cast<std::int16_t>(*p.switch_percent));
     j.status.loop_on = true;
     j.status.jogging = false;
     j.status.target = clicks[i];
@@ -196,6 +227,7 @@ void ArmController::torque_off(std::span<const ServoId> servos) {
     Joint& j = at(s);
     cancel_ops(s);
     schedule(bus_now, s, OpKind::loop_off, 0);
+    j.model.forget();
     j.status.loop_on = false;
     j.status.jogging = false;
     j.status.target.reset();
@@ -208,6 +240,7 @@ void ArmController::halt(TimePoint now) {
   // 0 % brings each joint's setpoint to rest at its acceleration limit and holds it there.
   const TimePoint bus_now = clock().now();
   for (auto& j : joints_) {
+    anchor_model(j, bus_now);
     schedule(bus_now, j.config.number, OpKind::speed, 0);
     j.status.jogging = false;
     j.status.target.reset();
@@ -231,6 +264,7 @@ void ArmController::set_mode(ServoId servo, rc_board::ServoMode mode, std::int16
   // Motor mode: a velocity jog toward the soft limit in the direction asked; the joint
   // stops there at the latest. Speed 1000 = the joint's top speed.
   cancel_ops(servo);
+  anchor_model(j, bus_now);
   if (!j.status.loop_on) schedule(bus_now, servo, OpKind::loop_on, 1);
   j.status.loop_on = true;
   j.status.jogging = true;
@@ -340,6 +374,7 @@ void ArmController::run_op(const Op& op) {
   });
   if (failure) {
     ++stats_.command_failures;
+    j.model.forget();  // it may or may not have taken effect
     note_fault(j, *failure, name);
     if (op.kind == OpKind::speed || op.kind == OpKind::loop_on) {
       // The drive that should follow would run at a wrong speed or not at all: drop it.
@@ -348,6 +383,13 @@ void ArmController::run_op(const Op& op) {
     }
   } else {
     note_success(j);
+    const TimePoint t = effect_instant();
+    switch (op.kind) {
+      case OpKind::loop_on: j.model.rest_at(j.status.clicks.value_or(0), t); break;  // holds where it is
+      case OpKind::loop_off: j.model.forget(); break;
+      case OpKind::speed: j.model.set_speed(op.value, t); break;
+      case OpKind::drive_to: j.model.drive_to(op.value, t); break;
+    }
   }
 }
 
@@ -359,6 +401,9 @@ void ArmController::poll_next() {
     if (r) {
       j.status.clicks = *r;
       j.status.read_at = clock().now();
+      if (j.model.known() && j.status.loop_on)
+        stats_.max_model_gap =
+            std::max(stats_.max_model_gap, std::abs(*r - j.model.setpoint_clicks_at(j.status.read_at)));
       ++j.status.reads;
       note_success(j);
     } else {

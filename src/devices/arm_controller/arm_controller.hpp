@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "devices/arm_controller/controller_config.hpp"
+#include "devices/arm_controller/joint_motion_model.hpp"
 #include "devices/arm_controller/joint_settings.hpp"
 #include "devices/arm_controller/sync_plan.hpp"
 #include "devices/joint_bus/bus_master.hpp"
@@ -61,6 +62,8 @@ struct ControllerStats {
   std::uint64_t command_failures = 0;
   std::uint64_t moves = 0;
   std::uint64_t refused_moves = 0; // a named joint not answering
+  std::uint64_t moving_starts = 0; // joints planned from a moving start (motion model)
+  double max_model_gap = 0;        // clicks: largest |polled position - modelled setpoint|
 };
 
 class ArmController final : public rc_board::ArmBackend {
@@ -125,6 +128,7 @@ class ArmController final : public rc_board::ArmBackend {
   struct Joint {
     ControllerJointConfig config;
     JointProfile profile;  // as the joint quantizes it
+    JointMotionModel model{JointProfile{}};  // its setpoint, replayed from what was sent
     std::int8_t offset = 0;
     JointStatus status;
   };
@@ -139,7 +143,8 @@ class ArmController final : public rc_board::ArmBackend {
   void note_success(Joint& j);
   void note_fault(Joint& j, const joint_bus::JointFailure& f, const char* doing);
   void timed(const std::function<void()>& transaction);
-  double plan_start_clicks(const Joint& j, TimePoint start) const;
+  void anchor_model(Joint& j, TimePoint t);
+  TimePoint effect_instant() const;
   void persist();
   void log(const std::string& line) const;
 

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "portable/joint_tuning.hpp"
 
 namespace armctl::arm_controller {
 
@@ -57,6 +58,10 @@ class ObjectReader {
   std::int64_t integer(const json& v, const std::string& path, std::int64_t min,
                        std::int64_t max) const {
     if (!v.is_number_integer()) fail(path, fmt::format("must be a whole number in {}..{}", min, max));
+    // Above INT64_MAX the value is stored unsigned and get<int64_t> would wrap it negative,
+    // so the message would name a number the file does not contain.
+    if (v.is_number_unsigned() && v.get<std::uint64_t>() > std::uint64_t(max))
+      fail(path, fmt::format("{} is outside the allowed range {}..{}", v.get<std::uint64_t>(), min, max));
     auto x = v.get<std::int64_t>();
     if (x < min || x > max) fail(path, fmt::format("{} is outside the allowed range {}..{}", x, min, max));
     return x;
@@ -116,8 +121,11 @@ ControllerJointConfig parse_joint(const std::string& source, const json& j, std:
   c.soft_min = static_cast<std::int16_t>(lo);
   c.soft_max = static_cast<std::int16_t>(hi);
   // The same ranges the joint controller accepts (portable/joint_tuning.hpp).
-  c.max_speed_cps = r.number("max_speed_cps", 1, 200000);
-  c.max_accel_cps2 = r.number("max_accel_cps2", 3906, 20000000);
+  // Taken from the header, not repeated here: the copies 200000 and 20000000 had drifted
+  // from the joint's narrowed limits, so configs the joints would clamp were accepted.
+  c.max_speed_cps = r.number("max_speed_cps", 1, joint_bus::max_speed_cps_limit);
+  c.max_accel_cps2 =
+      r.number("max_accel_cps2", joint_bus::min_accel_cps2_limit, joint_bus::max_accel_cps2_limit);
   if (const json* z = r.find("zone_clicks"))
     c.zone_clicks = static_cast<std::int16_t>(r.integer(*z, r.at("zone_clicks"), 0, 32767));
   r.finish();
@@ -144,7 +152,9 @@ ControllerConfig parse_controller_config(std::string_view json_text, const std::
   json doc;
   try {
     doc = json::parse(json_text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // json::exception, not only parse_error: a number too large for a double ("1e400") is
+    // an out_of_range from the parser (found by fuzz_controller_config), and must not escape.
     throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: not valid JSON: {}", source, e.what()));
   }
   ObjectReader r(source, doc, "");

@@ -44,10 +44,12 @@ Result<ControllerSettings> load_settings(const std::filesystem::path& state_dir,
         return corrupt(path, fmt::format("joints.{}.saved_offset {} not in -125..125", key, offset));
       js.saved_offset = static_cast<std::int8_t>(offset);
       const json& l = j.at("limits");
-      auto u16 = [&](const char* k, int lo, int hi) -> std::uint16_t {
+      // `key` is captured through an init-capture: clang before 16 cannot capture a
+      // structured binding in a lambda (C++20 P1091), and the fuzz build uses clang 14.
+      auto u16 = [&, &joint_key = key](const char* k, int lo, int hi) -> std::uint16_t {
         int v = l.at(k).get<int>();
         if (v < lo || v > hi)
-          throw std::out_of_range(fmt::format("joints.{}.limits.{} {} not in {}..{}", key, k, v, lo, hi));
+          throw std::out_of_range(fmt::format("joints.{}.limits.{} {} not in {}..{}", joint_key, k, v, lo, hi));
         return static_cast<std::uint16_t>(v);
       };
       js.limits.servo = static_cast<std::uint8_t>(number);

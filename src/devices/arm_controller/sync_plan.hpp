@@ -11,10 +11,13 @@
 // to wait for another. Pure computation: no I/O, no clock.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "core/clock.hpp"
+#include "portable/setpoint_ramp.hpp"
 
 namespace armctl::arm_controller {
 
@@ -31,11 +34,24 @@ JointProfile as_quantized_by_joint(JointProfile p);
 // the profile's top speed.
 double move_seconds(double distance, int percent, const JointProfile& profile);
 
+// A joint that is not at rest on its target when the move starts (still moving, or held
+// short of it by set_speed 0): its setpoint ramp as the controller's model predicts it
+// (joint_motion_model.hpp), `at` after the move's start, heading for `old_target_q8`.
+struct MovingStart {
+  joint_bus::SetpointRamp ramp;
+  std::int32_t old_target_q8 = 0;
+  Duration at{};
+};
+
 struct PlanInput {
   int joint = 0;
-  double distance = 0;  // clicks, absolute
+  double distance = 0;  // clicks, absolute (from the setpoint now)
   JointProfile profile;
   double zone = 0;      // clicks: the joint counts as arrived this close to its target
+  // Moving start: planned by running the joint's own ramp arithmetic forward (exact, 1 ms
+  // ticks) instead of the rest-to-rest formula; then `target_q8` is the new target.
+  std::optional<MovingStart> moving{};
+  std::int32_t target_q8 = 0;
 };
 
 // A joint must not creep through its zone: the planner never picks a speed at which the
@@ -47,6 +63,15 @@ struct PlannedJoint {
   int percent = 100;     // set_speed for this move
   Duration start{};      // drive_to takes effect this long after the move starts
   Duration duration{};   // the joint's own profile time
+  // Moving start: drive_to goes first and set_speed after it (a speed change first would
+  // push the joint on toward its old target; the new target first makes it turn or brake
+  // at once; the moving joints' drive_to's all go before their set_speed's), and the 1 % quantization of set_speed is absorbed by
+  // switching to `switch_percent` (one percent slower) at `switch_at`, since delaying the
+  // drive_to of a moving joint would let it run on toward the old target.
+  bool drive_first = false;
+  Duration speed_at{};  // drive_first: when its set_speed takes effect
+  std::optional<int> switch_percent{};
+  Duration switch_at{};
 };
 
 struct SyncPlan {
@@ -54,8 +79,16 @@ struct SyncPlan {
   std::vector<PlannedJoint> joints;  // in the order given
 };
 
+// When a moving joint's setpoint comes to rest on `target_q8` (offset from the move's
+// start), if it gets drive_to at `drive`, set_speed `percent` at `speed`, and optionally
+// set_speed `switch_percent` at `switch_at`; nothing if that is later than `give_up`.
+std::optional<Duration> moving_arrival(const MovingStart& start, std::int32_t target_q8, Duration drive,
+                                       Duration speed, int percent, std::optional<int> switch_percent,
+                                       Duration switch_at, Duration give_up);
+
 // `setup`: bus time before the first drive_to can take effect (speed commands etc.);
-// `transaction`: bus time of one drive_to, the spacing between drive commands.
+// `transaction`: bus time of one drive_to, the spacing between drive commands (a speed
+// command and a drive command: each joint's pair of commands fills one such slot).
 SyncPlan plan_synchronized_move(std::span<const PlanInput> inputs, Duration wanted, Duration setup,
                                 Duration transaction);
 

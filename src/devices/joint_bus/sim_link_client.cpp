@@ -15,6 +15,9 @@ namespace armctl::joint_bus {
 namespace {
 constexpr auto kHelloTimeout = std::chrono::seconds(3);
 constexpr auto kFlushTimeout = std::chrono::seconds(2);
+// Baud rates a simulated arm may announce: the arm config's lowest, the fastest standard rate.
+constexpr std::uint32_t kMinBaud = 300;
+constexpr std::uint32_t kMaxBaud = 4'000'000;
 }  // namespace
 
 SimLinkClient::SimLinkClient(const std::string& socket_path) : path_(socket_path) {
@@ -77,15 +80,25 @@ bool SimLinkClient::pump(TimePoint deadline) {
   for (;;) {
     if (auto m = parser_.next()) {
       switch (m->type) {
-        case sim_link::Type::hello:
+        case sim_link::Type::hello: {
           if (m->payload.size() != 5 || m->payload[0] < 1 || m->payload[0] > 7) {
             throw ArmctlError(ErrorKind::protocol, fmt::format("bad hello from simulated arm at {}", path_));
           }
+          const std::uint32_t baud =
+              static_cast<std::uint32_t>(m->payload[1]) | (static_cast<std::uint32_t>(m->payload[2]) << 8) |
+              (static_cast<std::uint32_t>(m->payload[3]) << 16) |
+              (static_cast<std::uint32_t>(m->payload[4]) << 24);
+          // The bus timing divides by the baud: a hello with 0 (found by fuzz_sim_link_client)
+          // crashed the master with SIGFPE. Allowed: what `armctl sim scara` can run at.
+          if (baud < kMinBaud || baud > kMaxBaud) {
+            throw ArmctlError(ErrorKind::protocol,
+                              fmt::format("bad hello from simulated arm at {}: baud {} (allowed: {}..{})",
+                                          path_, baud, kMinBaud, kMaxBaud));
+          }
           joints_ = m->payload[0];
-          baud_ = static_cast<std::uint32_t>(m->payload[1]) | (static_cast<std::uint32_t>(m->payload[2]) << 8) |
-                  (static_cast<std::uint32_t>(m->payload[3]) << 16) |
-                  (static_cast<std::uint32_t>(m->payload[4]) << 24);
+          baud_ = baud;
           break;
+        }
         case sim_link::Type::received: rx_.insert(rx_.end(), m->payload.begin(), m->payload.end()); break;
         case sim_link::Type::flushed: ++flushes_done_; break;
         case sim_link::Type::error:

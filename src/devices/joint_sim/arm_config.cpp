@@ -239,11 +239,15 @@ JointConfig read_joint(const std::string& source, const json& entry, std::size_t
   // The velocity limit must be reachable: below the motor's no-load speed.
   const double no_load_cps = h.motor.supply_v / h.motor.torque_constant_nm_per_a *
                              h.clicks_per_motor_rev() / (2.0 * std::numbers::pi);
-  const auto speed_cap = std::clamp<std::int64_t>(std::int64_t(no_load_cps), 1, 200000);
+  const auto speed_cap =
+      std::clamp<std::int64_t>(std::int64_t(no_load_cps), 1, joint_bus::max_speed_cps_limit);
   j.tuning.max_speed_cps = static_cast<std::int32_t>(
       t.integer("max_speed_cps", 1, speed_cap, "clicks/s, below the motor's no-load speed"));
-  j.tuning.max_accel_cps2 =
-      static_cast<std::int32_t>(t.integer("max_accel_cps2", 1000, 50000000, "clicks/s^2"));
+  // The joint controller's own limits (portable/joint_tuning.hpp; PositionLoop::begin clamps
+  // into them): the wider 1000..5e7 used here before let values through that the joint then
+  // silently replaced (found by fuzz_arm_config).
+  j.tuning.max_accel_cps2 = static_cast<std::int32_t>(t.integer(
+      "max_accel_cps2", joint_bus::min_accel_cps2_limit, joint_bus::max_accel_cps2_limit, "clicks/s^2"));
   j.tuning.kp_q8 = q8(t.number("kp", 0.0, 255.0, "PWM counts per click"));
   j.tuning.ki_q8 = q8(t.number("ki", 0.0, 255.0, "PWM counts per click per ms"));
   j.tuning.kd_q8 = q8(t.number("kd", 0.0, 255.0, "PWM counts per click/ms"));
@@ -266,7 +270,9 @@ ArmConfig parse_arm_config(std::string_view json_text, const std::string& source
   json root;
   try {
     root = json::parse(json_text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // json::exception, not only parse_error: a number too large for a double ("1e400") is
+    // an out_of_range from the parser (found by fuzz_arm_config), and must not escape.
     throw ArmctlError(ErrorKind::invalid_config, source + ": not valid JSON: " + e.what());
   }
   if (!root.is_object()) {

@@ -174,8 +174,8 @@ int main() {
     if (random16() % 64 == 0) random_command(now_us);
     // Some joints get a much stronger tuning: large gains, fast ramps.
     if (tick == 15000) {
-      tuning.max_speed_cps = 200000;
-      tuning.max_accel_cps2 = 20000000;
+      tuning.max_speed_cps = max_speed_cps_limit;
+      tuning.max_accel_cps2 = max_accel_cps2_limit;
       tuning.kp_q8 = 65535;
       tuning.ki_q8 = 65535;
       tuning.kd_q8 = 65535;
