@@ -22,7 +22,7 @@ json config_with_accel(std::int64_t accel) {
                 "rotor_inertia_kgm2": 6e-5, "viscous_friction_nms": 2e-5, "coulomb_friction_nm": 0.01},
       "gearbox": {"numerator": 2448, "denominator": 121},
       "encoder_lines_per_rev": 125, "load_inertia_kgm2": 0.02,
-      "tuning": {"max_speed_cps": 12000, "max_accel_cps2": 40000, "kp": 12, "ki": 0.001,
+      "tuning": {"max_speed_cps": 12000, "max_accel_cps2": 40000, "kp": 12, "ki": 0,
                  "kd": 40, "pwm_max": 255}}]
   })");
   j["joints"][0]["tuning"]["max_accel_cps2"] = accel;

@@ -20,7 +20,7 @@ json default_json() {
                 "coulomb_friction_nm": 0.01},
       "gearbox": {"numerator": 2448, "denominator": 121},
       "encoder_lines_per_rev": 125, "load_inertia_kgm2": 0.02, "end_stops_clicks": null,
-      "tuning": {"max_speed_cps": 12000, "max_accel_cps2": 40000, "kp": 12, "ki": 0.001,
+      "tuning": {"max_speed_cps": 12000, "max_accel_cps2": 40000, "kp": 12, "ki": 0,
                  "kd": 40, "pwm_max": 255}
     },
     "joints": [{"name": "Z", "number": 1, "end_stops_clicks": [-100, 100]},
@@ -113,6 +113,10 @@ TEST(ArmConfig, OutOfRangeValuesNameWhatIsAllowed) {
   j = default_json();
   j["joints"][0]["end_stops_clicks"] = {10, 100};
   expect_error(j, "end_stops_clicks[0]: 10 is out of range", "-32768 .. 0");
+  j = default_json();
+  j["joint_defaults"]["tuning"]["ki"] = 0.001;  // rounds to 0 in Q8: would silently mean "off"
+  expect_error(j, "joint_defaults.tuning.ki: 0.001 is below the joint controller's resolution",
+               "0.0039 .. 255");
 }
 
 TEST(ArmConfig, MissingDuplicateAndMalformedAreRefused) {

@@ -1,8 +1,7 @@
 #include "apps/armctl/controller_serve.hpp"
+#include "apps/armctl/serve_support.hpp"
 
-#include <csignal>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <optional>
 
@@ -13,16 +12,6 @@
 #include "devices/arm_controller/paced_link.hpp"
 
 namespace armctl::cli {
-
-namespace {
-
-arm_controller::ControllerRunner* g_controller_runner = nullptr;  // for the signal handler
-
-extern "C" void on_controller_stop_signal(int) {
-  if (g_controller_runner) g_controller_runner->request_stop();  // sets an atomic flag
-}
-
-}  // namespace
 
 void serve_controller(transport::JointBusLink& bus, joint_bus::MasterOptions master_options,
                       arm_controller::ControllerConfig config, const ControllerServeArgs& args,
@@ -48,22 +37,9 @@ void serve_controller(transport::JointBusLink& bus, joint_bus::MasterOptions mas
   const std::size_t joints = config.joints.size();
   ac::ControllerDevice device(*link, master_options, std::move(config), options, runner.make_output());
 
-  namespace fs = std::filesystem;
-  if (!args.link.empty()) {
-    std::error_code ec;
-    if (fs::is_symlink(fs::symlink_status(args.link, ec))) fs::remove(args.link, ec);
-    fs::create_symlink(runner.host_path(), args.link, ec);
-    if (ec)
-      throw ArmctlError(ErrorKind::io, fmt::format("cannot create link {} -> {}: {}", args.link,
-                                                   runner.host_path(), ec.message()));
-  }
-  g_controller_runner = &runner;
-  struct sigaction action {};
-  action.sa_handler = on_controller_stop_signal;
-  sigemptyset(&action.sa_mask);
-  struct sigaction old_int {}, old_term {};
-  sigaction(SIGINT, &action, &old_int);
-  sigaction(SIGTERM, &action, &old_term);
+  const PtySymlink symlink(args.link, runner.host_path());
+  const StopOnSignals stop_on_signals(
+      [](void* r) { static_cast<ac::ControllerRunner*>(r)->request_stop(); }, &runner);
 
   fmt::print("{}\n", runner.host_path());
   fmt::print(stderr, "{}: Robot Commands on {}{} (servos 1..{} = joints), joint bus at {} baud; Ctrl-C to stop\n",
@@ -79,13 +55,6 @@ void serve_controller(transport::JointBusLink& bus, joint_bus::MasterOptions mas
 
   runner.run(device);
 
-  sigaction(SIGINT, &old_int, nullptr);
-  sigaction(SIGTERM, &old_term, nullptr);
-  g_controller_runner = nullptr;
-  if (!args.link.empty()) {
-    std::error_code ec;
-    fs::remove(args.link, ec);
-  }
   const auto b = device.board().stats();
   const auto& c = device.arm().stats();
   fmt::print(stderr,

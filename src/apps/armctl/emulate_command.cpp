@@ -1,14 +1,12 @@
 // armctl emulate xarm: an emulated xArm board on a pty, until SIGINT/SIGTERM.
-#include <csignal>
 #include <cstdio>
-#include <filesystem>
 #include <optional>
 #include <string>
-#include <system_error>
 
 #include <fmt/core.h>
 
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/serve_support.hpp"
 #include "core/error.hpp"
 #include "devices/xarm_emulator/emulator_runner.hpp"
 #include "transport/serial_port.hpp"
@@ -23,12 +21,6 @@ struct EmulateXarmArgs {
   bool wire_timing = false;
   unsigned battery = 7500;
 };
-
-xarm::EmulatorRunner* g_runner = nullptr;  // for the signal handler only
-
-extern "C" void on_stop_signal(int) {
-  if (g_runner) g_runner->request_stop();  // async-signal-safe: a flag and a pipe write
-}
 
 void run_emulate_xarm(const EmulateXarmArgs& args) {
   if (args.battery < 4500 || args.battery > 12000)
@@ -47,24 +39,9 @@ void run_emulate_xarm(const EmulateXarmArgs& args) {
   xarm::EmulatorRunner runner(
       options, [](const std::string& m) { fmt::print(stderr, "emulate xarm: {}\n", m); });
 
-  namespace fs = std::filesystem;
-  if (!args.link.empty()) {
-    std::error_code ec;
-    if (fs::is_symlink(fs::symlink_status(args.link, ec))) fs::remove(args.link, ec);
-    fs::create_symlink(runner.device_path(), args.link, ec);
-    if (ec)
-      throw ArmctlError(ErrorKind::io, fmt::format("cannot create link {} -> {}: {}", args.link,
-                                                   runner.device_path(), ec.message()));
-  }
-
-  g_runner = &runner;
-  struct sigaction action {};
-  action.sa_handler = on_stop_signal;
-  sigemptyset(&action.sa_mask);
-  struct sigaction old_int {
-  }, old_term{};
-  sigaction(SIGINT, &action, &old_int);
-  sigaction(SIGTERM, &action, &old_term);
+  const PtySymlink symlink(args.link, runner.device_path());
+  const StopOnSignals stop_on_signals(
+      [](void* r) { static_cast<xarm::EmulatorRunner*>(r)->request_stop(); }, &runner);
 
   fmt::print("{}\n", runner.device_path());
   fmt::print(stderr, "emulated xArm (servos 1..6) on {}{}{}; Ctrl-C to stop\n",
@@ -74,13 +51,6 @@ void run_emulate_xarm(const EmulateXarmArgs& args) {
 
   runner.run();
 
-  sigaction(SIGINT, &old_int, nullptr);
-  sigaction(SIGTERM, &old_term, nullptr);
-  g_runner = nullptr;
-  if (!args.link.empty()) {
-    std::error_code ec;
-    fs::remove(args.link, ec);
-  }
   auto s = runner.stats();
   fmt::print(stderr,
              "emulate xarm: stopped; {} frames, {} handled, {} ignored, {} bytes discarded\n",

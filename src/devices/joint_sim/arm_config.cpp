@@ -91,6 +91,21 @@ class Reader {
     return x;
   }
 
+  // A PID gain. The joint controller holds gains in Q8 (steps of 1/256), so a non-zero value
+  // that would round to 0 is refused instead of silently switching its term off.
+  std::int32_t gain_q8(const std::string& key, const char* unit) {
+    const double x = number(key, 0.0, 255.0, unit);
+    const auto q = static_cast<std::int32_t>(std::lround(x * 256.0));
+    if (x > 0.0 && q == 0) {
+      std::string path;
+      find(key, &path);
+      fail(path, format_number(x) +
+                     " is below the joint controller's resolution of 1/256 (allowed: 0 to switch "
+                     "the term off, or 0.0039 .. 255 " + unit + ")");
+    }
+    return q;
+  }
+
   std::int64_t integer(const std::string& key, std::int64_t min, std::int64_t max,
                        const char* unit) {
     std::string path;
@@ -194,8 +209,6 @@ void read_motor(Reader r, MotorParams* m) {
   r.finish();
 }
 
-std::int32_t q8(double gain) { return static_cast<std::int32_t>(std::lround(gain * 256.0)); }
-
 JointConfig read_joint(const std::string& source, const json& entry, std::size_t index,
                        const json* defaults, std::uint32_t physics_step_us) {
   const std::string path = "joints[" + std::to_string(index) + "]";
@@ -248,9 +261,9 @@ JointConfig read_joint(const std::string& source, const json& entry, std::size_t
   // silently replaced (found by fuzz_arm_config).
   j.tuning.max_accel_cps2 = static_cast<std::int32_t>(t.integer(
       "max_accel_cps2", joint_bus::min_accel_cps2_limit, joint_bus::max_accel_cps2_limit, "clicks/s^2"));
-  j.tuning.kp_q8 = q8(t.number("kp", 0.0, 255.0, "PWM counts per click"));
-  j.tuning.ki_q8 = q8(t.number("ki", 0.0, 255.0, "PWM counts per click per ms"));
-  j.tuning.kd_q8 = q8(t.number("kd", 0.0, 255.0, "PWM counts per click/ms"));
+  j.tuning.kp_q8 = t.gain_q8("kp", "PWM counts per click");
+  j.tuning.ki_q8 = t.gain_q8("ki", "PWM counts per click per ms");
+  j.tuning.kd_q8 = t.gain_q8("kd", "PWM counts per click/ms");
   t.finish();
   r.finish();
   return j;
