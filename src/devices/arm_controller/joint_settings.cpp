@@ -1,9 +1,16 @@
 #include "devices/arm_controller/joint_settings.hpp"
 
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include "devices/rc_board/atomic_file.hpp"
+#include "protocol/robot_commands/messages.hpp"
 
 namespace armctl::arm_controller {
 
@@ -11,8 +18,141 @@ namespace {
 
 using nlohmann::json;
 
-Error corrupt(const std::filesystem::path& path, const std::string& what) {
-  return Error{ErrorKind::invalid_config, fmt::format("{}: {}", path.string(), what)};
+// One problem with the file; parse_settings turns it into the invalid_config error.
+struct Refusal {
+  std::string what;
+};
+
+// A value as it stood in the file, short enough for an error message.
+std::string shown(const json& v) {
+  std::string text = v.dump(-1, ' ', true, json::error_handler_t::replace);
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return text;
+}
+
+std::string key_text(const std::string& key) { return json(key).dump(-1, ' ', true, json::error_handler_t::replace); }
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// `where` must be an object holding exactly `keys` (the ones save_settings writes): a missing
+// key is a truncated file, an unknown one a typo that would otherwise be ignored silently.
+void expect_keys(const json& where, const std::string& name, const std::vector<std::string>& keys) {
+  if (!where.is_object())
+    throw Refusal{fmt::format("{} is {}, not an object with keys {}", name, shown(where), joined(keys))};
+  for (const auto& k : keys)
+    if (!where.contains(k)) throw Refusal{fmt::format("{} has no key \"{}\" (needs {})", name, k, joined(keys))};
+  for (const auto& item : where.items()) {
+    bool known = false;
+    for (const auto& k : keys) known = known || item.key() == k;
+    if (!known)
+      throw Refusal{fmt::format("{} has unknown key {} (allowed: {})", name, key_text(item.key()), joined(keys))};
+  }
+}
+
+// An integer written as one (no 1.0, no true, no "1"), within lo..hi. nlohmann's get<int>
+// would truncate 1.9, read true as 1 and wrap 4294967297 to 1.
+std::int64_t integer_in(const json& v, const std::string& name, std::int64_t lo, std::int64_t hi,
+                        const std::string& allowed) {
+  bool ok = false;
+  std::int64_t n = 0;
+  if (v.is_number_unsigned()) {
+    const auto u = v.get<std::uint64_t>();
+    ok = u <= static_cast<std::uint64_t>(hi) && hi >= 0;
+    n = ok ? static_cast<std::int64_t>(u) : 0;
+  } else if (v.is_number_integer()) {
+    n = v.get<std::int64_t>();
+    ok = true;
+  }
+  if (!ok || n < lo || n > hi)
+    throw Refusal{fmt::format("{} {} is not allowed (allowed: an integer {})", name, shown(v), allowed)};
+  return n;
+}
+
+std::int64_t integer_in(const json& v, const std::string& name, std::int64_t lo, std::int64_t hi) {
+  return integer_in(v, name, lo, hi, fmt::format("{}..{}", lo, hi));
+}
+
+// nlohmann keeps the last of two equal keys; in a hand-edited file that hides an edit.
+// Records the first key that appears twice in one object.
+json parse_rejecting_duplicate_keys(std::string_view text) {
+  std::vector<std::set<std::string>> open;
+  std::optional<std::string> duplicate;
+  json doc = json::parse(text, [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) open.emplace_back();
+    else if (event == json::parse_event_t::object_end && !open.empty()) open.pop_back();
+    else if (event == json::parse_event_t::key && !open.empty() && !duplicate &&
+             !open.back().insert(parsed.get<std::string>()).second)
+      duplicate = parsed.get<std::string>();
+    return true;
+  });
+  if (duplicate) throw Refusal{fmt::format("key {} appears twice in one object (each key once)", key_text(*duplicate))};
+  return doc;
+}
+
+void parse_joint(const json& j, const std::string& name, int number, JointSettings& js) {
+  expect_keys(j, name, {"saved_offset", "limits"});
+  js.saved_offset = static_cast<std::int8_t>(
+      integer_in(j.at("saved_offset"), name + ".saved_offset", rc::kOffsetMin, rc::kOffsetMax));
+  // The ranges BusServoInfoWrite accepts (rc_board/board.cpp): the controller must read back
+  // every file it can write. Positions are Robot Commands units, not clicks: the config's
+  // soft limits are applied on top of them (ArmController::position_range), not here.
+  const std::string ln = name + ".limits";
+  const json& l = j.at("limits");
+  expect_keys(l, ln,
+              {"position_min", "position_max", "millivolts_min", "millivolts_max", "temp_max", "led_status",
+               "led_warning"});
+  rc_board::BusServoLimits& lim = js.limits;
+  lim.servo = static_cast<rc_board::ServoId>(number);
+  lim.position_min =
+      static_cast<std::uint16_t>(integer_in(l.at("position_min"), ln + ".position_min", rc::kPositionMin, rc::kPositionMax));
+  lim.position_max = static_cast<std::uint16_t>(
+      integer_in(l.at("position_max"), ln + ".position_max", lim.position_min, rc::kPositionMax,
+                 fmt::format("position_min ({})..{}", lim.position_min, rc::kPositionMax)));
+  lim.millivolts_min = static_cast<std::uint16_t>(
+      integer_in(l.at("millivolts_min"), ln + ".millivolts_min", rc::kMillivoltsMin, rc::kMillivoltsMax));
+  lim.millivolts_max = static_cast<std::uint16_t>(
+      integer_in(l.at("millivolts_max"), ln + ".millivolts_max", lim.millivolts_min, rc::kMillivoltsMax,
+                 fmt::format("millivolts_min ({})..{}", lim.millivolts_min, rc::kMillivoltsMax)));
+  lim.temp_max =
+      static_cast<std::uint16_t>(integer_in(l.at("temp_max"), ln + ".temp_max", rc::kTempMaxMin, rc::kTempMaxMax));
+  lim.led_status = static_cast<std::uint8_t>(integer_in(l.at("led_status"), ln + ".led_status", 0, 1,
+                                                        "0..1 (0 = enable, 1 = disable)"));
+  lim.led_warning = static_cast<std::uint8_t>(
+      integer_in(l.at("led_warning"), ln + ".led_warning", 0, 7, "0..7 (bits 0..2)"));
+}
+
+ControllerSettings parse_document(std::string_view text, const ControllerSettings& defaults) {
+  const json doc = parse_rejecting_duplicate_keys(text);
+  expect_keys(doc, "the file", {"version", "info_joint", "joints"});
+  integer_in(doc.at("version"), "version", 1, 1, "1 (the only format so far)");
+  std::vector<std::string> numbers;  // the joint keys allowed: this arm's joint numbers
+  for (const auto& [number, js] : defaults.joints) numbers.push_back(std::to_string(number));
+  ControllerSettings s = defaults;
+  const json& info = doc.at("info_joint");
+  bool info_known = false;
+  if (info.is_number_integer())
+    for (const auto& [number, js] : defaults.joints) info_known = info_known || info == number;
+  if (!info_known)
+    throw Refusal{fmt::format("info_joint {} is not a joint of this arm (allowed: {})", shown(info), joined(numbers))};
+  s.info_joint = info.get<int>();
+  const json& joints = doc.at("joints");
+  if (!joints.is_object())
+    throw Refusal{fmt::format("joints is {}, not an object keyed by joint number ({})", shown(joints), joined(numbers))};
+  for (const auto& item : joints.items()) {
+    // Exactly the decimal number of a configured joint: std::stoi read "1abc", " 1" and "01" as 1.
+    auto it = s.joints.end();
+    for (auto j = s.joints.begin(); j != s.joints.end(); ++j)
+      if (item.key() == std::to_string(j->first)) it = j;
+    if (it == s.joints.end())
+      throw Refusal{fmt::format("joints.{}: not a joint of this arm (allowed keys: {})", key_text(item.key()),
+                                joined(numbers))};
+    parse_joint(item.value(), "joints." + item.key(), it->first, it->second);
+  }
+  return s;
 }
 
 }  // namespace
@@ -21,50 +161,27 @@ std::filesystem::path settings_path(const std::filesystem::path& state_dir) {
   return state_dir / "controller-settings.json";
 }
 
+Result<ControllerSettings> parse_settings(std::string_view text, std::string_view source,
+                                          const ControllerSettings& defaults) {
+  try {
+    return parse_document(text, defaults);
+  } catch (const Refusal& r) {
+    return Error{ErrorKind::invalid_config, fmt::format("{}: {}; fix or delete the file", source, r.what)};
+  } catch (const json::exception& e) {
+    return Error{ErrorKind::invalid_config,
+                 fmt::format("{}: not readable as settings JSON ({}); fix or delete the file", source, e.what())};
+  }
+}
+
 Result<ControllerSettings> load_settings(const std::filesystem::path& state_dir,
                                          const ControllerSettings& defaults) {
   const auto path = settings_path(state_dir);
   auto bytes = rc_board::read_whole_file(path);
   if (!bytes) return bytes.error();
   if (!bytes->has_value()) return defaults;
-  ControllerSettings s = defaults;
-  try {
-    json doc = json::parse((*bytes)->begin(), (*bytes)->end());
-    if (doc.value("version", 0) != 1) return corrupt(path, "version must be 1");
-    int info = doc.at("info_joint").get<int>();
-    if (!s.joints.count(info)) return corrupt(path, fmt::format("info_joint {} is not a joint of this arm", info));
-    s.info_joint = info;
-    for (auto& [key, j] : doc.at("joints").items()) {
-      int number = std::stoi(key);
-      auto it = s.joints.find(number);
-      if (it == s.joints.end()) return corrupt(path, fmt::format("joints.{}: not a joint of this arm", key));
-      JointSettings& js = it->second;
-      int offset = j.at("saved_offset").get<int>();
-      if (offset < -125 || offset > 125)
-        return corrupt(path, fmt::format("joints.{}.saved_offset {} not in -125..125", key, offset));
-      js.saved_offset = static_cast<std::int8_t>(offset);
-      const json& l = j.at("limits");
-      // `key` is captured through an init-capture: clang before 16 cannot capture a
-      // structured binding in a lambda (C++20 P1091), and the fuzz build uses clang 14.
-      auto u16 = [&, &joint_key = key](const char* k, int lo, int hi) -> std::uint16_t {
-        int v = l.at(k).get<int>();
-        if (v < lo || v > hi)
-          throw std::out_of_range(fmt::format("joints.{}.limits.{} {} not in {}..{}", joint_key, k, v, lo, hi));
-        return static_cast<std::uint16_t>(v);
-      };
-      js.limits.servo = static_cast<std::uint8_t>(number);
-      js.limits.position_min = u16("position_min", 0, 1000);
-      js.limits.position_max = u16("position_max", js.limits.position_min, 1000);
-      js.limits.millivolts_min = u16("millivolts_min", 4500, 12000);
-      js.limits.millivolts_max = u16("millivolts_max", js.limits.millivolts_min, 12000);
-      js.limits.temp_max = u16("temp_max", 50, 100);
-      js.limits.led_status = static_cast<std::uint8_t>(u16("led_status", 0, 1));
-      js.limits.led_warning = static_cast<std::uint8_t>(u16("led_warning", 0, 7));
-    }
-  } catch (const std::exception& e) {
-    return corrupt(path, fmt::format("unreadable settings ({}); fix or delete the file", e.what()));
-  }
-  return s;
+  const auto& data = **bytes;
+  return parse_settings(std::string_view(reinterpret_cast<const char*>(data.data()), data.size()), path.string(),
+                        defaults);
 }
 
 Status save_settings(const std::filesystem::path& state_dir, const ControllerSettings& settings) {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <string_view>
 
 #include "core/error.hpp"
 #include "devices/rc_board/arm_backend.hpp"
@@ -27,7 +28,15 @@ struct ControllerSettings {
 };
 
 std::filesystem::path settings_path(const std::filesystem::path& state_dir);
-// Nothing stored yet: `defaults`. Errors: io, invalid_config (naming the key).
+// The file is outside input (hand-edited, truncated, from another arm config), so it is read
+// strictly: exactly the keys save_settings writes, joint keys exactly the decimal number of a
+// joint in `defaults` (the arm config), integers only, each in the range the controller
+// itself accepts (ServoOffsetAdjust -125..125, BusServoInfoWrite limits). Joints of the config
+// missing from the file keep their defaults. Any problem: invalid_config naming `source`, the
+// key and what is allowed; nothing of the file is applied.
+Result<ControllerSettings> parse_settings(std::string_view text, std::string_view source,
+                                          const ControllerSettings& defaults);
+// Nothing stored yet: `defaults`. Errors: io, invalid_config (as parse_settings).
 Result<ControllerSettings> load_settings(const std::filesystem::path& state_dir,
                                          const ControllerSettings& defaults);
 Status save_settings(const std::filesystem::path& state_dir, const ControllerSettings& settings);

@@ -33,7 +33,7 @@ SimLinkClient::SimLinkClient(const std::string& socket_path) : path_(socket_path
       }
     }
   } catch (...) {
-    ::close(fd_);
+    if (fd_ >= 0) ::close(fd_);
     throw;
   }
 }
@@ -42,7 +42,20 @@ SimLinkClient::~SimLinkClient() {
   if (fd_ >= 0) ::close(fd_);  // the arm lowers any select line we left high
 }
 
+void SimLinkClient::close_for_protocol_error(const std::string& message) {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  throw ArmctlError(ErrorKind::protocol, message);
+}
+
+void SimLinkClient::ensure_open() const {
+  if (fd_ < 0)
+    throw ArmctlError(ErrorKind::io,
+                      fmt::format("link to simulated arm at {} was closed after a protocol error", path_));
+}
+
 void SimLinkClient::send(sim_link::Type type, std::span<const std::uint8_t> payload) {
+  ensure_open();
   if (!sim_link::send_all(fd_, sim_link::encode(type, payload))) {
     throw ArmctlError(ErrorKind::io, fmt::format("simulated arm at {} closed the connection", path_));
   }
@@ -77,12 +90,22 @@ void SimLinkClient::flush() {
 }
 
 bool SimLinkClient::pump(TimePoint deadline) {
+  ensure_open();
   for (;;) {
     if (auto m = parser_.next()) {
       switch (m->type) {
         case sim_link::Type::hello: {
+          // The joint count and baud are fixed for the session: the master sized its
+          // selects and timing by the first hello, so a second one (fewer joints made
+          // set_select throw inside the master) is a protocol error, not an update.
+          if (joints_ != 0) {
+            close_for_protocol_error(fmt::format(
+                "simulated arm at {} sent a second hello ({} bytes) mid-session; expected only "
+                "received/flushed/error after the first hello ({} joints, {} baud)",
+                path_, m->payload.size(), joints_, baud_));
+          }
           if (m->payload.size() != 5 || m->payload[0] < 1 || m->payload[0] > 7) {
-            throw ArmctlError(ErrorKind::protocol, fmt::format("bad hello from simulated arm at {}", path_));
+            close_for_protocol_error(fmt::format("bad hello from simulated arm at {}", path_));
           }
           const std::uint32_t baud =
               static_cast<std::uint32_t>(m->payload[1]) | (static_cast<std::uint32_t>(m->payload[2]) << 8) |
@@ -91,8 +114,7 @@ bool SimLinkClient::pump(TimePoint deadline) {
           // The bus timing divides by the baud: a hello with 0 (found by fuzz_sim_link_client)
           // crashed the master with SIGFPE. Allowed: what `armctl sim scara` can run at.
           if (baud < kMinBaud || baud > kMaxBaud) {
-            throw ArmctlError(ErrorKind::protocol,
-                              fmt::format("bad hello from simulated arm at {}: baud {} (allowed: {}..{})",
+            close_for_protocol_error(fmt::format("bad hello from simulated arm at {}: baud {} (allowed: {}..{})",
                                           path_, baud, kMinBaud, kMaxBaud));
           }
           joints_ = m->payload[0];
@@ -102,16 +124,14 @@ bool SimLinkClient::pump(TimePoint deadline) {
         case sim_link::Type::received: rx_.insert(rx_.end(), m->payload.begin(), m->payload.end()); break;
         case sim_link::Type::flushed: ++flushes_done_; break;
         case sim_link::Type::error:
-          throw ArmctlError(ErrorKind::protocol,
-                            fmt::format("simulated arm at {} refused: {}", path_,
-                                        std::string(m->payload.begin(), m->payload.end())));
+          close_for_protocol_error(fmt::format("simulated arm at {} refused: {}", path_,
+                                               std::string(m->payload.begin(), m->payload.end())));
         default:
-          throw ArmctlError(ErrorKind::protocol,
-                            fmt::format("simulated arm at {} sent a master-side message", path_));
+          close_for_protocol_error(fmt::format("simulated arm at {} sent a master-side message", path_));
       }
       return true;
     }
-    if (parser_.error()) throw ArmctlError(ErrorKind::protocol, *parser_.error());
+    if (parser_.error()) close_for_protocol_error(*parser_.error());
     std::array<std::uint8_t, 512> buf{};
     const long n = sim_link::receive_some(fd_, buf, deadline, clock_);
     if (n < 0) throw ArmctlError(ErrorKind::io, fmt::format("simulated arm at {} closed the connection", path_));

@@ -33,6 +33,10 @@ class SimLinkClient final : public transport::JointBusLink {
   // Reads from the socket until `deadline` or until one message was handled; returns
   // whether a message arrived. Throws when the arm is gone or breaks the protocol.
   bool pump(TimePoint deadline);
+  // The arm broke the protocol: after that nothing it sends can be trusted to line up, so
+  // the link is closed (later calls fail with io) and `message` thrown as a protocol error.
+  [[noreturn]] void close_for_protocol_error(const std::string& message);
+  void ensure_open() const;
   void send(sim_link::Type type, std::span<const std::uint8_t> payload);
 
   std::string path_;
