@@ -108,15 +108,7 @@ void check_settings(const ControllerSettings& s) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
-  std::string text;
-  if (data[0] % 2 == 0) {
-    text.assign(reinterpret_cast<const char*>(data + 1), size - 1);
-  } else {
-    auto doc = nlohmann::json::parse(base_text());
-    armctl::fuzz::ByteReader in(data + 1, size - 1);
-    armctl::fuzz::apply_edits(doc, in);
-    text = doc.dump();
-  }
+  const std::string text = armctl::fuzz::config_text_from(data, size, base_text());
   auto r = armctl::arm_controller::parse_settings(text, "fuzz.json", defaults());
   if (r.ok()) {
     check_settings(*r);

@@ -127,4 +127,16 @@ inline void apply_edits(nlohmann::json& doc, ByteReader& in) {
   }
 }
 
+// The text a config fuzz target parses: by the first byte, either the rest of the input as
+// raw text, or `base` (a valid file) with edits chosen by the rest of the input.
+inline std::string config_text_from(const std::uint8_t* data, std::size_t size,
+                                    const std::string& base) {
+  if (size == 0) return {};
+  if (data[0] % 2 == 0) return std::string(reinterpret_cast<const char*>(data + 1), size - 1);
+  auto doc = nlohmann::json::parse(base);
+  ByteReader in(data + 1, size - 1);
+  apply_edits(doc, in);
+  return doc.dump();
+}
+
 }  // namespace armctl::fuzz
