@@ -56,6 +56,26 @@ TEST(BusCli, JsonOutputIsOneDocument) {
   EXPECT_EQ(doc["joints"][0]["value"], -77);
 }
 
+TEST(BusCli, ADeadJointIsShownPerJointAndFailsTheCommand) {
+  const CliRun r = armctl("bus --device 'sim?dead=6' position all");
+  EXPECT_NE(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("joint 6: FAILED no answer (990)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1 of 7 joints failed"), std::string::npos) << r.out;
+  for (int j : {1, 2, 3, 4, 5, 7}) {
+    EXPECT_NE(r.out.find("joint " + std::to_string(j) + ": position 0"), std::string::npos) << r.out;
+  }
+  const auto doc = nlohmann::json::parse(stdout_only("bus --device 'sim?dead=2,6' --json position all"));
+  EXPECT_FALSE(doc["ok"].get<bool>());
+  ASSERT_EQ(doc["joints"].size(), 7u);
+  for (const auto& row : doc["joints"]) {
+    const int j = row["joint"].get<int>();
+    EXPECT_EQ(row["ok"].get<bool>(), j != 2 && j != 6) << row;
+    if (j == 2 || j == 6) {
+      EXPECT_EQ(row["error"]["code"], 990) << row;
+    }
+  }
+}
+
 TEST(BusCli, EveryCommandRunsOnTheEmbeddedSim) {
   for (const char* args : {"ping all", "home 1", "pid all on", "pid 2 off", "target all", "number 7", "drive-dist 1 10",
                            "drive-dist-max all -5", "drive-to all 100", "speed all 50", "zone 3 4", "reached all",

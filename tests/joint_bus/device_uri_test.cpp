@@ -11,6 +11,7 @@ using namespace joint_bus;
 TEST(DeviceUri, AcceptsTheThreeForms) {
   EXPECT_FALSE(std::get<SimDevice>(parse_device_uri("sim")).baud.has_value());
   EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim?baud=115200")).baud, 115200u);
+  EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim?dead=2,6")).dead_joints, (std::vector<int>{2, 6}));
   EXPECT_EQ(std::get<UnixDevice>(parse_device_uri("unix:/tmp/a.sock")).path, "/tmp/a.sock");
   const auto s = std::get<SerialDevice>(
       parse_device_uri("serial:/dev/ttyAMA0?baud=115200&chip=gpiochip0&select=17,27,22,5,6,13,19&dialect=legacy"));
@@ -31,6 +32,9 @@ TEST(DeviceUri, RefusesBadInputWithAMessageNamingIt) {
       {"tcp:1.2.3.4", "unknown kind"},
       {"sim?baud=12345", "not a standard rate"},
       {"sim?speed=1", "unknown option 'speed'"},
+      {"sim?dead=9", "dead joint 9 is not a joint (allowed 1..7)"},
+      {"sim?dead=0", "dead joint 0 is not a joint (allowed 1..7)"},
+      {"sim?dead=2,x", "dead joint 'x'"},
       {"unix:", "needs a socket path"},
       {"unix:/a?x=1", "takes no options"},
       {"serial:/dev/ttyAMA0", "needs select="},

@@ -251,7 +251,7 @@ void add_bus_command(CLI::App& app) {
   bus->require_subcommand(1);
   bus->fallthrough();
   bus->add_option("--device", args->device,
-                  "Where the bus is: sim (embedded simulated arm, default), unix:/path (armctl sim scara), "
+                  "Where the bus is: sim[?baud=N&config=FILE&dead=J,...] (embedded simulated arm, default), unix:/path (armctl sim scara), "
                   "serial:/dev/ttyAMA0?select=17,27,22,5,6,13,19[&baud=115200][&chip=gpiochip0][&dialect=legacy]");
   bus->add_flag("--json", args->json, "Print one JSON document instead of lines");
   bus->add_option("--retries", args->retries, "Extra attempts where repeating is safe (never a sent relative move)")

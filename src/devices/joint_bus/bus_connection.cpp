@@ -22,6 +22,11 @@ class EmbeddedSim final : public BusConnection {
                                       : joint_sim::load_arm_config(d.config);
     if (d.baud) config.baud = *d.baud;
     arm_ = std::make_unique<joint_sim::SimArm>(std::move(config));
+    if (!d.dead_joints.empty()) {
+      joint_sim::FaultPlan faults;
+      for (int j : d.dead_joints) faults.dead_joint(j);
+      arm_->set_fault_plan(std::move(faults));
+    }
   }
   transport::JointBusLink& link() override { return arm_->link(); }
   MasterOptions default_options() const override { return {}; }

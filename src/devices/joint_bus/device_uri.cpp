@@ -14,7 +14,7 @@ namespace armctl::joint_bus {
 namespace {
 
 constexpr const char* kForms =
-    "sim, sim?baud=N&config=FILE, unix:/path/to/socket, or "
+    "sim, sim?baud=N&config=FILE&dead=J[,J...], unix:/path/to/socket, or "
     "serial:/dev/ttyAMA0?select=17,27,22,5,6,13,19[&baud=9600][&chip=gpiochip0][&dialect=legacy]";
 
 [[noreturn]] void bad(std::string_view uri, const std::string& why) {
@@ -69,8 +69,21 @@ DeviceUri parse_device_uri(std::string_view uri) {
 
   if (head == "sim") {
     SimDevice d;
-    auto opts = parse_query(uri, query, {"baud", "config"});
+    auto opts = parse_query(uri, query, {"baud", "config", "dead"});
     if (opts.contains("baud")) d.baud = parse_baud(uri, opts["baud"]);
+    if (opts.contains("dead")) {
+      std::string_view list = opts["dead"];
+      while (true) {
+        const auto comma = list.find(',');
+        const unsigned joint = parse_unsigned(uri, "dead joint", list.substr(0, comma), 1'000'000);
+        if (joint < 1 || joint > 7) {
+          bad(uri, fmt::format("dead joint {} is not a joint (allowed 1..7)", joint));
+        }
+        d.dead_joints.push_back(static_cast<int>(joint));
+        if (comma == std::string_view::npos) break;
+        list.remove_prefix(comma + 1);
+      }
+    }
     if (opts.contains("config")) {
       if (opts["config"].empty()) bad(uri, "config needs a file path");
       d.config = opts["config"];

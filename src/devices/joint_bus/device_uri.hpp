@@ -1,6 +1,7 @@
 // Where the joint bus is: parsed and validated `--device` URIs.
 //   sim                      an embedded simulated SCARA arm, in this process (default);
-//                            optional ?baud=N&config=FILE
+//                            optional ?baud=N&config=FILE&dead=J[,J...] (joints that never
+//                            answer: to see how a dead joint is reported)
 //   unix:/path               a running `armctl sim scara --listen /path`
 //   serial:/dev/ttyAMA0?baud=115200&chip=gpiochip0&select=17,27,22,5,6,13,19[&dialect=legacy]
 //                            a real bus: UART + one GPIO line per joint (joints 1..N in
@@ -21,6 +22,7 @@ namespace armctl::joint_bus {
 struct SimDevice {
   std::optional<std::uint32_t> baud;  // empty: the config's baud
   std::string config;  // empty: the built-in config/scara.json
+  std::vector<int> dead_joints;  // joints 1..7 whose controller never answers
 };
 
 struct UnixDevice {
