@@ -75,9 +75,12 @@ DeviceUri parse_device_uri(std::string_view uri) {
       std::string_view list = opts["dead"];
       while (true) {
         const auto comma = list.find(',');
-        const unsigned joint = parse_unsigned(uri, "dead joint", list.substr(0, comma), 1'000'000);
-        if (joint < 1 || joint > 7) {
-          bad(uri, fmt::format("dead joint {} is not a joint (allowed 1..7)", joint));
+        const std::string_view item = list.substr(0, comma);
+        unsigned joint = 0;
+        const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), joint);
+        if (item.empty() || ec != std::errc{} || end != item.data() + item.size() || joint < 1 ||
+            joint > 7) {
+          bad(uri, fmt::format("dead joint '{}' is not a joint (allowed 1..7, comma-separated)", item));
         }
         d.dead_joints.push_back(static_cast<int>(joint));
         if (comma == std::string_view::npos) break;
