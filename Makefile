@@ -11,7 +11,8 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
   libcli11-dev libfmt-dev nlohmann-json3-dev \
   libhidapi-dev libgpiod-dev \
   gcc-avr avr-libc binutils-avr avrdude simavr libsimavr-dev libelf-dev \
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev ccache \
+  liburdfdom-dev liborocos-kdl-dev libkdl-parser-dev libeigen3-dev
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 JOBS ?= 2
