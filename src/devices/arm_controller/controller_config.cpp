@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/json_reader.hpp"
 #include "portable/joint_tuning.hpp"
 
 namespace armctl::arm_controller {
@@ -19,84 +20,11 @@ namespace armctl::arm_controller {
 namespace {
 
 using nlohmann::json;
+using armctl::json_reader::ObjectReader;
 
 std::int32_t round_to_int32(double x) {
   return static_cast<std::int32_t>(std::clamp(std::lround(x), -2147483647L, 2147483647L));
 }
-
-// Reads one JSON object, refusing unknown keys; errors carry "<source>: <path>: ...".
-class ObjectReader {
- public:
-  ObjectReader(const std::string& source, const json& object, std::string path)
-      : source_(source), object_(object), path_(std::move(path)) {
-    if (!object_.is_object()) fail(path_, "must be an object");
-  }
-
-  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}: {}", source_, path, what));
-  }
-  std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-
-  const json* find(const std::string& key) {
-    known_.insert(key);
-    auto it = object_.find(key);
-    return it == object_.end() ? nullptr : &*it;
-  }
-  const json& require(const std::string& key) {
-    const json* v = find(key);
-    if (v == nullptr) fail(at(key), "missing");
-    return *v;
-  }
-
-  double number(const json& v, const std::string& path, double min, double max) const {
-    if (!v.is_number()) fail(path, fmt::format("must be a number in {}..{}", min, max));
-    double x = v.get<double>();
-    if (!std::isfinite(x) || x < min || x > max)
-      fail(path, fmt::format("{} is outside the allowed range {}..{}", x, min, max));
-    return x;
-  }
-  std::int64_t integer(const json& v, const std::string& path, std::int64_t min,
-                       std::int64_t max) const {
-    if (!v.is_number_integer()) fail(path, fmt::format("must be a whole number in {}..{}", min, max));
-    // Above INT64_MAX the value is stored unsigned and get<int64_t> would wrap it negative,
-    // so the message would name a number the file does not contain.
-    if (v.is_number_unsigned() && v.get<std::uint64_t>() > std::uint64_t(max))
-      fail(path, fmt::format("{} is outside the allowed range {}..{}", v.get<std::uint64_t>(), min, max));
-    auto x = v.get<std::int64_t>();
-    if (x < min || x > max) fail(path, fmt::format("{} is outside the allowed range {}..{}", x, min, max));
-    return x;
-  }
-  double number(const std::string& key, double min, double max) {
-    return number(require(key), at(key), min, max);
-  }
-  std::int64_t integer(const std::string& key, std::int64_t min, std::int64_t max) {
-    return integer(require(key), at(key), min, max);
-  }
-  // A two-element array [a, b] of whole numbers in min..max.
-  std::pair<std::int64_t, std::int64_t> pair(const std::string& key, std::int64_t min,
-                                             std::int64_t max) {
-    const json& v = require(key);
-    if (!v.is_array() || v.size() != 2)
-      fail(at(key), fmt::format("must be an array of two whole numbers in {}..{}", min, max));
-    return {integer(v[0], at(key) + "[0]", min, max), integer(v[1], at(key) + "[1]", min, max)};
-  }
-
-  // Refuses every key that was not read (except "comment").
-  void finish() const {
-    for (auto it = object_.begin(); it != object_.end(); ++it) {
-      if (it.key() == "comment" || known_.count(it.key())) continue;
-      std::string allowed;
-      for (const auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
-      fail(at(it.key()), fmt::format("unknown key (allowed here: comment, {})", allowed));
-    }
-  }
-
- private:
-  const std::string& source_;
-  const json& object_;
-  std::string path_;
-  std::set<std::string> known_;
-};
 
 ControllerJointConfig parse_joint(const std::string& source, const json& j, std::string path) {
   ObjectReader r(source, j, path);
