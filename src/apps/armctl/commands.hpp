@@ -12,5 +12,6 @@ void add_xarm_command(CLI::App& app);        // xarm_command.cpp: Robot Commands
 void add_emulate_command(CLI::App& app);     // emulate_command.cpp: xArm board emulator
 void add_list_command(CLI::App& app);        // list_command.cpp: attached boards and ports
 void add_controller_command(CLI::App& app);  // controller_command.cpp: the arm controller
+void add_arm_command(CLI::App& app);         // arm_command.cpp: the Arm API in SI units
 
 }  // namespace armctl::cli

@@ -1,0 +1,384 @@
+// armctl arm [--arm xarm|scara|FILE] [--device URI] [--json] COMMAND ...
+// The Arm API from the command line: joints and tool pose in SI units (shown in deg and mm),
+// joint and Cartesian moves, IK, torque, gripper, zero calibration.
+#include <charconv>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "apps/armctl/arm_session.hpp"
+#include "apps/armctl/commands.hpp"
+#include "arm/arm_calibration.hpp"
+#include "core/error.hpp"
+#include "core/quantity.hpp"
+
+namespace armctl::cli {
+
+namespace {
+
+using nlohmann::json;
+
+struct ArmArgs {
+  std::string arm = "xarm";
+  std::string device;
+  bool json = false;
+  std::vector<std::string> words;  // NAME=VALUE or JOINT
+  std::string time;
+  std::string speed;
+  bool wait = false;
+  double timeout_s = 20;
+  std::string elbow;
+  bool nearest = false;
+  std::string onoff;
+  std::string gripper;
+};
+
+[[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
+
+template <typename T>
+T must(Result<T> r) {
+  if (!r) throw ArmctlError(r.error());
+  return std::move(r.value());
+}
+void must(const Status& s) {
+  if (!s) throw ArmctlError(s.error());
+}
+
+// A joint as the user names it: its name (any case) or its number — the servo ID on a
+// Robot Commands arm, the joint number on the joint bus (the same numbers the devices use).
+int find_joint(const arm::ArmModel& m, const std::string& word) {
+  if (auto i = m.find_joint(word)) return *i;
+  int n = 0;
+  auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), n);
+  if (ec == std::errc() && end == word.data() + word.size()) {
+    for (int i = 0; i < m.joint_count(); ++i) {
+      const auto& j = m.joints[std::size_t(i)];
+      const auto& map = j.robot_commands ? j.robot_commands : j.joint_bus;
+      if (map && map->id == n) return i;
+    }
+  }
+  std::string names;
+  for (const auto& j : m.joints) {
+    const auto& map = j.robot_commands ? j.robot_commands : j.joint_bus;
+    names += fmt::format("{}{} ({})", names.empty() ? "" : ", ", j.name, map->id);
+  }
+  usage(fmt::format("arm {} has no joint '{}'; joints (and numbers): {}", m.name, word, names));
+}
+
+std::pair<std::string, std::string> split_assignment(const std::string& word, const char* form) {
+  const auto eq = word.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == word.size())
+    usage(fmt::format("'{}' is not {}", word, form));
+  return {word.substr(0, eq), word.substr(eq + 1)};
+}
+
+arm::MoveOptions move_options(const ArmArgs& a) {
+  arm::MoveOptions o;
+  if (!a.time.empty() && !a.speed.empty()) usage("--time and --speed cannot be used together");
+  if (!a.time.empty()) {
+    double v = 0;
+    auto [end, ec] = std::from_chars(a.time.data(), a.time.data() + a.time.size(), v);
+    const std::string unit(end, a.time.data() + a.time.size());
+    if (ec != std::errc() || !std::isfinite(v) || v < 0 || (unit != "s" && unit != "ms" && !unit.empty()))
+      usage(fmt::format("--time '{}' is not allowed: a duration like 2s, 1.5s or 800ms (bare numbers are seconds)", a.time));
+    const double seconds = unit == "ms" ? v / 1000 : v;
+    if (seconds > 600) usage(fmt::format("--time '{}' is longer than 600 s", a.time));
+    o.duration = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(seconds));
+  }
+  if (!a.speed.empty()) {
+    std::string t = a.speed;
+    if (!t.empty() && t.back() == '%') t.pop_back();
+    double v = 0;
+    auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v) || v <= 0 || v > 100)
+      usage(fmt::format("--speed '{}' is not allowed: a percentage of the joints' velocity limits, above 0 up to 100%",
+                        a.speed));
+    o.speed = v / 100;
+  }
+  return o;
+}
+
+arm::WaitOptions wait_options(const ArmArgs& a) {
+  arm::WaitOptions w;
+  w.timeout = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(a.timeout_s));
+  return w;
+}
+
+json joints_json(const arm::ArmModel& m, const arm::JointState& s) {
+  json out = json::array();
+  for (int i = 0; i < m.joint_count(); ++i) {
+    const auto& j = m.joints[std::size_t(i)];
+    out.push_back({{"name", j.name},
+                   {"si", s.positions[std::size_t(i)]},
+                   {"unit", j.dimension == Dimension::angle ? "rad" : "m"},
+                   {"shown", to_display(j.dimension, s.positions[std::size_t(i)])},
+                   {"shown_unit", display_unit(j.dimension)},
+                   {"device", s.device[std::size_t(i)]}});
+  }
+  return out;
+}
+
+void print_joints(const ArmArgs& a, const arm::ArmModel& m, const arm::JointState& s) {
+  if (a.json) {
+    fmt::print("{}\n", json{{"joints", joints_json(m, s)}}.dump());
+    return;
+  }
+  for (int i = 0; i < m.joint_count(); ++i) {
+    const auto& j = m.joints[std::size_t(i)];
+    fmt::print("{:<10} {:>10.3f} {:<3}  (device {:.0f}){}\n", j.name, to_display(j.dimension, s.positions[std::size_t(i)]),
+               display_unit(j.dimension), s.device[std::size_t(i)], j.role == arm::JointRole::gripper ? "  gripper" : "");
+  }
+}
+
+json pose_json(const motion::Pose& p) {
+  const motion::Rpy r = motion::to_rpy(p.orientation);
+  return {{"x_mm", p.position.x() * 1e3}, {"y_mm", p.position.y() * 1e3}, {"z_mm", p.position.z() * 1e3},
+          {"roll_deg", r.roll * 180 / M_PI}, {"pitch_deg", r.pitch * 180 / M_PI}, {"yaw_deg", r.yaw * 180 / M_PI}};
+}
+
+std::string pose_text(const motion::Pose& p) {
+  const motion::Rpy r = motion::to_rpy(p.orientation);
+  return fmt::format("x {:.2f} y {:.2f} z {:.2f} mm  roll {:.2f} pitch {:.2f} yaw {:.2f} deg", p.position.x() * 1e3,
+                     p.position.y() * 1e3, p.position.z() * 1e3, r.roll * 180 / M_PI, r.pitch * 180 / M_PI,
+                     r.yaw * 180 / M_PI);
+}
+
+arm::CartesianGoal parse_goal(const ArmArgs& a) {
+  arm::CartesianGoal g;
+  std::optional<double> xyz[3];
+  for (const auto& w : a.words) {
+    auto [key, value] = split_assignment(w, "KEY=VALUE (x, y, z with mm or m; roll, pitch, yaw with deg or rad)");
+    const int axis = key == "x" ? 0 : key == "y" ? 1 : key == "z" ? 2 : -1;
+    if (axis >= 0) {
+      if (xyz[axis]) usage(fmt::format("{} is given twice", key));
+      xyz[axis] = must(parse_quantity(value, Dimension::length, key, 0, "mm"));
+    } else if (key == "roll" || key == "pitch" || key == "yaw") {
+      auto& slot = key == "roll" ? g.roll : key == "pitch" ? g.pitch : g.yaw;
+      if (slot) usage(fmt::format("{} is given twice", key));
+      slot = must(parse_quantity(value, Dimension::angle, key, 0, "deg"));
+    } else {
+      usage(fmt::format("'{}' is not a pose key: allowed x, y, z, roll, pitch, yaw", key));
+    }
+  }
+  for (int k = 0; k < 3; ++k)
+    if (!xyz[k]) usage(fmt::format("the tool position needs x, y and z ({} is missing)", "xyz"[k]));
+  g.position = {*xyz[0], *xyz[1], *xyz[2]};
+  if (!a.elbow.empty()) {
+    static const std::pair<const char*, motion::Elbow> kElbows[] = {
+        {"left", motion::Elbow::left}, {"right", motion::Elbow::right}, {"up", motion::Elbow::up}, {"down", motion::Elbow::down}};
+    bool found = false;
+    for (auto [name, e] : kElbows)
+      if (a.elbow == name) {
+        g.elbow = e;
+        found = true;
+      }
+    if (!found) usage(fmt::format("--elbow '{}' is not allowed: left or right (scara), up or down (xarm)", a.elbow));
+  }
+  g.nearest_orientation = a.nearest;
+  return g;
+}
+
+void after_move(const ArmArgs& a, ArmSession& s, const std::optional<arm::CartesianGoal>& goal) {
+  if (!a.wait) {
+    if (!a.json) fmt::print("moving\n");
+    else fmt::print("{}\n", json{{"moving", true}}.dump());
+    return;
+  }
+  arm::JointState state = must(s.arm->wait(wait_options(a)));
+  const motion::Pose pose = s.arm->forward([&] {
+    motion::JointVector q(s.arm->model().chain_joints());
+    for (int i = 0; i < q.size(); ++i) q[i] = state.positions[std::size_t(i)];
+    return q;
+  }());
+  if (a.json) {
+    json out{{"joints", joints_json(s.arm->model(), state)}, {"pose", pose_json(pose)}};
+    if (goal) out["position_error_mm"] = (pose.position - goal->position).norm() * 1e3;
+    fmt::print("{}\n", out.dump());
+    return;
+  }
+  print_joints(a, s.arm->model(), state);
+  fmt::print("tool: {}\n", pose_text(pose));
+  if (goal) fmt::print("position error: {:.2f} mm\n", (pose.position - goal->position).norm() * 1e3);
+}
+
+void run_joints(const ArmArgs& a) {
+  auto s = open_arm_session(a.arm, a.device);
+  print_joints(a, s->arm->model(), must(s->arm->read()));
+}
+
+void run_pose(const ArmArgs& a) {
+  auto s = open_arm_session(a.arm, a.device);
+  const motion::Pose p = must(s->arm->pose());
+  if (a.json) fmt::print("{}\n", json{{"pose", pose_json(p)}}.dump());
+  else fmt::print("{}\n", pose_text(p));
+}
+
+void run_move_joints(const ArmArgs& a) {
+  const arm::ArmModel model = load_arm(a.arm);  // refuse bad words before opening anything
+  std::vector<std::optional<double>> targets(std::size_t(model.joint_count()));
+  for (const auto& w : a.words) {
+    auto [name, value] = split_assignment(w, "JOINT=VALUE (e.g. 2=30deg, SHOULDER=-0.5rad, Z=120mm)");
+    const int i = find_joint(model, name);
+    const auto& j = model.joints[std::size_t(i)];
+    if (targets[std::size_t(i)]) usage(fmt::format("joint {} is given twice", j.name));
+    targets[std::size_t(i)] = must(parse_quantity(value, j.dimension, "joint " + j.name));
+  }
+  const arm::MoveOptions options = move_options(a);
+  auto s = open_arm_session(a.arm, a.device);
+  must(s->arm->check_targets(targets));
+  must(s->arm->move_joints(targets, options));
+  after_move(a, *s, std::nullopt);
+}
+
+void run_move_to(const ArmArgs& a) {
+  const arm::CartesianGoal goal = parse_goal(a);
+  const arm::MoveOptions options = move_options(a);
+  auto s = open_arm_session(a.arm, a.device);
+  must(s->arm->move_to(goal, options));
+  after_move(a, *s, goal);
+}
+
+void run_ik(const ArmArgs& a) {
+  const arm::CartesianGoal goal = parse_goal(a);
+  auto s = open_arm_session(a.arm, a.device);
+  const arm::JointState now = must(s->arm->read());
+  const auto solutions = must(s->arm->inverse(goal, now));
+  const arm::ArmModel& m = s->arm->model();
+  json all = json::array();
+  for (std::size_t k = 0; k < solutions.size(); ++k) {
+    const auto& sol = solutions[k];
+    std::string config;
+    if (sol.configuration.elbow) config += fmt::format("elbow {}", motion::to_string(*sol.configuration.elbow));
+    if (sol.configuration.wrist_flipped) config += *sol.configuration.wrist_flipped ? ", wrist flipped" : "";
+    if (sol.configuration.reaching_back && *sol.configuration.reaching_back) config += ", reaching back";
+    json js = json::object();
+    std::string text;
+    for (int i = 0; i < m.chain_joints(); ++i) {
+      const auto& j = m.joints[std::size_t(i)];
+      js[j.name] = sol.joints[i];
+      text += fmt::format("{}={:.3f}{} ", j.name, to_display(j.dimension, sol.joints[i]), display_unit(j.dimension));
+    }
+    all.push_back({{"joints", js}, {"configuration", config}});
+    if (!a.json) fmt::print("solution {}{}: {}{}\n", k + 1, k == 0 ? " (nearest)" : "", text, config.empty() ? "" : "(" + config + ")");
+  }
+  if (a.json) fmt::print("{}\n", json{{"solutions", all}}.dump());
+}
+
+void run_torque(const ArmArgs& a) {
+  if (a.onoff != "on" && a.onoff != "off") usage(fmt::format("torque: '{}' is not allowed: on or off", a.onoff));
+  auto s = open_arm_session(a.arm, a.device);
+  must(s->arm->set_torque(a.onoff == "on"));
+  if (a.json) fmt::print("{}\n", json{{"torque", a.onoff}}.dump());
+  else fmt::print("torque {}\n", a.onoff);
+}
+
+void run_gripper(const ArmArgs& a) {
+  double fraction = 0;
+  if (a.gripper == "open") fraction = 0;
+  else if (a.gripper == "close") fraction = 1;
+  else {
+    std::string t = a.gripper;
+    const bool percent = !t.empty() && t.back() == '%';
+    if (percent) t.pop_back();
+    double v = 0;
+    auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (!percent || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v) || v < 0 || v > 100)
+      usage(fmt::format("gripper: '{}' is not allowed: open, close, or how far closed as 0%..100%", a.gripper));
+    fraction = v / 100;
+  }
+  const arm::MoveOptions options = move_options(a);
+  auto s = open_arm_session(a.arm, a.device);
+  must(s->arm->gripper(fraction, options));
+  after_move(a, *s, std::nullopt);
+}
+
+void run_calibrate_zero(const ArmArgs& a) {
+  auto s = open_arm_session(a.arm, a.device);
+  const arm::ArmModel& m = s->arm->model();
+  std::vector<int> joints;
+  for (const auto& w : a.words) joints.push_back(find_joint(m, w));
+  if (joints.empty())
+    for (int i = 0; i < m.joint_count(); ++i) joints.push_back(i);
+  const arm::JointState now = must(s->arm->read());
+  const auto changes = must(arm::calibrate_zero(m, s->arm->device().protocol(), now.device, joints));
+  must(arm::save_calibration(m, s->arm->device().protocol(), changes));
+  for (const auto& c : changes) {
+    const auto& j = m.joints[std::size_t(c.joint)];
+    if (a.json)
+      fmt::print("{}\n", json{{"joint", j.name}, {"zero_moved_by", c.shift}, {"file", m.file.string()}}.dump());
+    else
+      fmt::print("{}: zero moved by {} (now where it stands), saved in {}\n", j.name, format_quantity(j.dimension, c.shift),
+                 m.file.string());
+  }
+}
+
+}  // namespace
+
+void add_arm_command(CLI::App& app) {
+  auto a = std::make_shared<ArmArgs>();
+  auto* cmd = app.add_subcommand("arm", "Drive an arm in SI units: joints, tool pose, moves, IK, gripper");
+  cmd->footer(
+      "Values take units: 30deg, 0.5rad, 120mm, 0.12m (x, y, z default to mm; roll, pitch, yaw to\n"
+      "deg). Joints are named (SHOULDER, servo3) or numbered as their device numbers them (the\n"
+      "servo ID, the joint-bus number). Without --device: the xArm on an emulated xArm board in\n"
+      "this process (servos start at centre every command), the SCARA on an embedded simulated\n"
+      "arm on the joint bus. Arm files: docs/arm-files.md.");
+  cmd->require_subcommand(1);
+  cmd->fallthrough();
+  cmd->add_option("--arm", a->arm, "xarm | scara | an arm file (default xarm)");
+  cmd->add_option("--device", a->device,
+                  "xArm: hid | serial:/dev/X[?baud=N] | /dev/PATH; SCARA: sim[?...] | unix:PATH | "
+                  "serial:...&select=... (joint bus) or any Robot Commands URI (arm controller)");
+  cmd->add_flag("--json", a->json, "Machine-readable output (one JSON object per line)");
+
+  auto add_motion_options = [a](CLI::App* sub) {
+    sub->add_option("--time", a->time, "Move duration: 2s, 800ms (default: from --speed)");
+    sub->add_option("--speed", a->speed, "Percent of the joints' velocity limits (default 25%)");
+    sub->add_flag("--wait", a->wait, "Wait until every joint arrives, then print where it stands");
+    sub->add_option("--timeout", a->timeout_s, "With --wait: give up after this many seconds (default 20)")
+        ->check(CLI::Range(0.1, 600.0));
+  };
+
+  cmd->add_subcommand("joints", "Joint positions (deg or mm, and device units)")->callback([a] { run_joints(*a); });
+  cmd->add_subcommand("pose", "Tool pose: x y z in mm, roll pitch yaw in deg")->callback([a] { run_pose(*a); });
+
+  auto* mj = cmd->add_subcommand("move-joints", "Move joints: 2=30deg 1=120mm SHOULDER=-0.5rad");
+  mj->add_option("targets", a->words, "JOINT=VALUE with a unit")->required();
+  add_motion_options(mj);
+  mj->callback([a] { run_move_joints(*a); });
+
+  auto add_goal = [a](CLI::App* sub) {
+    sub->add_option("pose", a->words, "x=.. y=.. z=.. [roll=.. pitch=.. yaw=..]")->required();
+    sub->add_option("--elbow", a->elbow, "left | right (scara), up | down (xarm)");
+    sub->add_flag("--nearest-orientation", a->nearest, "5-joint xArm: the nearest orientation it can reach");
+  };
+  auto* mt = cmd->add_subcommand("move-to", "Move the tool to a pose (PTP through IK)");
+  add_goal(mt);
+  add_motion_options(mt);
+  mt->callback([a] { run_move_to(*a); });
+
+  auto* ik = cmd->add_subcommand("ik", "Print every IK solution for a pose; moves nothing");
+  add_goal(ik);
+  ik->callback([a] { run_ik(*a); });
+
+  auto* torque = cmd->add_subcommand("torque", "Torque on (hold) or off (move by hand)");
+  torque->add_option("state", a->onoff, "on | off")->required();
+  torque->callback([a] { run_torque(*a); });
+
+  auto* grip = cmd->add_subcommand("gripper", "Gripper: open, close, or N% closed");
+  grip->add_option("position", a->gripper, "open | close | 0%..100%")->required();
+  add_motion_options(grip);
+  grip->callback([a] { run_gripper(*a); });
+
+  auto* cal = cmd->add_subcommand("calibrate", "Calibration of the arm file");
+  cal->require_subcommand(1);
+  auto* zero = cal->add_subcommand("zero", "Record where the joints stand as their zero, in the arm file");
+  zero->add_option("joints", a->words, "Joints to zero (default: all)");
+  zero->callback([a] { run_calibrate_zero(*a); });
+}
+
+}  // namespace armctl::cli

@@ -1,0 +1,46 @@
+#include "apps/armctl/arm_session.hpp"
+
+#include <fmt/core.h>
+
+#include "arm/bus_arm_device.hpp"
+#include "arm/rc_arm_device.hpp"
+#include "devices/joint_bus/device_uri.hpp"
+
+namespace armctl::cli {
+
+namespace {
+
+bool names_joint_bus(const std::string& device) {
+  return device.empty() || device == "sim" || device.rfind("sim?", 0) == 0 || device.rfind("unix:", 0) == 0 ||
+         (device.rfind("serial:", 0) == 0 && device.find("select=") != std::string::npos);
+}
+
+}  // namespace
+
+arm::ArmModel load_arm(const std::string& arm) {
+  auto model = arm::load_arm_model(arm::arm_file_path(arm));
+  if (!model) throw ArmctlError(model.error());
+  return std::move(model.value());
+}
+
+std::unique_ptr<ArmSession> open_arm_session(const std::string& arm_name, const std::string& device) {
+  arm::ArmModel model = load_arm(arm_name);
+  auto s = std::make_unique<ArmSession>();
+  const bool bus = model.supports(arm::Protocol::joint_bus) &&
+                   (names_joint_bus(device) || !model.supports(arm::Protocol::robot_commands));
+  if (bus) {
+    s->bus = joint_bus::open_bus(joint_bus::parse_device_uri(device.empty() ? "sim" : device));
+    s->master = std::make_unique<joint_bus::BusMaster>(s->bus->link(), s->bus->default_options());
+    auto dev = std::make_unique<arm::BusArmDevice>(model, *s->master, s->bus->link(), s->bus->description());
+    s->arm = std::make_unique<arm::Arm>(std::move(model), std::move(dev));
+  } else {
+    int servos = 0;
+    for (const auto& j : model.joints) servos = std::max(servos, j.robot_commands->id);
+    s->rc = open_xarm_session(device, servos, 500);
+    auto dev = std::make_unique<arm::RcArmDevice>(model, *s->rc->client);
+    s->arm = std::make_unique<arm::Arm>(std::move(model), std::move(dev));
+  }
+  return s;
+}
+
+}  // namespace armctl::cli

@@ -1,0 +1,223 @@
+#include "arm/arm.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/core.h>
+
+namespace armctl::arm {
+
+namespace {
+
+Error refuse(std::string message) { return Error{ErrorKind::invalid_argument, std::move(message)}; }
+
+// Rest-to-rest time of a trapezoidal (or triangular) profile over `distance`.
+double profile_seconds(double distance, double v, double a) {
+  if (distance <= 0) return 0;
+  const double ramp = v / a;                 // time to reach v
+  if (distance <= v * ramp) return 2 * std::sqrt(distance / a);  // never reaches v
+  return distance / v + ramp;
+}
+
+motion::JointVector chain_of(const ArmModel& m, const std::vector<double>& q) {
+  motion::JointVector v(m.chain_joints());
+  for (int i = 0; i < m.chain_joints(); ++i) v[i] = q[std::size_t(i)];
+  return v;
+}
+
+motion::Pose compose(const motion::Pose& a, const motion::Pose& b) {
+  motion::Pose out;
+  out.position = a.position + a.orientation * b.position;
+  out.orientation = (a.orientation * b.orientation).normalized();
+  return out;
+}
+
+motion::Pose inverse_of(const motion::Pose& p) {
+  motion::Pose out;
+  out.orientation = p.orientation.conjugate();
+  out.position = -(out.orientation * p.position);
+  return out;
+}
+
+}  // namespace
+
+std::string format_joint_value(const ArmModel& model, int index, double si) {
+  return format_quantity(model.joints[std::size_t(index)].dimension, si);
+}
+
+Arm::Arm(ArmModel model, std::unique_ptr<ArmDevice> device)
+    : model_(std::move(model)), device_(std::move(device)) {
+  if (!model_.supports(device_->protocol()))
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      fmt::format("arm '{}' has no {} mapping for its joints, so {} cannot drive it", model_.name,
+                                  to_string(device_->protocol()), device_->description()));
+}
+
+Result<JointState> Arm::read() {
+  auto raw = device_->read_positions();
+  if (!raw) return raw.error();
+  JointState s;
+  s.time = device_->clock().now();
+  s.device = *raw;
+  s.positions = model_.from_device(device_->protocol(), s.device);
+  return s;
+}
+
+motion::Pose Arm::forward(const motion::JointVector& chain) const {
+  return compose(model_.kinematics->forward(chain), model_.tool);
+}
+
+Result<motion::Pose> Arm::pose() {
+  auto s = read();
+  if (!s) return s.error();
+  return forward(chain_of(model_, s->positions));
+}
+
+Status Arm::check_targets(const std::vector<std::optional<double>>& targets) const {
+  if (targets.size() != model_.joints.size())
+    return refuse(fmt::format("{} targets given for an arm with {} joints", targets.size(), model_.joints.size()));
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (!targets[i]) continue;
+    const JointModel& j = model_.joints[i];
+    const double q = *targets[i];
+    if (!std::isfinite(q)) return refuse(fmt::format("joint {}: the target is not a finite number", j.name));
+    if (!j.limits.contains(q, 1e-9))
+      return refuse(fmt::format("joint {}: target {} is outside its limits {}..{}", j.name,
+                                format_quantity(j.dimension, q), format_quantity(j.dimension, j.limits.lower),
+                                format_quantity(j.dimension, j.limits.upper)));
+  }
+  return Ok{};
+}
+
+Duration Arm::move_time(const std::vector<double>& from, const std::vector<std::optional<double>>& to,
+                        double speed) const {
+  double seconds = 0;
+  for (std::size_t i = 0; i < to.size(); ++i) {
+    if (!to[i]) continue;
+    const JointLimits& l = model_.joints[i].limits;
+    seconds = std::max(seconds, profile_seconds(std::abs(*to[i] - from[i]), speed * l.velocity, l.acceleration));
+  }
+  return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(seconds));
+}
+
+Status Arm::move_joints(const std::vector<std::optional<double>>& targets, const MoveOptions& options) {
+  if (auto ok = check_targets(targets); !ok) return ok;
+  if (!options.duration && !(options.speed > 0 && options.speed <= 1))
+    return refuse(fmt::format("speed {} is outside (0, 1] (a fraction of the joints' velocity limits)", options.speed));
+  if (options.duration && options.duration->count() < 0) return refuse("a move's duration cannot be negative");
+  auto now = read();
+  if (!now) return now.error();
+  // Joints without a target keep where they are; a coupled joint's partner must be sent too
+  // (its actuator value depends on both), at the position it has now.
+  std::vector<double> full = now->positions;
+  std::vector<std::optional<double>> with_partners = targets;
+  for (const Coupling& c : model_.couplings) {
+    if (!targets[std::size_t(c.first)] && !targets[std::size_t(c.second)]) continue;
+    for (int k : {c.first, c.second})
+      if (!with_partners[std::size_t(k)]) with_partners[std::size_t(k)] = now->positions[std::size_t(k)];
+  }
+  for (std::size_t i = 0; i < full.size(); ++i)
+    if (with_partners[i]) full[i] = *with_partners[i];
+  const std::vector<double> device = model_.to_device(device_->protocol(), full);
+  const DeviceRange range = device_range(device_->protocol());
+  std::vector<std::optional<double>> device_targets(device.size());
+  for (std::size_t i = 0; i < device.size(); ++i) {
+    if (!with_partners[i]) continue;
+    if (device[i] < range.min - 0.5 || device[i] > range.max + 0.5)
+      return refuse(fmt::format("joint {}: {} maps to device position {:.0f}, outside what {} carries ({}..{}); "
+                                "check the arm file's mapping",
+                                model_.joints[i].name, format_joint_value(model_, int(i), full[i]), device[i],
+                                to_string(device_->protocol()), range.min, range.max));
+    device_targets[i] = device[i];
+  }
+  const Duration duration = options.duration ? *options.duration : move_time(now->positions, with_partners, options.speed);
+  if (auto sent = device_->move(device_targets, duration); !sent) return sent;
+  last_targets_ = with_partners;
+  return Ok{};
+}
+
+Result<std::vector<motion::IkSolution>> Arm::inverse(const CartesianGoal& goal, const JointState& now) const {
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(goal.position[k])) return refuse("the tool position is not a finite number");
+  for (const auto& a : {goal.roll, goal.pitch, goal.yaw})
+    if (a && !std::isfinite(*a)) return refuse("the tool orientation is not a finite number");
+  const motion::JointVector near = chain_of(model_, now.positions);
+  const motion::Rpy current = motion::to_rpy(forward(near).orientation);
+  motion::Rpy rpy{goal.roll.value_or(current.roll), goal.pitch.value_or(current.pitch),
+                  goal.yaw.value_or(current.yaw)};
+  motion::IkRequest request;
+  request.nearest_orientation = goal.nearest_orientation;
+  if (model_.family == motion::KinematicFamily::xarm && !goal.yaw) {
+    // The 5-joint arm's yaw is where it points: left open, it follows the position.
+    rpy.yaw = std::atan2(goal.position.y(), goal.position.x());
+    request.nearest_orientation = true;
+  }
+  motion::Pose tool_pose;
+  tool_pose.position = goal.position;
+  tool_pose.orientation = motion::from_rpy(rpy);
+  request.target = compose(tool_pose, inverse_of(model_.tool));  // where the tool link must be
+  auto solutions = model_.kinematics->inverse(request, near);
+  if (!solutions) return solutions;
+  if (!goal.elbow) return solutions;
+  std::vector<motion::IkSolution> kept;
+  for (const auto& s : *solutions)
+    if (s.configuration.elbow == goal.elbow) kept.push_back(s);
+  if (kept.empty())
+    return refuse(fmt::format("the pose is reachable, but not with the elbow {} (within the joint limits)",
+                              motion::to_string(*goal.elbow)));
+  return kept;
+}
+
+Status Arm::move_to(const CartesianGoal& goal, const MoveOptions& options) {
+  auto now = read();
+  if (!now) return now.error();
+  auto solutions = inverse(goal, *now);
+  if (!solutions) return solutions.error();
+  const motion::IkSolution& best = solutions->front();
+  std::vector<std::optional<double>> targets(model_.joints.size());
+  for (int i = 0; i < model_.chain_joints(); ++i) targets[std::size_t(i)] = best.joints[i];
+  return move_joints(targets, options);
+}
+
+Status Arm::gripper(double closed_fraction, const MoveOptions& options) {
+  if (!model_.gripper) return Error{ErrorKind::unsupported, fmt::format("arm '{}' has no gripper", model_.name)};
+  if (!std::isfinite(closed_fraction) || closed_fraction < 0 || closed_fraction > 1)
+    return refuse(fmt::format("gripper: {} is outside 0..1 (0 = open, 1 = closed)", closed_fraction));
+  std::vector<std::optional<double>> targets(model_.joints.size());
+  targets[std::size_t(model_.gripper->joint)] = model_.gripper->at(closed_fraction);
+  return move_joints(targets, options);
+}
+
+Result<JointState> Arm::wait(const WaitOptions& options) {
+  const TimePoint deadline = device_->clock().now() + options.timeout;
+  for (;;) {
+    auto s = read();
+    if (!s) return s.error();
+    std::string late;
+    for (std::size_t i = 0; i < last_targets_.size(); ++i) {
+      if (!last_targets_[i]) continue;
+      const JointModel& j = model_.joints[i];
+      const double tol = j.dimension == Dimension::angle ? options.angle_tolerance : options.length_tolerance;
+      if (std::abs(s->positions[i] - *last_targets_[i]) <= tol) continue;
+      late += fmt::format("{}{} at {} (target {})", late.empty() ? "" : "; ", j.name,
+                          format_quantity(j.dimension, s->positions[i]), format_quantity(j.dimension, *last_targets_[i]));
+    }
+    if (late.empty()) return s;
+    if (device_->clock().now() >= deadline)
+      return Error{ErrorKind::timeout,
+                   fmt::format("not arrived after {:.1f} s: {}", std::chrono::duration<double>(options.timeout).count(), late)};
+    device_->idle(options.poll);
+  }
+}
+
+Status Arm::stop() {
+  last_targets_.clear();
+  return device_->stop();
+}
+
+Status Arm::set_torque(bool on) {
+  last_targets_.clear();
+  return device_->set_torque(on);
+}
+
+}  // namespace armctl::arm

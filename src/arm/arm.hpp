@@ -1,0 +1,96 @@
+// The Arm API: one arm, in SI units with named joints, over any device. Every application
+// (CLI, programs, ROS node, Python, web dashboard) is written against this type.
+//
+// Values: joint positions in rad (revolute) or m (prismatic), in the model's joint order
+// (the chain base to tool, then the gripper); poses in metres and quaternions (RPY helpers
+// in motion/kinematics.hpp). Every command is validated against the arm's limits and the
+// device's range before anything is sent: a refused command sends nothing. Not
+// thread-safe: one thread uses one Arm.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "arm/arm_device.hpp"
+#include "arm/arm_model.hpp"
+#include "core/clock.hpp"
+#include "core/error.hpp"
+#include "motion/kinematics.hpp"
+
+namespace armctl::arm {
+
+struct JointState {
+  TimePoint time{};              // on the device's clock, when the positions were read
+  std::vector<double> positions;  // SI, every joint
+  std::vector<double> device;     // the same in device units, as read
+};
+
+struct MoveOptions {
+  // Exactly this long (all joints arrive together). Without it, the slowest joint moves at
+  // `speed` times its velocity limit with its acceleration limit.
+  std::optional<Duration> duration;
+  double speed = 0.25;  // fraction of the velocity limits, (0, 1]
+};
+
+// A tool target. Orientation components left empty keep the tool's current ones (the
+// xArm's yaw is set by where the tool is: left empty it follows the position).
+struct CartesianGoal {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  std::optional<double> roll, pitch, yaw;
+  std::optional<motion::Elbow> elbow;  // only solutions in this configuration
+  bool nearest_orientation = false;     // 5-joint arm: the nearest reachable orientation
+};
+
+struct WaitOptions {
+  Duration timeout = std::chrono::seconds(10);
+  Duration poll = std::chrono::milliseconds(50);  // between position reads
+  double angle_tolerance = 0.035;   // rad (2 deg)
+  double length_tolerance = 0.002;  // m
+};
+
+class Arm {
+ public:
+  Arm(ArmModel model, std::unique_ptr<ArmDevice> device);
+
+  const ArmModel& model() const { return model_; }
+  ArmDevice& device() { return *device_; }
+  const Clock& clock() const { return device_->clock(); }
+
+  Result<JointState> read();
+  // The tool pose where the arm stands now.
+  Result<motion::Pose> pose();
+  // Kinematics with the arm file's tool frame applied (chain joints only).
+  motion::Pose forward(const motion::JointVector& chain) const;
+  Result<std::vector<motion::IkSolution>> inverse(const CartesianGoal& goal, const JointState& now) const;
+
+  // Moves the joints that have a target (SI; the vector has one entry per joint).
+  Status move_joints(const std::vector<std::optional<double>>& targets, const MoveOptions& options = {});
+  // Moves the tool (PTP: joint-space move to the IK solution nearest the current joints).
+  Status move_to(const CartesianGoal& goal, const MoveOptions& options = {});
+  // Gripper: 0 = open, 1 = closed.
+  Status gripper(double closed_fraction, const MoveOptions& options = {});
+  // Closed loop: reads positions until every joint of the last move is within tolerance of
+  // its target; the error (timeout) names every joint that did not arrive, with where it is.
+  Result<JointState> wait(const WaitOptions& options = {});
+  Status stop();
+  Status set_torque(bool on);
+
+  // The time a move from `from` to `to` takes at `speed` of the limits (rest to rest).
+  Duration move_time(const std::vector<double>& from, const std::vector<std::optional<double>>& to,
+                     double speed) const;
+  // Checks targets against the joint limits and the device's range; the error names the
+  // joint, the value and what is allowed.
+  Status check_targets(const std::vector<std::optional<double>>& targets) const;
+
+ private:
+  ArmModel model_;
+  std::unique_ptr<ArmDevice> device_;
+  std::vector<std::optional<double>> last_targets_;  // SI, of the last move
+};
+
+// "30.000 deg" / "120.000 mm" for joint `index` of `model`.
+std::string format_joint_value(const ArmModel& model, int index, double si);
+
+}  // namespace armctl::arm

@@ -1,0 +1,38 @@
+// The seam between the Arm API and a device: positions and moves in the device's own units
+// (Robot Commands servo positions, joint-bus clicks), one entry per joint of the arm model,
+// in the model's order. Implementations: rc_arm_device (any Robot Commands board: xArm,
+// emulated xArm, armctl's arm controller) and bus_arm_device (the joint bus, via BusMaster).
+// Devices validate what their protocol can carry and refuse before sending anything.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "arm/arm_model.hpp"
+#include "core/clock.hpp"
+#include "core/error.hpp"
+
+namespace armctl::arm {
+
+class ArmDevice {
+ public:
+  virtual ~ArmDevice() = default;
+  virtual Protocol protocol() const = 0;
+  virtual std::string description() const = 0;
+  virtual const Clock& clock() const = 0;
+
+  // Where every joint stands, in device units.
+  virtual Result<std::vector<double>> read_positions() = 0;
+  // Moves the joints that have a target so that all of them arrive `duration` from now
+  // (as closely as the device can); joints without a target are left alone.
+  virtual Status move(const std::vector<std::optional<double>>& targets, Duration duration) = 0;
+  // Stops every joint where it stands and holds it there.
+  virtual Status stop() = 0;
+  // Torque off: the joints can be moved by hand. On: they hold where they stand.
+  virtual Status set_torque(bool on) = 0;
+  // Lets `d` pass on the device's clock (a simulated device runs meanwhile).
+  virtual void idle(Duration d) = 0;
+};
+
+}  // namespace armctl::arm

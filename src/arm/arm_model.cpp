@@ -1,0 +1,380 @@
+#include "arm/arm_model.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/core.h>
+#include <urdf_model/model.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "core/config_files.hpp"
+#include "core/json_reader.hpp"
+#include "motion/urdf_chain.hpp"
+#include "portable/joint_tuning.hpp"
+
+namespace armctl::arm {
+
+namespace {
+
+using json_reader::json;
+using json_reader::ObjectReader;
+
+// A quantity written as a string with its unit ("30deg", "120mm/s").
+double quantity(const ObjectReader& r, const json& v, const std::string& path, Dimension d, int power) {
+  if (!v.is_string())
+    r.fail(path, fmt::format("must be a string with a unit, e.g. \"{}\"",
+                             d == Dimension::angle ? "30deg" : "120mm") + (power ? "/s" : ""));
+  Result<double> q = parse_quantity(v.get<std::string>(), d, path, power);
+  if (!q) r.fail(path, q.error().message.substr(path.size() + 2));
+  return *q;
+}
+
+std::string name_of(const ObjectReader& r, const json& v, const std::string& path) {
+  if (!v.is_string() || v.get<std::string>().empty()) r.fail(path, "must be a non-empty string");
+  return v.get<std::string>();
+}
+
+JointLimits parse_limits(const std::string& source, const json& v, const std::string& path, Dimension d) {
+  ObjectReader r(source, v, path);
+  JointLimits l;
+  const json& pos = r.require("position");
+  if (!pos.is_array() || pos.size() != 2) r.fail(r.at("position"), "must be [lower, upper], e.g. [\"-90deg\", \"90deg\"]");
+  l.lower = quantity(r, pos[0], r.at("position") + "[0]", d, 0);
+  l.upper = quantity(r, pos[1], r.at("position") + "[1]", d, 0);
+  if (l.lower >= l.upper)
+    r.fail(r.at("position"), fmt::format("lower {} must be below upper {}", format_quantity(d, l.lower),
+                                         format_quantity(d, l.upper)));
+  const char* names[] = {"velocity", "acceleration", "jerk"};
+  double* fields[] = {&l.velocity, &l.acceleration, &l.jerk};
+  for (int k = 0; k < 3; ++k) {
+    *fields[k] = quantity(r, r.require(names[k]), r.at(names[k]), d, k + 1);
+    if (*fields[k] <= 0) r.fail(r.at(names[k]), "must be above zero");
+  }
+  r.finish();
+  return l;
+}
+
+DeviceMap parse_map(const std::string& source, const json& v, const std::string& path, Dimension d,
+                    Protocol p) {
+  ObjectReader r(source, v, path);
+  DeviceMap m;
+  const DeviceRange range = device_range(p);
+  const char* id_key = p == Protocol::robot_commands ? "servo" : "number";
+  m.id = static_cast<int>(r.integer(id_key, 1, p == Protocol::robot_commands ? 19 : 7));
+  const json& dev = r.require("device");
+  if (!dev.is_array() || dev.size() != 2)
+    r.fail(r.at("device"), fmt::format("must be two device positions [a, b] in {}..{}", range.min, range.max));
+  m.device_a = r.number(dev[0], r.at("device") + "[0]", range.min, range.max);
+  m.device_b = r.number(dev[1], r.at("device") + "[1]", range.min, range.max);
+  const json& joint = r.require("joint");
+  if (!joint.is_array() || joint.size() != 2)
+    r.fail(r.at("joint"), "must be the two joint positions [a, b] that the device positions stand for");
+  m.actuator_a = quantity(r, joint[0], r.at("joint") + "[0]", d, 0);
+  m.actuator_b = quantity(r, joint[1], r.at("joint") + "[1]", d, 0);
+  if (m.device_a == m.device_b) r.fail(r.at("device"), "the two device positions must differ");
+  if (m.actuator_a == m.actuator_b) r.fail(r.at("joint"), "the two joint positions must differ");
+  if (p == Protocol::joint_bus) {
+    m.max_speed_cps = r.number("max_speed_cps", 1, joint_bus::max_speed_cps_limit);
+    m.max_accel_cps2 = r.number("max_accel_cps2", joint_bus::min_accel_cps2_limit, joint_bus::max_accel_cps2_limit);
+  }
+  r.finish();
+  return m;
+}
+
+const char* type_name(int urdf_type) {
+  switch (urdf_type) {
+    case urdf::Joint::REVOLUTE: return "revolute";
+    case urdf::Joint::PRISMATIC: return "prismatic";
+    case urdf::Joint::CONTINUOUS: return "continuous";
+    case urdf::Joint::FIXED: return "fixed";
+    case urdf::Joint::FLOATING: return "floating";
+    case urdf::Joint::PLANAR: return "planar";
+    default: return "unknown";
+  }
+}
+
+bool same_name(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
+// Throws ArmctlError(invalid_config) on the first problem.
+ArmModel parse(std::string_view arm_json, const std::string& source, std::string_view urdf_text,
+               const std::string& urdf_source) {
+  json doc;
+  try {
+    doc = json::parse(arm_json);
+  } catch (const json::exception& e) {
+    throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: not valid JSON: {}", source, e.what()));
+  }
+  ObjectReader r(source, doc, "");
+  ArmModel m;
+  m.name = name_of(r, r.require("name"), "name");
+  const std::string family = name_of(r, r.require("family"), "family");
+  if (family == "xarm") m.family = motion::KinematicFamily::xarm;
+  else if (family == "scara") m.family = motion::KinematicFamily::scara;
+  else r.fail("family", fmt::format("'{}' is not a kinematic family armctl knows (allowed: xarm, scara)", family));
+  (void)name_of(r, r.require("urdf"), "urdf");  // read by the caller
+  const std::string base = name_of(r, r.require("base_link"), "base_link");
+  const std::string tip = name_of(r, r.require("tool_link"), "tool_link");
+
+  // The URDF: the chain from base to tool, and every joint the arm file names.
+  Result<motion::UrdfChain> chain = motion::read_urdf_chain(urdf_text, base, tip);
+  if (!chain) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, chain.error().message));
+  urdf::ModelInterfaceSharedPtr urdf_model = urdf::parseURDF(std::string(urdf_text));
+  if (!urdf_model) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: not a valid URDF", urdf_source));
+
+  std::string gripper_name;
+  const json* gripper = r.find("gripper");
+  if (gripper) {
+    ObjectReader g(source, *gripper, "gripper");
+    gripper_name = name_of(g, g.require("joint"), "gripper.joint");
+  }
+
+  const json& joints = r.require("joints");
+  if (!joints.is_array() || joints.empty() || joints.size() > motion::kMaxChainJoints + 1u)
+    r.fail("joints", fmt::format("must be an array of 1..{} joint objects", motion::kMaxChainJoints + 1));
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    const std::string path = fmt::format("joints[{}]", i);
+    ObjectReader jr(source, joints[i], path);
+    JointModel jm;
+    jm.name = name_of(jr, jr.require("name"), jr.at("name"));
+    if (!names.insert(jm.name).second) jr.fail(jr.at("name"), fmt::format("joint '{}' appears twice", jm.name));
+    urdf::JointConstSharedPtr uj = urdf_model->getJoint(jm.name);
+    if (!uj)
+      jr.fail(jr.at("name"), fmt::format("{} has no joint named '{}'", urdf_source, jm.name));
+    if (uj->type == urdf::Joint::REVOLUTE) jm.dimension = Dimension::angle;
+    else if (uj->type == urdf::Joint::PRISMATIC) jm.dimension = Dimension::length;
+    else
+      jr.fail(jr.at("name"), fmt::format("{}: joint '{}' is {}; armctl drives revolute and prismatic joints only",
+                                         urdf_source, jm.name, type_name(uj->type)));
+    jm.role = jm.name == gripper_name ? JointRole::gripper : JointRole::chain;
+    jm.limits = parse_limits(source, jr.require("limits"), jr.at("limits"), jm.dimension);
+    if (uj->limits && (jm.limits.lower < uj->limits->lower - 1e-9 || jm.limits.upper > uj->limits->upper + 1e-9))
+      jr.fail(jr.at("limits.position"),
+              fmt::format("{}..{} reaches beyond the URDF's limits {}..{} for joint '{}'",
+                          format_quantity(jm.dimension, jm.limits.lower), format_quantity(jm.dimension, jm.limits.upper),
+                          format_quantity(jm.dimension, uj->limits->lower),
+                          format_quantity(jm.dimension, uj->limits->upper), jm.name));
+    if (const json* v = jr.find("robot_commands"))
+      jm.robot_commands = parse_map(source, *v, jr.at("robot_commands"), jm.dimension, Protocol::robot_commands);
+    if (const json* v = jr.find("joint_bus"))
+      jm.joint_bus = parse_map(source, *v, jr.at("joint_bus"), jm.dimension, Protocol::joint_bus);
+    if (!jm.robot_commands && !jm.joint_bus)
+      jr.fail(path, "needs a device mapping: robot_commands, joint_bus or both");
+    jr.finish();
+    m.joints.push_back(std::move(jm));
+  }
+
+  // The chain joints, in the order the URDF chain has them, then the gripper.
+  std::vector<JointModel> ordered;
+  for (const auto& cj : chain->joints) {
+    auto it = std::find_if(m.joints.begin(), m.joints.end(), [&](const JointModel& j) { return j.name == cj.name; });
+    if (it == m.joints.end())
+      r.fail("joints", fmt::format("the URDF chain {} -> {} has joint '{}', which the arm file does not describe",
+                                   base, tip, cj.name));
+    if (it->role == JointRole::gripper)
+      r.fail("gripper.joint", fmt::format("'{}' is a joint of the chain {} -> {}, not a gripper", cj.name, base, tip));
+    ordered.push_back(*it);
+  }
+  for (const auto& j : m.joints) {
+    if (j.role == JointRole::chain &&
+        std::none_of(ordered.begin(), ordered.end(), [&](const JointModel& o) { return o.name == j.name; }))
+      r.fail("joints", fmt::format("joint '{}' is not on the URDF chain {} -> {} (and is not the gripper)", j.name, base, tip));
+  }
+  if (gripper) {
+    auto it = std::find_if(m.joints.begin(), m.joints.end(), [&](const JointModel& j) { return j.name == gripper_name; });
+    if (it == m.joints.end()) r.fail("gripper.joint", fmt::format("no joint named '{}' in joints", gripper_name));
+    ObjectReader g(source, *gripper, "gripper");
+    (void)g.require("joint");
+    GripperModel gm;
+    gm.joint = static_cast<int>(ordered.size());
+    gm.open = quantity(g, g.require("open"), "gripper.open", it->dimension, 0);
+    gm.closed = quantity(g, g.require("closed"), "gripper.closed", it->dimension, 0);
+    if (!it->limits.contains(gm.open) || !it->limits.contains(gm.closed))
+      g.fail("gripper", "open and closed must lie inside the gripper joint's position limits");
+    g.finish();
+    ordered.push_back(*it);
+    m.gripper = gm;
+  }
+  // Both protocols mapped for every joint, or for none: a protocol the arm supports must
+  // reach all of its joints.
+  for (Protocol p : {Protocol::robot_commands, Protocol::joint_bus}) {
+    const bool any = std::any_of(ordered.begin(), ordered.end(), [&](const JointModel& j) { return j.map(p).has_value(); });
+    std::set<int> ids;
+    for (std::size_t i = 0; any && i < ordered.size(); ++i) {
+      if (!ordered[i].map(p))
+        r.fail("joints", fmt::format("joint '{}' has no {} mapping, but other joints do (map every joint or none)",
+                                     ordered[i].name, to_string(p)));
+      if (!ids.insert(ordered[i].map(p)->id).second)
+        r.fail("joints", fmt::format("joint '{}': {} ID {} is used twice", ordered[i].name, to_string(p), ordered[i].map(p)->id));
+    }
+  }
+  m.joints = std::move(ordered);
+
+  if (const json* cs = r.find("couplings")) {
+    if (!cs->is_array()) r.fail("couplings", "must be an array of {\"joints\": [A, B], \"matrix\": [[a, b], [c, d]]}");
+    for (std::size_t i = 0; i < cs->size(); ++i) {
+      const std::string path = fmt::format("couplings[{}]", i);
+      ObjectReader c(source, (*cs)[i], path);
+      const json& js = c.require("joints");
+      if (!js.is_array() || js.size() != 2) c.fail(c.at("joints"), "must name two joints");
+      Coupling k;
+      int* idx[] = {&k.first, &k.second};
+      for (int n = 0; n < 2; ++n) {
+        const std::string jn = name_of(c, js[n], fmt::format("{}[{}]", c.at("joints"), n));
+        auto found = m.find_joint(jn);
+        if (!found) c.fail(c.at("joints"), fmt::format("no joint named '{}'", jn));
+        *idx[n] = *found;
+      }
+      if (k.first == k.second) c.fail(c.at("joints"), "must name two different joints");
+      for (const Coupling& other : m.couplings)
+        for (int a : {other.first, other.second})
+          if (a == k.first || a == k.second) c.fail(c.at("joints"), "a joint can be in one coupling only");
+      const json& mx = c.require("matrix");
+      if (!mx.is_array() || mx.size() != 2 || !mx[0].is_array() || mx[0].size() != 2 || !mx[1].is_array() ||
+          mx[1].size() != 2)
+        c.fail(c.at("matrix"), "must be a 2x2 matrix [[a, b], [c, d]]");
+      for (int row = 0; row < 2; ++row)
+        for (int col = 0; col < 2; ++col)
+          k.matrix[row][col] = c.number(mx[row][col], fmt::format("{}[{}][{}]", c.at("matrix"), row, col), -100, 100);
+      const double det = k.matrix[0][0] * k.matrix[1][1] - k.matrix[0][1] * k.matrix[1][0];
+      if (std::abs(det) < 1e-9) c.fail(c.at("matrix"), "is singular: the two joints could not be told apart");
+      c.finish();
+      m.couplings.push_back(k);
+    }
+  }
+
+  if (const json* tf = r.find("tool_frame")) {
+    ObjectReader t(source, *tf, "tool_frame");
+    Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
+    double rpy[3] = {0, 0, 0};
+    if (const json* v = t.find("xyz")) {
+      if (!v->is_array() || v->size() != 3) t.fail(t.at("xyz"), "must be [x, y, z] with units, e.g. [\"0mm\", \"0mm\", \"20mm\"]");
+      for (int n = 0; n < 3; ++n) xyz[n] = quantity(t, (*v)[n], fmt::format("{}[{}]", t.at("xyz"), n), Dimension::length, 0);
+    }
+    if (const json* v = t.find("rpy")) {
+      if (!v->is_array() || v->size() != 3) t.fail(t.at("rpy"), "must be [roll, pitch, yaw] with units, e.g. [\"0deg\", \"0deg\", \"0deg\"]");
+      for (int n = 0; n < 3; ++n) rpy[n] = quantity(t, (*v)[n], fmt::format("{}[{}]", t.at("rpy"), n), Dimension::angle, 0);
+    }
+    t.finish();
+    m.tool.position = xyz;
+    m.tool.orientation = motion::from_rpy({rpy[0], rpy[1], rpy[2]});
+  }
+  r.finish();
+
+  std::vector<motion::PositionLimits> limits;
+  for (const auto& j : m.joints)
+    if (j.role == JointRole::chain) limits.push_back({j.limits.lower, j.limits.upper});
+  auto kin = motion::make_kinematics(m.family, *chain, limits);
+  if (!kin) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, kin.error().message));
+  m.kinematics = std::shared_ptr<const motion::Kinematics>(std::move(kin.value()));
+  return m;
+}
+
+std::string read_file(const std::filesystem::path& path, const char* what) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const auto status = fs::status(path, ec);
+  if (ec || !fs::exists(status))
+    throw ArmctlError(ErrorKind::io, fmt::format("cannot open {} {}: no such file", what, path.string()));
+  if (!fs::is_regular_file(status))
+    throw ArmctlError(ErrorKind::io, fmt::format("{} {} is not a regular file", what, path.string()));
+  constexpr std::uintmax_t kMaxSize = 1 << 20;  // arm files and URDFs are a few kB
+  if (fs::file_size(path, ec) > kMaxSize)
+    throw ArmctlError(ErrorKind::invalid_config, fmt::format("{} {} is larger than 1 MiB", what, path.string()));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ArmctlError(ErrorKind::io, fmt::format("cannot open {} {}", what, path.string()));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+const char* to_string(Protocol p) { return p == Protocol::robot_commands ? "robot_commands" : "joint_bus"; }
+
+DeviceRange device_range(Protocol p) {
+  return p == Protocol::robot_commands ? DeviceRange{0, 1000} : DeviceRange{-32768, 32767};
+}
+
+std::optional<int> ArmModel::find_joint(std::string_view name) const {
+  for (int i = 0; i < joint_count(); ++i)
+    if (same_name(joints[static_cast<std::size_t>(i)].name, name)) return i;
+  return std::nullopt;
+}
+
+bool ArmModel::supports(Protocol p) const {
+  return !joints.empty() && joints.front().map(p).has_value();
+}
+
+std::vector<double> ArmModel::to_device(Protocol p, const std::vector<double>& q) const {
+  std::vector<double> actuator = q;
+  for (const Coupling& c : couplings) {
+    const double a = q[std::size_t(c.first)], b = q[std::size_t(c.second)];
+    actuator[std::size_t(c.first)] = c.matrix[0][0] * a + c.matrix[0][1] * b;
+    actuator[std::size_t(c.second)] = c.matrix[1][0] * a + c.matrix[1][1] * b;
+  }
+  std::vector<double> out(q.size());
+  for (std::size_t i = 0; i < q.size(); ++i) out[i] = joints[i].map(p)->to_device(actuator[i]);
+  return out;
+}
+
+std::vector<double> ArmModel::from_device(Protocol p, const std::vector<double>& device) const {
+  std::vector<double> q(device.size());
+  for (std::size_t i = 0; i < device.size(); ++i) q[i] = joints[i].map(p)->to_actuator(device[i]);
+  for (const Coupling& c : couplings) {
+    const double a = q[std::size_t(c.first)], b = q[std::size_t(c.second)];
+    const double det = c.matrix[0][0] * c.matrix[1][1] - c.matrix[0][1] * c.matrix[1][0];
+    q[std::size_t(c.first)] = (c.matrix[1][1] * a - c.matrix[0][1] * b) / det;
+    q[std::size_t(c.second)] = (-c.matrix[1][0] * a + c.matrix[0][0] * b) / det;
+  }
+  return q;
+}
+
+Result<ArmModel> parse_arm_model(std::string_view arm_json, std::string_view source, std::string_view urdf_text,
+                                 std::string_view urdf_source) {
+  try {
+    return parse(arm_json, std::string(source), urdf_text, std::string(urdf_source));
+  } catch (const ArmctlError& e) {
+    return e.error();
+  }
+}
+
+Result<ArmModel> load_arm_model(const std::filesystem::path& arm_file) {
+  try {
+    const std::string text = read_file(arm_file, "arm file");
+    // The URDF's name, read before the full parse so the URDF can be found beside the file.
+    std::string urdf_name;
+    try {
+      json doc = json::parse(text);
+      if (doc.is_object() && doc.contains("urdf") && doc["urdf"].is_string()) urdf_name = doc["urdf"].get<std::string>();
+    } catch (const json::exception&) {
+    }
+    if (urdf_name.empty()) return parse_arm_model(text, arm_file.string(), "", "(no urdf)");
+    std::filesystem::path urdf_path = urdf_name;
+    if (urdf_path.is_relative()) urdf_path = arm_file.parent_path() / urdf_path;
+    const std::string urdf = read_file(urdf_path, "URDF");
+    Result<ArmModel> m = parse_arm_model(text, arm_file.string(), urdf, urdf_path.string());
+    if (!m) return m;
+    ArmModel model = std::move(m.value());
+    model.file = arm_file;
+    model.urdf = urdf_path;
+    return model;
+  } catch (const ArmctlError& e) {
+    return e.error();
+  }
+}
+
+std::filesystem::path arm_file_path(std::string_view arm) {
+  if (arm == "xarm" || arm == "scara") return find_config_file(std::string(arm) + ".arm.json");
+  return std::filesystem::path(arm);
+}
+
+}  // namespace armctl::arm

@@ -1,0 +1,117 @@
+// What armctl knows about one arm, in SI units: its joints (names, kinds, limits), how each
+// joint's value maps to the units of every device that can drive it, the kinematics of its
+// chain, the tool frame and the gripper. Loaded from an arm file (docs/arm-files.md) plus
+// the URDF the arm file names; both are checked against each other.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/quantity.hpp"
+#include "motion/kinematics.hpp"
+
+namespace armctl::arm {
+
+// The two protocols an arm can be driven through (a device URI picks one).
+enum class Protocol { robot_commands, joint_bus };
+const char* to_string(Protocol p);
+
+struct JointLimits {
+  double lower = 0, upper = 0;  // rad or m
+  double velocity = 0;          // rad/s or m/s
+  double acceleration = 0;      // per s^2
+  double jerk = 0;              // per s^3
+  bool contains(double q, double slack = 0) const { return q >= lower - slack && q <= upper + slack; }
+};
+
+// A straight line between two points: device units <-> actuator value (SI). Direction and
+// zero are in the two points (a reversed joint lists its device values descending).
+struct DeviceMap {
+  int id = 0;  // Robot Commands servo ID, or joint-bus joint number
+  double device_a = 0, actuator_a = 0, device_b = 1, actuator_b = 1;
+  // Joint bus only: the joint's own speed at set_speed 100 % and its acceleration, as in
+  // its tuning (config/scara.json), so that moves can be planned to arrive together.
+  double max_speed_cps = 0, max_accel_cps2 = 0;
+  double device_per_unit() const { return (device_b - device_a) / (actuator_b - actuator_a); }
+  double to_device(double actuator) const { return device_a + (actuator - actuator_a) * device_per_unit(); }
+  double to_actuator(double device) const { return actuator_a + (device - device_a) / device_per_unit(); }
+};
+
+// The smallest and largest value a protocol can carry for one joint.
+struct DeviceRange {
+  double min, max;
+};
+DeviceRange device_range(Protocol p);  // robot_commands 0..1000, joint_bus -32768..32767
+
+enum class JointRole { chain, gripper };
+
+struct JointModel {
+  std::string name;
+  Dimension dimension = Dimension::angle;  // revolute: angle; prismatic: length
+  JointRole role = JointRole::chain;
+  JointLimits limits;
+  std::optional<DeviceMap> robot_commands;
+  std::optional<DeviceMap> joint_bus;
+  const std::optional<DeviceMap>& map(Protocol p) const {
+    return p == Protocol::robot_commands ? robot_commands : joint_bus;
+  }
+};
+
+// Two joints driven by two actuators together (the SCARA's differential wrist):
+// actuator[first, second] = matrix * joint[first, second]. Joints without a coupling have
+// actuator = joint.
+struct Coupling {
+  int first = 0, second = 0;  // joint indices
+  double matrix[2][2] = {{1, 0}, {0, 1}};
+};
+
+struct GripperModel {
+  int joint = 0;               // index of the gripper joint
+  double open = 0, closed = 0;  // its positions (rad or m)
+  double at(double closed_fraction) const { return open + closed_fraction * (closed - open); }
+  double fraction(double position) const {
+    return closed == open ? 0.0 : (position - open) / (closed - open);
+  }
+};
+
+struct ArmModel {
+  std::string name;
+  motion::KinematicFamily family = motion::KinematicFamily::xarm;
+  std::vector<JointModel> joints;  // the chain's joints base to tool, then the gripper
+  std::vector<Coupling> couplings;
+  std::optional<GripperModel> gripper;
+  motion::Pose tool;  // the tool frame in the URDF's tool link
+  std::shared_ptr<const motion::Kinematics> kinematics;
+  std::filesystem::path file;  // the arm file it came from ("" if parsed from text)
+  std::filesystem::path urdf;
+
+  int chain_joints() const { return kinematics ? kinematics->joint_count() : 0; }
+  int joint_count() const { return static_cast<int>(joints.size()); }
+  // Index of the joint named `name` (case-insensitive), or nothing.
+  std::optional<int> find_joint(std::string_view name) const;
+  bool supports(Protocol p) const;
+
+  // Joint values (SI, every joint) -> device units per joint, and back (couplings applied).
+  std::vector<double> to_device(Protocol p, const std::vector<double>& joints) const;
+  std::vector<double> from_device(Protocol p, const std::vector<double>& device) const;
+};
+
+// Parses an arm file's text. `urdf_text` is the URDF it names (read by the caller relative
+// to the arm file); every error (invalid_config) names the key or URDF element and what is
+// allowed.
+Result<ArmModel> parse_arm_model(std::string_view arm_json, std::string_view source,
+                                 std::string_view urdf_text, std::string_view urdf_source);
+
+// Reads an arm file and the URDF it names (relative to the arm file's folder).
+Result<ArmModel> load_arm_model(const std::filesystem::path& arm_file);
+
+// `xarm` or `scara` -> the shipped arm file (config/<name>.arm.json, found as other configs
+// are: core/config_files.hpp); anything else is taken as a path.
+std::filesystem::path arm_file_path(std::string_view arm);
+
+}  // namespace armctl::arm

@@ -1,0 +1,104 @@
+#include "arm/bus_arm_device.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/core.h>
+
+#include "devices/joint_bus/bus_connection.hpp"
+
+namespace armctl::arm {
+
+BusArmDevice::BusArmDevice(const ArmModel& model, joint_bus::BusMaster& master, transport::JointBusLink& link,
+                           std::string description)
+    : master_(master), link_(link), description_(std::move(description)) {
+  for (const JointModel& j : model.joints) {
+    if (!j.joint_bus)
+      throw ArmctlError(ErrorKind::invalid_argument, fmt::format("joint {} has no joint_bus mapping in the arm file", j.name));
+    if (j.joint_bus->id > master.joint_count())
+      throw ArmctlError(ErrorKind::invalid_argument,
+                        fmt::format("joint {} is joint-bus joint {}, but {} has joints 1..{}", j.name, j.joint_bus->id,
+                                    description_, master.joint_count()));
+    numbers_.push_back(j.joint_bus->id);
+    profiles_.push_back(arm_controller::as_quantized_by_joint({j.joint_bus->max_speed_cps, j.joint_bus->max_accel_cps2}));
+  }
+  // A drive transaction is 8 bytes (READY, COMMAND, DATA, STATUS) plus the turnarounds.
+  transaction_ = wire_time(10, link.baud());
+}
+
+Status BusArmDevice::failed(const joint_bus::JointFailure& f) const {
+  return f.to_error();
+}
+
+Result<std::vector<double>> BusArmDevice::read_positions() {
+  std::vector<double> out;
+  for (int n : numbers_) {
+    auto p = master_.get_position(n);
+    if (!p) return p.failure().to_error();
+    out.push_back(*p);
+  }
+  return out;
+}
+
+Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Duration duration) {
+  auto now = read_positions();
+  if (!now) return now.error();
+  std::vector<arm_controller::PlanInput> inputs;
+  std::vector<std::int16_t> clicks;
+  std::vector<std::size_t> which;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (!targets[i]) continue;
+    const long c = std::lround(*targets[i]);
+    if (c < -32768 || c > 32767)
+      return Error{ErrorKind::invalid_argument, fmt::format("joint {}: {} clicks is outside -32768..32767", numbers_[i], c)};
+    arm_controller::PlanInput in;
+    in.joint = numbers_[i];
+    in.distance = std::abs(double(c) - (*now)[i]);
+    in.profile = profiles_[i];
+    in.zone = 0;
+    inputs.push_back(in);
+    clicks.push_back(static_cast<std::int16_t>(c));
+    which.push_back(i);
+  }
+  if (inputs.empty()) return Ok{};
+  const TimePoint start = link_.clock().now();
+  const auto plan = arm_controller::plan_synchronized_move(inputs, duration, transaction_, transaction_ * 2);
+  // Each joint gets set_speed and drive_to back to back, timed so that it starts when the
+  // plan says (the slowest joint first); the plan's start delays make them arrive together.
+  std::vector<std::size_t> order(inputs.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return plan.joints[a].start < plan.joints[b].start; });
+  for (std::size_t k : order) {
+    const TimePoint due = start + plan.joints[k].start - transaction_ * 2;
+    if (due > link_.clock().now()) idle(due - link_.clock().now());
+    if (auto s = master_.set_speed(inputs[k].joint, static_cast<std::int16_t>(plan.joints[k].percent)); !s)
+      return failed(s.failure());
+    if (auto d = master_.drive_to(inputs[k].joint, clicks[k]); !d) return failed(d.failure());
+  }
+  return Ok{};
+}
+
+Status BusArmDevice::stop() {
+  std::optional<joint_bus::JointFailure> first;
+  for (int n : numbers_) {
+    auto s = master_.set_speed(n, 0);
+    if (!s && !first) first = s.failure();  // tell every joint before reporting
+  }
+  if (first) return failed(*first);
+  return Ok{};
+}
+
+Status BusArmDevice::set_torque(bool on) {
+  std::optional<joint_bus::JointFailure> first;
+  for (int n : numbers_) {
+    auto s = master_.set_pid_state(n, on);
+    if (!s && !first) first = s.failure();
+  }
+  if (first) return failed(*first);
+  return Ok{};
+}
+
+void BusArmDevice::idle(Duration d) { joint_bus::idle(link_, d); }
+
+}  // namespace armctl::arm

@@ -1,0 +1,41 @@
+// An arm on the joint bus directly (the SCARA through BusMaster): clicks per joint, moves
+// planned so that every joint arrives at the same instant (the arm controller's planner,
+// sync_plan), stop and torque by the joint-bus commands.
+#pragma once
+
+#include <vector>
+
+#include "arm/arm_device.hpp"
+#include "devices/arm_controller/sync_plan.hpp"
+#include "devices/joint_bus/bus_master.hpp"
+
+namespace armctl::arm {
+
+class BusArmDevice final : public ArmDevice {
+ public:
+  // `master` and `link` (the master's link) must outlive the device.
+  BusArmDevice(const ArmModel& model, joint_bus::BusMaster& master, transport::JointBusLink& link,
+               std::string description);
+
+  Protocol protocol() const override { return Protocol::joint_bus; }
+  std::string description() const override { return description_; }
+  const Clock& clock() const override { return link_.clock(); }
+  Result<std::vector<double>> read_positions() override;
+  Status move(const std::vector<std::optional<double>>& targets, Duration duration) override;
+  // set_speed 0 to every joint, back to back: each brakes at its own deceleration and holds.
+  Status stop() override;
+  Status set_torque(bool on) override;  // set_pid_state
+  void idle(Duration d) override;
+
+ private:
+  Status failed(const joint_bus::JointFailure& f) const;
+
+  joint_bus::BusMaster& master_;
+  transport::JointBusLink& link_;
+  std::string description_;
+  std::vector<int> numbers_;  // joint-bus number per model joint
+  std::vector<arm_controller::JointProfile> profiles_;
+  Duration transaction_;  // one set_speed or drive_to on this bus
+};
+
+}  // namespace armctl::arm

@@ -1,0 +1,79 @@
+#include "arm/rc_arm_device.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/core.h>
+
+namespace armctl::arm {
+
+RcArmDevice::RcArmDevice(const ArmModel& model, robot_commands::Client& client) : client_(client) {
+  for (const JointModel& j : model.joints) {
+    if (!j.robot_commands)
+      throw ArmctlError(ErrorKind::invalid_argument,
+                        fmt::format("joint {} has no robot_commands mapping in the arm file", j.name));
+    servos_.push_back(static_cast<std::uint8_t>(j.robot_commands->id));
+  }
+}
+
+std::string RcArmDevice::description() const { return client_.link().describe(); }
+
+Result<std::vector<double>> RcArmDevice::read_positions() {
+  auto read = client_.read_positions(servos_);
+  if (!read) return read.error();
+  std::vector<double> out(servos_.size());
+  for (std::size_t i = 0; i < servos_.size(); ++i) {
+    bool found = false;
+    for (const auto& p : *read)
+      if (p.servo == servos_[i]) {
+        out[i] = p.position;
+        found = true;
+      }
+    if (!found)
+      return Error{ErrorKind::protocol,
+                   fmt::format("{} did not report servo {} in its position reply", description(), int(servos_[i]))};
+  }
+  return out;
+}
+
+Status RcArmDevice::move(const std::vector<std::optional<double>>& targets, Duration duration) {
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(duration).count();
+  if (ms < 0 || ms > 30000)
+    return Error{ErrorKind::invalid_argument,
+                 fmt::format("a Robot Commands move takes 0..30 s; this one would take {:.1f} s (move a shorter "
+                             "distance or faster)", std::chrono::duration<double>(duration).count())};
+  std::vector<rc::ServoTarget> out;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (!targets[i]) continue;
+    const long p = std::lround(*targets[i]);
+    if (p < 0 || p > 1000)
+      return Error{ErrorKind::invalid_argument,
+                   fmt::format("servo {}: position {} is outside 0..1000", int(servos_[i]), p)};
+    out.push_back(rc::ServoTarget{servos_[i], static_cast<std::uint16_t>(p)});
+  }
+  if (out.empty()) return Ok{};
+  return client_.move(out, static_cast<std::uint16_t>(ms));
+}
+
+Status RcArmDevice::stop() {
+  if (auto s = client_.stop_group(); !s) return s;
+  auto now = read_positions();
+  if (!now) return now.error();
+  std::vector<std::optional<double>> hold(now->begin(), now->end());
+  for (auto& h : hold) h = std::clamp(*h, 0.0, 1000.0);
+  return move(hold, Duration{0});
+}
+
+Status RcArmDevice::set_torque(bool on) {
+  if (!on) return client_.servos_off(servos_);
+  // Any move restores a servo's torque: hold where each stands.
+  auto now = read_positions();
+  if (!now) return now.error();
+  std::vector<std::optional<double>> hold(now->begin(), now->end());
+  for (auto& h : hold) h = std::clamp(*h, 0.0, 1000.0);
+  return move(hold, Duration{0});
+}
+
+void RcArmDevice::idle(Duration d) { client_.pump_events(client_.clock().now() + d); }
+
+}  // namespace armctl::arm

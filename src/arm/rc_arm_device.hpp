@@ -1,0 +1,35 @@
+// An arm on any Robot Commands board: the xArm, the emulated xArm, or armctl's arm
+// controller (the SCARA arm through Robot Commands). Servo IDs come from the arm model.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "arm/arm_device.hpp"
+#include "devices/robot_commands/client.hpp"
+
+namespace armctl::arm {
+
+class RcArmDevice final : public ArmDevice {
+ public:
+  // `client` must outlive the device.
+  RcArmDevice(const ArmModel& model, robot_commands::Client& client);
+
+  Protocol protocol() const override { return Protocol::robot_commands; }
+  std::string description() const override;
+  const Clock& clock() const override { return client_.clock(); }
+  Result<std::vector<double>> read_positions() override;
+  // The board moves every servo linearly over the time (0..30 s); positions round to whole
+  // servo units.
+  Status move(const std::vector<std::optional<double>>& targets, Duration duration) override;
+  // Stops any action group, then holds every servo where it reads now.
+  Status stop() override;
+  Status set_torque(bool on) override;
+  void idle(Duration d) override;
+
+ private:
+  robot_commands::Client& client_;
+  std::vector<std::uint8_t> servos_;  // per joint, in the model's order
+};
+
+}  // namespace armctl::arm

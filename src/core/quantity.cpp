@@ -1,0 +1,85 @@
+#include "core/quantity.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/core.h>
+
+namespace armctl {
+
+namespace {
+
+struct Unit {
+  const char* name;
+  Dimension dimension;
+  double to_si;
+};
+
+constexpr Unit kUnits[] = {
+    {"deg", Dimension::angle, std::numbers::pi / 180.0},
+    {"rad", Dimension::angle, 1.0},
+    {"mm", Dimension::length, 1e-3},
+    {"m", Dimension::length, 1.0},
+};
+
+std::string rate_suffix(int power) {
+  if (power <= 0) return "";
+  if (power == 1) return "/s";
+  return fmt::format("/s^{}", power);
+}
+
+std::string allowed_units(Dimension d, int power) {
+  std::string out;
+  for (const Unit& u : kUnits) {
+    if (u.dimension != d) continue;
+    out += (out.empty() ? "" : ", ") + std::string(u.name) + rate_suffix(power);
+  }
+  return out;
+}
+
+}  // namespace
+
+const char* to_string(Dimension d) { return d == Dimension::angle ? "angle" : "length"; }
+const char* display_unit(Dimension d) { return d == Dimension::angle ? "deg" : "mm"; }
+double to_display(Dimension d, double si) {
+  return d == Dimension::angle ? si * 180.0 / std::numbers::pi : si * 1e3;
+}
+double from_display(Dimension d, double shown) {
+  return d == Dimension::angle ? shown * std::numbers::pi / 180.0 : shown * 1e-3;
+}
+
+Result<double> parse_quantity(std::string_view text, Dimension dimension, std::string_view what,
+                              int per_second_power, std::optional<std::string_view> default_unit) {
+  auto refuse = [&](const std::string& why) {
+    return Error{ErrorKind::invalid_argument,
+                 fmt::format("{}: '{}' {}; write a number with one of the units {}", what, text,
+                             why, allowed_units(dimension, per_second_power))};
+  };
+  // std::from_chars accepts no leading '+', and "nan"/"inf" would parse: refused below.
+  std::string_view body = text;
+  if (!body.empty() && body.front() == '+') body.remove_prefix(1);
+  double value = 0;
+  auto [end, ec] = std::from_chars(body.data(), body.data() + body.size(), value);
+  if (ec != std::errc() || end == body.data()) return refuse("is not a number");
+  if (!std::isfinite(value)) return refuse("is not a finite number");
+  std::string_view unit(end, static_cast<std::size_t>(body.data() + body.size() - end));
+  if (unit.empty()) {
+    if (!default_unit) return refuse("has no unit");
+    unit = *default_unit;
+  }
+  const std::string suffix = rate_suffix(per_second_power);
+  for (const Unit& u : kUnits) {
+    if (unit != std::string(u.name) + suffix) continue;
+    if (u.dimension != dimension)
+      return refuse(fmt::format("is a {}, but this is a {}", to_string(u.dimension), to_string(dimension)));
+    return value * u.to_si;
+  }
+  return refuse(fmt::format("has the unknown unit '{}'", unit));
+}
+
+std::string format_quantity(Dimension d, double si, int per_second_power) {
+  return fmt::format("{:.3f} {}{}", to_display(d, si), display_unit(d), rate_suffix(per_second_power));
+}
+
+}  // namespace armctl
