@@ -51,29 +51,56 @@ Result<std::vector<ZeroChange>> calibrate_zero(const ArmModel& model, Protocol p
     maps[std::size_t(i)] = c.map;
     out.push_back(c);
   }
-  // Check every changed joint: zero inside its limits, its limits inside the device range.
-  ArmModel changed = model;
-  for (std::size_t i = 0; i < maps.size(); ++i) {
-    auto& slot = protocol == Protocol::robot_commands ? changed.joints[i].robot_commands : changed.joints[i].joint_bus;
-    slot = maps[i];
-  }
-  const std::vector<double> q_now = changed.from_device(protocol, device_now);
-  for (const ZeroChange& c : out) {
+  for (ZeroChange& c : out) {
     const JointModel& j = model.joints[std::size_t(c.joint)];
-    if (!j.limits.contains(0.0))
-      return refuse(fmt::format("joint {}: its limits {}..{} do not contain zero, so it cannot be zeroed", j.name,
-                                format_quantity(j.dimension, j.limits.lower), format_quantity(j.dimension, j.limits.upper)));
-    (void)q_now;
-    for (double end : {j.limits.lower, j.limits.upper}) {
-      std::vector<double> q(model.joints.size(), 0.0);
-      q[std::size_t(c.joint)] = end;
-      const double device = changed.to_device(protocol, q)[std::size_t(c.joint)];
-      if (device < range.min || device > range.max)
-        return refuse(fmt::format(
-            "joint {}: with its zero where it stands ({} from the old zero), its limit {} would be device position "
-            "{:.0f}, outside {}..{}: move it nearer the middle of its travel first",
-            j.name, format_quantity(j.dimension, c.shift), format_quantity(j.dimension, end), device, range.min, range.max));
+    if (!j.limits.contains(c.shift, 1e-9))
+      return refuse(fmt::format("joint {} stands at {}, outside its limits {}..{}: move it inside them first", j.name,
+                                format_quantity(j.dimension, c.shift), format_quantity(j.dimension, j.limits.lower),
+                                format_quantity(j.dimension, j.limits.upper)));
+    c.limits = j.limits;
+    c.limits.lower -= c.shift;
+    c.limits.upper -= c.shift;
+    const bool coupled = std::any_of(model.couplings.begin(), model.couplings.end(),
+                                     [&](const Coupling& k) { return k.first == c.joint || k.second == c.joint; });
+    // The device positions of the new limits; a single joint's limit beyond the device's
+    // end is pulled in to it.
+    const double ends[2] = {c.map.to_actuator(range.min), c.map.to_actuator(range.max)};
+    const double reach_lo = std::min(ends[0], ends[1]), reach_hi = std::max(ends[0], ends[1]);
+    if (coupled) {
+      if (c.limits.lower < reach_lo - 1e-9 || c.limits.upper > reach_hi + 1e-9)
+        return refuse(fmt::format("joint {}: with its zero where it stands ({} from the old zero) its limits would "
+                                  "reach beyond the device's range {}..{}: move it nearer the middle of its travel",
+                                  j.name, format_quantity(j.dimension, c.shift), range.min, range.max));
+    } else {
+      c.limits.lower = std::max(c.limits.lower, reach_lo);
+      c.limits.upper = std::min(c.limits.upper, reach_hi);
     }
+  }
+  // A coupled pair's actuators carry sums of both joints: check the corners of the box.
+  for (const Coupling& k : model.couplings) {
+    if (!chosen[std::size_t(k.first)]) continue;
+    ArmModel changed = model;
+    for (const ZeroChange& c : out) {
+      auto& slot = protocol == Protocol::robot_commands ? changed.joints[std::size_t(c.joint)].robot_commands
+                                                        : changed.joints[std::size_t(c.joint)].joint_bus;
+      slot = c.map;
+      changed.joints[std::size_t(c.joint)].limits = c.limits;
+    }
+    const JointLimits& a = changed.joints[std::size_t(k.first)].limits;
+    const JointLimits& b = changed.joints[std::size_t(k.second)].limits;
+    for (double qa : {a.lower, a.upper})
+      for (double qb : {b.lower, b.upper}) {
+        std::vector<double> q(model.joints.size(), 0.0);
+        q[std::size_t(k.first)] = qa;
+        q[std::size_t(k.second)] = qb;
+        const auto d = changed.to_device(protocol, q);
+        for (int idx : {k.first, k.second})
+          if (d[std::size_t(idx)] < range.min || d[std::size_t(idx)] > range.max)
+            return refuse(fmt::format("joints {} and {}: with their zeros where they stand, the ends of their travel "
+                                      "would need device position {:.0f}, outside {}..{}",
+                                      model.joints[std::size_t(k.first)].name, model.joints[std::size_t(k.second)].name,
+                                      d[std::size_t(idx)], range.min, range.max));
+      }
   }
   return out;
 }
@@ -96,6 +123,7 @@ Status save_calibration(const ArmModel& model, Protocol protocol, const std::vec
     for (auto& entry : doc["joints"]) {
       if (!entry.is_object() || entry.value("name", "") != j.name || !entry.contains(key)) continue;
       entry[key]["joint"] = json::array({unit_text(j.dimension, c.map.actuator_a), unit_text(j.dimension, c.map.actuator_b)});
+      entry["limits"]["position"] = json::array({unit_text(j.dimension, c.limits.lower), unit_text(j.dimension, c.limits.upper)});
       done = true;
     }
     if (!done) return Error{ErrorKind::invalid_config, fmt::format("{}: joint {} not found", model.file.string(), j.name)};

@@ -1,7 +1,10 @@
 // `armctl arm calibrate zero`: where the joints stand becomes their zero. The arm file's
-// device mapping of each joint moves by the joint's current value; the change is checked
-// (the joint's limits must still fit the device's range, and zero must lie inside them)
-// before anything is written, and written to the arm file in one atomic replacement.
+// device mapping of each joint moves by the joint's current value, and its position limits
+// move with it (the joint's travel stays where it was on the device). Refused before
+// anything is written: a joint that stands outside its limits, and a limit that would fall
+// outside the device's range (such a limit is pulled in to the device's end for a single
+// joint; for a coupled pair, whose ends mix two actuators, the zero is refused). Written to
+// the arm file in one atomic replacement.
 #pragma once
 
 #include <vector>
@@ -15,6 +18,7 @@ struct ZeroChange {
   int joint = 0;       // index in the model
   double shift = 0;    // the joint's value before (SI): what it reads as 0 from now on
   DeviceMap map;       // the new mapping
+  JointLimits limits;  // the new limits (the old ones, shifted, within the device's range)
 };
 
 // `device_now`: every joint's device position, as read. `joints`: the indices to zero; the

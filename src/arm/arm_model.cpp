@@ -304,9 +304,9 @@ DeviceRange device_range(Protocol p) {
   return p == Protocol::robot_commands ? DeviceRange{0, 1000} : DeviceRange{-32768, 32767};
 }
 
-std::optional<int> ArmModel::find_joint(std::string_view name) const {
+std::optional<int> ArmModel::find_joint(std::string_view joint_name) const {
   for (int i = 0; i < joint_count(); ++i)
-    if (same_name(joints[static_cast<std::size_t>(i)].name, name)) return i;
+    if (same_name(joints[static_cast<std::size_t>(i)].name, joint_name)) return i;
   return std::nullopt;
 }
 

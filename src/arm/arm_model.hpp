@@ -93,7 +93,7 @@ struct ArmModel {
   int chain_joints() const { return kinematics ? kinematics->joint_count() : 0; }
   int joint_count() const { return static_cast<int>(joints.size()); }
   // Index of the joint named `name` (case-insensitive), or nothing.
-  std::optional<int> find_joint(std::string_view name) const;
+  std::optional<int> find_joint(std::string_view joint_name) const;
   bool supports(Protocol p) const;
 
   // Joint values (SI, every joint) -> device units per joint, and back (couplings applied).
