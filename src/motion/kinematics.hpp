@@ -12,12 +12,14 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "core/error.hpp"
+#include "motion/urdf_chain.hpp"
 
 namespace armctl::motion {
 
@@ -79,7 +81,8 @@ enum class Singularity {
   none,
   arm_stretched,    // elbow fully stretched or folded: the planar arm loses a direction
   wrist_aligned,    // two wrist axes in line: one rotation is lost
-  over_base_axis,   // the wrist centre on the base axis (xarm)
+  over_base_axis,   // xarm: the tool point on the base axis: turning the base moves only
+                    // the orientation (the base angle then follows from the approach)
 };
 const char* to_string(Singularity s);
 
@@ -98,5 +101,14 @@ class Kinematics {
   // Singularity at `joints` (within `tolerance` of the singular set, in rad or m).
   virtual Singularity singularity(const JointVector& joints, double tolerance = 1e-3) const = 0;
 };
+
+// The kinematics of `family` for `chain` (from read_urdf_chain), with the chain joints'
+// position limits (one per chain joint, base to tool; the arm file's, which may be tighter
+// than the URDF's). Refused (invalid_config, naming the joint) when the chain does not have
+// the family's shape: joint count and types, axes parallel or perpendicular, a wrist whose
+// axes meet, no sideways offsets. The lengths come from the chain, so an edited
+// (calibrated) URDF works as long as the shape holds.
+Result<std::unique_ptr<Kinematics>> make_kinematics(KinematicFamily family, const UrdfChain& chain,
+                                                    std::span<const PositionLimits> limits);
 
 }  // namespace armctl::motion

@@ -1,0 +1,211 @@
+#include "motion/urdf_chain.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+
+#include <console_bridge/console.h>
+#include <fmt/format.h>
+#include <urdf_parser/urdf_parser.h>
+
+namespace armctl::motion {
+
+const char* to_string(ChainJointType type) {
+  return type == ChainJointType::revolute ? "revolute" : "prismatic";
+}
+
+namespace {
+
+Error config_error(std::string message) { return Error{ErrorKind::invalid_config, std::move(message)}; }
+
+// urdfdom reports why it refused a document only through console_bridge's log. Collect
+// those lines during one parse so that our error can say what urdfdom said, instead of
+// letting them go to stderr. console_bridge's handler is process-wide: one parse at a time.
+class CollectingHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && lines_.size() < 4) lines_.push_back(text);
+  }
+  std::string joined() const {
+    std::string out;
+    for (const auto& l : lines_) out += (out.empty() ? "" : "; ") + l;
+    return out;
+  }
+
+ private:
+  std::vector<std::string> lines_;
+};
+
+std::mutex& parse_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+Result<urdf::ModelInterfaceSharedPtr> parse_model(const std::string& xml) {
+  std::lock_guard lock(parse_mutex());
+  CollectingHandler handler;
+  console_bridge::useOutputHandler(&handler);
+  urdf::ModelInterfaceSharedPtr model;
+  std::string exception_text;
+  try {
+    model = urdf::parseURDF(xml);
+  } catch (const std::exception& e) {
+    exception_text = e.what();
+  }
+  console_bridge::restorePreviousOutputHandler();
+  if (!model) {
+    std::string why = exception_text.empty() ? handler.joined() : exception_text;
+    if (why.empty()) why = "not a URDF <robot> document";
+    return config_error(fmt::format("URDF not accepted: {}", why));
+  }
+  return model;
+}
+
+bool finite(const urdf::Vector3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+Result<Eigen::Isometry3d> to_isometry(const urdf::Pose& pose, const std::string& joint_name) {
+  const auto& p = pose.position;
+  const auto& r = pose.rotation;
+  if (!finite(p) || !std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z) || !std::isfinite(r.w)) {
+    return config_error(fmt::format("URDF joint '{}': <origin> xyz and rpy must be finite numbers", joint_name));
+  }
+  Eigen::Quaterniond q(r.w, r.x, r.y, r.z);
+  if (q.norm() < 0.5) {
+    return config_error(fmt::format("URDF joint '{}': <origin> rotation is not a rotation", joint_name));
+  }
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = q.normalized().toRotationMatrix();
+  t.translation() = Eigen::Vector3d(p.x, p.y, p.z);
+  return t;
+}
+
+const char* urdf_type_name(int type) {
+  switch (type) {
+    case urdf::Joint::REVOLUTE: return "revolute";
+    case urdf::Joint::CONTINUOUS: return "continuous";
+    case urdf::Joint::PRISMATIC: return "prismatic";
+    case urdf::Joint::FLOATING: return "floating";
+    case urdf::Joint::PLANAR: return "planar";
+    case urdf::Joint::FIXED: return "fixed";
+    default: return "unknown";
+  }
+}
+
+Result<ChainJoint> moving_joint(const urdf::Joint& j) {
+  ChainJoint out;
+  out.name = j.name;
+  out.type = j.type == urdf::Joint::REVOLUTE ? ChainJointType::revolute : ChainJointType::prismatic;
+  const auto& p = j.parent_to_joint_origin_transform;
+  out.origin_xyz = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  double roll = 0, pitch = 0, yaw = 0;
+  p.rotation.getRPY(roll, pitch, yaw);
+  out.origin_rpy = Eigen::Vector3d(roll, pitch, yaw);
+  if (!finite(j.axis)) {
+    return config_error(fmt::format("URDF joint '{}': <axis> xyz must be finite numbers", j.name));
+  }
+  const Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
+  if (axis.norm() < 1e-9) {
+    return config_error(fmt::format("URDF joint '{}': <axis> xyz is zero; it must be a direction", j.name));
+  }
+  out.axis = axis.normalized();
+  if (!j.limits) {
+    return config_error(fmt::format("URDF joint '{}': a {} joint needs a <limit> element", j.name,
+                                    urdf_type_name(j.type)));
+  }
+  const auto& l = *j.limits;
+  if (!std::isfinite(l.lower) || !std::isfinite(l.upper) || !(l.lower < l.upper)) {
+    return config_error(fmt::format(
+        "URDF joint '{}': <limit> lower {} and upper {} must be finite numbers with lower < upper", j.name,
+        l.lower, l.upper));
+  }
+  if (out.type == ChainJointType::revolute && (l.lower < -100 || l.upper > 100)) {
+    return config_error(fmt::format("URDF joint '{}': <limit> lower and upper must lie within -100..100 rad",
+                                    j.name));
+  }
+  if (out.type == ChainJointType::prismatic && (l.lower < -100 || l.upper > 100)) {
+    return config_error(fmt::format("URDF joint '{}': <limit> lower and upper must lie within -100..100 m",
+                                    j.name));
+  }
+  if (!std::isfinite(l.velocity) || l.velocity < 0 || !std::isfinite(l.effort) || l.effort < 0) {
+    return config_error(fmt::format("URDF joint '{}': <limit> velocity and effort must be finite and >= 0",
+                                    j.name));
+  }
+  out.limits = UrdfJointLimits{l.lower, l.upper, l.velocity, l.effort};
+  return out;
+}
+
+}  // namespace
+
+Result<UrdfChain> read_urdf_chain(std::string_view urdf_xml, std::string_view base_link,
+                                  std::string_view tip_link) {
+  auto parsed = parse_model(std::string(urdf_xml));
+  if (!parsed) return parsed.error();
+  const urdf::ModelInterface& model = **parsed;
+  const std::string base(base_link), tip(tip_link);
+  if (!model.getLink(base)) {
+    return config_error(fmt::format("URDF robot '{}' has no <link name=\"{}\"> (the chain's base link)",
+                                    model.getName(), base));
+  }
+  if (!model.getLink(tip)) {
+    return config_error(fmt::format("URDF robot '{}' has no <link name=\"{}\"> (the chain's tip link)",
+                                    model.getName(), tip));
+  }
+  // Walk up from the tip to the base; the tree guarantees one parent per link.
+  std::vector<urdf::JointConstSharedPtr> path;
+  for (auto link = model.getLink(tip); link->name != base;) {
+    const auto joint = link->parent_joint;
+    if (!joint) {
+      return config_error(
+          fmt::format("URDF link '{}' is not below link '{}': the chain must lead from base to tip", tip, base));
+    }
+    path.push_back(joint);
+    link = model.getLink(joint->parent_link_name);
+    if (!link) return config_error(fmt::format("URDF joint '{}' has no parent link", joint->name));
+    if (path.size() > 1000) return config_error("URDF tree deeper than 1000 joints");
+  }
+  UrdfChain chain;
+  chain.robot_name = model.getName();
+  chain.base_link = base;
+  chain.tip_link = tip;
+  Eigen::Isometry3d pending = Eigen::Isometry3d::Identity();
+  for (auto it = path.rbegin(); it != path.rend(); ++it) {
+    const urdf::Joint& j = **it;
+    auto origin = to_isometry(j.parent_to_joint_origin_transform, j.name);
+    if (!origin) return origin.error();
+    if (j.type == urdf::Joint::FIXED) {
+      pending = pending * *origin;
+      chain.fixed_joints.push_back(j.name);
+      continue;
+    }
+    if (j.type != urdf::Joint::REVOLUTE && j.type != urdf::Joint::PRISMATIC) {
+      return config_error(fmt::format(
+          "URDF joint '{}' is {}; a chain joint must be revolute (with limits), prismatic or fixed", j.name,
+          urdf_type_name(j.type)));
+    }
+    if (j.mimic) {
+      return config_error(fmt::format("URDF joint '{}' has <mimic>; a chain joint must move on its own", j.name));
+    }
+    auto parsed_joint = moving_joint(j);
+    if (!parsed_joint) return parsed_joint.error();
+    ChainJoint joint = std::move(parsed_joint).value();
+    joint.from_previous = pending * *origin;
+    pending = Eigen::Isometry3d::Identity();
+    chain.joints.push_back(std::move(joint));
+  }
+  chain.tip_from_last = pending;
+  return chain;
+}
+
+Result<UrdfChain> read_urdf_chain_file(const std::string& path, std::string_view base_link,
+                                       std::string_view tip_link) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{ErrorKind::io, fmt::format("{}: cannot open the URDF file", path)};
+  std::ostringstream text;
+  text << in.rdbuf();
+  auto chain = read_urdf_chain(text.str(), base_link, tip_link);
+  if (!chain) return Error{chain.error().kind, fmt::format("{}: {}", path, chain.error().message)};
+  return chain;
+}
+
+}  // namespace armctl::motion
