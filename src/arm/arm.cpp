@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/core.h>
 
@@ -152,11 +153,30 @@ Result<std::vector<motion::IkSolution>> Arm::inverse(const CartesianGoal& goal, 
     rpy.yaw = std::atan2(goal.position.y(), goal.position.x());
     request.nearest_orientation = true;
   }
-  motion::Pose tool_pose;
-  tool_pose.position = goal.position;
-  tool_pose.orientation = motion::from_rpy(rpy);
-  request.target = compose(tool_pose, inverse_of(model_.tool));  // where the tool link must be
-  auto solutions = model_.kinematics->inverse(request, near);
+  auto solve = [&](const motion::Rpy& o) {
+    motion::Pose tool_pose;
+    tool_pose.position = goal.position;
+    tool_pose.orientation = motion::from_rpy(o);
+    request.target = compose(tool_pose, inverse_of(model_.tool));  // where the tool link must be
+    return model_.kinematics->inverse(request, near);
+  };
+  auto solutions = solve(rpy);
+  if (!solutions && !goal.pitch && model_.family == motion::KinematicFamily::xarm) {
+    // Only a position asked of the 5-joint arm: the tool's pitch is free. Keep the current
+    // one if it reaches; else the nearest pitch that does (in 1 degree steps either way).
+    for (int step = 1; step <= 180 && !solutions; ++step) {
+      for (int sign : {1, -1}) {
+        motion::Rpy o = rpy;
+        o.pitch = rpy.pitch + sign * step * std::numbers::pi / 180;
+        auto s = solve(o);
+        if (s) {
+          solutions = std::move(s);
+          break;
+        }
+      }
+    }
+    if (!solutions) return solve(rpy).error();
+  }
   if (!solutions) return solutions;
   if (!goal.elbow) return solutions;
   std::vector<motion::IkSolution> kept;
@@ -190,19 +210,24 @@ Status Arm::gripper(double closed_fraction, const MoveOptions& options) {
 
 Result<JointState> Arm::wait(const WaitOptions& options) {
   const TimePoint deadline = device_->clock().now() + options.timeout;
+  std::optional<JointState> previous;
   for (;;) {
     auto s = read();
     if (!s) return s.error();
     std::string late;
+    bool resting = previous.has_value();
     for (std::size_t i = 0; i < last_targets_.size(); ++i) {
       if (!last_targets_[i]) continue;
       const JointModel& j = model_.joints[i];
       const double tol = j.dimension == Dimension::angle ? options.angle_tolerance : options.length_tolerance;
+      if (previous && std::abs(s->positions[i] - previous->positions[i]) > tol / 4) resting = false;
       if (std::abs(s->positions[i] - *last_targets_[i]) <= tol) continue;
       late += fmt::format("{}{} at {} (target {})", late.empty() ? "" : "; ", j.name,
                           format_quantity(j.dimension, s->positions[i]), format_quantity(j.dimension, *last_targets_[i]));
     }
-    if (late.empty()) return s;
+    if (late.empty() && resting) return s;
+    if (late.empty() && device_->clock().now() >= deadline) return s;  // there, if still creeping
+    previous = *s;
     if (device_->clock().now() >= deadline)
       return Error{ErrorKind::timeout,
                    fmt::format("not arrived after {:.1f} s: {}", std::chrono::duration<double>(options.timeout).count(), late)};

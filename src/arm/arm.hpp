@@ -46,8 +46,8 @@ struct CartesianGoal {
 struct WaitOptions {
   Duration timeout = std::chrono::seconds(10);
   Duration poll = std::chrono::milliseconds(50);  // between position reads
-  double angle_tolerance = 0.035;   // rad (2 deg)
-  double length_tolerance = 0.002;  // m
+  double angle_tolerance = 0.0087;  // rad (0.5 deg: two xArm servo units)
+  double length_tolerance = 0.0005;  // m
 };
 
 class Arm {
@@ -72,7 +72,9 @@ class Arm {
   // Gripper: 0 = open, 1 = closed.
   Status gripper(double closed_fraction, const MoveOptions& options = {});
   // Closed loop: reads positions until every joint of the last move is within tolerance of
-  // its target; the error (timeout) names every joint that did not arrive, with where it is.
+  // its target and has come to rest there (two reads in a row within a quarter of the
+  // tolerance of each other); the error (timeout) names every joint that did not arrive,
+  // with where it is.
   Result<JointState> wait(const WaitOptions& options = {});
   Status stop();
   Status set_torque(bool on);

@@ -57,9 +57,11 @@ Result<std::vector<ZeroChange>> calibrate_zero(const ArmModel& model, Protocol p
       return refuse(fmt::format("joint {} stands at {}, outside its limits {}..{}: move it inside them first", j.name,
                                 format_quantity(j.dimension, c.shift), format_quantity(j.dimension, j.limits.lower),
                                 format_quantity(j.dimension, j.limits.upper)));
+    // The URDF's zero is where the joint stands now: its travel, as the limits had it on
+    // the device, shifts, and stays inside the URDF's mechanical limits.
     c.limits = j.limits;
-    c.limits.lower -= c.shift;
-    c.limits.upper -= c.shift;
+    c.limits.lower = std::max(j.limits.lower - c.shift, j.urdf_lower);
+    c.limits.upper = std::min(j.limits.upper - c.shift, j.urdf_upper);
     const bool coupled = std::any_of(model.couplings.begin(), model.couplings.end(),
                                      [&](const Coupling& k) { return k.first == c.joint || k.second == c.joint; });
     // The device positions of the new limits; a single joint's limit beyond the device's
@@ -75,6 +77,13 @@ Result<std::vector<ZeroChange>> calibrate_zero(const ArmModel& model, Protocol p
       c.limits.lower = std::max(c.limits.lower, reach_lo);
       c.limits.upper = std::min(c.limits.upper, reach_hi);
     }
+  }
+  for (const ZeroChange& c : out) {
+    const JointModel& j = model.joints[std::size_t(c.joint)];
+    if (!(c.limits.lower <= 0 && 0 <= c.limits.upper && c.limits.lower < c.limits.upper))
+      return refuse(fmt::format("joint {}: with its zero {} from the old one, no travel would be left inside its URDF "
+                                "limits and the device's range",
+                                j.name, format_quantity(j.dimension, c.shift)));
   }
   // A coupled pair's actuators carry sums of both joints: check the corners of the box.
   for (const Coupling& k : model.couplings) {

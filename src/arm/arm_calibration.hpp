@@ -1,6 +1,7 @@
 // `armctl arm calibrate zero`: where the joints stand becomes their zero. The arm file's
 // device mapping of each joint moves by the joint's current value, and its position limits
-// move with it (the joint's travel stays where it was on the device). Refused before
+// move with it (the joint's travel stays where it was on the device), kept inside the
+// URDF's limits (the URDF's zero pose is, from now on, where the arm stands). Refused before
 // anything is written: a joint that stands outside its limits, and a limit that would fall
 // outside the device's range (such a limit is pulled in to the device's end for a single
 // joint; for a coupled pair, whose ends mix two actuators, the zero is refused). Written to

@@ -156,6 +156,8 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
                                          urdf_source, jm.name, type_name(uj->type)));
     jm.role = jm.name == gripper_name ? JointRole::gripper : JointRole::chain;
     jm.limits = parse_limits(source, jr.require("limits"), jr.at("limits"), jm.dimension);
+    jm.urdf_lower = uj->limits ? uj->limits->lower : jm.limits.lower;
+    jm.urdf_upper = uj->limits ? uj->limits->upper : jm.limits.upper;
     if (uj->limits && (jm.limits.lower < uj->limits->lower - 1e-9 || jm.limits.upper > uj->limits->upper + 1e-9))
       jr.fail(jr.at("limits.position"),
               fmt::format("{}..{} reaches beyond the URDF's limits {}..{} for joint '{}'",

@@ -55,6 +55,7 @@ struct JointModel {
   Dimension dimension = Dimension::angle;  // revolute: angle; prismatic: length
   JointRole role = JointRole::chain;
   JointLimits limits;
+  double urdf_lower = 0, urdf_upper = 0;  // the URDF's position limits (mechanical travel)
   std::optional<DeviceMap> robot_commands;
   std::optional<DeviceMap> joint_bus;
   const std::optional<DeviceMap>& map(Protocol p) const {

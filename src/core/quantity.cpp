@@ -43,7 +43,8 @@ std::string allowed_units(Dimension d, int power) {
 const char* to_string(Dimension d) { return d == Dimension::angle ? "angle" : "length"; }
 const char* display_unit(Dimension d) { return d == Dimension::angle ? "deg" : "mm"; }
 double to_display(Dimension d, double si) {
-  return d == Dimension::angle ? si * 180.0 / std::numbers::pi : si * 1e3;
+  const double shown = d == Dimension::angle ? si * 180.0 / std::numbers::pi : si * 1e3;
+  return std::abs(shown) < 5e-7 ? 0.0 : shown;  // no "-0.000"
 }
 double from_display(Dimension d, double shown) {
   return d == Dimension::angle ? shown * std::numbers::pi / 180.0 : shown * 1e-3;
@@ -72,14 +73,16 @@ Result<double> parse_quantity(std::string_view text, Dimension dimension, std::s
   for (const Unit& u : kUnits) {
     if (unit != std::string(u.name) + suffix) continue;
     if (u.dimension != dimension)
-      return refuse(fmt::format("is a {}, but this is a {}", to_string(u.dimension), to_string(dimension)));
+      return refuse(fmt::format("is {}, but this is {}", u.dimension == Dimension::angle ? "an angle" : "a length",
+                                dimension == Dimension::angle ? "an angle" : "a length"));
     return value * u.to_si;
   }
   return refuse(fmt::format("has the unknown unit '{}'", unit));
 }
 
 std::string format_quantity(Dimension d, double si, int per_second_power) {
-  return fmt::format("{:.3f} {}{}", to_display(d, si), display_unit(d), rate_suffix(per_second_power));
+  // + 0.0 turns -0 into 0: "-0.000 deg" reads as a sign error.
+  return fmt::format("{:.3f} {}{}", to_display(d, si) + 0.0, display_unit(d), rate_suffix(per_second_power));
 }
 
 }  // namespace armctl

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <numbers>
 
+#include <fmt/core.h>
+
 #include "arm/arm_calibration.hpp"
 #include "arm_files.hpp"
 
@@ -40,7 +42,8 @@ TEST_F(Calibration, WhereItStandsBecomesZeroAndIsSaved) {
   EXPECT_NEAR(q[0], 0, 1e-6);
   EXPECT_NEAR(q[2], 0, 1e-6);
   EXPECT_NEAR(q[1], 0, 1e-9);  // untouched
-  // The travel stays where it was on the servo: 0..1000 is now -124.8..115.2 deg.
+  // The travel stays where it was on the servo: 0..1000 is now -124.8..115.2 deg, inside
+  // the URDF's -120..120 deg.
   EXPECT_NEAR(again.joints[0].limits.lower, -120 * kDeg, 1e-6);
   EXPECT_NEAR(again.joints[0].limits.upper, 115.2 * kDeg, 1e-6);
 }

@@ -24,7 +24,7 @@ TEST(Quantity, BadTextIsRefusedWithWhatIsAllowed) {
   ASSERT_FALSE(wrong_dim);
   EXPECT_EQ(wrong_dim.error().kind, ErrorKind::invalid_argument);
   EXPECT_NE(wrong_dim.error().message.find("joint SHOULDER"), std::string::npos);
-  EXPECT_NE(wrong_dim.error().message.find("is a length, but this is a angle"), std::string::npos);
+  EXPECT_NE(wrong_dim.error().message.find("is a length, but this is an angle"), std::string::npos);
   EXPECT_NE(wrong_dim.error().message.find("deg, rad"), std::string::npos);
   for (const char* bad : {"", "deg", "nan", "nandeg", "infdeg", "1e400deg", "30", "30 deg", "30degs", "--1deg", "1deg/s"}) {
     EXPECT_FALSE(parse_quantity(bad, Dimension::angle, "j")) << bad;
@@ -36,6 +36,7 @@ TEST(Quantity, BadTextIsRefusedWithWhatIsAllowed) {
 TEST(Quantity, FormatsForPeople) {
   EXPECT_EQ(format_quantity(Dimension::angle, std::numbers::pi), "180.000 deg");
   EXPECT_EQ(format_quantity(Dimension::length, 0.1205, 1), "120.500 mm/s");
+  EXPECT_EQ(format_quantity(Dimension::angle, -1e-12), "0.000 deg");
 }
 
 }  // namespace

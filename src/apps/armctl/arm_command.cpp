@@ -134,17 +134,20 @@ void print_joints(const ArmArgs& a, const arm::ArmModel& m, const arm::JointStat
   }
 }
 
+// Degrees for people, without "-0.00".
+double deg(double rad) { return to_display(Dimension::angle, rad); }
+
 json pose_json(const motion::Pose& p) {
   const motion::Rpy r = motion::to_rpy(p.orientation);
   return {{"x_mm", p.position.x() * 1e3}, {"y_mm", p.position.y() * 1e3}, {"z_mm", p.position.z() * 1e3},
-          {"roll_deg", r.roll * 180 / M_PI}, {"pitch_deg", r.pitch * 180 / M_PI}, {"yaw_deg", r.yaw * 180 / M_PI}};
+          {"roll_deg", deg(r.roll)}, {"pitch_deg", deg(r.pitch)}, {"yaw_deg", deg(r.yaw)}};
 }
 
 std::string pose_text(const motion::Pose& p) {
   const motion::Rpy r = motion::to_rpy(p.orientation);
-  return fmt::format("x {:.2f} y {:.2f} z {:.2f} mm  roll {:.2f} pitch {:.2f} yaw {:.2f} deg", p.position.x() * 1e3,
-                     p.position.y() * 1e3, p.position.z() * 1e3, r.roll * 180 / M_PI, r.pitch * 180 / M_PI,
-                     r.yaw * 180 / M_PI);
+  auto mm = [](double m) { return to_display(Dimension::length, m); };
+  return fmt::format("x {:.2f} y {:.2f} z {:.2f} mm  roll {:.2f} pitch {:.2f} yaw {:.2f} deg", mm(p.position.x()),
+                     mm(p.position.y()), mm(p.position.z()), deg(r.roll), deg(r.pitch), deg(r.yaw));
 }
 
 arm::CartesianGoal parse_goal(const ArmArgs& a) {
