@@ -14,32 +14,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "run_armctl.hpp"
+
 namespace {
 
-struct CliRun {
-  int status;
-  std::string out;  // stdout and stderr together
-};
+using armctl::cli_test::CliRun;
 
-CliRun armctl(const std::string& args) {
-  const std::string cmd = std::string(ARMCTL_BINARY_DIR) + "/armctl " + args + " 2>&1";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  const int st = ::pclose(p);
-  return CliRun{WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
-}
-
-std::string stdout_only(const std::string& args) {
-  const std::string cmd = std::string(ARMCTL_BINARY_DIR) + "/armctl " + args + " 2>/dev/null";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  ::pclose(p);
-  return out;
-}
+CliRun armctl(const std::string& args) { return armctl::cli_test::run_armctl(args); }
+std::string stdout_only(const std::string& args) { return armctl::cli_test::run_armctl(args, "2>/dev/null").out; }
 
 TEST(BusCli, ReadsEveryJointOfTheEmbeddedSim) {
   const CliRun r = armctl("bus position all");

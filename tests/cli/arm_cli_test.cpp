@@ -1,0 +1,100 @@
+// `armctl arm` end to end: the real binary on both embedded simulated arms; output in deg
+// and mm, --json documents, exit status, and the messages for bad values (nothing moves).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "run_armctl.hpp"
+
+namespace {
+
+using armctl::cli_test::run_armctl;
+
+class ArmCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    state = std::filesystem::temp_directory_path() /
+            ("armctl-arm-cli-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+    std::filesystem::create_directories(state);
+    ::setenv("ARMCTL_STATE_DIR", state.c_str(), 1);
+  }
+  void TearDown() override { std::filesystem::remove_all(state); }
+  std::filesystem::path state;
+};
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+TEST_F(ArmCli, JointsAndPoseOfBothArms) {
+  auto x = run_armctl("arm joints");
+  EXPECT_EQ(x.status, 0) << x.out;
+  EXPECT_TRUE(contains(x.out, "servo6")) << x.out;
+  EXPECT_TRUE(contains(x.out, "(device 500)")) << x.out;
+  auto s = run_armctl("arm --arm scara joints");
+  EXPECT_EQ(s.status, 0) << s.out;
+  EXPECT_TRUE(contains(s.out, "Z             150.000 mm")) << s.out;
+  auto p = run_armctl("arm --arm scara --json pose", "2>/dev/null");
+  ASSERT_EQ(p.status, 0);
+  auto doc = nlohmann::json::parse(p.out);
+  EXPECT_NEAR(doc["pose"]["x_mm"].get<double>(), 685.0, 1e-6);  // 255 + 255 + 175, stretched out
+}
+
+TEST_F(ArmCli, MoveToAPointInMillimetresOnBothArms) {
+  for (const char* cmd : {"arm --json move-to x=150 y=50 z=150 --wait",
+                          "arm --arm scara --json move-to x=400 y=100 z=300 --wait --time 2s"}) {
+    auto r = run_armctl(cmd, "2>/dev/null");
+    ASSERT_EQ(r.status, 0) << cmd;
+    auto doc = nlohmann::json::parse(r.out);
+    EXPECT_LT(doc["position_error_mm"].get<double>(), 2.0) << cmd << ": " << r.out;
+  }
+}
+
+TEST_F(ArmCli, MoveJointsByNameOrNumberWithUnits) {
+  auto r = run_armctl("arm --arm scara move-joints SHOULDER=30deg 3=-0.2rad Z=100mm --wait");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "SHOULDER       30.0")) << r.out;
+  EXPECT_TRUE(contains(r.out, "Z             100.0")) << r.out;
+}
+
+TEST_F(ArmCli, IkPrintsEverySolutionAndMovesNothing) {
+  auto r = run_armctl("arm --arm scara --json ik x=300 y=200 z=250 roll=180 pitch=0 yaw=30", "2>/dev/null");
+  ASSERT_EQ(r.status, 0) << r.out;
+  auto doc = nlohmann::json::parse(r.out);
+  EXPECT_GE(doc["solutions"].size(), 2u) << r.out;  // elbow left and right at least
+}
+
+TEST_F(ArmCli, BadValuesAreRefusedClearly) {
+  struct Case {
+    const char* args;
+    const char* says;
+  };
+  const Case cases[] = {
+      {"arm move-joints servo6=200deg", "outside its limits"},
+      {"arm move-joints servo6=30mm", "is a length, but this is an angle"},
+      {"arm move-joints servo6=nan", "not a finite number"},
+      {"arm move-joints servo6=30", "has no unit"},
+      {"arm move-joints wrist=3deg", "has no joint 'wrist'"},
+      {"arm move-joints servo6=3deg servo6=4deg", "given twice"},
+      {"arm move-to x=2000 y=0 z=0", "reach"},
+      {"arm move-to x=100 y=0", "z is missing"},
+      {"arm move-to x=100 y=0 z=100 w=3", "not a pose key"},
+      {"arm move-to x=100 y=0 z=100 --elbow sideways", "--elbow 'sideways'"},
+      {"arm move-joints servo6=3deg --speed 0%", "--speed '0%'"},
+      {"arm move-joints servo6=3deg --time -1s", "--time '-1s'"},
+      {"arm move-joints servo6=3deg --time 1s --speed 10%", "cannot be used together"},
+      {"arm gripper half", "open, close"},
+      {"arm torque maybe", "on or off"},
+      {"arm --arm /nonexistent.json joints", "no such file"},
+      {"arm --arm scara --device sim?baud=7 joints", "baud"},
+  };
+  for (const auto& c : cases) {
+    auto r = run_armctl(c.args);
+    EXPECT_NE(r.status, 0) << c.args;
+    EXPECT_TRUE(contains(r.out, c.says)) << c.args << ": " << r.out;
+  }
+}
+
+}  // namespace
