@@ -16,6 +16,8 @@ cleanup() {
 }
 trap cleanup EXIT
 
+# Part 3 (at the end): the Arm API in millimetres: both arms' tools to three points.
+
 # Part 1: the SCARA arm at the joint-bus level: a simulated arm that keeps its state, driven
 # joint by joint with `armctl bus` (what the arm controller does underneath).
 "$armctl" sim scara --listen "$dir/bus.sock" > "$dir/bus.log" 2>&1 &
@@ -34,7 +36,6 @@ for target in 3000 0; do
   bus wait all --timeout 10
   bus position all
 done
-kill "$bus_pid"; wait "$bus_pid" 2>/dev/null || true
 
 # Part 2: one program, two arms, one SDK.
 "$armctl" sim scara --robot-commands --link "$dir/scara" > /dev/null 2> "$dir/scara.log" &
@@ -74,3 +75,21 @@ program "SCARA (arm controller, 7 joints)" "$dir/scara" 7
 program "xArm (emulated, 6 servos)" "$dir/xarm" 6
 echo "== what the SCARA controller logged"
 grep -v "^sim scara: joint [0-9] " "$dir/scara.log" || true
+
+# Part 3: the Arm API, in SI units. Each arm's tool to three points given in millimetres
+# (PTP through the analytic IK), then the pose read back and how far it is from the point.
+tool_to() {  # name arm device x y z [orientation...]
+  local name=$1 arm=$2 device=$3 x=$4 y=$5 z=$6
+  shift 6
+  echo "== $name: tool to x=$x y=$y z=$z mm $*"
+  "$armctl" arm --arm "$arm" --device "$device" move-to "x=$x" "y=$y" "z=$z" "$@" --time 1.5s --wait |
+    grep -E '^(tool|position error)'
+}
+for p in "150 0 150" "100 120 100" "180 -60 60"; do
+  tool_to "xArm (emulated, Robot Commands)" xarm "serial:$dir/xarm" $p
+done
+for p in "400 100 300" "300 -250 250" "500 200 350"; do
+  tool_to "SCARA (joint bus)" scara "unix:$dir/bus.sock" $p roll=180deg pitch=0deg yaw=0deg
+done
+echo "== SCARA through the arm controller (Robot Commands: 0..1000 per joint, coarser)"
+tool_to "SCARA (arm controller)" scara "serial:$dir/scara" 400 100 300 roll=180deg pitch=0deg yaw=0deg

@@ -20,7 +20,7 @@ double profile_seconds(double distance, double v, double a) {
   return distance / v + ramp;
 }
 
-motion::JointVector chain_of(const ArmModel& m, const std::vector<double>& q) {
+motion::JointVector chain_part(const ArmModel& m, const std::vector<double>& q) {
   motion::JointVector v(m.chain_joints());
   for (int i = 0; i < m.chain_joints(); ++i) v[i] = q[std::size_t(i)];
   return v;
@@ -32,6 +32,8 @@ motion::Pose compose(const motion::Pose& a, const motion::Pose& b) {
   out.orientation = (a.orientation * b.orientation).normalized();
   return out;
 }
+
+double wrap(double a) { return std::remainder(a, 2 * std::numbers::pi); }  // into -pi..pi
 
 motion::Pose inverse_of(const motion::Pose& p) {
   motion::Pose out;
@@ -64,6 +66,10 @@ Result<JointState> Arm::read() {
   return s;
 }
 
+motion::JointVector Arm::chain_of(const std::vector<double>& positions) const {
+  return armctl::arm::chain_part(model_, positions);
+}
+
 motion::Pose Arm::forward(const motion::JointVector& chain) const {
   return compose(model_.kinematics->forward(chain), model_.tool);
 }
@@ -71,7 +77,7 @@ motion::Pose Arm::forward(const motion::JointVector& chain) const {
 Result<motion::Pose> Arm::pose() {
   auto s = read();
   if (!s) return s.error();
-  return forward(chain_of(model_, s->positions));
+  return forward(chain_part(model_, s->positions));
 }
 
 Status Arm::check_targets(const std::vector<std::optional<double>>& targets) const {
@@ -137,13 +143,26 @@ Status Arm::move_joints(const std::vector<std::optional<double>>& targets, const
   return Ok{};
 }
 
+motion::Rpy Arm::tool_rpy(const motion::Pose& pose, const motion::JointVector& chain) const {
+  motion::Rpy rpy = motion::to_rpy(pose.orientation);
+  if (model_.family != motion::KinematicFamily::xarm) return rpy;
+  // Every orientation has two roll-pitch-yaw forms: (r, p, y) and (r + pi, pi - p, y + pi).
+  // The 5-joint arm's own is the one whose yaw is where the arm points (its base angle):
+  // then roll is the wrist's roll and pitch the tool's tilt, free to exceed 90 deg.
+  const motion::Rpy other{wrap(rpy.roll + std::numbers::pi), wrap(std::numbers::pi - rpy.pitch),
+                          wrap(rpy.yaw + std::numbers::pi)};
+  const double pointing = chain[0];
+  return std::abs(wrap(other.yaw - pointing)) < std::abs(wrap(rpy.yaw - pointing)) ? other : rpy;
+}
+
 Result<std::vector<motion::IkSolution>> Arm::inverse(const CartesianGoal& goal, const JointState& now) const {
   for (int k = 0; k < 3; ++k)
     if (!std::isfinite(goal.position[k])) return refuse("the tool position is not a finite number");
   for (const auto& a : {goal.roll, goal.pitch, goal.yaw})
     if (a && !std::isfinite(*a)) return refuse("the tool orientation is not a finite number");
-  const motion::JointVector near = chain_of(model_, now.positions);
-  const motion::Rpy current = motion::to_rpy(forward(near).orientation);
+  const motion::JointVector near = chain_part(model_, now.positions);
+  const motion::Pose here = forward(near);
+  const motion::Rpy current = tool_rpy(here, near);
   motion::Rpy rpy{goal.roll.value_or(current.roll), goal.pitch.value_or(current.pitch),
                   goal.yaw.value_or(current.yaw)};
   motion::IkRequest request;

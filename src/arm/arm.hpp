@@ -64,6 +64,10 @@ class Arm {
   // Kinematics with the arm file's tool frame applied (chain joints only).
   motion::Pose forward(const motion::JointVector& chain) const;
   Result<std::vector<motion::IkSolution>> inverse(const CartesianGoal& goal, const JointState& now) const;
+  // Roll, pitch and yaw of a tool pose as people read them on this arm: on the 5-joint
+  // xArm the form whose yaw is where the arm points (roll = the wrist's roll).
+  motion::Rpy tool_rpy(const motion::Pose& pose, const motion::JointVector& chain) const;
+  motion::JointVector chain_of(const std::vector<double>& positions) const;
 
   // Moves the joints that have a target (SI; the vector has one entry per joint).
   Status move_joints(const std::vector<std::optional<double>>& targets, const MoveOptions& options = {});

@@ -137,14 +137,12 @@ void print_joints(const ArmArgs& a, const arm::ArmModel& m, const arm::JointStat
 // Degrees for people, without "-0.00".
 double deg(double rad) { return to_display(Dimension::angle, rad); }
 
-json pose_json(const motion::Pose& p) {
-  const motion::Rpy r = motion::to_rpy(p.orientation);
+json pose_json(const motion::Pose& p, const motion::Rpy& r) {
   return {{"x_mm", p.position.x() * 1e3}, {"y_mm", p.position.y() * 1e3}, {"z_mm", p.position.z() * 1e3},
           {"roll_deg", deg(r.roll)}, {"pitch_deg", deg(r.pitch)}, {"yaw_deg", deg(r.yaw)}};
 }
 
-std::string pose_text(const motion::Pose& p) {
-  const motion::Rpy r = motion::to_rpy(p.orientation);
+std::string pose_text(const motion::Pose& p, const motion::Rpy& r) {
   auto mm = [](double m) { return to_display(Dimension::length, m); };
   return fmt::format("x {:.2f} y {:.2f} z {:.2f} mm  roll {:.2f} pitch {:.2f} yaw {:.2f} deg", mm(p.position.x()),
                      mm(p.position.y()), mm(p.position.z()), deg(r.roll), deg(r.pitch), deg(r.yaw));
@@ -192,19 +190,17 @@ void after_move(const ArmArgs& a, ArmSession& s, const std::optional<arm::Cartes
     return;
   }
   arm::JointState state = must(s.arm->wait(wait_options(a)));
-  const motion::Pose pose = s.arm->forward([&] {
-    motion::JointVector q(s.arm->model().chain_joints());
-    for (int i = 0; i < q.size(); ++i) q[i] = state.positions[std::size_t(i)];
-    return q;
-  }());
+  const motion::JointVector q = s.arm->chain_of(state.positions);
+  const motion::Pose pose = s.arm->forward(q);
+  const motion::Rpy rpy = s.arm->tool_rpy(pose, q);
   if (a.json) {
-    json out{{"joints", joints_json(s.arm->model(), state)}, {"pose", pose_json(pose)}};
+    json out{{"joints", joints_json(s.arm->model(), state)}, {"pose", pose_json(pose, rpy)}};
     if (goal) out["position_error_mm"] = (pose.position - goal->position).norm() * 1e3;
     fmt::print("{}\n", out.dump());
     return;
   }
   print_joints(a, s.arm->model(), state);
-  fmt::print("tool: {}\n", pose_text(pose));
+  fmt::print("tool: {}\n", pose_text(pose, rpy));
   if (goal) fmt::print("position error: {:.2f} mm\n", (pose.position - goal->position).norm() * 1e3);
 }
 
@@ -215,9 +211,11 @@ void run_joints(const ArmArgs& a) {
 
 void run_pose(const ArmArgs& a) {
   auto s = open_arm_session(a.arm, a.device);
-  const motion::Pose p = must(s->arm->pose());
-  if (a.json) fmt::print("{}\n", json{{"pose", pose_json(p)}}.dump());
-  else fmt::print("{}\n", pose_text(p));
+  const motion::JointVector q = s->arm->chain_of(must(s->arm->read()).positions);
+  const motion::Pose p = s->arm->forward(q);
+  const motion::Rpy rpy = s->arm->tool_rpy(p, q);
+  if (a.json) fmt::print("{}\n", json{{"pose", pose_json(p, rpy)}}.dump());
+  else fmt::print("{}\n", pose_text(p, rpy));
 }
 
 void run_move_joints(const ArmArgs& a) {
