@@ -66,6 +66,24 @@ TEST_F(ArmCli, IkPrintsEverySolutionAndMovesNothing) {
   EXPECT_GE(doc["solutions"].size(), 2u) << r.out;  // elbow left and right at least
 }
 
+TEST_F(ArmCli, CalibrateZeroRewritesACopyOfTheArmFile) {
+  namespace fs = std::filesystem;
+  for (const char* f : {"scara.arm.json", "scara.urdf"})
+    fs::copy_file(fs::path(ARMCTL_SOURCE_DIR) / "config" / f, state / f);
+  const std::string arm = (state / "scara.arm.json").string();
+  // The embedded simulated arm starts with every joint at clicks 0: SHOULDER reads 0 deg
+  // already, Z reads 150 mm. Zeroing Z makes "here" 0 mm.
+  auto r = run_armctl("arm --arm " + arm + " calibrate zero Z");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "Z: zero moved by 150.000 mm")) << r.out;
+  auto j = run_armctl("arm --arm " + arm + " joints");
+  EXPECT_TRUE(contains(j.out, "Z               0.000 mm")) << j.out;
+  // Coupled wrist joints only together; nothing written when refused.
+  auto one = run_armctl("arm --arm " + arm + " calibrate zero SKE");
+  EXPECT_NE(one.status, 0);
+  EXPECT_TRUE(contains(one.out, "coupled")) << one.out;
+}
+
 TEST_F(ArmCli, BadValuesAreRefusedClearly) {
   struct Case {
     const char* args;
