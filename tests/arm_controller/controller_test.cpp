@@ -364,3 +364,23 @@ TEST(JointFaults, GarbageOnTheBusIsLoggedAndNeverMotion) {
 
 }  // namespace
 }  // namespace armctl::arm_controller::testing
+
+namespace armctl::arm_controller::testing {
+namespace {
+
+// A host that dies mid-frame: its half MultiServoMove must not join the next host's read
+// into a move of joint 4 (the SCARA would arrive about 22 s later).
+TEST(TornFrame, ADeadHostsHalfFrameMovesNoJoint) {
+  Rig rig;
+  rig.run_for(std::chrono::milliseconds(200));
+  const int before = rig.clicks(4);
+  rig.device->receive(std::vector<std::uint8_t>{0x55, 0x55, 0x08, 0x03, 0x01});
+  rig.run_for(std::chrono::seconds(2));
+  rig.device->receive(std::vector<std::uint8_t>{0x55, 0x55, 0x04, 0x15, 0x01, 0x01});
+  rig.run_for(std::chrono::seconds(25));
+  EXPECT_NEAR(rig.clicks(4), before, 20);
+  EXPECT_EQ(rig.device->board().stats().torn_frames, 1u);
+}
+
+}  // namespace
+}  // namespace armctl::arm_controller::testing

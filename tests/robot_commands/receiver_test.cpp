@@ -120,3 +120,64 @@ TEST(FrameReceiver, RandomStreamsYieldEveryFrameInOrder) {
 
 }  // namespace
 }  // namespace armctl::rc
+
+namespace armctl::rc {
+namespace {
+
+// A frame whose bytes stop for longer than the gap is torn: dropped, counted, and the next
+// frame is read on its own (issue: a dead host's half frame joined the next host's read
+// into a move of servo 4 to 277 over 21,845 ms).
+TEST(FrameReceiverGap, ATornFrameNeverJoinsTheNextOne) {
+  for (std::uint32_t baud : {9600u, 115200u}) {
+    SCOPED_TRACE(baud);
+    FrameReceiver rx(frame_gap(baud));
+    TimePoint t{};
+    rx.feed(Bytes{0x55, 0x55, 0x08, 0x03, 0x01}, t);
+    t += std::chrono::seconds(2);
+    rx.feed(Bytes{0x55, 0x55, 0x04, 0x15, 0x01, 0x01}, t);
+    std::vector<Frame> frames;
+    while (auto f = rx.next()) frames.push_back(*f);
+    ASSERT_EQ(frames.size(), 1u);
+    EXPECT_EQ(frames[0], (Frame{0x15, {0x01, 0x01}}));  // the read, as sent
+    EXPECT_EQ(rx.torn_frames(), 1u);
+    EXPECT_EQ(rx.discarded_bytes(), 5u);
+  }
+}
+
+TEST(FrameReceiverGap, FramesSplitWithShortPausesAreAccepted) {
+  const Bytes frame{0x55, 0x55, 0x08, 0x03, 0x01, 0xE8, 0x03, 0x01, 0xF4, 0x01};
+  for (std::uint32_t baud : {9600u, 115200u}) {
+    for (Duration pause : {wire_time(3, baud), Duration(std::chrono::milliseconds(5)),
+                           Duration(std::chrono::milliseconds(16)), frame_gap(baud) - wire_time(1, baud)}) {
+      SCOPED_TRACE(testing::Message() << baud << " baud, pause " << pause.count() << " ns");
+      FrameReceiver rx(frame_gap(baud));
+      TimePoint t{};
+      for (std::size_t i = 0; i < frame.size(); ++i) {
+        rx.feed(std::span<const std::uint8_t>(&frame[i], 1), t);
+        t += wire_time(1, baud) + (i % 3 == 2 ? pause : Duration{0});
+      }
+      auto f = rx.next();
+      ASSERT_TRUE(f.has_value());
+      EXPECT_EQ(f->cmd, 3);
+      EXPECT_EQ(rx.torn_frames(), 0u);
+    }
+  }
+}
+
+TEST(FrameReceiverGap, APauseJustOverTheGapTears) {
+  FrameReceiver rx(frame_gap(9600));
+  TimePoint t{};
+  rx.feed(Bytes{0x55, 0x55, 0x04}, t);
+  rx.feed(Bytes{0x0F}, t + frame_gap(9600) + std::chrono::microseconds(1));
+  EXPECT_EQ(rx.torn_frames(), 1u);
+  EXPECT_FALSE(rx.next().has_value());
+}
+
+TEST(FrameReceiverGap, TheGapIsWrittenDown) {
+  EXPECT_EQ(frame_gap(9600), Duration(std::chrono::milliseconds(50)));
+  EXPECT_EQ(frame_gap(115200), Duration(std::chrono::milliseconds(50)));
+  EXPECT_EQ(frame_gap(1200), wire_time(20, 1200));  // slow links: 20 byte times
+}
+
+}  // namespace
+}  // namespace armctl::rc

@@ -89,3 +89,33 @@ TEST(Malformed, RandomBytesNeverCrashOrMoveOutOfRange) {
 
 }  // namespace
 }  // namespace armctl::xarm::test
+
+namespace armctl::xarm::test {
+namespace {
+
+// The reproduction: a host dies mid-frame, another reads servo 1 two seconds later.
+TEST(TornFrame, ADeadHostsHalfFrameMovesNothing) {
+  Emulated e;
+  e.send(hex("55 55 08 03 01"));
+  e.advance_ms(2000);
+  e.send(hex("55 55 04 15 01 01"));
+  e.advance_ms(100);
+  ASSERT_EQ(e.out.size(), 1u);  // the read is answered
+  EXPECT_EQ(e.out[0].cmd, 0x15);
+  e.advance_ms(30000);
+  for (std::uint8_t s = 1; s <= 6; ++s) EXPECT_EQ(e.position(s), 500) << int(s);
+  EXPECT_EQ(e.stats().torn_frames, 1u);
+}
+
+TEST(TornFrame, AFrameSplitAcrossWritesIsStillAccepted) {
+  Emulated e;
+  e.send(hex("55 55 08 03 01"));
+  e.advance_ms(20);
+  e.send(hex("F4 01 01 C8 00"));  // servo 1 to 200 over 500 ms
+  e.advance_ms(1000);
+  EXPECT_EQ(e.position(1), 200);
+  EXPECT_EQ(e.stats().torn_frames, 0u);
+}
+
+}  // namespace
+}  // namespace armctl::xarm::test

@@ -38,11 +38,12 @@ BoardStats Board::stats() const {
   BoardStats s = stats_;
   s.discarded_bytes = receiver_.discarded_bytes();
   s.bad_lengths = receiver_.bad_lengths();
+  s.torn_frames = receiver_.torn_frames();
   return s;
 }
 
 void Board::receive(std::span<const std::uint8_t> bytes) {
-  receiver_.feed(bytes);
+  receiver_.feed(bytes, clock_.now());  // a partial frame left by a dead host is dropped
   while (auto frame = receiver_.next()) handle(*frame);
 }
 

@@ -18,7 +18,9 @@ std::optional<rc::Frame> StreamLink::receive(TimePoint deadline) {
       // Timed out. A partial frame stays buffered: its remaining bytes may still come.
       return std::nullopt;
     }
-    receiver_.feed(std::span<const std::uint8_t>(buf.data(), n));
+    // With the arrival time: a partial frame whose bytes stopped (a board reset mid-reply)
+    // is dropped instead of joining the next reply.
+    receiver_.feed(std::span<const std::uint8_t>(buf.data(), n), clock().now());
   }
 }
 

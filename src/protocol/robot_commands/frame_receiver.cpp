@@ -1,9 +1,25 @@
 #include "protocol/robot_commands/frame_receiver.hpp"
 
+#include <algorithm>
+
 namespace armctl::rc {
+
+Duration frame_gap(std::uint32_t baud) {
+  return std::max<Duration>(wire_time(20, baud), std::chrono::milliseconds(50));
+}
 
 void FrameReceiver::feed(std::span<const std::uint8_t> bytes) {
   for (std::uint8_t b : bytes) feed_byte(b);
+}
+
+void FrameReceiver::feed(std::span<const std::uint8_t> bytes, TimePoint arrived) {
+  if (bytes.empty()) return;
+  if (mid_frame() && last_byte_ && arrived - *last_byte_ > gap_) {
+    ++torn_frames_;
+    reset();
+  }
+  last_byte_ = arrived;
+  feed(bytes);
 }
 
 void FrameReceiver::feed_byte(std::uint8_t byte) {
