@@ -20,6 +20,7 @@ namespace {
 
 using namespace armctl;
 using namespace armctl::arm_controller;
+using namespace armctl::motion;
 using namespace std::chrono_literals;
 
 struct Bench {

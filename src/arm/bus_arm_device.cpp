@@ -20,7 +20,7 @@ BusArmDevice::BusArmDevice(const ArmModel& model, joint_bus::BusMaster& master, 
                         fmt::format("joint {} is joint-bus joint {}, but {} has joints 1..{}", j.name, j.joint_bus->id,
                                     description_, master.joint_count()));
     numbers_.push_back(j.joint_bus->id);
-    profiles_.push_back(arm_controller::as_quantized_by_joint({j.joint_bus->max_speed_cps, j.joint_bus->max_accel_cps2}));
+    profiles_.push_back(motion::as_quantized_by_joint({j.joint_bus->max_speed_cps, j.joint_bus->max_accel_cps2}));
   }
   // A drive transaction is 8 bytes (READY, COMMAND, DATA, STATUS) plus the turnarounds.
   transaction_ = wire_time(10, link.baud());
@@ -43,7 +43,7 @@ Result<std::vector<double>> BusArmDevice::read_positions() {
 Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Duration duration) {
   auto now = read_positions();
   if (!now) return now.error();
-  std::vector<arm_controller::PlanInput> inputs;
+  std::vector<motion::PlanInput> inputs;
   std::vector<std::int16_t> clicks;
   std::vector<std::size_t> which;
   for (std::size_t i = 0; i < targets.size(); ++i) {
@@ -51,7 +51,7 @@ Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Dur
     const long c = std::lround(*targets[i]);
     if (c < -32768 || c > 32767)
       return Error{ErrorKind::invalid_argument, fmt::format("joint {}: {} clicks is outside -32768..32767", numbers_[i], c)};
-    arm_controller::PlanInput in;
+    motion::PlanInput in;
     in.joint = numbers_[i];
     in.distance = std::abs(double(c) - (*now)[i]);
     in.profile = profiles_[i];
@@ -62,7 +62,7 @@ Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Dur
   }
   if (inputs.empty()) return Ok{};
   const TimePoint start = link_.clock().now();
-  const auto plan = arm_controller::plan_synchronized_move(inputs, duration, transaction_, transaction_ * 2);
+  const auto plan = motion::plan_synchronized_move(inputs, duration, transaction_, transaction_ * 2);
   // Each joint gets set_speed and drive_to back to back, timed so that it starts when the
   // plan says (the slowest joint first); the plan's start delays make them arrive together.
   std::vector<std::size_t> order(inputs.size());

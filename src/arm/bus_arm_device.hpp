@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "arm/arm_device.hpp"
-#include "devices/arm_controller/sync_plan.hpp"
+#include "motion/sync_plan.hpp"
 #include "devices/joint_bus/bus_master.hpp"
 
 namespace armctl::arm {
@@ -34,7 +34,7 @@ class BusArmDevice final : public ArmDevice {
   transport::JointBusLink& link_;
   std::string description_;
   std::vector<int> numbers_;  // joint-bus number per model joint
-  std::vector<arm_controller::JointProfile> profiles_;
+  std::vector<motion::JointProfile> profiles_;
   Duration transaction_;  // one set_speed or drive_to on this bus
 };
 

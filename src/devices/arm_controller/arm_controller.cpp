@@ -10,6 +10,14 @@
 
 namespace armctl::arm_controller {
 
+using motion::JointMotionModel;
+using motion::JointProfile;
+using motion::MovingStart;
+using motion::PlanInput;
+using motion::PlannedJoint;
+using motion::as_quantized_by_joint;
+using motion::plan_synchronized_move;
+
 namespace {
 
 constexpr int kFaultLogEvery = 100;  // a dead joint fails every sweep: log changes, then 1 in 100

@@ -1,10 +1,10 @@
-#include "devices/arm_controller/sync_plan.hpp"
+#include "motion/sync_plan.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace armctl::arm_controller {
+namespace armctl::motion {
 namespace {
 
 using namespace std::chrono_literals;
@@ -76,4 +76,4 @@ TEST(SyncPlan, MovingStartArrivesAtTheCommonInstantWithoutTurning) {
 }
 
 }  // namespace
-}  // namespace armctl::arm_controller
+}  // namespace armctl::motion

@@ -15,10 +15,10 @@
 #include <optional>
 
 #include "core/clock.hpp"
-#include "devices/arm_controller/sync_plan.hpp"
+#include "motion/sync_plan.hpp"
 #include "portable/setpoint_ramp.hpp"
 
-namespace armctl::arm_controller {
+namespace armctl::motion {
 
 class JointMotionModel {
  public:
@@ -56,4 +56,4 @@ class JointMotionModel {
   std::optional<int> percent_;
 };
 
-}  // namespace armctl::arm_controller
+}  // namespace armctl::motion

@@ -1,10 +1,10 @@
-#include "devices/arm_controller/sync_plan.hpp"
+#include "motion/sync_plan.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-namespace armctl::arm_controller {
+namespace armctl::motion {
 
 namespace {
 
@@ -221,4 +221,4 @@ SyncPlan plan_synchronized_move(std::span<const PlanInput> inputs, Duration want
   return plan;
 }
 
-}  // namespace armctl::arm_controller
+}  // namespace armctl::motion
