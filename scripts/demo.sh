@@ -40,7 +40,7 @@ done
 # Part 2: one program, two arms, one SDK.
 "$armctl" sim scara --robot-commands --link "$dir/scara" > /dev/null 2> "$dir/scara.log" &
 pids+=($!)
-"$armctl" emulate xarm --link "$dir/xarm" > /dev/null 2> "$dir/xarm.log" &
+"$armctl" sim xarm --link "$dir/xarm" > /dev/null 2> "$dir/xarm.log" &
 pids+=($!)
 for _ in $(seq 100); do [ -e "$dir/scara" ] && [ -e "$dir/xarm" ] && break; sleep 0.1; done
 [ -e "$dir/scara" ] || { echo "demo: the SCARA arm did not start:"; cat "$dir/scara.log"; exit 1; }

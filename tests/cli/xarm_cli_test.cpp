@@ -1,6 +1,6 @@
 // `armctl xarm` end to end: the real binary (ARMCTL_BINARY_DIR/armctl) against (a) its
 // embedded emulated xArm, whose stored state lives in $ARMCTL_STATE_DIR (a temp dir here),
-// and (b) a separate `armctl emulate xarm` process reached through its --link symlink.
+// and (b) a separate `armctl sim xarm` process reached through its --link symlink.
 // Checks output, --json documents, exit status, and the messages for bad arguments.
 #include <gtest/gtest.h>
 
@@ -286,6 +286,18 @@ TEST_F(XarmCli, EmbeddedBoardKeepsGroupsOffsetsAndLimitsButNotPositions) {
   EXPECT_TRUE(contains(xarm("positions 5").out, "servo 5:  500"));
 }
 
+TEST_F(XarmCli, DeviceSimIsTheEmbeddedBoard) {
+  const std::string wave = write_file("wave.grp", kWave);
+  ASSERT_EQ(xarm("group download " + wave + " --group 4").status, 0);
+  const Outcome run = xarm("--device sim group run 4 --wait");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_TRUE(contains(run.out, "finished")) << run.out;
+  const Outcome bad = xarm("--device sim?speed=3 battery");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_TRUE(contains(bad.err, "unknown option 'speed' (sim takes no options)")) << bad.err;
+  EXPECT_TRUE(contains(bad.err, "allowed: sim, hid")) << bad.err;
+}
+
 TEST_F(XarmCli, WatchRunsUntilSigint) {
   Process watch({"xarm", "watch", "--interval", "20"}, state_);
   for (int i = 0; i < 3; ++i) {
@@ -330,17 +342,17 @@ TEST_F(XarmCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
   EXPECT_FALSE(fs::exists(fs::path(state_) / "xarm-emulator" / "group-000.grp"));
 }
 
-// ------------------------------------------------- `armctl emulate xarm` as a process
+// ------------------------------------------------- `armctl sim xarm` as a process
 
-TEST_F(XarmCli, AgainstAnEmulateXarmProcess) {
+TEST_F(XarmCli, AgainstASimXarmProcess) {
   const std::string link = (dir_ / "xarm").string();
   const std::string board_state = (dir_ / "board").string();
   auto emulator = std::make_unique<Process>(
-      std::vector<std::string>{"emulate", "xarm", "--link", link, "--state-dir", board_state},
+      std::vector<std::string>{"sim", "xarm", "--link", link, "--state-dir", board_state},
       state_);
   // Ready once it prints the pty path (it creates the link before printing).
   auto pty = emulator->read_line();
-  ASSERT_TRUE(pty) << "armctl emulate xarm ended before printing its pty";
+  ASSERT_TRUE(pty) << "armctl sim xarm ended before printing its pty";
   EXPECT_EQ(pty->rfind("/dev/pts/", 0), 0u) << *pty;
   ASSERT_EQ(fs::read_symlink(link).string(), *pty);
 
@@ -401,14 +413,17 @@ TEST_F(XarmCli, AgainstAnEmulateXarmProcess) {
   EXPECT_FALSE(fs::exists(fs::symlink_status(link))) << "link left behind";
   EXPECT_TRUE(contains(end.err, "stopped;")) << end.err;
 
-  // The saved offset is on the board's state dir: a new board process starts with it.
+  // The saved offset is on the board's state dir: a new board process starts with it. This one
+  // is started by the old name, `emulate xarm`, which still works and says it is deprecated.
   emulator = std::make_unique<Process>(
       std::vector<std::string>{"emulate", "xarm", "--link", link, "--state-dir", board_state},
       state_);
   ASSERT_TRUE(emulator->read_line());
   EXPECT_TRUE(contains(xarm(dev + "offset read 3").out, "servo 3: offset -20"));
   ASSERT_EQ(::kill(emulator->pid(), SIGTERM), 0);
-  EXPECT_EQ(emulator->finish().status, 0);
+  const Outcome old_name = emulator->finish();
+  EXPECT_EQ(old_name.status, 0) << old_name.err;
+  EXPECT_TRUE(contains(old_name.err, "'emulate xarm' is deprecated, use 'armctl sim xarm'")) << old_name.err;
 }
 
 }  // namespace

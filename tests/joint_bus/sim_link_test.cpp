@@ -54,10 +54,10 @@ class SimLinkTest : public ::testing::Test {
     path = fmt::format("/tmp/armctl-simlink-test-{}.sock", ::getpid());
     server = std::make_unique<joint_bus::SimLinkServer>(arm->link(), path);
     server->set_tick([this] { arm->bus().sync(); });
-    thread = std::thread([this] { server->run(stop); });
+    thread = std::thread([this] { server->run(); });
   }
   void TearDown() override {
-    stop = true;
+    server->request_stop();
     thread.join();
     server.reset();
     EXPECT_NE(::access(path.c_str(), F_OK), 0) << "socket file left behind";
@@ -65,7 +65,6 @@ class SimLinkTest : public ::testing::Test {
   std::unique_ptr<joint_sim::SimArm> arm = make_arm(115200);
   std::string path;
   std::unique_ptr<joint_bus::SimLinkServer> server;
-  std::atomic<bool> stop{false};
   std::thread thread;
 };
 

@@ -4,15 +4,20 @@
 
 #include "arm/bus_arm_device.hpp"
 #include "arm/rc_arm_device.hpp"
-#include "devices/joint_bus/device_uri.hpp"
+#include "devices/device_registry/device_registry.hpp"
+#include "transport/device_uri_parts.hpp"
 
 namespace armctl::cli {
 
 namespace {
 
+// Read with the one URI parser, so the forms are those of docs/joint-bus-master.md.
 bool names_joint_bus(const std::string& device) {
-  return device.empty() || device == "sim" || device.rfind("sim?", 0) == 0 || device.rfind("unix:", 0) == 0 ||
-         (device.rfind("serial:", 0) == 0 && device.find("select=") != std::string::npos);
+  if (device.empty()) return true;
+  const auto parts = transport::split_uri(device);
+  if (!parts) return false;  // the Robot Commands parser names the mistake
+  return parts->kind == "sim" || parts->kind == "unix" ||
+         (parts->kind == "serial" && parts->options.contains("select"));
 }
 
 }  // namespace
@@ -29,7 +34,7 @@ std::unique_ptr<ArmSession> open_arm_session(const std::string& arm_name, const 
   const bool bus = model.supports(arm::Protocol::joint_bus) &&
                    (names_joint_bus(device) || !model.supports(arm::Protocol::robot_commands));
   if (bus) {
-    s->bus = joint_bus::open_bus(joint_bus::parse_device_uri(device.empty() ? "sim" : device));
+    s->bus = devices::open_joint_bus(device.empty() ? "sim" : device);
     s->master = std::make_unique<joint_bus::BusMaster>(s->bus->link(), s->bus->default_options());
     auto dev = std::make_unique<arm::BusArmDevice>(model, *s->master, s->bus->link(), s->bus->description());
     s->arm = std::make_unique<arm::Arm>(std::move(model), std::move(dev));

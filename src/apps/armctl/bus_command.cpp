@@ -12,6 +12,7 @@
 #include "apps/armctl/bus_report.hpp"
 #include "apps/armctl/commands.hpp"
 #include "core/error.hpp"
+#include "devices/device_registry/device_registry.hpp"
 #include "devices/joint_bus/bus_connection.hpp"
 #include "devices/joint_bus/bus_master.hpp"
 #include "devices/joint_bus/device_uri.hpp"
@@ -87,8 +88,7 @@ struct BusCommandSpec {
 class BusRunner {
  public:
   explicit BusRunner(const BusArgs& args) : args_(args) {
-    const auto uri = joint_bus::parse_device_uri(args.device);
-    connection_ = joint_bus::open_bus(uri);
+    connection_ = devices::open_joint_bus(args.device);
     joint_bus::MasterOptions options = connection_->default_options();
     options.retries = args.retries;
     options.verify = args.verify;

@@ -8,8 +8,9 @@ namespace armctl::cli {
 
 void add_bus_command(CLI::App& app);         // bus_command.cpp: joint bus master
 void add_sim_command(CLI::App& app);         // sim_command.cpp: long-lived simulated arms
+void add_sim_xarm_command(CLI::App& sim);    // sim_xarm_command.cpp: `sim xarm`, the xArm emulator
 void add_xarm_command(CLI::App& app);        // xarm_command.cpp: Robot Commands SDK
-void add_emulate_command(CLI::App& app);     // emulate_command.cpp: xArm board emulator
+void add_emulate_command(CLI::App& app);     // sim_xarm_command.cpp: deprecated name of sim xarm
 void add_list_command(CLI::App& app);        // list_command.cpp: attached boards and ports
 void add_controller_command(CLI::App& app);  // controller_command.cpp: the arm controller
 void add_arm_command(CLI::App& app);         // arm_command.cpp: the Arm API in SI units

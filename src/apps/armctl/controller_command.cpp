@@ -7,8 +7,7 @@
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/controller_serve.hpp"
 #include "devices/arm_controller/controller_config.hpp"
-#include "devices/joint_bus/bus_connection.hpp"
-#include "devices/joint_bus/device_uri.hpp"
+#include "devices/device_registry/device_registry.hpp"
 
 namespace armctl::cli {
 
@@ -24,7 +23,7 @@ void run_controller(const ControllerArgs& args) {
   auto config = args.arm.empty()
                     ? arm_controller::load_controller_config(arm_controller::default_controller_config_path())
                     : arm_controller::load_controller_config(args.arm);
-  auto connection = joint_bus::open_bus(joint_bus::parse_device_uri(args.bus));
+  auto connection = devices::open_joint_bus(args.bus);
   serve_controller(connection->link(), connection->default_options(), std::move(config), args.serve);
 }
 

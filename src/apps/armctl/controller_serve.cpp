@@ -38,8 +38,7 @@ void serve_controller(transport::JointBusLink& bus, joint_bus::MasterOptions mas
   ac::ControllerDevice device(*link, master_options, std::move(config), options, runner.make_output());
 
   const PtySymlink symlink(args.link, runner.host_path());
-  const StopOnSignals stop_on_signals(
-      [](void* r) { static_cast<ac::ControllerRunner*>(r)->request_stop(); }, &runner);
+  const StopOnSignals stop_on_signals(runner);
 
   fmt::print("{}\n", runner.host_path());
   fmt::print(stderr, "{}: Robot Commands on {}{} (servos 1..{} = joints), joint bus at {} baud; Ctrl-C to stop\n",

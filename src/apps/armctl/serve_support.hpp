@@ -1,8 +1,10 @@
-// What the long-running subcommands (emulate xarm, controller, sim scara --robot-commands)
-// share: a symlink to their pty that lives exactly as long as they do, and a clean stop on
-// SIGINT/SIGTERM.
+// What the long-running subcommands (sim xarm, sim scara, controller) share: a symlink to their
+// pty that lives exactly as long as they do, and the one way armctl handles signals: SIGINT and
+// SIGTERM ask a server to stop (its request_stop(): transport::ServeLoop wakes at once), and
+// SIGPIPE is ignored (a peer that leaves is an error to handle, not a reason to die).
 #pragma once
 
+#include <atomic>
 #include <csignal>
 #include <filesystem>
 
@@ -21,19 +23,30 @@ class PtySymlink {
   std::filesystem::path link_;
 };
 
-// While alive, SIGINT and SIGTERM call `stop(context)`, which must be async-signal-safe (the
-// runners' request_stop sets an atomic flag and writes to a pipe). Restores the previous
-// handlers on destruction. One at a time per process.
+// While alive, SIGINT and SIGTERM call `server.request_stop()`, which must be
+// async-signal-safe (the servers' sets an atomic flag and writes to a pipe; Interrupted's sets
+// a flag). Restores the previous handlers on destruction. One at a time per process.
 class StopOnSignals {
  public:
-  StopOnSignals(void (*stop)(void*), void* context);
+  template <typename Server>
+  explicit StopOnSignals(Server& server)
+      : StopOnSignals([](void* s) { static_cast<Server*>(s)->request_stop(); }, &server) {}
   ~StopOnSignals();
   StopOnSignals(const StopOnSignals&) = delete;
   StopOnSignals& operator=(const StopOnSignals&) = delete;
 
  private:
+  StopOnSignals(void (*stop)(void*), void* context);
   struct sigaction old_int_ {};
   struct sigaction old_term_ {};
+  struct sigaction old_pipe_ {};
+};
+
+// For a command that loops until Ctrl-C (xarm watch, group run --wait): the flag it checks.
+struct Interrupted {
+  std::atomic<bool> flag{false};
+  void request_stop() { flag = true; }
+  explicit operator bool() const { return flag.load(); }
 };
 
 }  // namespace armctl::cli

@@ -1,9 +1,7 @@
-// armctl sim scara [--listen PATH] [--baud N] [--config FILE]
+// armctl sim scara [--listen PATH] [--baud N] [--config FILE] (and sim xarm: sim_xarm_command.cpp)
 // Runs the simulated SCARA arm as a long-lived process, paced to the wall clock, serving its
 // joint bus on a unix socket so that `armctl bus --device unix:PATH ...` keeps the arm's
 // state between invocations. SIGINT/SIGTERM stop it cleanly (socket file removed).
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -12,6 +10,7 @@
 
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/controller_serve.hpp"
+#include "apps/armctl/serve_support.hpp"
 #include "core/error.hpp"
 #include "devices/joint_bus/sim_link_server.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
@@ -20,10 +19,6 @@
 namespace armctl::cli {
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-
-void on_sim_stop_signal(int /*sig*/) { g_stop.store(true); }
 
 struct SimArgs {
   std::string listen = "/tmp/armctl-scara.sock";
@@ -57,17 +52,12 @@ void run_sim_scara(const SimArgs& args) {
   server.set_tick([&arm] { arm.bus().sync(); });
   server.set_log([](const std::string& line) { fmt::print("sim scara: {}\n", line); std::fflush(stdout); });
 
-  struct sigaction sa{};
-  sa.sa_handler = on_sim_stop_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-  std::signal(SIGPIPE, SIG_IGN);
+  const StopOnSignals stop_on_signals(server);
 
   fmt::print("sim scara: {} joints at {} baud, listening on {} (Ctrl-C to stop)\n", arm.joint_count(),
              arm.config().baud, args.listen);
   std::fflush(stdout);
-  server.run(g_stop);
+  server.run();
   fmt::print("sim scara: stopped ({} masters served, {} bytes to masters)\n", server.stats().clients,
              server.stats().bytes_to_master);
 }
@@ -76,8 +66,9 @@ void run_sim_scara(const SimArgs& args) {
 
 void add_sim_command(CLI::App& app) {
   auto args = std::make_shared<SimArgs>();
-  CLI::App* sim = app.add_subcommand("sim", "Long-lived simulated arms");
+  CLI::App* sim = app.add_subcommand("sim", "Long-lived simulated arms: the SCARA arm, the emulated xArm board");
   sim->require_subcommand(1);
+  add_sim_xarm_command(*sim);
   CLI::App* scara = sim->add_subcommand("scara", "The simulated SCARA arm (7 joints on a joint bus) on a unix socket");
   scara->add_option("--listen", args->listen, "Unix socket path (default /tmp/armctl-scara.sock)");
   scara->add_option("--baud", args->baud, "Joint bus baud (default: the config's, 9600)");

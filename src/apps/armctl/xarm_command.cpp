@@ -1,7 +1,5 @@
 // `armctl xarm`: drive an xArm (or our arm controller) over Robot Commands through the SDK.
 // Thin: parse and validate arguments, call robot_commands::Client, print text or JSON.
-#include <atomic>
-#include <csignal>
 #include <memory>
 #include <string>
 #include <vector>
@@ -11,6 +9,7 @@
 
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/xarm_args.hpp"
+#include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/xarm_session.hpp"
 #include "motion/action_group_file.hpp"
 #include "protocol/robot_commands/units.hpp"
@@ -44,8 +43,6 @@ struct XarmCli {
   robot_commands::BusServoInfoWrite info;
 };
 
-std::atomic<bool> g_interrupted{false};
-extern "C" void on_sigint(int) { g_interrupted = true; }
 
 template <typename T>
 T check(Result<T> r) {
@@ -209,15 +206,14 @@ void run_group_download(const XarmCli& o) {
 // `group run --wait`: prints notifications until the run finishes or is stopped (or Ctrl-C).
 // Needed with the embedded board, which plays only while this command runs.
 void wait_for_group_end(const XarmCli& o, Client& c, std::uint8_t group) {
-  g_interrupted = false;
-  auto previous = std::signal(SIGINT, on_sigint);
+  Interrupted interrupted;
+  const StopOnSignals stop_on_signals(interrupted);
   const TimePoint start_deadline = c.clock().now() + std::chrono::milliseconds(500);
   bool started = false;
-  while (!g_interrupted) {
+  while (!interrupted) {
     auto e = c.wait_event(c.clock().now() + std::chrono::milliseconds(100));
     if (!e) {
       if (!started && c.clock().now() >= start_deadline) {
-        std::signal(SIGINT, previous);
         throw ArmctlError(ErrorKind::timeout,
                           fmt::format("no 'started' notification for group {} within 500 ms (is "
                                       "group {} empty on this board?)",
@@ -231,7 +227,6 @@ void wait_for_group_end(const XarmCli& o, Client& c, std::uint8_t group) {
         e->kind == robot_commands::GroupEventKind::stopped)
       break;
   }
-  std::signal(SIGINT, previous);
 }
 
 void run_group_run(const XarmCli& o) {
@@ -276,12 +271,11 @@ void run_group_speed(const XarmCli& o) {
 void run_watch(const XarmCli& o) {
   auto s = open(o);
   auto& c = *s->client;
-  g_interrupted = false;
-  auto previous = std::signal(SIGINT, on_sigint);
-  while (!g_interrupted) {
+  Interrupted interrupted;
+  const StopOnSignals stop_on_signals(interrupted);
+  while (!interrupted) {
     auto ps = c.read_all_positions();
     if (!ps) {
-      std::signal(SIGINT, previous);
       throw ArmctlError(ps.error());
     }
     if (o.json) {
@@ -296,7 +290,6 @@ void run_watch(const XarmCli& o) {
     c.pump_events(c.clock().now() + std::chrono::milliseconds(o.interval_ms));
     print_events(o, c);
   }
-  std::signal(SIGINT, previous);
 }
 
 }  // namespace
@@ -306,17 +299,18 @@ void add_xarm_command(CLI::App& app) {
   auto* x = app.add_subcommand("xarm", "Drive an xArm board (or the arm controller) over Robot "
                                        "Commands; without --device an embedded emulated xArm");
   x->footer(
-      "Without --device each command talks to an emulated xArm embedded in this process. Like a\n"
-      "real board it keeps action groups, saved offsets and servo limits between commands, in\n"
-      "$ARMCTL_STATE_DIR/xarm-emulator, else $XDG_STATE_HOME/armctl/xarm-emulator, else\n"
-      "~/.local/state/armctl/xarm-emulator. Servo positions are not kept: every command starts\n"
-      "with all servos at centre (500), and a group plays only while its command runs (use\n"
-      "`group run N --wait`). For one long-lived board: `armctl emulate xarm --link /tmp/xarm`\n"
-      "and --device /tmp/xarm.");
+      "Without --device (or with --device sim) each command talks to an emulated xArm embedded\n"
+      "in this process. Like a real board it keeps action groups, saved offsets and servo limits\n"
+      "between commands, in $ARMCTL_STATE_DIR/xarm-emulator, else\n"
+      "$XDG_STATE_HOME/armctl/xarm-emulator, else ~/.local/state/armctl/xarm-emulator. Servo\n"
+      "positions are not kept: every command starts with all servos at centre (500), and a group\n"
+      "plays only while its command runs (use `group run N --wait`). For one long-lived board:\n"
+      "`armctl sim xarm --link /tmp/xarm` and --device /tmp/xarm.");
   x->require_subcommand(1);
   x->fallthrough();  // --device/--json may also follow the subcommand
   x->add_option("--device", o->device,
-                "hid | hid:SERIAL | hid:/dev/hidrawN | serial:/dev/ttyUSB0[?baud=115200] | /dev/PATH");
+                "sim (embedded emulated xArm, default) | hid | hid:SERIAL | hid:/dev/hidrawN | "
+                "serial:/dev/ttyUSB0[?baud=115200] | /dev/PATH");
   x->add_flag("--json", o->json, "Machine-readable output (one JSON object per line)");
   x->add_option("--servos", o->servo_count, "Servos on the board (6 = xArm, 7 = SCARA controller)")
       ->check(CLI::Range(1, 19));

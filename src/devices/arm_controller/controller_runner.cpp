@@ -4,12 +4,12 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <charconv>
 
 #include <fmt/core.h>
 
 #include "core/error.hpp"
 #include "protocol/robot_commands/frame.hpp"
+#include "transport/device_uri_parts.hpp"
 
 namespace armctl::arm_controller {
 
@@ -20,38 +20,33 @@ constexpr std::size_t kMaxQueuedOutput = 64 * 1024;
 // Longest the loop waits on the bus without looking at the host (when no poll fits).
 constexpr Duration kUpstreamCheck = std::chrono::milliseconds(2);
 
-[[noreturn]] void bad_upstream(const std::string& text, const std::string& why) {
-  throw ArmctlError(ErrorKind::invalid_argument,
-                    fmt::format("--upstream \"{}\": {} (allowed: pty, serial:/dev/PATH[?baud=N], "
-                                "or a /dev path)",
-                                text, why));
+constexpr const char* kUpstreamForms = "pty, serial:/dev/PATH[?baud=N], or a /dev path";
+
+template <typename T>
+T checked(const std::string& text, Result<T> r) {
+  if (!r) {
+    throw ArmctlError(transport::uri_error(text, r.error(), kUpstreamForms));
+  }
+  return std::move(r).value();
 }
 
 }  // namespace
 
 Upstream parse_upstream(const std::string& text) {
+  auto parts = checked(text, transport::split_uri(text));
   Upstream u;
-  if (text == "pty") {
+  if (parts.kind == "pty" && !parts.has_path) {
+    checked(text, transport::check_options(parts, {}));
     u.pty = true;
     return u;
   }
-  std::string rest = text;
-  if (rest.rfind("serial:", 0) == 0) rest = rest.substr(7);
-  else if (rest.rfind("/dev/", 0) != 0) bad_upstream(text, "not a known form");
-  auto q = rest.find('?');
-  u.path = rest.substr(0, q);
-  if (u.path.empty()) bad_upstream(text, "no device path");
-  if (q != std::string::npos) {
-    std::string query = rest.substr(q + 1);
-    if (query.rfind("baud=", 0) != 0) bad_upstream(text, "the only option is baud=N");
-    std::string value = query.substr(5);
-    unsigned long baud = 0;
-    auto [p, ec] = std::from_chars(value.data(), value.data() + value.size(), baud);
-    if (ec != std::errc() || p != value.data() + value.size() || !transport::baud_constant(static_cast<std::uint32_t>(baud)))
-      bad_upstream(text, fmt::format("baud \"{}\" is not a standard rate ({})", value,
-                                     transport::standard_bauds_text()));
-    u.baud = static_cast<std::uint32_t>(baud);
+  if (parts.kind != "serial") {
+    throw ArmctlError(transport::uri_error(
+        text, Error{ErrorKind::invalid_argument, "unknown kind of upstream"}, kUpstreamForms));
   }
+  const auto serial = checked(text, transport::parse_serial_uri(parts, transport::kDefaultBaud));
+  u.path = serial.path;
+  u.baud = serial.baud;
   return u;
 }
 
@@ -94,8 +89,8 @@ void ControllerRunner::flush_output() {
 
 void ControllerRunner::read_upstream(ControllerDevice& device) {
   for (;;) {
-    pollfd p{stream_->fd(), POLLIN, 0};
-    if (::poll(&p, 1, 0) <= 0 || !(p.revents & POLLIN)) return;
+    pollfd p[1] = {{stream_->fd(), POLLIN, 0}};
+    if (!loop_.wait(p, Duration::zero()) || !(p[0].revents & POLLIN)) return;
     std::uint8_t buffer[512];
     ssize_t n = ::read(stream_->fd(), buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
@@ -105,7 +100,9 @@ void ControllerRunner::read_upstream(ControllerDevice& device) {
 }
 
 void ControllerRunner::run(ControllerDevice& device) {
-  while (!stop_) {
+  // The host is looked at between bus steps (each at most kUpstreamCheck long): the bus
+  // link's own wait is the loop's wait, so a stop is seen within one step.
+  while (!loop_.stop_requested()) {
     read_upstream(device);
     device.board().poll();
     flush_output();

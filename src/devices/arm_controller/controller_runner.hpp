@@ -1,11 +1,11 @@
 // Serves a ControllerDevice to a host over a byte stream (a pty it creates, or a serial
 // port): Robot Commands frames in the serial form upstream, the joint bus downstream. One
-// thread, one loop: read what the host sent, let the board act, send replies and
-// notifications, then one bus step (a due command, a short wait, or a position poll), so a
-// request waits at most one bus transaction before it is handled.
+// thread, one loop (transport::ServeLoop, like every server): read what the host sent, let
+// the board act, send replies and notifications, then one bus step (a due command, a short
+// wait, or a position poll), so a request waits at most one bus transaction before it is
+// handled.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -17,6 +17,7 @@
 #include "transport/fd_stream.hpp"
 #include "transport/pty.hpp"
 #include "transport/serial_port.hpp"
+#include "transport/serve_loop.hpp"
 
 namespace armctl::arm_controller {
 
@@ -51,7 +52,7 @@ class ControllerRunner {
 
   // Serves until request_stop() (async-signal-safe).
   void run(ControllerDevice& device);
-  void request_stop() { stop_ = true; }
+  void request_stop() { loop_.request_stop(); }
   std::size_t dropped_output_bytes() const { return dropped_; }
 
  private:
@@ -64,7 +65,7 @@ class ControllerRunner {
   std::string host_path_;
   std::deque<std::uint8_t> output_;
   std::size_t dropped_ = 0;
-  std::atomic<bool> stop_{false};
+  transport::ServeLoop loop_;
 };
 
 }  // namespace armctl::arm_controller

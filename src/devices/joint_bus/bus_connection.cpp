@@ -5,7 +5,7 @@
 #include <fmt/core.h>
 
 #include "devices/joint_bus/sim_link_client.hpp"
-#include "devices/joint_sim/sim_arm.hpp"
+#include "core/error.hpp"
 #include "transport/gpiod_select_lines.hpp"
 #include "transport/serial_joint_bus_link.hpp"
 #include "transport/serial_port.hpp"
@@ -13,30 +13,6 @@
 namespace armctl::joint_bus {
 
 namespace {
-
-class EmbeddedSim final : public BusConnection {
- public:
-  explicit EmbeddedSim(const SimDevice& d) {
-    joint_sim::ArmConfig config = d.config.empty()
-                                      ? joint_sim::load_arm_config(joint_sim::default_arm_config_path())
-                                      : joint_sim::load_arm_config(d.config);
-    if (d.baud) config.baud = *d.baud;
-    arm_ = std::make_unique<joint_sim::SimArm>(std::move(config));
-    if (!d.dead_joints.empty()) {
-      joint_sim::FaultPlan faults;
-      for (int j : d.dead_joints) faults.dead_joint(j);
-      arm_->set_fault_plan(std::move(faults));
-    }
-  }
-  transport::JointBusLink& link() override { return arm_->link(); }
-  MasterOptions default_options() const override { return {}; }
-  std::string description() const override {
-    return fmt::format("embedded simulated arm at {} baud", arm_->config().baud);
-  }
-
- private:
-  std::unique_ptr<joint_sim::SimArm> arm_;
-};
 
 class RemoteSim final : public BusConnection {
  public:
@@ -82,7 +58,11 @@ class RealBus final : public BusConnection {
 }  // namespace
 
 std::unique_ptr<BusConnection> open_bus(const DeviceUri& uri) {
-  if (const auto* s = std::get_if<SimDevice>(&uri)) return std::make_unique<EmbeddedSim>(*s);
+  if (std::holds_alternative<SimDevice>(uri)) {
+    throw ArmctlError(ErrorKind::unsupported,
+                      "device \"sim\" (the embedded simulated arm) is a simulator: open it with "
+                      "devices::open_joint_bus (library armctl_device_registry)");
+  }
   if (const auto* u = std::get_if<UnixDevice>(&uri)) return std::make_unique<RemoteSim>(*u);
   return std::make_unique<RealBus>(std::get<SerialDevice>(uri));
 }

@@ -1,6 +1,8 @@
 // Opens the joint bus a DeviceUri names: the link the master talks through, whatever owns
-// it (an embedded simulated arm, a serial port and GPIO lines, a socket), and the master
-// options that suit that link (dialect; a turnaround that covers a socket round trip).
+// it (a serial port and GPIO lines, a socket to a simulated arm in another process), and the
+// master options that suit that link (dialect; a turnaround that covers a socket round trip).
+// This library links no simulator: the embedded simulated arm (`sim`) is opened by the device
+// registry (devices/device_registry), which apps use to open any URI.
 #pragma once
 
 #include <memory>
@@ -20,7 +22,8 @@ class BusConnection {
   virtual std::string description() const = 0;
 };
 
-// Throws ArmctlError (io, invalid_config, invalid_argument) naming what failed.
+// Throws ArmctlError (io, invalid_config, invalid_argument) naming what failed, and
+// (unsupported) for SimDevice.
 std::unique_ptr<BusConnection> open_bus(const DeviceUri& uri);
 
 // Lets time pass on the link's clock without a transaction (simulated links advance the

@@ -15,7 +15,8 @@
 namespace armctl::joint_bus {
 
 namespace {
-constexpr int kPollMs = 1;  // pacing granularity: simulated time trails the wall clock by <= 1 ms
+// Pacing granularity: simulated time trails the wall clock by <= 1 ms.
+constexpr Duration kPacing = std::chrono::milliseconds(1);
 }
 
 SimLinkServer::SimLinkServer(transport::JointBusLink& bus, std::string socket_path)
@@ -142,15 +143,12 @@ void SimLinkServer::forward_received(TimePoint sim_until) {
   }
 }
 
-void SimLinkServer::run(const std::atomic<bool>& stop) {
+void SimLinkServer::run() {
   TimePoint last_wall = wall_.now();
-  while (!stop.load()) {
-    pollfd p{client_fd_ >= 0 ? client_fd_ : listen_fd_, POLLIN, 0};
-    const int r = ::poll(&p, 1, kPollMs);
-    if (r < 0 && errno != EINTR) {
-      throw ArmctlError(ErrorKind::io, fmt::format("poll on {} failed (errno {})", path_, errno));
-    }
-    if (r > 0) {
+  while (!loop_.stop_requested()) {
+    pollfd p[1] = {{client_fd_ >= 0 ? client_fd_ : listen_fd_, POLLIN, 0}};
+    if (!loop_.wait(p, kPacing)) break;
+    if (p[0].revents != 0) {
       if (client_fd_ >= 0) {
         handle_client_bytes();
       } else {

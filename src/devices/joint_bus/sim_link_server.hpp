@@ -5,7 +5,6 @@
 // select lines lowered, and the next one may connect. Used by `armctl sim scara`.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -13,6 +12,7 @@
 #include "core/clock.hpp"
 #include "devices/joint_bus/sim_link_protocol.hpp"
 #include "transport/joint_bus_link.hpp"
+#include "transport/serve_loop.hpp"
 
 namespace armctl::joint_bus {
 
@@ -31,8 +31,9 @@ class SimLinkServer {
   SimLinkServer(const SimLinkServer&) = delete;
   SimLinkServer& operator=(const SimLinkServer&) = delete;
 
-  // Serves until `stop` becomes true (checked at least every millisecond).
-  void run(const std::atomic<bool>& stop);
+  // Serves until request_stop() (async-signal-safe, any thread: wakes the loop at once).
+  void run();
+  void request_stop() { loop_.request_stop(); }
 
   const std::string& path() const { return path_; }
   const SimLinkServerStats& stats() const { return stats_; }
@@ -57,6 +58,7 @@ class SimLinkServer {
   int client_fd_ = -1;
   sim_link::Parser parser_;
   SteadyClock wall_;
+  transport::ServeLoop loop_;
   // Pacing hold: while a select line is high, simulated time never runs more than hold_
   // past the master's last message. A master behind a socket cannot answer within a
   // joint's abandon timeout (2.7 ms at 115200) reliably; this models one that can.

@@ -1,5 +1,5 @@
 // Counters a board keeps about what it received: every ignored frame is counted under one
-// reason, so tests, logs and `armctl emulate` can show what a host got wrong.
+// reason, so tests, logs and `armctl sim xarm` can show what a host got wrong.
 #pragma once
 
 #include <cstddef>

@@ -1,70 +1,51 @@
 #include "devices/robot_commands/device_uri.hpp"
 
-#include <charconv>
-
 #include "devices/robot_commands/hid_link.hpp"
 #include "devices/robot_commands/stream_link.hpp"
+#include "transport/device_uri_parts.hpp"
 #include "transport/serial_port.hpp"
 
 namespace armctl::robot_commands {
 namespace {
 
 constexpr const char* kForms =
-    "allowed: hid, hid:SERIAL, hid:/dev/hidrawN, serial:/dev/PATH[?baud=N], /dev/PATH";
+    "sim, hid, hid:SERIAL, hid:/dev/hidrawN, serial:/dev/PATH[?baud=N], /dev/PATH";
 
-Error bad(const std::string& why) {
-  return Error{ErrorKind::invalid_argument, why + " (" + kForms + ")"};
+Error bad(const std::string& text, const std::string& why) {
+  return transport::uri_error(text, Error{ErrorKind::invalid_argument, why}, kForms);
 }
 
 }  // namespace
 
 Result<DeviceUri> parse_device_uri(const std::string& text) {
+  auto parts = transport::split_uri(text);
+  if (!parts) return transport::uri_error(text, parts.error(), kForms);
   DeviceUri uri;
-  if (text == "hid") {
-    uri.kind = DeviceUri::Kind::hid;
+  if (parts->kind == "sim" || parts->kind == "hid") {
+    uri.kind = parts->kind == "sim" ? DeviceUri::Kind::sim : DeviceUri::Kind::hid;
+    if (auto none = transport::check_options(*parts, {}); !none) return transport::uri_error(text, none.error(), kForms);
+    if (uri.kind == DeviceUri::Kind::sim && parts->has_path) return bad(text, "sim takes no path");
+    uri.target = parts->path;
+    if (uri.kind == DeviceUri::Kind::hid && parts->has_path && uri.target.empty()) {
+      return bad(text, "\"hid:\" names no board");
+    }
     return uri;
   }
-  if (text.rfind("hid:", 0) == 0) {
-    uri.kind = DeviceUri::Kind::hid;
-    uri.target = text.substr(4);
-    if (uri.target.empty()) return bad("device \"hid:\" names no board");
-    return uri;
-  }
-  std::string rest;
-  if (text.rfind("serial:", 0) == 0) {
-    rest = text.substr(7);
-  } else if (text.rfind("/dev/", 0) == 0 || text.rfind("/", 0) == 0) {
-    rest = text;
-  } else {
-    return bad("device \"" + text + "\" is not understood");
-  }
-  const auto q = rest.find('?');
+  if (parts->kind != "serial") return bad(text, "unknown kind of device");
+  auto serial = transport::parse_serial_uri(*parts, transport::kDefaultBaud);
+  if (!serial) return transport::uri_error(text, serial.error(), kForms);
   uri.kind = DeviceUri::Kind::serial;
-  uri.target = rest.substr(0, q);
-  if (uri.target.empty() || uri.target[0] != '/') {
-    return bad("device \"" + text + "\" needs an absolute serial port path");
-  }
-  if (q != std::string::npos) {
-    const std::string option = rest.substr(q + 1);
-    if (option.rfind("baud=", 0) != 0) {
-      return bad("device \"" + text + "\": unknown option \"" + option + "\" (only baud=N)");
-    }
-    const std::string value = option.substr(5);
-    std::uint32_t baud = 0;
-    auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), baud);
-    if (ec != std::errc{} || end != value.data() + value.size() ||
-        !transport::baud_constant(baud)) {
-      return Error{ErrorKind::invalid_argument,
-                   "device \"" + text + "\": baud \"" + value +
-                       "\" is not a standard rate (allowed: " + transport::standard_bauds_text() +
-                       ")"};
-    }
-    uri.baud = baud;
-  }
+  uri.target = serial->path;
+  uri.baud = serial->baud;
   return uri;
 }
 
 std::unique_ptr<RcLink> open_link(const DeviceUri& uri) {
+  if (uri.kind == DeviceUri::Kind::sim) {
+    throw ArmctlError(ErrorKind::unsupported,
+                      "device \"sim\" (the embedded emulated xArm) is a simulator: open it with "
+                      "devices::open_robot_commands (library armctl_device_registry)");
+  }
   if (uri.kind == DeviceUri::Kind::hid) return HidLink::open_board(uri.target);
   auto port = transport::SerialPort::open(uri.target, uri.baud);
   const std::string description =

@@ -1,5 +1,7 @@
 // Where a Robot Commands board is: `hid` (first xArm board), `hid:SERIAL`,
-// `hid:/dev/hidrawN`, `serial:/dev/ttyUSB0[?baud=115200]`, or a bare /dev path (serial).
+// `hid:/dev/hidrawN`, `serial:/dev/ttyUSB0[?baud=115200]`, a bare /dev path (serial), or
+// `sim` (an emulated xArm embedded in the process: a simulator, so this SDK only parses it;
+// devices::open_robot_commands in armctl_device_registry opens it).
 #pragma once
 
 #include <cstdint>
@@ -12,7 +14,7 @@
 namespace armctl::robot_commands {
 
 struct DeviceUri {
-  enum class Kind { hid, serial } kind = Kind::serial;
+  enum class Kind { hid, serial, sim } kind = Kind::serial;
   std::string target;         // hid: serial number or hidraw path ("" = first); serial: path
   std::uint32_t baud = 9600;  // serial only
 };
@@ -20,7 +22,7 @@ struct DeviceUri {
 // Errors (invalid_argument) name what was wrong and list the accepted forms.
 Result<DeviceUri> parse_device_uri(const std::string& text);
 
-// Opens the link. Throws ArmctlError(io) if the device cannot be opened.
+// Opens the link. Throws ArmctlError(io) if the device cannot be opened, (unsupported) for sim.
 std::unique_ptr<RcLink> open_link(const DeviceUri& uri);
 
 }  // namespace armctl::robot_commands

@@ -1,6 +1,5 @@
 #include "devices/xarm_emulator/emulator_runner.hpp"
 
-#include <fcntl.h>
 #include <poll.h>
 #include <sys/prctl.h>
 #include <unistd.h>
@@ -33,18 +32,12 @@ EmulatorRunner::EmulatorRunner(EmulatorRunnerOptions options, Log log)
     throw ArmctlError(ErrorKind::invalid_argument,
                       fmt::format("baud {} is not a standard rate ({})", options_.baud,
                                   transport::standard_bauds_text()));
-  if (::pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0)
-    throw ArmctlError(ErrorKind::io, fmt::format("pipe: {}", std::strerror(errno)));
   if (log_) emulator_.board().set_log([this](const std::string& m) { log_(m); });
   for (const std::string& problem : emulator_.groups().problems())
     if (log_) log_("state dir: " + problem);
 }
 
-EmulatorRunner::~EmulatorRunner() {
-  stop();
-  for (int fd : wake_pipe_)
-    if (fd >= 0) ::close(fd);
-}
+EmulatorRunner::~EmulatorRunner() { stop(); }
 
 Duration EmulatorRunner::byte_time() const {
   return wire_time(1, options_.baud);
@@ -52,7 +45,7 @@ Duration EmulatorRunner::byte_time() const {
 
 void EmulatorRunner::start() {
   if (thread_.joinable()) return;
-  stop_ = false;
+  loop_.clear_stop();
   thread_ = std::thread([this] { run(); });
 }
 
@@ -61,11 +54,7 @@ void EmulatorRunner::stop() {
   if (thread_.joinable()) thread_.join();
 }
 
-void EmulatorRunner::request_stop() {
-  stop_ = true;
-  const char byte = 1;
-  [[maybe_unused]] ssize_t n = ::write(wake_pipe_[1], &byte, 1);  // full pipe: already awake
-}
+void EmulatorRunner::request_stop() { loop_.request_stop(); }
 
 rc_board::BoardStats EmulatorRunner::stats() const {
   std::lock_guard lock(stats_mutex_);
@@ -139,7 +128,7 @@ void EmulatorRunner::run() {
   // slack would land on every round trip (about 14 % of a 115200-baud GetBatteryVoltage).
   ::prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   const int fd = pty_.master().fd();
-  while (!stop_) {
+  while (!loop_.stop_requested()) {
     TimePoint now = clock_.now();
     while (!input_.empty() && input_.front().at <= now) {
       // The emulated board answers at the instant the byte has arrived, not when this loop
@@ -163,31 +152,19 @@ void EmulatorRunner::run() {
     bool blocked = !output_.empty() && output_.front().at <= now;  // pty full
     if (!output_.empty() && !blocked) earliest(output_.front().at);
 
-    pollfd fds[2] = {{fd, static_cast<short>(POLLIN | (blocked ? POLLOUT : 0)), 0},
-                     {wake_pipe_[0], POLLIN, 0}};
-    timespec timeout{};
-    timespec* timeout_ptr = nullptr;
-    if (wake) {
-      auto left = std::max(Duration::zero(), *wake - clock_.now());
-      timeout.tv_sec = static_cast<time_t>(left.count() / 1'000'000'000);
-      timeout.tv_nsec = static_cast<long>(left.count() % 1'000'000'000);
-      timeout_ptr = &timeout;
-    }
-    int r = ::ppoll(fds, 2, timeout_ptr, nullptr);
-    if (r < 0 && errno != EINTR) {
-      if (log_) log_(fmt::format("poll: {}", std::strerror(errno)));
+    pollfd fds[1] = {{fd, static_cast<short>(POLLIN | (blocked ? POLLOUT : 0)), 0}};
+    std::optional<Duration> timeout;
+    if (wake) timeout = *wake - clock_.now();
+    try {
+      if (!loop_.wait(fds, timeout)) return;
+    } catch (const ArmctlError& e) {
+      if (log_) log_(e.what());
       return;
     }
-    if (r > 0 && (fds[1].revents & POLLIN)) {
-      char drain[64];
-      while (::read(wake_pipe_[0], drain, sizeof drain) > 0) {
-      }
-    }
-    if (r > 0 && (fds[0].revents & POLLIN)) read_input(clock_.now());
-    if (r > 0 && (fds[0].revents & (POLLHUP | POLLERR)) && !(fds[0].revents & POLLIN)) {
+    if (fds[0].revents & POLLIN) read_input(clock_.now());
+    if ((fds[0].revents & (POLLHUP | POLLERR)) && !(fds[0].revents & POLLIN)) {
       // No host on the other side: nothing to read; do not spin on the hang-up.
-      pollfd wait_only{wake_pipe_[0], POLLIN, 0};
-      ::poll(&wait_only, 1, 10);
+      if (!loop_.wait({}, std::chrono::milliseconds(10))) return;
     }
   }
 }

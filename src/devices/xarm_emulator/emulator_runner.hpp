@@ -1,7 +1,7 @@
 // Serves an emulated xArm on a pty in real time: the host opens device_path() like a
 // serial port (transport::SerialPort, `armctl xarm --device serial:PATH`, any xArm tool).
 //
-// One loop with poll(), paced by the steady clock: bytes in -> Board, group playback at
+// One loop (transport::ServeLoop), paced by the steady clock: bytes in -> Board, group playback at
 // its instants, replies out. With wire timing, bytes take as long as they would on a real
 // 8N1 line at `baud` in each direction (a request is handled only once its last byte would
 // have arrived; reply bytes leave no faster than the line allows).
@@ -24,6 +24,7 @@
 #include "devices/rc_board/board_stats.hpp"
 #include "devices/xarm_emulator/xarm_emulator.hpp"
 #include "transport/pty.hpp"
+#include "transport/serve_loop.hpp"
 
 namespace armctl::xarm {
 
@@ -70,9 +71,8 @@ class EmulatorRunner {
   SteadyClock clock_;
   transport::Pty pty_;
   XarmEmulator emulator_;
-  int wake_pipe_[2] = {-1, -1};
+  transport::ServeLoop loop_;
   std::thread thread_;
-  std::atomic<bool> stop_{false};
   std::atomic<std::size_t> dropped_output_{0};
   mutable std::mutex stats_mutex_;
   rc_board::BoardStats stats_;

@@ -1,0 +1,95 @@
+// armctl sim xarm: an emulated xArm board on a pty, until SIGINT/SIGTERM. `armctl emulate xarm`
+// is the same command under its old name (deprecated: says so on stderr, then runs).
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include <fmt/core.h>
+
+#include "apps/armctl/commands.hpp"
+#include "apps/armctl/serve_support.hpp"
+#include "core/error.hpp"
+#include "devices/xarm_emulator/emulator_runner.hpp"
+#include "transport/serial_port.hpp"
+
+namespace armctl::cli {
+namespace {
+
+struct SimXarmArgs {
+  std::string link;
+  std::string state_dir;
+  std::uint32_t baud = 9600;
+  bool wire_timing = false;
+  unsigned battery = 7500;
+};
+
+void run_sim_xarm(const SimXarmArgs& args) {
+  if (args.battery < 4500 || args.battery > 12000)
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      fmt::format("--battery {} mV is outside 4500..12000", args.battery));
+  if (!transport::baud_constant(args.baud))
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      fmt::format("--baud {} is not a standard rate (allowed: {})", args.baud,
+                                  transport::standard_bauds_text()));
+  xarm::EmulatorRunnerOptions options;
+  if (!args.state_dir.empty()) options.emulator.state_dir = args.state_dir;
+  options.emulator.battery_millivolts = static_cast<std::uint16_t>(args.battery);
+  options.wire_timing = args.wire_timing;
+  options.baud = args.baud;
+
+  xarm::EmulatorRunner runner(
+      options, [](const std::string& m) { fmt::print(stderr, "sim xarm: {}\n", m); });
+
+  const PtySymlink symlink(args.link, runner.device_path());
+  const StopOnSignals stop_on_signals(runner);
+
+  fmt::print("{}\n", runner.device_path());
+  fmt::print(stderr, "emulated xArm (servos 1..6) on {}{}{}; Ctrl-C to stop\n",
+             runner.device_path(), args.link.empty() ? "" : " linked from " + args.link,
+             args.wire_timing ? fmt::format(", wire timing {} baud", args.baud) : "");
+  std::fflush(stdout);
+
+  runner.run();
+
+  auto s = runner.stats();
+  fmt::print(stderr,
+             "sim xarm: stopped; {} frames, {} handled, {} ignored, {} bytes discarded\n",
+             s.frames, s.handled, s.ignored(), s.discarded_bytes);
+}
+
+void add_xarm_options(CLI::App& xarm, const std::shared_ptr<SimXarmArgs>& args) {
+  xarm.add_option("--link", args->link, "Also create this symlink to the pty (removed on exit)");
+  xarm.add_option("--state-dir", args->state_dir,
+                  "Keep action groups and saved servo settings here (default: in memory)");
+  xarm.add_option("--baud", args->baud, "Line rate for --wire-timing (default 9600)");
+  xarm.add_flag("--wire-timing", args->wire_timing,
+                "Bytes take as long as on a real 8N1 line at --baud");
+  xarm.add_option("--battery", args->battery, "Battery voltage in mV, 4500..12000 (default 7500)");
+}
+
+constexpr const char* kXarmHelp =
+    "An emulated xArm board (six bus servos) speaking Robot Commands on a pty; prints the pty "
+    "path and runs until Ctrl-C";
+
+}  // namespace
+
+void add_sim_xarm_command(CLI::App& sim) {
+  auto args = std::make_shared<SimXarmArgs>();
+  auto* xarm = sim.add_subcommand("xarm", kXarmHelp);
+  add_xarm_options(*xarm, args);
+  xarm->callback([args] { run_sim_xarm(*args); });
+}
+
+void add_emulate_command(CLI::App& app) {
+  auto* emulate = app.add_subcommand("emulate", "Deprecated: the old name of `armctl sim xarm`");
+  emulate->require_subcommand(1);
+  auto args = std::make_shared<SimXarmArgs>();
+  auto* xarm = emulate->add_subcommand("xarm", std::string("Deprecated, use `armctl sim xarm`. ") + kXarmHelp);
+  add_xarm_options(*xarm, args);
+  xarm->callback([args] {
+    fmt::print(stderr, "armctl: 'emulate xarm' is deprecated, use 'armctl sim xarm' (same options)\n");
+    run_sim_xarm(*args);
+  });
+}
+
+}  // namespace armctl::cli

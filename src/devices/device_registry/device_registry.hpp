@@ -1,0 +1,51 @@
+// The device registry: one place that turns a device URI into an open device, whatever it is:
+// real hardware, a simulator in another process, or a simulator embedded in this process.
+// The SDK libraries parse every URI form but link no simulator (DESIGN: "simulators are
+// devices a user chooses by URI"); this library adds the embedded simulators on top, so an
+// app, or the Arm API, opens `sim` exactly like `serial:/dev/ttyUSB0`.
+//
+//   joint bus:       sim[?baud=N&config=FILE&dead=J,...]  embedded simulated SCARA arm
+//                    unix:/path, serial:/dev/...?select=... (joint_bus/device_uri.hpp)
+//   Robot Commands:  sim                                  embedded emulated xArm
+//                    hid..., serial:/dev/...[?baud=N]     (robot_commands/device_uri.hpp)
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "devices/joint_bus/bus_connection.hpp"
+#include "devices/joint_bus/device_uri.hpp"
+#include "devices/robot_commands/device_uri.hpp"
+#include "devices/robot_commands/rc_link.hpp"
+
+namespace armctl::devices {
+
+// Throws ArmctlError: invalid_argument for a bad URI (naming it and the accepted forms), io /
+// invalid_config if the device or its config cannot be opened.
+std::unique_ptr<joint_bus::BusConnection> open_joint_bus(std::string_view uri);
+std::unique_ptr<joint_bus::BusConnection> open_joint_bus(const joint_bus::DeviceUri& uri);
+
+// A Robot Commands device, open: its link, and whatever the link needs alive (an embedded
+// emulated board serving a pty).
+class RcConnection {
+ public:
+  virtual ~RcConnection() = default;
+  virtual robot_commands::RcLink& link() = 0;
+  // True for a board inside this process: it stops with the connection, so frames still
+  // queued when a command ends are lost unless a request with a reply is sent first.
+  virtual bool embedded() const = 0;
+};
+
+// Same errors as open_joint_bus.
+std::unique_ptr<RcConnection> open_robot_commands(std::string_view uri);
+std::unique_ptr<RcConnection> open_robot_commands(const robot_commands::DeviceUri& uri);
+
+// Where the embedded emulated xArm keeps what a real board keeps between power cycles (groups,
+// saved offsets, servo limits): $ARMCTL_STATE_DIR/xarm-emulator, else
+// $XDG_STATE_HOME/armctl/xarm-emulator, else ~/.local/state/armctl/xarm-emulator. Throws
+// ArmctlError(invalid_config) if none applies.
+std::filesystem::path embedded_xarm_state_dir();
+
+}  // namespace armctl::devices

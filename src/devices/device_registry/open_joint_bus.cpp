@@ -1,0 +1,46 @@
+// Joint-bus devices: the embedded simulated arm here, everything else from the SDK.
+#include <fmt/core.h>
+
+#include "devices/device_registry/device_registry.hpp"
+#include "devices/joint_sim/sim_arm.hpp"
+
+namespace armctl::devices {
+
+namespace {
+
+class EmbeddedSim final : public joint_bus::BusConnection {
+ public:
+  explicit EmbeddedSim(const joint_bus::SimDevice& d) {
+    joint_sim::ArmConfig config = d.config.empty()
+                                      ? joint_sim::load_arm_config(joint_sim::default_arm_config_path())
+                                      : joint_sim::load_arm_config(d.config);
+    if (d.baud) config.baud = *d.baud;
+    arm_ = std::make_unique<joint_sim::SimArm>(std::move(config));
+    if (!d.dead_joints.empty()) {
+      joint_sim::FaultPlan faults;
+      for (int j : d.dead_joints) faults.dead_joint(j);
+      arm_->set_fault_plan(std::move(faults));
+    }
+  }
+  transport::JointBusLink& link() override { return arm_->link(); }
+  joint_bus::MasterOptions default_options() const override { return {}; }
+  std::string description() const override {
+    return fmt::format("embedded simulated arm at {} baud", arm_->config().baud);
+  }
+
+ private:
+  std::unique_ptr<joint_sim::SimArm> arm_;
+};
+
+}  // namespace
+
+std::unique_ptr<joint_bus::BusConnection> open_joint_bus(const joint_bus::DeviceUri& uri) {
+  if (const auto* s = std::get_if<joint_bus::SimDevice>(&uri)) return std::make_unique<EmbeddedSim>(*s);
+  return joint_bus::open_bus(uri);
+}
+
+std::unique_ptr<joint_bus::BusConnection> open_joint_bus(std::string_view uri) {
+  return open_joint_bus(joint_bus::parse_device_uri(uri));
+}
+
+}  // namespace armctl::devices

@@ -1,0 +1,80 @@
+// Robot Commands devices: the embedded emulated xArm here, everything else from the SDK.
+#include <cstdlib>
+
+#include "core/error.hpp"
+#include "devices/device_registry/device_registry.hpp"
+#include "devices/robot_commands/stream_link.hpp"
+#include "devices/xarm_emulator/emulator_runner.hpp"
+#include "transport/serial_port.hpp"
+
+namespace armctl::devices {
+
+namespace {
+
+class SdkConnection final : public RcConnection {
+ public:
+  explicit SdkConnection(std::unique_ptr<robot_commands::RcLink> link) : link_(std::move(link)) {}
+  robot_commands::RcLink& link() override { return *link_; }
+  bool embedded() const override { return false; }
+
+ private:
+  std::unique_ptr<robot_commands::RcLink> link_;
+};
+
+// The emulated board serves a pty from a thread of this process and is reached through it
+// like a serial board, so the host side runs exactly the code it runs on a real port.
+class EmbeddedXarm final : public RcConnection {
+ public:
+  EmbeddedXarm() {
+    // Keeps what a real board keeps (action groups, saved offsets, servo limits) in a per-user
+    // state directory, so `group download` and a later `group run` meet the same stored group.
+    // Servo positions are not stored: every connection starts with the servos at centre.
+    xarm::EmulatorRunnerOptions options;
+    options.emulator.state_dir = embedded_xarm_state_dir();
+    emulator_ = std::make_unique<xarm::EmulatorRunner>(options);
+    emulator_->start();
+    link_ = std::make_unique<robot_commands::StreamLink>(
+        transport::SerialPort::open(emulator_->device_path()),
+        "embedded emulated xArm on " + emulator_->device_path());
+  }
+  ~EmbeddedXarm() override {
+    link_.reset();
+    emulator_->stop();
+  }
+  robot_commands::RcLink& link() override { return *link_; }
+  bool embedded() const override { return true; }
+
+ private:
+  std::unique_ptr<xarm::EmulatorRunner> emulator_;
+  std::unique_ptr<robot_commands::RcLink> link_;
+};
+
+}  // namespace
+
+std::filesystem::path embedded_xarm_state_dir() {
+  namespace fs = std::filesystem;
+  auto env = [](const char* name) -> std::string {
+    const char* v = std::getenv(name);
+    return v ? std::string(v) : std::string();
+  };
+  if (auto dir = env("ARMCTL_STATE_DIR"); !dir.empty()) return fs::path(dir) / "xarm-emulator";
+  // XDG base directories: a relative XDG_STATE_HOME is invalid and must be ignored.
+  if (auto xdg = env("XDG_STATE_HOME"); !xdg.empty() && fs::path(xdg).is_absolute())
+    return fs::path(xdg) / "armctl" / "xarm-emulator";
+  if (auto home = env("HOME"); !home.empty())
+    return fs::path(home) / ".local" / "state" / "armctl" / "xarm-emulator";
+  throw ArmctlError(ErrorKind::invalid_config,
+                    "no state directory for the embedded emulated xArm: HOME is not set (set "
+                    "ARMCTL_STATE_DIR or XDG_STATE_HOME, or use --device)");
+}
+
+std::unique_ptr<RcConnection> open_robot_commands(const robot_commands::DeviceUri& uri) {
+  if (uri.kind == robot_commands::DeviceUri::Kind::sim) return std::make_unique<EmbeddedXarm>();
+  return std::make_unique<SdkConnection>(robot_commands::open_link(uri));
+}
+
+std::unique_ptr<RcConnection> open_robot_commands(std::string_view uri) {
+  return open_robot_commands(robot_commands::parse_device_uri(std::string(uri)).value());
+}
+
+}  // namespace armctl::devices

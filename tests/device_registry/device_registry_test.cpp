@@ -1,0 +1,83 @@
+// The device registry opens every device URI, the embedded simulators included; the SDK
+// libraries parse `sim` but refuse to open it (they link no simulator).
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "devices/device_registry/device_registry.hpp"
+#include "devices/joint_bus/bus_master.hpp"
+#include "devices/robot_commands/client.hpp"
+
+namespace armctl::test {
+namespace {
+
+TEST(DeviceRegistry, OpensTheEmbeddedSimulatedArm) {
+  auto connection = devices::open_joint_bus("sim?baud=115200");
+  ASSERT_NE(connection, nullptr);
+  EXPECT_EQ(connection->link().baud(), 115200u);
+  EXPECT_EQ(connection->link().joint_count(), 7);
+  joint_bus::BusMaster master(connection->link(), connection->default_options());
+  auto echo = master.ping(3, 1234);
+  ASSERT_TRUE(echo.ok());
+  EXPECT_EQ(echo.value(), 1234);
+}
+
+TEST(DeviceRegistry, SimWithDeadJointsHasThoseJointsSilent) {
+  auto connection = devices::open_joint_bus("sim?dead=2");
+  joint_bus::BusMaster master(connection->link(), connection->default_options());
+  EXPECT_TRUE(master.ping(1, 7).ok());
+  EXPECT_FALSE(master.ping(2, 7).ok());
+}
+
+TEST(DeviceRegistry, OpensTheEmbeddedEmulatedXarm) {
+  ::setenv("ARMCTL_STATE_DIR", ::testing::TempDir().c_str(), 1);
+  auto connection = devices::open_robot_commands("sim");
+  ASSERT_NE(connection, nullptr);
+  EXPECT_TRUE(connection->embedded());
+  robot_commands::Client client(connection->link());
+  auto positions = client.read_all_positions();
+  ASSERT_TRUE(positions) << positions.error().message;
+  ASSERT_EQ(positions->size(), 6u);
+  for (const auto& p : *positions) EXPECT_EQ(p.position, 500) << "servo " << int(p.servo);
+}
+
+TEST(DeviceRegistry, BadUrisAreRefusedWithTheAllowedForms) {
+  for (const char* uri : {"tcp:1.2.3.4", "sim?speed=3", "serial:/dev/null?baud=7"}) {
+    try {
+      devices::open_joint_bus(uri);
+      ADD_FAILURE() << "opened " << uri;
+    } catch (const ArmctlError& e) {
+      EXPECT_EQ(e.error().kind, ErrorKind::invalid_argument) << uri;
+      EXPECT_NE(std::string(e.what()).find("allowed:"), std::string::npos) << e.what();
+    }
+    try {
+      devices::open_robot_commands(uri);
+      ADD_FAILURE() << "opened " << uri;
+    } catch (const ArmctlError& e) {
+      EXPECT_EQ(e.error().kind, ErrorKind::invalid_argument) << uri;
+      EXPECT_NE(std::string(e.what()).find("allowed:"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(DeviceRegistry, TheSdkRefusesToOpenASimulator) {
+  try {
+    joint_bus::open_bus(joint_bus::SimDevice{});
+    ADD_FAILURE() << "joint_bus::open_bus opened sim";
+  } catch (const ArmctlError& e) {
+    EXPECT_EQ(e.error().kind, ErrorKind::unsupported);
+    EXPECT_NE(std::string(e.what()).find("devices::open_joint_bus"), std::string::npos) << e.what();
+  }
+  auto uri = robot_commands::parse_device_uri("sim");
+  ASSERT_TRUE(uri);
+  EXPECT_EQ(uri->kind, robot_commands::DeviceUri::Kind::sim);
+  try {
+    robot_commands::open_link(*uri);
+    ADD_FAILURE() << "robot_commands::open_link opened sim";
+  } catch (const ArmctlError& e) {
+    EXPECT_EQ(e.error().kind, ErrorKind::unsupported);
+    EXPECT_NE(std::string(e.what()).find("devices::open_robot_commands"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace armctl::test
