@@ -18,6 +18,12 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 JOBS ?= 2
 BUILD := build
 BENCH_BUILD := build/bench-release
+RELEASE_BUILD := build/release
+PREFIX ?= /usr/local
+UDEV_RULES_DIR ?= /etc/udev/rules.d
+# The test and benchmark builds need the firmware and its HIL tests (avr-gcc, simavr): ON
+# makes a missing tool an error instead of a skipped part (cmake/Options.cmake).
+WITH_FIRMWARE := -DARMCTL_FIRMWARE=ON -DARMCTL_HIL=ON
 FUZZ_BUILD := build/fuzz
 FUZZ_SECONDS ?= 60
 TEST_FUZZ_SECONDS ?= 10
@@ -37,7 +43,7 @@ deps:
 	fi
 
 $(BUILD)/build.ninja: | deps
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DARMCTL_SANITIZE=ON
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DARMCTL_SANITIZE=ON $(WITH_FIRMWARE)
 
 configure: deps $(BUILD)/build.ninja
 
@@ -52,7 +58,7 @@ demo: build
 	./scripts/demo.sh $(BUILD)/armctl
 
 bench: deps
-	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF
+	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF $(WITH_FIRMWARE)
 	cmake --build $(BENCH_BUILD) -j $(JOBS)
 	./scripts/bench.sh $(BENCH_BUILD)
 
@@ -71,11 +77,18 @@ firmware: deps
 flash: deps
 	$(MAKE) -C firmware flash BUILD_DIR=$(CURDIR)/$(BUILD)/firmware
 
-install: build
-	$(SUDO) install -m 0644 udev/50-armctl.rules /etc/udev/rules.d/50-armctl.rules
-	$(SUDO) install -m 0755 $(BUILD)/armctl /usr/local/bin/armctl
-	$(SUDO) install -d /usr/local/share/armctl
-	$(SUDO) install -m 0644 config/scara.json config/scara-arm.json /usr/local/share/armctl/
+# A Release build (no sanitizers, no tests, no firmware: the SDK and CLI need neither avr-gcc
+# nor simavr) installed into $(PREFIX): bin/armctl, the static libraries, their headers
+# (include/armctl/), the CMake package (lib/cmake/armctl: find_package(armctl)) and the
+# default configs (share/armctl); then the udev rule for the xArm's USB HID board.
+install: deps
+	cmake -S . -B $(RELEASE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF \
+	  -DARMCTL_TESTS=OFF -DARMCTL_BENCH=OFF -DARMCTL_FIRMWARE=OFF -DARMCTL_HIL=OFF \
+	  -DCMAKE_INSTALL_PREFIX=$(PREFIX)
+	cmake --build $(RELEASE_BUILD) -j $(JOBS)
+	$(SUDO) cmake --install $(RELEASE_BUILD)
+	$(SUDO) install -d $(UDEV_RULES_DIR)
+	$(SUDO) install -m 0644 udev/50-armctl.rules $(UDEV_RULES_DIR)/50-armctl.rules
 	-$(SUDO) udevadm control --reload-rules && $(SUDO) udevadm trigger
 
 format:

@@ -1,17 +1,31 @@
-# armctl_library(name DEPS deps...): one static library per source folder, made of every
-# .cpp in it, so adding a file needs no CMake edit. Header-only folders become INTERFACE.
+# armctl_library(name [NO_INSTALL] DEPS deps...): one static library per source folder, made of
+# every .cpp in it, so adding a file needs no CMake edit. Header-only folders become INTERFACE.
+# Unless NO_INSTALL, `cmake --install` puts the library in lib/, its headers in
+# include/armctl/<folder under src/> (so `#include "devices/joint_bus/bus_master.hpp"` works
+# as in this tree) and the target in the armctl package as armctl::<name without armctl_>
+# (cmake/Install.cmake).
 function(armctl_library name)
-  cmake_parse_arguments(L "" "" "DEPS" ${ARGN})
+  cmake_parse_arguments(L "NO_INSTALL" "" "DEPS" ${ARGN})
   file(GLOB srcs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
+  set(includes $<BUILD_INTERFACE:${CMAKE_SOURCE_DIR}/src> $<INSTALL_INTERFACE:include/armctl>)
   if(srcs)
     add_library(${name} STATIC ${srcs})
-    target_include_directories(${name} PUBLIC ${CMAKE_SOURCE_DIR}/src)
+    target_include_directories(${name} PUBLIC ${includes})
     target_link_libraries(${name} PUBLIC ${L_DEPS})
     armctl_warnings(${name})
   else()
     add_library(${name} INTERFACE)
-    target_include_directories(${name} INTERFACE ${CMAKE_SOURCE_DIR}/src)
+    target_include_directories(${name} INTERFACE ${includes})
     target_link_libraries(${name} INTERFACE ${L_DEPS})
+  endif()
+  if(NOT L_NO_INSTALL)
+    string(REGEX REPLACE "^armctl_" "" export_name ${name})
+    set_target_properties(${name} PROPERTIES EXPORT_NAME ${export_name})
+    add_library(armctl::${export_name} ALIAS ${name})
+    install(TARGETS ${name} EXPORT armctl-targets ARCHIVE DESTINATION lib)
+    file(RELATIVE_PATH folder ${CMAKE_SOURCE_DIR}/src ${CMAKE_CURRENT_SOURCE_DIR})
+    file(GLOB headers CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.hpp)
+    install(FILES ${headers} DESTINATION include/armctl/${folder})
   endif()
 endfunction()
 
