@@ -83,8 +83,8 @@ function(armctl_forbid_links target)
   _armctl_collect_links(${target} all)
   foreach(lib IN LISTS F_FORBIDDEN)
     if(lib IN_LIST all)
-      message(FATAL_ERROR "${target} links ${lib}: the host SDK must not link a simulator "
-                          "(open simulators through armctl_device_registry; docs/architecture.md)")
+      message(FATAL_ERROR "${target} links ${lib}, a simulator: it must not (simulators are "
+                          "opened through armctl_device_registry; docs/architecture.md)")
     endif()
   endforeach()
 endfunction()

@@ -1,7 +1,7 @@
 // The Robot Commands `--device` URI parser (devices/robot_commands/device_uri.hpp) on
 // arbitrary text: an error of kind invalid_argument listing the accepted forms, or a
 // device with a usable target (absolute serial path without options, standard baud; a
-// named HID board unless the URI was plain `hid`).
+// named HID board unless the URI was plain `hid`; nothing for `sim`, the embedded board).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -33,7 +33,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   const DeviceUri& d = *r;
   if (d.kind == DeviceUri::Kind::hid) {
-    check(text == "hid" ? d.target.empty() : !d.target.empty(), "hid target");
+    // `hid` (or `hid?`): the first board; `hid:X`: board X, never empty.
+    check(d.target.empty() == (text.find(':') == std::string::npos), "hid target");
+  } else if (d.kind == DeviceUri::Kind::sim) {
+    check(text.rfind("sim", 0) == 0 && d.target.empty(), "sim has no target");
+    check(text.find(':') == std::string::npos, "sim takes no path");
   } else {
     check(!d.target.empty() && d.target[0] == '/', "serial path absolute");
     check(d.target.find('?') == std::string::npos, "no options left in the path");
