@@ -11,7 +11,9 @@ namespace armctl::test {
 namespace {
 
 TEST(DeviceRegistry, OpensTheEmbeddedSimulatedArm) {
-  auto connection = devices::open_joint_bus("sim?baud=115200");
+  auto opened = devices::open_joint_bus("sim?baud=115200");
+  ASSERT_TRUE(opened) << opened.error().message;
+  auto& connection = opened.value();
   ASSERT_NE(connection, nullptr);
   EXPECT_EQ(connection->link().baud(), 115200u);
   EXPECT_EQ(connection->link().joint_count(), 7);
@@ -22,7 +24,7 @@ TEST(DeviceRegistry, OpensTheEmbeddedSimulatedArm) {
 }
 
 TEST(DeviceRegistry, SimWithDeadJointsHasThoseJointsSilent) {
-  auto connection = devices::open_joint_bus("sim?dead=2");
+  auto connection = devices::open_joint_bus("sim?dead=2").value();
   joint_bus::BusMaster master(connection->link(), connection->default_options());
   EXPECT_TRUE(master.ping(1, 7).ok());
   EXPECT_FALSE(master.ping(2, 7).ok());
@@ -30,7 +32,9 @@ TEST(DeviceRegistry, SimWithDeadJointsHasThoseJointsSilent) {
 
 TEST(DeviceRegistry, OpensTheEmbeddedEmulatedXarm) {
   ::setenv("ARMCTL_STATE_DIR", ::testing::TempDir().c_str(), 1);
-  auto connection = devices::open_robot_commands("sim");
+  auto opened = devices::open_robot_commands("sim");
+  ASSERT_TRUE(opened) << opened.error().message;
+  auto& connection = opened.value();
   ASSERT_NE(connection, nullptr);
   EXPECT_TRUE(connection->embedded());
   robot_commands::Client client(connection->link());
@@ -42,21 +46,25 @@ TEST(DeviceRegistry, OpensTheEmbeddedEmulatedXarm) {
 
 TEST(DeviceRegistry, BadUrisAreRefusedWithTheAllowedForms) {
   for (const char* uri : {"tcp:1.2.3.4", "sim?speed=3", "serial:/dev/null?baud=7"}) {
-    try {
-      devices::open_joint_bus(uri);
-      ADD_FAILURE() << "opened " << uri;
-    } catch (const ArmctlError& e) {
-      EXPECT_EQ(e.error().kind, ErrorKind::invalid_argument) << uri;
-      EXPECT_NE(std::string(e.what()).find("allowed:"), std::string::npos) << e.what();
-    }
-    try {
-      devices::open_robot_commands(uri);
-      ADD_FAILURE() << "opened " << uri;
-    } catch (const ArmctlError& e) {
-      EXPECT_EQ(e.error().kind, ErrorKind::invalid_argument) << uri;
-      EXPECT_NE(std::string(e.what()).find("allowed:"), std::string::npos) << e.what();
-    }
+    const auto bus = devices::open_joint_bus(uri);
+    ASSERT_FALSE(bus) << uri;
+    EXPECT_EQ(bus.error().kind, ErrorKind::invalid_argument) << uri;
+    EXPECT_NE(bus.error().message.find("allowed:"), std::string::npos) << bus.error().message;
+    const auto board = devices::open_robot_commands(uri);
+    ASSERT_FALSE(board) << uri;
+    EXPECT_EQ(board.error().kind, ErrorKind::invalid_argument) << uri;
+    EXPECT_NE(board.error().message.find("allowed:"), std::string::npos) << board.error().message;
   }
+}
+
+TEST(DeviceRegistry, ADeviceThatCannotBeOpenedIsAnErrorNamingIt) {
+  const auto bus = devices::open_joint_bus("sim?config=/nonexistent/scara.json");
+  ASSERT_FALSE(bus);
+  EXPECT_NE(bus.error().message.find("/nonexistent/scara.json"), std::string::npos) << bus.error().message;
+  const auto board = devices::open_robot_commands("serial:/nonexistent/ttyUSB0");
+  ASSERT_FALSE(board);
+  EXPECT_EQ(board.error().kind, ErrorKind::io);
+  EXPECT_NE(board.error().message.find("/nonexistent/ttyUSB0"), std::string::npos) << board.error().message;
 }
 
 TEST(DeviceRegistry, TheSdkRefusesToOpenASimulator) {

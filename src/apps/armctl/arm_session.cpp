@@ -34,7 +34,7 @@ std::unique_ptr<ArmSession> open_arm_session(const std::string& arm_name, const 
   const bool bus = model.supports(arm::Protocol::joint_bus) &&
                    (names_joint_bus(device) || !model.supports(arm::Protocol::robot_commands));
   if (bus) {
-    s->bus = devices::open_joint_bus(device.empty() ? "sim" : device);
+    s->bus = devices::open_joint_bus(device.empty() ? "sim" : device).value();
     s->master = std::make_unique<joint_bus::BusMaster>(s->bus->link(), s->bus->default_options());
     auto dev = std::make_unique<arm::BusArmDevice>(model, *s->master, s->bus->link(), s->bus->description());
     s->arm = std::make_unique<arm::Arm>(std::move(model), std::move(dev));

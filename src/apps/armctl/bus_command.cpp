@@ -88,7 +88,7 @@ struct BusCommandSpec {
 class BusRunner {
  public:
   explicit BusRunner(const BusArgs& args) : args_(args) {
-    connection_ = devices::open_joint_bus(args.device);
+    connection_ = devices::open_joint_bus(args.device).value();  // value(): the error for main()
     joint_bus::MasterOptions options = connection_->default_options();
     options.retries = args.retries;
     options.verify = args.verify;

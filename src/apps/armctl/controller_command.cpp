@@ -23,7 +23,7 @@ void run_controller(const ControllerArgs& args) {
   auto config = args.arm.empty()
                     ? arm_controller::load_controller_config(arm_controller::default_controller_config_path())
                     : arm_controller::load_controller_config(args.arm);
-  auto connection = devices::open_joint_bus(args.bus);
+  auto connection = devices::open_joint_bus(args.bus).value();
   serve_controller(connection->link(), connection->default_options(), std::move(config), args.serve);
 }
 

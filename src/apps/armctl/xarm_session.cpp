@@ -14,7 +14,8 @@ XarmSession::~XarmSession() {
 std::unique_ptr<XarmSession> open_xarm_session(const std::string& device, int servo_count,
                                                int timeout_ms) {
   auto s = std::make_unique<XarmSession>();
-  s->connection = devices::open_robot_commands(device.empty() ? "sim" : device);
+  // value() throws the error for main() to print: the CLI's one exception path.
+  s->connection = devices::open_robot_commands(device.empty() ? "sim" : device).value();
   robot_commands::ClientOptions options;
   options.servo_count = servo_count;
   options.reply_timeout = std::chrono::milliseconds(timeout_ms);

@@ -16,7 +16,7 @@ struct XarmSession {
   ~XarmSession();
 };
 
-// Throws ArmctlError for a bad URI or a device that cannot be opened.
+// Throws ArmctlError for a bad URI or a device that cannot be opened (the CLI prints it).
 std::unique_ptr<XarmSession> open_xarm_session(const std::string& device, int servo_count,
                                                int timeout_ms);
 

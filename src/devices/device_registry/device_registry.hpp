@@ -15,6 +15,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/error.hpp"
 #include "devices/joint_bus/bus_connection.hpp"
 #include "devices/joint_bus/device_uri.hpp"
 #include "devices/robot_commands/device_uri.hpp"
@@ -22,10 +23,10 @@
 
 namespace armctl::devices {
 
-// Throws ArmctlError: invalid_argument for a bad URI (naming it and the accepted forms), io /
-// invalid_config if the device or its config cannot be opened.
-std::unique_ptr<joint_bus::BusConnection> open_joint_bus(std::string_view uri);
-std::unique_ptr<joint_bus::BusConnection> open_joint_bus(const joint_bus::DeviceUri& uri);
+// The open device, or an error: invalid_argument for a bad URI (naming it and the accepted
+// forms), io / invalid_config if the device or its config cannot be opened.
+Result<std::unique_ptr<joint_bus::BusConnection>> open_joint_bus(std::string_view uri);
+Result<std::unique_ptr<joint_bus::BusConnection>> open_joint_bus(const joint_bus::DeviceUri& uri);
 
 // A Robot Commands device, open: its link, and whatever the link needs alive (an embedded
 // emulated board serving a pty).
@@ -39,13 +40,13 @@ class RcConnection {
 };
 
 // Same errors as open_joint_bus.
-std::unique_ptr<RcConnection> open_robot_commands(std::string_view uri);
-std::unique_ptr<RcConnection> open_robot_commands(const robot_commands::DeviceUri& uri);
+Result<std::unique_ptr<RcConnection>> open_robot_commands(std::string_view uri);
+Result<std::unique_ptr<RcConnection>> open_robot_commands(const robot_commands::DeviceUri& uri);
 
 // Where the embedded emulated xArm keeps what a real board keeps between power cycles (groups,
 // saved offsets, servo limits): $ARMCTL_STATE_DIR/xarm-emulator, else
-// $XDG_STATE_HOME/armctl/xarm-emulator, else ~/.local/state/armctl/xarm-emulator. Throws
-// ArmctlError(invalid_config) if none applies.
-std::filesystem::path embedded_xarm_state_dir();
+// $XDG_STATE_HOME/armctl/xarm-emulator, else ~/.local/state/armctl/xarm-emulator; an error
+// (invalid_config) if none applies.
+Result<std::filesystem::path> embedded_xarm_state_dir();
 
 }  // namespace armctl::devices

@@ -1,6 +1,8 @@
 // Joint-bus devices: the embedded simulated arm here, everything else from the SDK.
 #include <fmt/core.h>
 
+#include "core/error.hpp"
+
 #include "devices/device_registry/device_registry.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
 
@@ -34,13 +36,24 @@ class EmbeddedSim final : public joint_bus::BusConnection {
 
 }  // namespace
 
-std::unique_ptr<joint_bus::BusConnection> open_joint_bus(const joint_bus::DeviceUri& uri) {
-  if (const auto* s = std::get_if<joint_bus::SimDevice>(&uri)) return std::make_unique<EmbeddedSim>(*s);
-  return joint_bus::open_bus(uri);
+Result<std::unique_ptr<joint_bus::BusConnection>> open_joint_bus(const joint_bus::DeviceUri& uri) {
+  // Devices are opened by constructors, which throw: this is where that becomes a Result.
+  try {
+    if (const auto* s = std::get_if<joint_bus::SimDevice>(&uri)) {
+      return std::unique_ptr<joint_bus::BusConnection>(std::make_unique<EmbeddedSim>(*s));
+    }
+    return joint_bus::open_bus(uri);
+  } catch (const ArmctlError& e) {
+    return e.error();
+  }
 }
 
-std::unique_ptr<joint_bus::BusConnection> open_joint_bus(std::string_view uri) {
-  return open_joint_bus(joint_bus::parse_device_uri(uri));
+Result<std::unique_ptr<joint_bus::BusConnection>> open_joint_bus(std::string_view uri) {
+  try {
+    return open_joint_bus(joint_bus::parse_device_uri(uri));
+  } catch (const ArmctlError& e) {
+    return e.error();
+  }
 }
 
 }  // namespace armctl::devices

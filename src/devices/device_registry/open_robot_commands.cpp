@@ -30,7 +30,7 @@ class EmbeddedXarm final : public RcConnection {
     // state directory, so `group download` and a later `group run` meet the same stored group.
     // Servo positions are not stored: every connection starts with the servos at centre.
     xarm::EmulatorRunnerOptions options;
-    options.emulator.state_dir = embedded_xarm_state_dir();
+    options.emulator.state_dir = embedded_xarm_state_dir().value();
     emulator_ = std::make_unique<xarm::EmulatorRunner>(options);
     emulator_->start();
     link_ = std::make_unique<robot_commands::StreamLink>(
@@ -51,7 +51,7 @@ class EmbeddedXarm final : public RcConnection {
 
 }  // namespace
 
-std::filesystem::path embedded_xarm_state_dir() {
+Result<std::filesystem::path> embedded_xarm_state_dir() {
   namespace fs = std::filesystem;
   auto env = [](const char* name) -> std::string {
     const char* v = std::getenv(name);
@@ -63,18 +63,27 @@ std::filesystem::path embedded_xarm_state_dir() {
     return fs::path(xdg) / "armctl" / "xarm-emulator";
   if (auto home = env("HOME"); !home.empty())
     return fs::path(home) / ".local" / "state" / "armctl" / "xarm-emulator";
-  throw ArmctlError(ErrorKind::invalid_config,
-                    "no state directory for the embedded emulated xArm: HOME is not set (set "
-                    "ARMCTL_STATE_DIR or XDG_STATE_HOME, or use --device)");
+  return Error{ErrorKind::invalid_config,
+               "no state directory for the embedded emulated xArm: HOME is not set (set "
+               "ARMCTL_STATE_DIR or XDG_STATE_HOME, or use --device)"};
 }
 
-std::unique_ptr<RcConnection> open_robot_commands(const robot_commands::DeviceUri& uri) {
-  if (uri.kind == robot_commands::DeviceUri::Kind::sim) return std::make_unique<EmbeddedXarm>();
-  return std::make_unique<SdkConnection>(robot_commands::open_link(uri));
+Result<std::unique_ptr<RcConnection>> open_robot_commands(const robot_commands::DeviceUri& uri) {
+  // Devices are opened by constructors, which throw: this is where that becomes a Result.
+  try {
+    if (uri.kind == robot_commands::DeviceUri::Kind::sim) {
+      return std::unique_ptr<RcConnection>(std::make_unique<EmbeddedXarm>());
+    }
+    return std::unique_ptr<RcConnection>(std::make_unique<SdkConnection>(robot_commands::open_link(uri)));
+  } catch (const ArmctlError& e) {
+    return e.error();
+  }
 }
 
-std::unique_ptr<RcConnection> open_robot_commands(std::string_view uri) {
-  return open_robot_commands(robot_commands::parse_device_uri(std::string(uri)).value());
+Result<std::unique_ptr<RcConnection>> open_robot_commands(std::string_view uri) {
+  auto parsed = robot_commands::parse_device_uri(std::string(uri));
+  if (!parsed) return parsed.error();
+  return open_robot_commands(*parsed);
 }
 
 }  // namespace armctl::devices

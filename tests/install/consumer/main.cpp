@@ -8,14 +8,14 @@
 #include "devices/robot_commands/client.hpp"
 
 int main() {
-  auto bus = armctl::devices::open_joint_bus("sim");
+  auto bus = armctl::devices::open_joint_bus("sim").value();
   armctl::joint_bus::BusMaster master(bus->link(), bus->default_options());
   const auto echo = master.ping(2, 4321);
   if (!echo.ok() || echo.value() != 4321) {
     std::fprintf(stderr, "consumer: joint 2 did not echo 4321\n");
     return 1;
   }
-  auto board = armctl::devices::open_robot_commands("sim");
+  auto board = armctl::devices::open_robot_commands("sim").value();
   armctl::robot_commands::Client client(board->link());
   const auto millivolts = client.battery_millivolts();
   if (!millivolts) {
