@@ -9,18 +9,13 @@
 
 namespace armctl::cli {
 
-namespace {
-
 // Read with the one URI parser, so the forms are those of docs/joint-bus-master.md.
-bool names_joint_bus(const std::string& device) {
-  if (device.empty()) return true;
+bool device_is_joint_bus(const std::string& device) {
   const auto parts = transport::split_uri(device);
   if (!parts) return false;  // the Robot Commands parser names the mistake
   return parts->kind == "sim" || parts->kind == "unix" ||
          (parts->kind == "serial" && parts->options.contains("select"));
 }
-
-}  // namespace
 
 arm::ArmModel load_arm(const std::string& arm) {
   auto model = arm::load_arm_model(arm::arm_file_path(arm));
@@ -32,7 +27,7 @@ std::unique_ptr<ArmSession> open_arm_session(const std::string& arm_name, const 
   arm::ArmModel model = load_arm(arm_name);
   auto s = std::make_unique<ArmSession>();
   const bool bus = model.supports(arm::Protocol::joint_bus) &&
-                   (names_joint_bus(device) || !model.supports(arm::Protocol::robot_commands));
+                   (device.empty() || device_is_joint_bus(device) || !model.supports(arm::Protocol::robot_commands));
   if (bus) {
     s->bus = devices::open_joint_bus(device.empty() ? "sim" : device).value();
     s->master = std::make_unique<joint_bus::BusMaster>(s->bus->link(), s->bus->default_options());

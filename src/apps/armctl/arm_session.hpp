@@ -24,6 +24,10 @@ struct ArmSession {
   std::unique_ptr<arm::Arm> arm;
 };
 
+// A URI that names a joint bus (sim..., unix:..., serial:...&select=...), not a Robot
+// Commands board.
+bool device_is_joint_bus(const std::string& device);
+
 // Throws ArmctlError naming what was wrong (arm file, URI, device).
 arm::ArmModel load_arm(const std::string& arm);
 std::unique_ptr<ArmSession> open_arm_session(const std::string& arm, const std::string& device);

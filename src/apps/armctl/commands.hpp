@@ -14,5 +14,6 @@ void add_emulate_command(CLI::App& app);     // sim_xarm_command.cpp: deprecated
 void add_list_command(CLI::App& app);        // list_command.cpp: attached boards and ports
 void add_controller_command(CLI::App& app);  // controller_command.cpp: the arm controller
 void add_arm_command(CLI::App& app);         // arm_command.cpp: the Arm API in SI units
+void add_stop_command(CLI::App& app);        // stop_command.cpp: stop any device now
 
 }  // namespace armctl::cli
