@@ -53,7 +53,10 @@ std::string holders_text(const std::vector<NodeHolder>& holders) {
 }
 
 NodeLock::NodeLock(const std::string& path) {
-  // Read-only is enough for flock; the node's permissions decide as they do for hidapi.
+  // hidapi does not hand out its descriptor, so the lock has its own. Read-only is enough
+  // for flock; the node's permissions decide as they do for hidapi. On hidraw this handle
+  // gets its own copy of the reports too; it is never read, and the kernel simply stops
+  // queueing for it when its small buffer is full, which costs the other handles nothing.
   fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd_ < 0) {
     const int err = errno;
