@@ -50,8 +50,12 @@ std::unique_ptr<HidLink> HidLink::open_board(const std::string& serial_or_path,
   if (serial_or_path.rfind('/', 0) == 0) {
     // An explicit node: open it whatever it says it is, but say so if it is not an xArm.
     std::optional<transport::HidDeviceInfo> info;
-    for (auto& d : backend.enumerate(0, 0)) {
-      if (d.path == serial_or_path) info = std::move(d);
+    try {
+      for (auto& d : backend.enumerate(0, 0)) {
+        if (d.path == serial_or_path) info = std::move(d);
+      }
+    } catch (const ArmctlError&) {
+      // Listing failed (e.g. no udev in a container): the named node may still open.
     }
     std::string note;
     if (!info) {
