@@ -1,5 +1,7 @@
 // The fake xArm board under the transport seam (HidBackend/HidPort) on a SimClock, for SDK
 // tests: reading advances simulated time to the next reply or the deadline; nothing sleeps.
+// Opening it twice gives two handles that both get every reply, as on hidraw (the fake
+// takes no lock: that is HidDevice's job, tested in hid_lock_test and cli_hid_test).
 #pragma once
 
 #include <memory>
@@ -45,23 +47,21 @@ class FakeHidBackend final : public transport::HidBackend {
     if (path != kPath) {
       throw ArmctlError(ErrorKind::io, "open HID device " + path + ": No such file or directory");
     }
-    ++opens;
-    board_.opened();
-    return std::make_unique<Port>(*this);
+    return std::make_unique<Port>(*this, board_.open());
   }
 
   SimClock& clock() { return clock_; }
   FakeXarmHid& board() { return board_; }
   std::vector<transport::HidDeviceInfo> devices;  // what enumerate lists
-  int opens = 0;
 
  private:
   class Port final : public transport::HidPort {
    public:
-    explicit Port(FakeHidBackend& backend) : backend_(backend) {}
+    Port(FakeHidBackend& backend, FakeXarmHid::Handle handle)
+        : backend_(backend), handle_(handle) {}
     void write(std::span<const std::uint8_t> report) override { backend_.board_.write(report); }
     std::size_t read(std::span<std::uint8_t> buffer, TimePoint deadline) override {
-      auto r = backend_.board_.read(deadline,
+      auto r = backend_.board_.read(handle_, deadline,
                                     [this](TimePoint t) { backend_.clock_.advance_to(t); });
       if (!r) return 0;
       const std::size_t n = std::min(buffer.size(), r->size());
@@ -78,6 +78,7 @@ class FakeHidBackend final : public transport::HidBackend {
 
    private:
     FakeHidBackend& backend_;
+    FakeXarmHid::Handle handle_;
     std::string path_ = kPath;
   };
 

@@ -38,6 +38,7 @@ wchar_t* wide(const std::string& s) {
 struct FakeDevice {
   armctl::SteadyClock clock;
   FakeXarmHid board{clock, armctl::testing::parse_fake_hid_behaviour(env("ARMCTL_FAKE_HID_BEHAVIOUR"))};
+  FakeXarmHid::Handle handle = board.open();
 };
 
 void log_state(FakeDevice& d) {
@@ -110,7 +111,7 @@ int hid_read_timeout(hid_device* dev, unsigned char* data, size_t length, int mi
   const armctl::TimePoint deadline =
       dev->fake.clock.now() + std::chrono::milliseconds(milliseconds < 0 ? 1 << 30 : milliseconds);
   // The fake device's own latency: block like hid_read_timeout does on a real node.
-  auto r = dev->fake.board.read(deadline, [](armctl::TimePoint t) {
+  auto r = dev->fake.board.read(dev->fake.handle, deadline, [](armctl::TimePoint t) {
     std::this_thread::sleep_until(std::chrono::steady_clock::time_point(
         std::chrono::duration_cast<std::chrono::steady_clock::duration>(t.time_since_epoch())));
   });

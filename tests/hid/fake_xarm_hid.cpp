@@ -69,16 +69,20 @@ FakeXarmHid::FakeXarmHid(const Clock& clock, FakeHidBehaviour behaviour)
         }
         const TimePoint at =
             std::max(clock_.now() + behaviour_.reply_delay, opened_at_ + behaviour_.hold_after_open);
-        auto it = pending_.begin();
-        while (it != pending_.end() && it->first <= at) ++it;
-        pending_.insert(it, {at, f});
-      }) {
-  opened();
-}
+        for (auto& queue : handles_) {
+          auto it = queue.begin();
+          while (it != queue.end() && it->first <= at) ++it;
+          queue.insert(it, {at, f});
+        }
+      }) {}
 
-void FakeXarmHid::opened() {
-  opened_at_ = clock_.now();
-  next_other_ = opened_at_ + behaviour_.other_opener_every;
+FakeXarmHid::Handle FakeXarmHid::open() {
+  if (handles_.empty()) {
+    opened_at_ = clock_.now();
+    next_other_ = opened_at_ + behaviour_.other_opener_every;
+  }
+  handles_.emplace_back();
+  return handles_.size() - 1;
 }
 
 void FakeXarmHid::write(std::span<const std::uint8_t> report) {
@@ -117,28 +121,30 @@ void FakeXarmHid::run_other_opener(TimePoint now) {
   }
 }
 
-std::optional<TimePoint> FakeXarmHid::next_due() const {
+std::optional<TimePoint> FakeXarmHid::next_due(Handle handle) const {
   std::optional<TimePoint> t;
-  if (!pending_.empty()) t = pending_.front().first;
+  const Queue& pending = handles_.at(handle);
+  if (!pending.empty()) t = pending.front().first;
   if (behaviour_.other_opener_every > Duration::zero() && (!t || next_other_ < *t)) {
     t = next_other_;
   }
   return t;
 }
 
-std::optional<FakeXarmHid::Report> FakeXarmHid::read(TimePoint deadline,
+std::optional<FakeXarmHid::Report> FakeXarmHid::read(Handle handle, TimePoint deadline,
                                                      const WaitUntil& wait_until) {
   for (;;) {
     run_other_opener(clock_.now());
-    if (!pending_.empty() && pending_.front().first <= clock_.now()) {
+    Queue& pending = handles_.at(handle);
+    if (!pending.empty() && pending.front().first <= clock_.now()) {
       Report r{};
-      const auto bytes = rc::encode_frame(pending_.front().second);
+      const auto bytes = rc::encode_frame(pending.front().second);
       std::copy(bytes.begin(), bytes.end(), r.begin());
-      pending_.pop_front();
+      pending.pop_front();
       return r;
     }
     if (clock_.now() >= deadline) return std::nullopt;
-    const auto due = next_due();
+    const auto due = next_due(handle);
     wait_until(due && *due < deadline ? *due : deadline);
   }
 }

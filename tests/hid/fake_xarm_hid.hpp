@@ -42,16 +42,19 @@ class FakeXarmHid {
   using Report = std::array<std::uint8_t, 64>;
   using WaitUntil = std::function<void(TimePoint)>;
 
-  // `clock` must outlive this. The board counts as opened now (see opened()).
+  using Handle = std::size_t;
+
+  // `clock` must outlive this.
   FakeXarmHid(const Clock& clock, FakeHidBehaviour behaviour);
 
-  // A host opened the node: the deaf spell starts again.
-  void opened();
-  // One output report (report ID first) at clock.now().
+  // A program opened the node. Like hidraw, every handle gets a copy of every reply from
+  // then on. The first open starts the board's deaf/held spell.
+  Handle open();
+  // One output report (report ID first) at clock.now(), from any handle.
   void write(std::span<const std::uint8_t> report);
-  // The next input report, waiting with `wait_until` (advance a SimClock, or sleep) until
-  // one is due or `deadline` passes.
-  std::optional<Report> read(TimePoint deadline, const WaitUntil& wait_until);
+  // The next input report for `handle`, waiting with `wait_until` (advance a SimClock, or
+  // sleep) until one is due or `deadline` passes.
+  std::optional<Report> read(Handle handle, TimePoint deadline, const WaitUntil& wait_until);
 
   xarm::XarmServos& servos() { return emulator_.servos(); }
   const FakeHidBehaviour& behaviour() const { return behaviour_; }
@@ -64,14 +67,15 @@ class FakeXarmHid {
  private:
   void handle(const rc::Frame& frame);
   void run_other_opener(TimePoint now);
-  std::optional<TimePoint> next_due() const;
+  std::optional<TimePoint> next_due(Handle handle) const;
+  using Queue = std::deque<std::pair<TimePoint, rc::Frame>>;
 
   const Clock& clock_;
   FakeHidBehaviour behaviour_;
   xarm::XarmEmulator emulator_;
   TimePoint opened_at_{};
   TimePoint next_other_{};
-  std::deque<std::pair<TimePoint, rc::Frame>> pending_;
+  std::vector<Queue> handles_;  // replies on their way to each open handle
   std::vector<rc::Frame> requests_;
   int replies_ = 0;
   int dropped_ = 0;

@@ -228,6 +228,34 @@ TEST(HidSecondOpener, OtherProgramIsNamedInWarningsAndErrors) {
   EXPECT_GT(fake.board().other_opener_requests(), 0);
 }
 
+TEST(HidSecondOpener, EveryHandleGetsEveryReply) {
+  // Two handles on one node, as hidraw allows when nobody locks (HidDevice does lock).
+  FakeHidBackend fake(with([](FakeHidBehaviour& b) { b.reply_delay = 100ms; }));
+  auto mine = HidLink::open_board("", fake);
+  auto theirs = HidLink::open_board("", fake);
+  Client me(*mine, hid_client_options());
+  Client them(*theirs, hid_client_options());
+
+  // Their answered read also reached our handle; it arrived before our request, so it is
+  // counted as stale and not taken for our answer.
+  ASSERT_TRUE(them.read_positions({1}));
+  auto ours = me.read_all_positions();
+  ASSERT_TRUE(ours) << ours.error().message;
+  EXPECT_EQ(me.stats().stale_replies, 1u);
+
+  // Their request still on its way when we ask: its reply comes first and cannot be told
+  // from ours (no sequence numbers). This is why armctl locks the node.
+  auto read_one = rc::encode(rc::ServoPositionRead{{1}}, rc::ServoRange::of_count(6));
+  ASSERT_TRUE(read_one);
+  theirs->send(*read_one);
+  fake.clock().advance(10ms);
+  auto mixed = me.read_all_positions();
+  ASSERT_FALSE(mixed);
+  EXPECT_EQ(mixed.error().kind, ErrorKind::protocol);
+  EXPECT_NE(mixed.error().message.find("answered for 1"), std::string::npos)
+      << mixed.error().message;
+}
+
 TEST(HidOpen, ExplicitPathOpensACloneWithAWarning) {
   FakeHidBackend fake;
   fake.devices[0].product = "XARM-CLONE";
