@@ -209,16 +209,22 @@ void run_group_download(const XarmCli& o) {
 void wait_for_group_end(const XarmCli& o, Client& c, std::uint8_t group) {
   Interrupted interrupted;
   const StopOnSignals stop_on_signals(interrupted);
-  const TimePoint start_deadline = c.clock().now() + std::chrono::milliseconds(500);
+  // As long as a reply may take (500 ms on serial, 1.5 s on slow HID boards).
+  const Duration start_wait = c.options().reply_timeout;
+  const TimePoint start_deadline = c.clock().now() + start_wait;
   bool started = false;
   while (!interrupted) {
     auto e = c.wait_event(c.clock().now() + std::chrono::milliseconds(100));
     if (!e) {
       if (!started && c.clock().now() >= start_deadline) {
         throw ArmctlError(ErrorKind::timeout,
-                          fmt::format("no 'started' notification for group {} within 500 ms (is "
+                          fmt::format("no 'started' notification for group {} within {} ms (is "
                                       "group {} empty on this board?)",
-                                      group, group));
+                                      group,
+                                      std::chrono::duration_cast<std::chrono::milliseconds>(
+                                          start_wait)
+                                          .count(),
+                                      group));
       }
       continue;
     }
