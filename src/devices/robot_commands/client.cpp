@@ -201,7 +201,9 @@ Status Client::servos_off(const std::vector<std::uint8_t>& servos) {
   auto all = build(rc::MultiServoOff{servos});
   if (!all) return all.error();
   if (!options_.servo_off_per_servo) frames.push_back(std::move(*all));
-  for (const auto& f : frames) send(f);
+  for (const auto& f : frames) {
+    if (auto sent = send(f); !sent) return sent;
+  }
   auto back = read_positions(servos);
   if (!back) {
     return Error{back.error().kind,
