@@ -49,7 +49,26 @@ std::vector<HidDeviceInfo> hid_enumerate(std::uint16_t vendor_id, std::uint16_t 
   return out;
 }
 
-HidDevice::HidDevice(const std::string& path) : path_(path) {
+namespace {
+
+class HidapiBackend final : public HidBackend {
+ public:
+  std::vector<HidDeviceInfo> enumerate(std::uint16_t vendor_id, std::uint16_t product_id) override {
+    return hid_enumerate(vendor_id, product_id);
+  }
+  std::unique_ptr<HidPort> open(const std::string& path) override {
+    return std::make_unique<HidDevice>(path);
+  }
+};
+
+}  // namespace
+
+HidBackend& hidapi_backend() {
+  static HidapiBackend backend;
+  return backend;
+}
+
+HidDevice::HidDevice(const std::string& path) : path_(path), lock_(path) {
   ensure_hidapi();
   errno = 0;
   dev_ = hid_open_path(path.c_str());
@@ -59,7 +78,7 @@ HidDevice::HidDevice(const std::string& path) : path_(path) {
                       (err ? std::string(std::strerror(err)) + " (errno " + std::to_string(err) + ")"
                            : std::string("hidapi could not open it"));
     if (err == EACCES) {
-      msg += " — install udev/50-armctl.rules and re-plug the board (see docs/robot-commands.md)";
+      msg += " — install udev/50-armctl.rules and re-plug the board (see docs/usb-hid.md)";
     }
     throw ArmctlError(ErrorKind::io, msg);
   }

@@ -1,14 +1,21 @@
-// USB HID devices through hidapi (hidraw backend): enumerate by vendor/product, open by
-// path, write/read raw reports. Robot Commands framing inside reports lives in
-// protocol/robot_commands/hid_report.hpp; this layer only moves bytes.
+// USB HID devices: enumerate by vendor/product, open by path, write/read raw reports.
+// Robot Commands framing inside reports lives in protocol/robot_commands/hid_report.hpp;
+// this layer only moves bytes.
+//
+// The seam: HidBackend (enumerate + open) and HidPort (one open device). The real ones go
+// through hidapi's hidraw backend (hidapi_backend(), HidDevice); tests put a fake board
+// under the same seam, on simulated time.
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "core/clock.hpp"
+#include "transport/hid_device_lock.hpp"
 
 struct hid_device_;
 
@@ -24,28 +31,60 @@ struct HidDeviceInfo {
   int interface_number = -1;
 };
 
-// Every HID device with this vendor/product (0 = any). Throws ArmctlError(io) if hidapi
-// cannot start.
+// One open HID device.
+class HidPort {
+ public:
+  virtual ~HidPort() = default;
+  // The whole buffer is one output report, report ID first. Throws ArmctlError(io).
+  virtual void write(std::span<const std::uint8_t> report) = 0;
+  // One input report into `buffer`, waiting until `deadline` (on clock()); 0 = timed out.
+  // Throws ArmctlError(io).
+  virtual std::size_t read(std::span<std::uint8_t> buffer, TimePoint deadline) = 0;
+  virtual const std::string& path() const = 0;
+  virtual const Clock& clock() const = 0;
+  // Other programs that have this device open, for messages ("fwupd (pid 812)"); "" if
+  // none or unknown. Their requests' replies reach every handle.
+  virtual std::string other_users() const { return {}; }
+};
+
+class HidBackend {
+ public:
+  virtual ~HidBackend() = default;
+  // Every HID device with this vendor/product (0 = any). Throws ArmctlError(io).
+  virtual std::vector<HidDeviceInfo> enumerate(std::uint16_t vendor_id,
+                                               std::uint16_t product_id) = 0;
+  // Throws ArmctlError(io) naming the path (and a udev hint on permission problems, or
+  // the program holding the device).
+  virtual std::unique_ptr<HidPort> open(const std::string& path) = 0;
+};
+
+// hidapi (hidraw). Lives for the whole process.
+HidBackend& hidapi_backend();
+
+// Every HID device with this vendor/product (0 = any), through hidapi. Throws
+// ArmctlError(io) if hidapi cannot start.
 std::vector<HidDeviceInfo> hid_enumerate(std::uint16_t vendor_id, std::uint16_t product_id);
 
-class HidDevice {
+// A device opened through hidapi, with an advisory exclusive lock on its node (see
+// hid_device_lock.hpp): a second armctl is refused with the holder's name.
+class HidDevice final : public HidPort {
  public:
   // Throws ArmctlError(io) naming the path (and a udev hint on permission problems).
   explicit HidDevice(const std::string& path);
-  ~HidDevice();
+  ~HidDevice() override;
   HidDevice(const HidDevice&) = delete;
   HidDevice& operator=(const HidDevice&) = delete;
 
-  // The whole buffer is one output report, report ID first. Throws ArmctlError(io).
-  void write(std::span<const std::uint8_t> report);
-  // One input report into `buffer`, waiting until `deadline` (steady clock); 0 = timed out.
-  std::size_t read(std::span<std::uint8_t> buffer, TimePoint deadline);
-  const std::string& path() const { return path_; }
-  const Clock& clock() const { return clock_; }
+  void write(std::span<const std::uint8_t> report) override;
+  std::size_t read(std::span<std::uint8_t> buffer, TimePoint deadline) override;
+  const std::string& path() const override { return path_; }
+  const Clock& clock() const override { return clock_; }
+  std::string other_users() const override { return holders_text(programs_holding(path_)); }
 
  private:
-  hid_device_* dev_ = nullptr;
   std::string path_;
+  NodeLock lock_;  // taken before hidapi opens the node, dropped after it closes it
+  hid_device_* dev_ = nullptr;
   SteadyClock clock_;
 };
 

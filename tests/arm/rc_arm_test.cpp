@@ -108,7 +108,11 @@ TEST_F(RcArm, WaitNamesTheJointsThatDidNotArrive) {
 
 TEST_F(RcArm, TorqueOffAndGripper) {
   ASSERT_TRUE(arm.set_torque(false));
-  EXPECT_EQ(link.sent.back().cmd, 20);  // MultiServoOff
+  // The off frame(s), MultiServoOff, then the read-back that confirms the board handled
+  // them, ServoPositionRead (Client::servos_off, docs/usb-hid.md).
+  ASSERT_GE(link.sent.size(), 2u);
+  EXPECT_EQ(link.sent[link.sent.size() - 2].cmd, 20);
+  EXPECT_EQ(link.sent.back().cmd, 21);
   ASSERT_TRUE(arm.gripper(1.0));
   auto s = arm.wait();
   ASSERT_TRUE(s) << s.error().message;

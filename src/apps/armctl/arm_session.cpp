@@ -36,7 +36,7 @@ std::unique_ptr<ArmSession> open_arm_session(const std::string& arm_name, const 
   } else {
     int servos = 0;
     for (const auto& j : model.joints) servos = std::max(servos, j.robot_commands->id);
-    s->rc = open_xarm_session(device, servos, 500);
+    s->rc = open_xarm_session(device, servos, 0);  // 0: the link's reply timeout (HID: 1.5 s)
     auto dev = std::make_unique<arm::RcArmDevice>(model, *s->rc->client);
     s->arm = std::make_unique<arm::Arm>(std::move(model), std::move(dev));
   }

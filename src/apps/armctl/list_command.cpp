@@ -1,4 +1,5 @@
-// `armctl list`: attached xArm boards (USB HID) and serial ports, with what they are.
+// `armctl list`: attached xArm boards (USB HID) and serial ports, with what they are, and
+// boards that are plugged in but cannot be used through hidraw, with the likely reason.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include "apps/armctl/commands.hpp"
 #include "core/error.hpp"
 #include "devices/robot_commands/hid_link.hpp"
+#include "devices/robot_commands/hid_link_sysfs.hpp"
 #include "transport/hid_device.hpp"
 
 namespace armctl::cli {
@@ -78,6 +80,11 @@ void run_list(bool json) {
   } catch (const ArmctlError& e) {
     hid_problem = e.what();
   }
+  // Plugged in (sysfs) but not usable through hidraw: say why. Those hidapi listed are fine.
+  std::vector<robot_commands::UsbBoard> unusable;
+  for (auto& u : robot_commands::xarm_boards_on_usb()) {
+    if (!u.problem.empty()) unusable.push_back(std::move(u));
+  }
   const auto ports = serial_ports();
   if (json) {
     nlohmann::json j{{"hid_boards", nlohmann::json::array()},
@@ -93,12 +100,24 @@ void run_list(bool json) {
       j["serial_ports"].push_back({{"path", p.path}, {"target", p.target}, {"usb", p.usb}});
     }
     if (!hid_problem.empty()) j["hid_problem"] = hid_problem;
+    j["usb_boards_without_hidraw"] = nlohmann::json::array();
+    for (const auto& u : unusable) {
+      j["usb_boards_without_hidraw"].push_back({{"usb", u.usb_name},
+                                                {"product", u.product},
+                                                {"serial_number", u.serial},
+                                                {"hidraw", u.hidraw},
+                                                {"problem", u.problem}});
+    }
     fmt::print("{}\n", j.dump());
     return;
   }
   fmt::print("xArm boards (USB HID 0483:5750 \"LOBOT\"):\n");
   if (!hid_problem.empty()) fmt::print("  (cannot enumerate: {})\n", hid_problem);
   if (boards.empty()) fmt::print("  none found\n");
+  for (const auto& u : unusable) {
+    fmt::print("  USB {} (0483:5750 \"{}\"{}) is plugged in but not usable: {}\n", u.usb_name,
+               u.product, u.serial.empty() ? "" : " serial " + u.serial, u.problem);
+  }
   for (const auto& b : boards) {
     fmt::print("  {}  serial {}  {} {}  -> --device hid:{}\n", b.path,
                b.serial_number.empty() ? "(none)" : b.serial_number, b.manufacturer, b.product,

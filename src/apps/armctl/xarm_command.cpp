@@ -24,7 +24,7 @@ struct XarmCli {
   std::string device;
   bool json = false;
   int servo_count = 6;
-  int timeout_ms = 500;
+  int timeout_ms = 0;  // 0 = the link's default
 
   // per-subcommand arguments
   std::vector<std::string> targets;
@@ -39,7 +39,8 @@ struct XarmCli {
   std::string group;
   int times = 1;
   std::string percent;
-  int interval_ms = 200;
+  int interval_ms = 0;  // 0 = the link's poll interval
+  int max_missed = 5;
   robot_commands::BusServoInfoWrite info;
 };
 
@@ -208,16 +209,22 @@ void run_group_download(const XarmCli& o) {
 void wait_for_group_end(const XarmCli& o, Client& c, std::uint8_t group) {
   Interrupted interrupted;
   const StopOnSignals stop_on_signals(interrupted);
-  const TimePoint start_deadline = c.clock().now() + std::chrono::milliseconds(500);
+  // As long as a reply may take (500 ms on serial, 1.5 s on slow HID boards).
+  const Duration start_wait = c.options().reply_timeout;
+  const TimePoint start_deadline = c.clock().now() + start_wait;
   bool started = false;
   while (!interrupted) {
     auto e = c.wait_event(c.clock().now() + std::chrono::milliseconds(100));
     if (!e) {
       if (!started && c.clock().now() >= start_deadline) {
         throw ArmctlError(ErrorKind::timeout,
-                          fmt::format("no 'started' notification for group {} within 500 ms (is "
+                          fmt::format("no 'started' notification for group {} within {} ms (is "
                                       "group {} empty on this board?)",
-                                      group, group));
+                                      group,
+                                      std::chrono::duration_cast<std::chrono::milliseconds>(
+                                          start_wait)
+                                          .count(),
+                                      group));
       }
       continue;
     }
@@ -268,26 +275,68 @@ void run_group_speed(const XarmCli& o) {
   done(o, fmt::format("group {} speed {} %", o.group, pct));
 }
 
+// Polls positions at the link's poll interval (or --interval). A real board misses a reply
+// now and then: a missed poll is counted and shown, and watch stops only after
+// --max-missed polls in a row have failed. A link that fails (unplugged) stops it at once.
 void run_watch(const XarmCli& o) {
   auto s = open(o);
   auto& c = *s->client;
+  const Duration interval = o.interval_ms > 0 ? Duration{std::chrono::milliseconds(o.interval_ms)}
+                                              : c.options().poll_interval;
   Interrupted interrupted;
   const StopOnSignals stop_on_signals(interrupted);
+  int missed_in_row = 0;
+  int missed_total = 0;
   while (!interrupted) {
+    const std::size_t retries_before = c.stats().read_retries;
     auto ps = c.read_all_positions();
-    if (!ps) {
-      throw ArmctlError(ps.error());
+    // Replies the client's read retries rode out are missed replies too: show them.
+    const auto resent = static_cast<int>(c.stats().read_retries - retries_before);
+    if (ps && resent > 0) {
+      missed_total += resent;
+      if (o.json) {
+        print_json({{"missed", "no reply in time; sent again and answered"},
+                    {"resent", resent},
+                    {"missed_in_row", 0},
+                    {"missed_total", missed_total}});
+      } else {
+        fmt::print("missed {} repl{}; sent again and answered ({} in all)\n", resent,
+                   resent == 1 ? "y" : "ies", missed_total);
+      }
     }
-    if (o.json) {
-      print_json({{"positions", positions_json(*ps)}});
+    if (!ps) {
+      missed_total += resent;
+      const auto kind = ps.error().kind;
+      if (kind != ErrorKind::timeout && kind != ErrorKind::protocol) throw ArmctlError(ps.error());
+      ++missed_in_row;
+      ++missed_total;
+      if (o.json) {
+        print_json({{"missed", ps.error().message},
+                    {"missed_in_row", missed_in_row},
+                    {"missed_total", missed_total}});
+      } else {
+        fmt::print("missed ({} in a row, {} in all): {}\n", missed_in_row, missed_total,
+                   ps.error().message);
+      }
+      std::fflush(stdout);
+      if (missed_in_row >= o.max_missed) {
+        throw ArmctlError(kind, fmt::format("watch: {} polls in a row got no usable reply "
+                                            "(--max-missed {}); last: {}",
+                                            missed_in_row, o.max_missed, ps.error().message));
+      }
     } else {
-      std::string line;
-      for (const auto& p : *ps) line += fmt::format("{}={:<5}", p.servo, p.position);
-      fmt::print("{}\n", line);
+      missed_in_row = 0;
+      if (o.json) {
+        print_json({{"positions", positions_json(*ps)}});
+      } else {
+        std::string line;
+        for (const auto& p : *ps) line += fmt::format("{}={:<5}", p.servo, p.position);
+        fmt::print("{}\n", line);
+      }
     }
     print_events(o, c);
     std::fflush(stdout);
-    c.pump_events(c.clock().now() + std::chrono::milliseconds(o.interval_ms));
+    c.pump_events(c.clock().now() + interval);
     print_events(o, c);
   }
 }
@@ -314,7 +363,9 @@ void add_xarm_command(CLI::App& app) {
   x->add_flag("--json", o->json, "Machine-readable output (one JSON object per line)");
   x->add_option("--servos", o->servo_count, "Servos on the board (6 = xArm, 7 = SCARA controller)")
       ->check(CLI::Range(1, 19));
-  x->add_option("--timeout", o->timeout_ms, "Reply timeout in ms")->check(CLI::Range(1, 60000));
+  x->add_option("--timeout", o->timeout_ms,
+                "Reply timeout in ms (default 1500 on HID, 500 otherwise; docs/usb-hid.md)")
+      ->check(CLI::Range(1, 60000));
 
   auto* move = x->add_subcommand("move", "Move servos: 1=500 2=30deg 3=keep");
   move->add_option("targets", o->targets, "SERVO=POSITION (0..1000, -120deg..120deg, keep)")
@@ -388,7 +439,12 @@ void add_xarm_command(CLI::App& app) {
   gs->callback([o] { run_group_speed(*o); });
 
   auto* watch = x->add_subcommand("watch", "Live positions and notifications until Ctrl-C");
-  watch->add_option("--interval", o->interval_ms, "ms between reads")->check(CLI::Range(10, 60000));
+  watch->add_option("--interval", o->interval_ms,
+                    "ms between reads (default 500 on HID, 200 otherwise; docs/usb-hid.md)")
+      ->check(CLI::Range(10, 60000));
+  watch->add_option("--max-missed", o->max_missed,
+                    "Stop after this many polls in a row without a usable reply")
+      ->check(CLI::Range(1, 1000));
   watch->callback([o] { run_watch(*o); });
 }
 

@@ -1,5 +1,9 @@
 #include "apps/armctl/xarm_session.hpp"
 
+#include <fmt/core.h>
+
+#include "devices/robot_commands/hid_link.hpp"
+
 namespace armctl::cli {
 
 XarmSession::~XarmSession() {
@@ -16,11 +20,19 @@ std::unique_ptr<XarmSession> open_xarm_session(const std::string& device, int se
   auto s = std::make_unique<XarmSession>();
   // value() throws the error for main() to print: the CLI's one exception path.
   s->connection = devices::open_robot_commands(device.empty() ? "sim" : device).value();
-  robot_commands::ClientOptions options;
+  auto* hid = dynamic_cast<robot_commands::HidLink*>(&s->connection->link());
+  robot_commands::ClientOptions options =
+      hid ? robot_commands::hid_client_options(servo_count) : robot_commands::ClientOptions{};
   options.servo_count = servo_count;
-  options.reply_timeout = std::chrono::milliseconds(timeout_ms);
-  options.download_timeout = std::chrono::milliseconds(std::max(timeout_ms, 2000));
+  // The embedded board is ours: it handles a combined MultiServoOff (docs/usb-hid.md).
+  if (s->connection->embedded()) options.servo_off_per_servo = false;
+  if (timeout_ms > 0) options.reply_timeout = std::chrono::milliseconds(timeout_ms);
+  options.download_timeout = std::max<Duration>(options.reply_timeout, options.download_timeout);
   s->client = std::make_unique<robot_commands::Client>(s->connection->link(), options);
+  if (hid) {
+    for (const auto& w : hid->warnings()) fmt::print(stderr, "armctl: warning: {}\n", w);
+    robot_commands::await_first_contact(*s->client).value();  // throws its error
+  }
   return s;
 }
 

@@ -17,6 +17,9 @@ struct XarmSession {
 };
 
 // Throws ArmctlError for a bad URI or a device that cannot be opened (the CLI prints it).
+// `timeout_ms` 0 = the link's default reply timeout (1.5 s on HID, 500 ms otherwise). On
+// HID, warnings found while opening go to stderr and the board must answer a first battery
+// read.
 std::unique_ptr<XarmSession> open_xarm_session(const std::string& device, int servo_count,
                                                int timeout_ms);
 

@@ -8,6 +8,8 @@ namespace {
 // The motor-mode speed a board accepts (the LX bus-servo convention; rc_board::Board ignores
 // a ServoSpeed frame outside it).
 constexpr int kMotorSpeedLimit = 1000;
+// More would hide a dead link for minutes behind retries.
+constexpr int kMaxReadAttempts = 10;
 
 std::string servo_list_text(const std::vector<std::uint8_t>& servos) {
   std::string out;
@@ -27,6 +29,11 @@ Client::Client(RcLink& link, ClientOptions options)
     throw ArmctlError(ErrorKind::invalid_argument,
                       fmt::format("servo count {} is out of range (allowed 1..{})",
                                   options.servo_count, rc::kMaxServosPerFrame));
+  }
+  if (options.read_attempts < 1 || options.read_attempts > kMaxReadAttempts) {
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      fmt::format("read attempts {} is out of range (allowed 1..{})",
+                                  options.read_attempts, kMaxReadAttempts));
   }
 }
 
@@ -86,8 +93,30 @@ std::optional<rc::BoardMessage> Client::take(const rc::Frame& frame) {
   return msg.value();
 }
 
+void Client::take_arrived() {
+  const TimePoint now = link_.clock().now();
+  while (auto f = link_.receive(now)) {
+    if (take(*f)) ++stats_.stale_replies;
+  }
+}
+
+Result<rc::BoardMessage> Client::transact_read(const rc::Frame& frame) {
+  for (int attempt = 1;; ++attempt) {
+    auto reply = transact(frame, std::nullopt, options_.reply_timeout);
+    if (reply || reply.error().kind != ErrorKind::timeout || attempt >= options_.read_attempts) {
+      if (!reply && attempt > 1) {
+        return Error{reply.error().kind,
+                     fmt::format("{} (sent {} times)", reply.error().message, attempt)};
+      }
+      return reply;
+    }
+    ++stats_.read_retries;
+  }
+}
+
 Result<rc::BoardMessage> Client::transact(const rc::Frame& frame, std::optional<std::uint8_t> sub,
                                           Duration timeout) {
+  take_arrived();
   send(frame);
   const TimePoint deadline = link_.clock().now() + timeout;
   const char* name = "reply";
@@ -141,7 +170,7 @@ Status Client::move(const std::vector<ServoTarget>& targets, std::uint16_t time_
 Result<std::vector<ServoPosition>> Client::read_positions(const std::vector<std::uint8_t>& servos) {
   auto f = build(rc::ServoPositionRead{servos});
   if (!f) return f.error();
-  auto reply = transact(*f, std::nullopt, options_.reply_timeout);
+  auto reply = transact_read(*f);
   if (!reply) return reply.error();
   const auto& positions = std::get<rc::ServoPositionReply>(*reply).positions;
   std::vector<std::uint8_t> answered;
@@ -160,15 +189,35 @@ Result<std::vector<ServoPosition>> Client::read_all_positions() {
 }
 
 Status Client::servos_off(const std::vector<std::uint8_t>& servos) {
-  auto f = build(rc::MultiServoOff{servos});
-  if (!f) return f.error();
-  return send(*f);
+  std::vector<rc::Frame> frames;
+  if (options_.servo_off_per_servo) {
+    for (auto s : servos) {
+      auto f = build(rc::MultiServoOff{{s}});
+      if (!f) return f.error();
+      frames.push_back(std::move(*f));
+    }
+  }
+  // The whole list is validated (and built) before anything is sent.
+  auto all = build(rc::MultiServoOff{servos});
+  if (!all) return all.error();
+  if (!options_.servo_off_per_servo) frames.push_back(std::move(*all));
+  for (const auto& f : frames) {
+    if (auto sent = send(f); !sent) return sent;
+  }
+  auto back = read_positions(servos);
+  if (!back) {
+    return Error{back.error().kind,
+                 fmt::format("torque-off sent, but the read-back that confirms the board "
+                             "handled it failed: {}",
+                             back.error().message)};
+  }
+  return Ok{};
 }
 
 Result<std::uint16_t> Client::battery_millivolts() {
   auto f = build(rc::GetBatteryVoltage{});
   if (!f) return f.error();
-  auto reply = transact(*f, std::nullopt, options_.reply_timeout);
+  auto reply = transact_read(*f);
   if (!reply) return reply.error();
   return std::get<rc::BatteryVoltageReply>(*reply).millivolts;
 }
@@ -176,7 +225,7 @@ Result<std::uint16_t> Client::battery_millivolts() {
 Result<std::vector<ServoOffset>> Client::read_offsets(const std::vector<std::uint8_t>& servos) {
   auto f = build(rc::ServoOffsetRead{servos});
   if (!f) return f.error();
-  auto reply = transact(*f, std::nullopt, options_.reply_timeout);
+  auto reply = transact_read(*f);
   if (!reply) return reply.error();
   const auto& offsets = std::get<rc::ServoOffsetReply>(*reply).offsets;
   std::vector<std::uint8_t> answered;
@@ -222,7 +271,7 @@ Status Client::set_mode(std::uint8_t servo, ServoMode mode, std::int16_t speed) 
 Result<BusServoInfoReply> Client::read_bus_servo_info() {
   auto f = build(rc::BusServoInfoRead{});
   if (!f) return f.error();
-  auto reply = transact(*f, std::nullopt, options_.reply_timeout);
+  auto reply = transact_read(*f);
   if (!reply) return reply.error();
   return std::get<rc::BusServoInfoReply>(*reply);
 }

@@ -34,6 +34,18 @@ struct ClientOptions {
   Duration reply_timeout = std::chrono::milliseconds(500);
   // A GroupDownload ack can take longer on a real board (flash writes).
   Duration download_timeout = std::chrono::milliseconds(2000);
+  // Reads (positions, battery, offsets, bus-servo info) are sent again when no reply came
+  // within reply_timeout, up to this many attempts in all. Never anything else: a move,
+  // servo-off or group command sent twice could act twice.
+  int read_attempts = 1;
+  // How often something that follows motion should read positions (`armctl xarm watch`,
+  // the motion layer's following check). The client itself never polls. Reads during a
+  // move can make real servos jerk, and HID boards answer slowly (docs/usb-hid.md).
+  Duration poll_interval = std::chrono::milliseconds(200);
+  // servos_off as one MultiServoOff per servo (true), or one frame for all. Real xArm
+  // boards can leave some servos powered after a combined frame; only boards that are
+  // ours (the emulated xArm, the arm controller) are known to handle it.
+  bool servo_off_per_servo = true;
 };
 
 // One action of a group: a MultiServoMove (time + positions).
@@ -48,6 +60,7 @@ struct ClientStats {
   std::size_t frames_received = 0;
   std::size_t unreadable_frames = 0;  // did not decode as any board message
   std::size_t stale_replies = 0;      // a reply nobody was waiting for (e.g. after a timeout)
+  std::size_t read_retries = 0;       // reads sent again after a timeout
 };
 
 class Client {
@@ -64,6 +77,9 @@ class Client {
   Status move(const std::vector<ServoTarget>& targets, std::uint16_t time_ms);
   Result<std::vector<ServoPosition>> read_positions(const std::vector<std::uint8_t>& servos);
   Result<std::vector<ServoPosition>> read_all_positions();
+  // Removes torque (per options.servo_off_per_servo), then reads the servos' positions
+  // back: replies come in order, so an answer proves the board has handled every off
+  // frame. Robot Commands cannot read torque itself, so that is all that can be checked.
   Status servos_off(const std::vector<std::uint8_t>& servos);
   Result<std::uint16_t> battery_millivolts();
   Result<std::vector<ServoOffset>> read_offsets(const std::vector<std::uint8_t>& servos);
@@ -101,6 +117,7 @@ class Client {
   std::vector<std::uint8_t> all_servos() const;
   const ClientStats& stats() const { return stats_; }
   RcLink& link() { return link_; }
+  const ClientOptions& options() const { return options_; }
   const Clock& clock() const { return link_.clock(); }
 
   // Every frame download_group would send, validated, in order (for inspection/tests).
@@ -113,6 +130,11 @@ class Client {
   // Sends `frame` and waits for the reply with `cmd` (and `sub` for GroupDownload acks).
   Result<rc::BoardMessage> transact(const rc::Frame& frame, std::optional<std::uint8_t> sub,
                                     Duration timeout);
+  // transact for a read: up to options_.read_attempts attempts while replies time out.
+  Result<rc::BoardMessage> transact_read(const rc::Frame& frame);
+  // Takes every frame that has already arrived (queues notifications, counts late
+  // replies as stale), so a late answer to an earlier request is not taken for the next.
+  void take_arrived();
   // Handles one incoming frame; returns the board message if it is a reply.
   std::optional<rc::BoardMessage> take(const rc::Frame& frame);
   void deliver(const rc::GroupNotification& n);
