@@ -133,7 +133,7 @@ class ScriptedPtyBoard {
 
 TEST(ClientOverPty, ScriptedFakeBoard) {
   ScriptedPtyBoard board;
-  auto link = open_link(parse_device_uri("serial:" + board.path()).value());
+  auto link = open_link(parse_device_uri("serial:" + board.path()).value()).value();
   Client c(*link, ClientOptions{.reply_timeout = 2s});
   auto mv = c.battery_millivolts();
   ASSERT_TRUE(mv) << mv.error().message;
@@ -151,7 +151,7 @@ TEST(ClientOverPty, ScriptedFakeBoard) {
 TEST(ClientOverPty, EmulatedXarmEveryCommand) {
   xarm::EmulatorRunner runner(xarm::EmulatorRunnerOptions{});
   runner.start();
-  auto link = open_link(parse_device_uri(runner.device_path() + "?baud=115200").value());
+  auto link = open_link(parse_device_uri(runner.device_path() + "?baud=115200").value()).value();
   Client c(*link, ClientOptions{.reply_timeout = 2s, .download_timeout = 2s});
   ASSERT_TRUE(c.move({{1, 200}, {4, 800}}, 0));
   c.pump_events(c.clock().now() + 300ms);  // the emulator's fastest move is not instant

@@ -22,7 +22,6 @@ namespace armctl::cli {
 namespace {
 
 using joint_bus::BusMaster;
-using joint_bus::BusResult;
 
 struct BusArgs {
   std::string device = "sim";
@@ -66,11 +65,11 @@ std::vector<int> parse_joints(const std::string& command, const std::string& tex
 }
 
 template <typename T>
-BusRow row_from(int joint, const BusResult<T>& r, const std::function<void(BusRow&, const T&)>& fill) {
+BusRow row_from(int joint, const Result<T>& r, const std::function<void(BusRow&, const T&)>& fill) {
   BusRow row;
   row.joint = joint;
   if (!r.ok()) {
-    row.failure = r.failure();
+    row.error = r.error();
   } else if (fill) {
     fill(row, r.value());
   }
@@ -106,7 +105,7 @@ class BusRunner {
     auto each = [&](const std::function<BusRow(int)>& op) {
       for (int j : joints) report.rows.push_back(op(j));
     };
-    auto done = [](BusRow&, const joint_bus::Done&) {};
+    auto done = [](BusRow&, const Ok&) {};
     auto as_value = [](const char* what) {
       return [what](BusRow& row, const std::int16_t& v) {
         row.value = v;
@@ -124,14 +123,14 @@ class BusRunner {
         });
       });
     } else if (command == "home") {
-      each([&](int j) { return row_from<joint_bus::Done>(j, m.home(j), [](BusRow& r, const auto&) { r.text = "homed (position 0, target 0)"; }); });
+      each([&](int j) { return row_from<Ok>(j, m.home(j), [](BusRow& r, const auto&) { r.text = "homed (position 0, target 0)"; }); });
     } else if (command == "pid") {
       if (args_.value != "on" && args_.value != "off") {
         usage_error(fmt::format("pid: VALUE '{}' is not allowed: use on or off", args_.value));
       }
       const bool on = args_.value == "on";
       each([&](int j) {
-        return row_from<joint_bus::Done>(j, m.set_pid_state(j, on), [on](BusRow& r, const auto&) {
+        return row_from<Ok>(j, m.set_pid_state(j, on), [on](BusRow& r, const auto&) {
           r.value = on;
           r.text = on ? "position loop on" : "position loop off";
         });
@@ -151,10 +150,10 @@ class BusRunner {
         // All joints told back to back so they start together.
         const std::vector<std::int16_t> values(static_cast<std::size_t>(m.joint_count()), v);
         for (auto& o : m.drive_all(kind, values)) {
-          report.rows.push_back(row_from<joint_bus::Done>(o.joint, o.result, done));
+          report.rows.push_back(row_from<Ok>(o.joint, o.result, done));
         }
       } else {
-        each([&](int j) { return row_from<joint_bus::Done>(j, m.drive(kind, j, v), done); });
+        each([&](int j) { return row_from<Ok>(j, m.drive(kind, j, v), done); });
       }
       for (auto& r : report.rows) {
         if (!failed(r)) r.text = fmt::format("{} {} sent", command, v);
@@ -163,10 +162,10 @@ class BusRunner {
       const int max = joint_bus::max_speed_value(dialect);
       const auto v = static_cast<std::int16_t>(parse_integer(command, "VALUE", args_.value, 0, max,
           dialect == joint_bus::Dialect::legacy ? "the legacy PWM cap" : "the speed limit in percent"));
-      each([&](int j) { return row_from<joint_bus::Done>(j, m.set_speed(j, v), [v](BusRow& r, const auto&) { r.value = v; r.text = fmt::format("speed {}", v); }); });
+      each([&](int j) { return row_from<Ok>(j, m.set_speed(j, v), [v](BusRow& r, const auto&) { r.value = v; r.text = fmt::format("speed {}", v); }); });
     } else if (command == "zone") {
       const auto v = static_cast<std::int16_t>(parse_integer(command, "VALUE", args_.value, 0, 32767, "the zone in clicks"));
-      each([&](int j) { return row_from<joint_bus::Done>(j, m.set_zone(j, v), [v](BusRow& r, const auto&) { r.value = v; r.text = fmt::format("zone {}", v); }); });
+      each([&](int j) { return row_from<Ok>(j, m.set_zone(j, v), [v](BusRow& r, const auto&) { r.value = v; r.text = fmt::format("zone {}", v); }); });
     } else if (command == "reached") {
       each([&](int j) {
         return row_from<bool>(j, m.check_target_reached(j), [](BusRow& r, const bool& yes) {

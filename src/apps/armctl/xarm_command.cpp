@@ -103,7 +103,7 @@ void run_move(const XarmCli& o) {
   check(s->client->move(targets, static_cast<std::uint16_t>(o.time_ms)));
   if (!o.wait) return done(o, fmt::format("moving {} servos over {} ms", targets.size(), o.time_ms));
   auto& c = *s->client;
-  c.pump_events(c.clock().now() + std::chrono::milliseconds(o.time_ms + 50));
+  check(c.pump_events(c.clock().now() + std::chrono::milliseconds(o.time_ms + 50)));
   std::vector<std::uint8_t> ids;
   for (const auto& t : targets) ids.push_back(t.servo);
   print_positions(o, check(c.read_positions(ids)));
@@ -216,6 +216,7 @@ void wait_for_group_end(const XarmCli& o, Client& c, std::uint8_t group) {
   while (!interrupted) {
     auto e = c.wait_event(c.clock().now() + std::chrono::milliseconds(100));
     if (!e) {
+      if (e.error().kind != ErrorKind::timeout) throw ArmctlError(e.error());
       if (!started && c.clock().now() >= start_deadline) {
         throw ArmctlError(ErrorKind::timeout,
                           fmt::format("no 'started' notification for group {} within {} ms (is "
@@ -243,7 +244,7 @@ void run_group_run(const XarmCli& o) {
   done(o, o.times == 0 ? fmt::format("group {} running until stopped", group)
                        : fmt::format("group {} running {} times", group, o.times));
   if (o.wait) return wait_for_group_end(o, *s->client, group);
-  s->client->pump_events(s->client->clock().now() + std::chrono::milliseconds(200));
+  check(s->client->pump_events(s->client->clock().now() + std::chrono::milliseconds(200)));
   if (s->client->pending_events() == 0 && !o.json) {
     fmt::print(stderr, "warning: no 'started' notification within 200 ms (is group {} empty on "
                        "this board?)\n", group);
@@ -254,7 +255,7 @@ void run_group_run(const XarmCli& o) {
 void run_group_stop(const XarmCli& o) {
   auto s = open(o);
   check(s->client->stop_group());
-  s->client->pump_events(s->client->clock().now() + std::chrono::milliseconds(100));
+  check(s->client->pump_events(s->client->clock().now() + std::chrono::milliseconds(100)));
   print_events(o, *s->client);
   done(o, "group stopped");
 }
@@ -336,7 +337,7 @@ void run_watch(const XarmCli& o) {
     }
     print_events(o, c);
     std::fflush(stdout);
-    c.pump_events(c.clock().now() + interval);
+    check(c.pump_events(c.clock().now() + interval));
     print_events(o, c);
   }
 }

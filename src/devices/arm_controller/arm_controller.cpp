@@ -80,7 +80,7 @@ void ArmController::start() {
     timed([&] {
       auto r = master_.set_zone(j.config.number, j.config.zone_clicks);
       if (r) note_success(j);
-      else note_fault(j, r.failure(), "set_zone");
+      else note_fault(j, r.error(), "set_zone");
     });
   }
   for (std::size_t i = 0; i < joints_.size(); ++i) poll_next();
@@ -355,7 +355,7 @@ void ArmController::note_success(Joint& j) {
   j.status.answering = true;
 }
 
-void ArmController::note_fault(Joint& j, const joint_bus::JointFailure& f, const char* doing) {
+void ArmController::note_fault(Joint& j, const Error& f, const char* doing) {
   ++j.status.faults;
   const bool changed = j.status.answering || j.status.last_fault != f.message || j.status.faults == 1;
   j.status.answering = false;
@@ -369,16 +369,16 @@ void ArmController::run_op(const Op& op) {
   Joint& j = at(op.joint);
   ++stats_.commands;
   const char* name = "";
-  std::optional<joint_bus::JointFailure> failure;
+  std::optional<Error> failure;
   timed([&] {
-    joint_bus::BusResult<joint_bus::Done> r = joint_bus::Done{};
+    Status r = Ok{};
     switch (op.kind) {
       case OpKind::loop_on: name = "set_pid_state 1"; r = master_.set_pid_state(op.joint, true); break;
       case OpKind::loop_off: name = "set_pid_state 0"; r = master_.set_pid_state(op.joint, false); break;
       case OpKind::speed: name = "set_speed"; r = master_.set_speed(op.joint, op.value); break;
       case OpKind::drive_to: name = "drive_to"; r = master_.drive_to(op.joint, op.value); break;
     }
-    if (!r) failure = r.failure();
+    if (!r) failure = r.error();
   });
   if (failure) {
     ++stats_.command_failures;
@@ -416,7 +416,7 @@ void ArmController::poll_next() {
       note_success(j);
     } else {
       ++stats_.poll_failures;
-      note_fault(j, r.failure(), "get_position");
+      note_fault(j, r.error(), "get_position");
     }
   });
   if (++poll_index_ == joints_.size()) {

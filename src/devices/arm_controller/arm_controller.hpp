@@ -141,7 +141,7 @@ class ArmController final : public rc_board::ArmBackend {
   void poll_next();
   void wait_until(TimePoint t);
   void note_success(Joint& j);
-  void note_fault(Joint& j, const joint_bus::JointFailure& f, const char* doing);
+  void note_fault(Joint& j, const Error& f, const char* doing);
   void timed(const std::function<void()>& transaction);
   void anchor_model(Joint& j, TimePoint t);
   TimePoint effect_instant() const;
