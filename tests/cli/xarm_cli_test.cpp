@@ -187,6 +187,30 @@ TEST_F(XarmCli, MoveWithWaitReachesTheTargetsInDegreesAndUnits) {
   EXPECT_TRUE(contains(r.out, "servo 6:  500")) << r.out;  // keep: left where it was
 }
 
+// The board stretches a 0 ms move to its servos' speed limit (500 units at 1500 units/s):
+// --wait reads the servos back until they are there, instead of sleeping for --time.
+TEST_F(XarmCli, MoveWithWaitWaitsForAStretchedMove) {
+  const Outcome r = xarm("--json move 1=0 2=1000 --time 0 --wait --tolerance 2");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const auto docs = json_lines(r.out);
+  ASSERT_EQ(docs.size(), 1u) << r.out;
+  ASSERT_EQ(docs[0]["positions"].size(), 2u);
+  EXPECT_LE(docs[0]["positions"][0]["position"].get<int>(), 2) << r.out;
+  EXPECT_GE(docs[0]["positions"][1]["position"].get<int>(), 998) << r.out;
+}
+
+// A move the board refuses (servo 1's limits end at 600) leaves the servo where it was:
+// --wait says which servo did not arrive, where it is and where it was sent, and fails.
+TEST_F(XarmCli, MoveWithWaitNamesEveryServoThatDidNotArrive) {
+  ASSERT_EQ(xarm("info write --id 1 --position-min 0 --position-max 600").status, 0);
+  const Outcome r = xarm("move 1=900 3=700 --time 100 --wait --wait-timeout 300");
+  EXPECT_NE(r.status, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "servo 1:  500")) << r.out;
+  EXPECT_TRUE(contains(r.err, "2 of 2 servos did not arrive")) << r.err;
+  EXPECT_TRUE(contains(r.err, "servo 1 at 500 (target 900)")) << r.err;
+  EXPECT_TRUE(contains(r.err, "servo 3 at 500 (target 700)")) << r.err;
+}
+
 TEST_F(XarmCli, JsonOutputParses) {
   const Outcome b = xarm("--json battery");
   ASSERT_EQ(b.status, 0) << b.err;

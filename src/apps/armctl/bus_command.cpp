@@ -13,6 +13,7 @@
 #include "apps/armctl/commands.hpp"
 #include "core/error.hpp"
 #include "devices/device_registry/device_registry.hpp"
+#include "devices/joint_bus/arrival.hpp"
 #include "devices/joint_bus/bus_connection.hpp"
 #include "devices/joint_bus/bus_master.hpp"
 #include "devices/joint_bus/device_uri.hpp"
@@ -180,52 +181,27 @@ class BusRunner {
   }
 
  private:
-  // Polls check_target_reached until every joint is in its zone, fails, or time runs out.
+  // Closed loop, in the library: polls until every selected joint is in its zone.
   void wait(const std::vector<int>& joints, BusReport& report) {
     BusMaster& m = *master_;
-    auto& link = connection_->link();
-    const TimePoint start = link.clock().now();
-    const auto timeout = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(args_.wait_timeout_s));
-    std::vector<std::optional<BusRow>> rows(joints.size());
-    // A joint whose poll fails this many times in a row is reported as failed; a single
-    // lost answer while polling is not worth giving up the wait for.
-    constexpr int kMaxFailedPolls = 3;
-    std::vector<int> failed_polls(joints.size(), 0);
-    for (;;) {
-      bool pending = false;
-      for (std::size_t i = 0; i < joints.size(); ++i) {
-        if (rows[i]) continue;
-        auto r = m.check_target_reached(joints[i]);
-        failed_polls[i] = r.ok() ? 0 : failed_polls[i] + 1;
-        if ((!r.ok() && failed_polls[i] >= kMaxFailedPolls) || (r.ok() && r.value())) {
-          const double s = std::chrono::duration<double>(link.clock().now() - start).count();
-          rows[i] = row_from<bool>(joints[i], r, [s](BusRow& row, const bool&) {
-            row.value = s;
-            row.text = fmt::format("reached after {:.2f} s", s);
-          });
-        } else {
-          pending = true;
-        }
+    const TimePoint start = m.clock().now();
+    const auto timeout =
+        std::chrono::duration_cast<Duration>(std::chrono::duration<double>(args_.wait_timeout_s));
+    for (const auto& a : joint_bus::wait_until_reached(m, joints, start + timeout)) {
+      BusRow row;
+      row.joint = a.joint;
+      if (a.arrived) {
+        const double s = std::chrono::duration<double>(a.after).count();
+        row.value = s;
+        row.text = fmt::format("reached after {:.2f} s", s);
+      } else if (joint_bus::joint_failure(*a.error)) {
+        row.error = *a.error;  // its polls failed
+      } else {
+        row.problem = a.error->message;  // still not in its zone at the deadline
       }
-      if (!pending) break;
-      if (link.clock().now() - start >= timeout) {
-        for (std::size_t i = 0; i < joints.size(); ++i) {
-          if (rows[i]) continue;
-          BusRow row;
-          row.joint = joints[i];
-          auto pos = m.get_position(joints[i]);
-          auto tgt = m.get_target(joints[i]);
-          row.problem = fmt::format("not in its zone within {:.1f} s (position {}, target {})", args_.wait_timeout_s,
-                                    pos.ok() ? std::to_string(pos.value()) : "unknown",
-                                    tgt.ok() ? std::to_string(tgt.value()) : "unknown");
-          rows[i] = row;
-        }
-        break;
-      }
-      joint_bus::idle(link, std::chrono::milliseconds(20));
+      report.rows.push_back(std::move(row));
     }
-    for (auto& r : rows) report.rows.push_back(*r);
-    report.extra["elapsed_s"] = std::chrono::duration<double>(link.clock().now() - start).count();
+    report.extra["elapsed_s"] = std::chrono::duration<double>(m.clock().now() - start).count();
   }
 
   BusArgs args_;

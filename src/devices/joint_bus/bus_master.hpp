@@ -58,6 +58,11 @@ class BusMaster {
   int joint_count() const { return link_.joint_count(); }
   const MasterOptions& options() const { return options_; }
   const MasterCounters& counters() const { return counters_; }
+  const Clock& clock() const { return link_.clock(); }
+
+  // Lets time pass until `until` without a transaction (on simulated links this advances
+  // the arm); stray bytes that arrive meanwhile are discarded and counted.
+  void idle_until(TimePoint until);
 
   // One command with one joint (1..joint_count()).
   Result<std::int16_t> ping(int joint, std::int16_t value);
