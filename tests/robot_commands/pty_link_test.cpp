@@ -131,6 +131,26 @@ class ScriptedPtyBoard {
   std::thread thread_;
 };
 
+// A board that stops reading (here: nobody reads the pty) fills the line's buffer; the SDK
+// then returns a timeout instead of hanging in write.
+TEST(ClientOverPty, ABoardThatStopsReadingIsATimeoutNotAHang) {
+  auto pty = transport::Pty::open();
+  auto port = transport::SerialPort::open(pty.slave_path());
+  port->set_write_timeout(100ms);
+  StreamLink link(std::move(port), "serial:" + pty.slave_path());
+  Client c(link);
+  Status s = Ok{};
+  int moves = 0;
+  while (s && moves < 1'000'000) {
+    s = c.move({{1, static_cast<std::uint16_t>(moves % 1000)}}, 100);
+    ++moves;
+  }
+  ASSERT_FALSE(s) << "a million frames went into a pty nobody reads";
+  EXPECT_EQ(s.error().kind, ErrorKind::timeout) << s.error().message;
+  EXPECT_NE(s.error().message.find(pty.slave_path()), std::string::npos) << s.error().message;
+  EXPECT_GT(moves, 1) << "the first frames fit in the buffer";
+}
+
 TEST(ClientOverPty, ScriptedFakeBoard) {
   ScriptedPtyBoard board;
   auto link = open_link(parse_device_uri("serial:" + board.path()).value()).value();
