@@ -55,23 +55,39 @@ TEST(WaitUntilArrived, NamesEveryServoThatIsNotThereAtTheDeadline) {
   EXPECT_LE(c.clock().now() - start, 100ms + 1ms);
 }
 
+TEST(WaitUntilArrived, AServoGlidingThroughTheBandHasNotArrived) {
+  EmulatedLink link;
+  Client c(link);
+  // 200 units over 1 s: 4 units per 20 ms poll, inside 10 units of the target 50 ms early.
+  const std::vector<ServoTarget> targets{{1, 700}};
+  ASSERT_TRUE(c.move(targets, 1000));
+  const TimePoint start = c.clock().now();
+  auto r = wait_until_arrived(c, targets, start + 2s);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->all_arrived());
+  EXPECT_EQ(r->servos[0].position, 700) << "arrived only once there";
+  EXPECT_GE(r->elapsed, 1s);
+}
+
 TEST(WaitUntilArrived, DeclaresNoArrivalBeforeTheMovesPlannedEnd) {
   EmulatedLink link;
   Client c(link);
-  const std::vector<ServoTarget> targets{{1, 700}};
-  ASSERT_TRUE(c.move(targets, 1000));  // 200 units over 1 s: inside 10 units 50 ms early
+  // 20 units over 1 s: reads 20 ms apart differ by at most 1, so in the band the servo
+  // looks at rest long before the end.
+  const std::vector<ServoTarget> targets{{1, 520}};
+  ASSERT_TRUE(c.move(targets, 1000));
   const TimePoint start = c.clock().now();
   auto early = wait_until_arrived(c, targets, start + 2s);
   ASSERT_TRUE(early) << early.error().message;
-  EXPECT_LT(early->elapsed, 1s) << "without not_before, the band is reached before the end";
-  EXPECT_LT(early->servos[0].position, 700);
+  EXPECT_LT(early->elapsed, 1s);
+  EXPECT_LT(early->servos[0].position, 520);
 
-  ASSERT_TRUE(c.move({{1, 300}}, 1000));
+  ASSERT_TRUE(c.move({{1, 500}}, 1000));
   const TimePoint again = c.clock().now();
-  auto r = wait_until_arrived(c, {{1, 300}}, again + 2s, {.not_before = again + 1s});
+  auto r = wait_until_arrived(c, {{1, 500}}, again + 2s, {.not_before = again + 1s});
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_TRUE(r->all_arrived());
-  EXPECT_EQ(r->servos[0].position, 300);
+  EXPECT_EQ(r->servos[0].position, 500);
   EXPECT_EQ(r->elapsed, 1s);
 }
 

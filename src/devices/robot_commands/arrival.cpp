@@ -39,13 +39,17 @@ Result<ArrivalReport> wait_until_arrived(Client& client, const std::vector<Servo
   if (options.not_before > start) {
     if (auto pumped = client.pump_events(options.not_before); !pumped) return pumped.error();
   }
+  std::vector<std::optional<std::int16_t>> previous(ids.size());
   for (;;) {
     auto positions = client.read_positions(ids);
     if (!positions) return positions.error();
     for (std::size_t i = 0; i < ids.size(); ++i) {
       ServoArrival& s = report.servos[i];
       s.position = (*positions)[i].position;  // read_positions answers in the order asked
-      s.arrived = !s.target || std::abs(int{s.position} - int{*s.target}) <= options.tolerance;
+      const bool at_rest = previous[i] && std::abs(int{s.position} - int{*previous[i]}) <= kSettledBand;
+      s.arrived = !s.target || s.position == *s.target ||
+                  (at_rest && std::abs(int{s.position} - int{*s.target}) <= options.tolerance);
+      previous[i] = s.position;
     }
     const TimePoint now = client.clock().now();
     report.elapsed = now - start;

@@ -17,8 +17,10 @@
 namespace armctl::robot_commands {
 
 struct ArrivalOptions {
-  // Servo units (0..1000 over 240 degrees): |position - target| <= tolerance counts as
-  // arrived. 10 units = 2.4 degrees, what an LX bus servo under load holds reliably.
+  // Servo units (0..1000 over 240 degrees): a servo has arrived when it is exactly at its
+  // target, or within `tolerance` of it and at rest there (two reads in a row at most
+  // `kSettledBand` apart), so that one gliding through the band is not taken as there.
+  // 10 units = 2.4 degrees, what an LX bus servo under load holds reliably.
   int tolerance = 10;
   // Between two position reads (each read is one round trip on the link).
   Duration poll_period = std::chrono::milliseconds(20);
@@ -28,11 +30,14 @@ struct ArrivalOptions {
   TimePoint not_before{};
 };
 
+// Two reads this close (servo units) mean the servo is at rest (a held servo jitters by 1).
+inline constexpr int kSettledBand = 1;
+
 struct ServoArrival {
   std::uint8_t servo = 0;
   std::optional<std::uint16_t> target;  // none: "leave alone", which counts as arrived
   std::int16_t position = 0;            // as last read
-  bool arrived = false;                 // within the tolerance at that read
+  bool arrived = false;                 // at its target, or at rest within the tolerance
   bool operator==(const ServoArrival&) const = default;
 };
 
@@ -45,7 +50,7 @@ struct ArrivalReport {
 
 // From options.not_before on, reads the positions of the servos in `targets` every
 // poll_period on client.clock() until
-// every servo with a target position is within the tolerance of it or `deadline` passes;
+// every servo with a target position has arrived (see ArrivalOptions) or `deadline` passes;
 // at least one read is made even if `deadline` has passed.
 // Group notifications that arrive meanwhile stay queued on the client. Returns the last
 // reading, with every servo that did not arrive named; an error only when positions cannot
