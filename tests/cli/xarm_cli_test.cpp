@@ -366,6 +366,38 @@ TEST_F(XarmCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
   EXPECT_FALSE(fs::exists(fs::path(state_) / "xarm-emulator" / "group-000.grp"));
 }
 
+// ------------------------------------------------- `armctl controller` as a process
+
+// The arm controller refuses a move naming a joint that does not answer (joint 3 is dead
+// here), and no joint moves; `move --wait` sees that the servos did not arrive and says so.
+TEST_F(XarmCli, ThroughTheArmControllerARefusedMoveFailsTheWait) {
+  const std::string link = (dir_ / "scara").string();
+  Process controller({"controller", "--bus", "sim?dead=3", "--link", link}, state_);
+  std::optional<std::string> line;
+  while ((line = controller.read_line()) && line->rfind("/dev/pts/", 0) != 0) {
+  }
+  ASSERT_TRUE(line) << "armctl controller ended before printing its pty";
+
+  const std::string dev = "--device serial:" + link + " --servos 7 ";
+  const Outcome refused = xarm(dev + "move 2=600 3=600 --time 200 --wait --wait-timeout 300");
+  EXPECT_NE(refused.status, 0) << refused.out;
+  EXPECT_TRUE(contains(refused.err, "2 of 2 servos did not arrive")) << refused.err;
+  EXPECT_TRUE(contains(refused.err, "servo 2 at 500 (target 600)")) << refused.err;
+  EXPECT_TRUE(contains(refused.err, "servo 3 at 500 (target 600)")) << refused.err;
+
+  // A move of joints that answer still works and is waited for.
+  const Outcome moved = xarm(dev + "--json move 2=600 --time 300 --wait");
+  ASSERT_EQ(moved.status, 0) << moved.err;
+  const auto docs = json_lines(moved.out);
+  ASSERT_EQ(docs.size(), 1u) << moved.out;
+  EXPECT_NEAR(docs[0]["positions"][0]["position"].get<int>(), 600, 10) << moved.out;
+
+  ASSERT_EQ(::kill(controller.pid(), SIGTERM), 0);
+  const Outcome end = controller.finish();
+  EXPECT_TRUE(contains(end.out + end.err, "MultiServoMove refused: joint 3 (UAE) is not answering"))
+      << end.out << end.err;
+}
+
 // ------------------------------------------------- `armctl sim xarm` as a process
 
 TEST_F(XarmCli, AgainstASimXarmProcess) {

@@ -148,17 +148,19 @@ TimePoint ArmController::effect_instant() const {
   return clock().now() - wire_time(2, link_.baud());
 }
 
-Duration ArmController::move(std::span<const rc_board::ServoTarget> targets, Duration time,
-                             TimePoint now) {
+Result<Duration> ArmController::move(std::span<const rc_board::ServoTarget> targets,
+                                     Duration time, TimePoint now) {
   advance_to(now);
   for (const auto& t : targets) {
     const Joint& j = at(t.servo);
     if (!j.status.answering || !j.status.clicks) {
+      // Refused whole: a synchronized move without one of its joints is not the move asked
+      // for. The Board counts and logs the refusal.
       ++stats_.refused_moves;
-      log(fmt::format("MultiServoMove refused: joint {} ({}) is not answering ({}); no joint moved",
-                      int(t.servo), j.config.name,
-                      j.status.last_fault.empty() ? "never read" : j.status.last_fault));
-      return time;
+      return Error{ErrorKind::device,
+                   fmt::format("joint {} ({}) is not answering ({}); no joint moved", int(t.servo),
+                               j.config.name,
+                               j.status.last_fault.empty() ? "never read" : j.status.last_fault)};
     }
   }
   ++stats_.moves;
@@ -295,17 +297,13 @@ void ArmController::adjust_offset(ServoId servo, std::int8_t offset) { at(servo)
 
 std::int8_t ArmController::offset(ServoId servo) const { return at(servo).offset; }
 
-bool ArmController::save_offsets(std::span<const ServoId> servos) {
+Status ArmController::save_offsets(std::span<const ServoId> servos) {
   ControllerSettings before = settings_;
   for (ServoId s : servos) settings_.joints[s].saved_offset = at(s).offset;
-  if (!options_.state_dir) return true;
+  if (!options_.state_dir) return Ok{};
   Status st = save_settings(*options_.state_dir, settings_);
-  if (!st) {
-    settings_ = before;
-    log(fmt::format("ServoOffsetWrite: {}", st.error().message));
-    return false;
-  }
-  return true;
+  if (!st) settings_ = before;
+  return st;
 }
 
 rc_board::BusServoInfo ArmController::bus_servo_info() const {
@@ -319,8 +317,11 @@ rc_board::BusServoInfo ArmController::bus_servo_info() const {
   return info;
 }
 
-bool ArmController::write_bus_servo_info(const rc_board::BusServoLimits& limits) {
-  if (!config_.joint(limits.servo)) return false;  // joints cannot be renumbered from here
+Status ArmController::write_bus_servo_info(const rc_board::BusServoLimits& limits) {
+  if (!config_.joint(limits.servo)) {  // joints cannot be renumbered from here
+    return Error{ErrorKind::device,
+                 fmt::format("joint {} is not configured on this arm controller", int(limits.servo))};
+  }
   ControllerSettings before = settings_;
   settings_.joints[limits.servo].limits = limits;
   settings_.info_joint = limits.servo;
@@ -328,11 +329,10 @@ bool ArmController::write_bus_servo_info(const rc_board::BusServoLimits& limits)
     Status st = save_settings(*options_.state_dir, settings_);
     if (!st) {
       settings_ = before;
-      log(fmt::format("BusServoInfoWrite: {}", st.error().message));
-      return false;
+      return st;
     }
   }
-  return true;
+  return Ok{};
 }
 
 // ---------------------------------------------------------------- bus work

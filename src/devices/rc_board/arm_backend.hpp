@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/clock.hpp"
+#include "core/error.hpp"
 
 namespace armctl::rc_board {
 
@@ -82,8 +83,10 @@ class ArmBackend {
   // One synchronized move starting at `now`: every listed servo moves linearly from where
   // it is and arrives `time` later (0 = as fast as it can). Servos not listed keep what they
   // are doing. Restores torque of listed servos. Returns how long the move really takes
-  // (>= time; a backend may be slower than asked when `time` is shorter than it can do).
-  virtual Duration move(std::span<const ServoTarget> targets, Duration time, TimePoint now) = 0;
+  // (>= time; a backend may be slower than asked when `time` is shorter than it can do),
+  // or an error (device) saying why the backend refused it: then no servo moved.
+  virtual Result<Duration> move(std::span<const ServoTarget> targets, Duration time,
+                                TimePoint now) = 0;
 
   // Current position (may read slightly outside 0..1000 after offsets: signed).
   virtual std::int16_t position(ServoId servo) const = 0;
@@ -97,9 +100,10 @@ class ArmBackend {
   virtual std::uint16_t battery_millivolts() const = 0;
 
   // Offsets, -125..125. adjust: takes effect at once, volatile. save: persists the current
-  // offset of each listed servo (may fail: I/O). read: current (volatile) offset.
+  // offset of each listed servo (may fail: I/O; then nothing changed). read: current
+  // (volatile) offset.
   virtual void adjust_offset(ServoId servo, std::int8_t offset) = 0;
-  virtual bool save_offsets(std::span<const ServoId> servos) = 0;
+  virtual Status save_offsets(std::span<const ServoId> servos) = 0;
   virtual std::int8_t offset(ServoId servo) const = 0;
 
   // ServoSpeed: servo mode (value ignored) or motor mode turning at `speed`
@@ -109,7 +113,8 @@ class ArmBackend {
   // BusServoInfoRead/Write address "the servo on the bus". Which servo that is on a
   // multi-servo arm is the backend's decision (documented by each backend).
   virtual BusServoInfo bus_servo_info() const = 0;
-  virtual bool write_bus_servo_info(const BusServoLimits& limits) = 0;  // false: refused
+  // An error (device: no such servo here; io: cannot be stored) leaves everything unchanged.
+  virtual Status write_bus_servo_info(const BusServoLimits& limits) = 0;
 };
 
 }  // namespace armctl::rc_board

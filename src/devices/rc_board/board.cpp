@@ -58,7 +58,11 @@ void Board::advance_to(TimePoint now) {
     if (*due > now) break;
     arm_.advance_to(*due);
     auto group = player_.group();
-    if (auto finished = player_.step(arm_, speeds_[*group])) {
+    const std::size_t refused_before = player_.moves_refused();
+    auto finished = player_.step(arm_, speeds_[*group]);
+    if (player_.moves_refused() != refused_before)
+      reject(&BoardStats::refused_moves, "GroupRun: " + player_.last_refusal());
+    if (finished) {
       auto frame = rc::encode(rc::BoardMessage{
           rc::GroupNotification{rc::GroupEventKind::finished, finished->group, finished->count}});
       if (frame) send(*frame);
@@ -149,8 +153,15 @@ void Board::dispatch(const rc::Frame& frame, TimePoint now) {
                                           t.servo, *t.position, range.min, range.max));
               targets.push_back({t.servo, *t.position});
             }
+            if (targets.empty()) {
+              ++stats_.handled;
+              return;
+            }
+            auto moved = arm_.move(targets, std::chrono::milliseconds(m.time_ms), now);
+            if (!moved)
+              return reject(&BoardStats::refused_moves,
+                            "MultiServoMove refused: " + moved.error().message);
             ++stats_.handled;
-            if (!targets.empty()) arm_.move(targets, std::chrono::milliseconds(m.time_ms), now);
           },
           [&](const rc::GroupDownloadBegin& m) {
             if (auto s = download_.begin(m); !s) return download_failed(s.error());
@@ -234,8 +245,9 @@ void Board::dispatch(const rc::Frame& frame, TimePoint now) {
           },
           [&](const rc::ServoOffsetWrite& m) {
             if (!all_present(m.servos, "ServoOffsetWrite")) return;
-            if (!arm_.save_offsets(m.servos))
-              return reject(&BoardStats::refused, "ServoOffsetWrite: offsets could not be saved");
+            if (auto saved = arm_.save_offsets(m.servos); !saved)
+              return reject(&BoardStats::refused, "ServoOffsetWrite: offsets could not be saved: " +
+                                                      saved.error().message);
             ++stats_.handled;
           },
           [&](const rc::ServoOffsetRead& m) {
@@ -279,10 +291,11 @@ void Board::dispatch(const rc::Frame& frame, TimePoint now) {
                             "BusServoInfoWrite: limits out of range (positions 0..1000 min<=max, "
                             "millivolts 4500..12000 min<=max, temp 50..100, led_status 0..1, "
                             "led_warning 0..7): frame ignored");
-            if (!arm_.write_bus_servo_info(l))
-              return reject(
-                  &BoardStats::unknown_servo,
-                  fmt::format("BusServoInfoWrite: servo {} not accepted by this arm", m.servo));
+            if (auto written = arm_.write_bus_servo_info(l); !written)
+              return reject(written.error().kind == ErrorKind::device ? &BoardStats::unknown_servo
+                                                                      : &BoardStats::refused,
+                            fmt::format("BusServoInfoWrite: servo {} not accepted by this arm: {}",
+                                        m.servo, written.error().message));
             ++stats_.handled;
           },
           [&](const rc::BusServoInfoRead&) {
