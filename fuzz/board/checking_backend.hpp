@@ -23,8 +23,9 @@ class CheckingBackend final : public rc_board::ArmBackend {
                         TimePoint now) override {
     if (now < now_ || targets.empty() || time < Duration::zero()) std::abort();
     for (const auto& t : targets) {
-      if (!position_range(t.servo).contains(t.position)) std::abort();  // out-of-range move
-      positions_[index(t.servo)] = static_cast<std::int16_t>(t.position);
+      if (!t.position) std::abort();  // "leave alone" must have been dropped
+      if (!position_range(t.servo).contains(*t.position)) std::abort();  // out-of-range move
+      positions_[index(t.servo)] = static_cast<std::int16_t>(*t.position);
     }
     return time;
   }
@@ -47,8 +48,8 @@ class CheckingBackend final : public rc_board::ArmBackend {
     index(s);
     if (speed < -1000 || speed > 1000) std::abort();
   }
-  rc_board::BusServoInfo bus_servo_info() const override {
-    return {limits_info_, 0, 500, 30, 7500};
+  rc_board::BusServoInfoReply bus_servo_info() const override {
+    return rc::bus_servo_info_reply(limits_info_, 0, 500, 30, 7500);
   }
   Status write_bus_servo_info(const rc_board::BusServoLimits& l) override {
     if (l.position_min > l.position_max || l.position_max > 1000) std::abort();

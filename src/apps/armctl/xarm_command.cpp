@@ -394,7 +394,7 @@ void add_xarm_command(CLI::App& app) {
   auto* move = x->add_subcommand("move", "Move servos: 1=500 2=30deg 3=keep");
   move->add_option("targets", o->targets, "SERVO=POSITION (0..1000, -120deg..120deg, keep)")
       ->required();
-  move->add_option("--time", o->time_ms, "Move time in ms")->check(CLI::Range(0, 30000));
+  move->add_option("--time", o->time_ms, "Move time in ms")->check(CLI::Range(0, int{rc::kMoveTimeMaxMs}));
   move->add_flag("--wait", o->wait,
                  "Read the servos back until they arrive, print their positions; exit non-zero "
                  "naming every servo that did not arrive");

@@ -176,7 +176,7 @@ Result<Duration> ArmController::move(std::span<const rc_board::ServoTarget> targ
   for (const auto& t : targets) {
     Joint& j = at(t.servo);
     cancel_ops(t.servo);  // what was not sent yet never happens: the model has only what was
-    const std::int32_t c = target_clicks(t.servo, t.position);
+    const std::int32_t c = target_clicks(t.servo, *t.position);  // the Board dropped "leave alone"
     clicks.push_back(static_cast<std::int16_t>(c));
     PlanInput in;
     in.joint = t.servo;
@@ -306,15 +306,11 @@ Status ArmController::save_offsets(std::span<const ServoId> servos) {
   return st;
 }
 
-rc_board::BusServoInfo ArmController::bus_servo_info() const {
+rc_board::BusServoInfoReply ArmController::bus_servo_info() const {
   const int n = settings_.info_joint;
-  rc_board::BusServoInfo info;
-  info.limits = settings_.joints.at(n).limits;
-  info.offset = at(n).offset;
-  info.position = position(static_cast<ServoId>(n));
-  info.temp = 0;  // the joint controllers have no temperature sensor
-  info.millivolts = battery_millivolts();
-  return info;
+  // temp 0: the joint controllers have no temperature sensor.
+  return rc::bus_servo_info_reply(settings_.joints.at(n).limits, at(n).offset,
+                                  position(static_cast<ServoId>(n)), 0, battery_millivolts());
 }
 
 Status ArmController::write_bus_servo_info(const rc_board::BusServoLimits& limits) {

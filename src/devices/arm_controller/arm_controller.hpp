@@ -92,7 +92,7 @@ class ArmController final : public rc_board::ArmBackend {
   Status save_offsets(std::span<const ServoId> servos) override;
   std::int8_t offset(ServoId servo) const override;
   void set_mode(ServoId servo, rc_board::ServoMode mode, std::int16_t speed, TimePoint now) override;
-  rc_board::BusServoInfo bus_servo_info() const override;
+  rc_board::BusServoInfoReply bus_servo_info() const override;
   Status write_bus_servo_info(const rc_board::BusServoLimits& limits) override;
 
   // ---- bus work

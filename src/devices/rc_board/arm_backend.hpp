@@ -16,19 +16,19 @@
 
 #include "core/clock.hpp"
 #include "core/error.hpp"
+#include "protocol/robot_commands/messages.hpp"
 
 namespace armctl::rc_board {
 
 using ServoId = std::uint8_t;
 
-// One servo's target. In a stored action the position may be 0xFF00 ("leave alone",
-// kLeaveAlone in action_group.hpp); move() never receives that marker: the Board drops
-// those entries first.
-struct ServoTarget {
-  ServoId servo = 0;
-  std::uint16_t position = 0;
-  bool operator==(const ServoTarget&) const = default;
-};
+// The Robot Commands types, one definition each (protocol/robot_commands/messages.hpp).
+// A ServoTarget without a position is "leave alone" (0xFF00 on the wire): it may be stored
+// in an action, but move() never receives one: the Board and the player drop them first.
+using rc::BusServoInfoReply;
+using rc::BusServoLimits;
+using rc::ServoMode;
+using rc::ServoTarget;
 
 // Inclusive range of positions a servo accepts as move targets.
 struct PositionRange {
@@ -37,30 +37,6 @@ struct PositionRange {
   bool contains(std::uint16_t p) const { return p >= min && p <= max; }
 };
 
-enum class ServoMode : std::uint8_t { servo = 0, motor = 1 };
-
-// BusServoInfoWrite: limits and LED settings of the servo on the bus.
-struct BusServoLimits {
-  ServoId servo = 1;               // ID to give / address
-  std::uint16_t position_min = 0;  // 0..1000, <= position_max
-  std::uint16_t position_max = 1000;
-  std::uint16_t millivolts_min = 4500;  // 4500..12000, <= millivolts_max
-  std::uint16_t millivolts_max = 12000;
-  std::uint16_t temp_max = 85;   // 50..100 C
-  std::uint8_t led_status = 0;   // 0 enable, 1 disable
-  std::uint8_t led_warning = 0;  // bit0 overheat, bit1 overvoltage, bit2 overposition
-  bool operator==(const BusServoLimits&) const = default;
-};
-
-// BusServoInfoRead: the limits plus live readings.
-struct BusServoInfo {
-  BusServoLimits limits;
-  std::int8_t offset = 0;
-  std::int16_t position = 0;
-  std::uint8_t temp = 0;
-  std::uint16_t millivolts = 0;
-  bool operator==(const BusServoInfo&) const = default;
-};
 
 class ArmBackend {
  public:
@@ -112,7 +88,7 @@ class ArmBackend {
 
   // BusServoInfoRead/Write address "the servo on the bus". Which servo that is on a
   // multi-servo arm is the backend's decision (documented by each backend).
-  virtual BusServoInfo bus_servo_info() const = 0;
+  virtual BusServoInfoReply bus_servo_info() const = 0;
   // An error (device: no such servo here; io: cannot be stored) leaves everything unchanged.
   virtual Status write_bus_servo_info(const BusServoLimits& limits) = 0;
 };

@@ -42,8 +42,8 @@ std::optional<GroupPlayer::Finished> GroupPlayer::step(ArmBackend& arm,
   std::vector<ServoTarget> targets;
   bool valid = true;
   for (const ServoTarget& t : action.positions) {
-    if (t.position == kLeaveAlone) continue;
-    if (!arm.has_servo(t.servo) || !arm.position_range(t.servo).contains(t.position)) valid = false;
+    if (!t.position) continue;  // leave this servo alone
+    if (!arm.has_servo(t.servo) || !arm.position_range(t.servo).contains(*t.position)) valid = false;
     targets.push_back(t);
   }
   Duration wanted = scaled_time(action.milliseconds, speed_percent);

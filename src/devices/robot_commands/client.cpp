@@ -5,9 +5,6 @@
 namespace armctl::robot_commands {
 namespace {
 
-// The motor-mode speed a board accepts (the LX bus-servo convention; rc_board::Board ignores
-// a ServoSpeed frame outside it).
-constexpr int kMotorSpeedLimit = 1000;
 // More would hide a dead link for minutes behind retries.
 constexpr int kMaxReadAttempts = 10;
 
@@ -71,19 +68,19 @@ void Client::deliver(const rc::GroupNotification& n) {
   e.count = n.count;
   e.received = link_.clock().now();
   switch (n.kind) {
-    case rc::GroupEventKind::started:
+    case GroupEventKind::started:
       e.kind = GroupEventKind::started;
       e.variant = !n.group;
       stop_sent_ = false;
       break;
-    case rc::GroupEventKind::stopped:
+    case GroupEventKind::stopped:
       // A bare CMD 7 answers our GroupStop; if we sent none, it is a board telling us the
       // group finished (spec "Action groups": real-board variant).
       e.kind = stop_sent_ ? GroupEventKind::stopped : GroupEventKind::finished;
       e.variant = !stop_sent_;
       stop_sent_ = false;
       break;
-    case rc::GroupEventKind::finished:
+    case GroupEventKind::finished:
       e.kind = GroupEventKind::finished;
       break;
   }
@@ -274,11 +271,11 @@ Status Client::save_offsets(const std::vector<std::uint8_t>& servos) {
 }
 
 Status Client::set_mode(std::uint8_t servo, ServoMode mode, std::int16_t speed) {
-  if (speed < -kMotorSpeedLimit || speed > kMotorSpeedLimit) {
+  if (speed < -rc::kMotorSpeedMax || speed > rc::kMotorSpeedMax) {
     return Error{ErrorKind::invalid_argument,
                  fmt::format("ServoSpeed: speed {} is out of range (allowed -{}..{}; negative "
                              "turns in reverse, servo mode ignores it)",
-                             speed, kMotorSpeedLimit, kMotorSpeedLimit)};
+                             speed, rc::kMotorSpeedMax, rc::kMotorSpeedMax)};
   }
   auto f = build(rc::ServoSpeed{servo, mode, static_cast<std::uint16_t>(speed)});
   if (!f) return f.error();

@@ -71,7 +71,7 @@ Result<Duration> XarmServos::move(std::span<const ServoTarget> targets, Duration
   advance_to(now);
   Duration longest = time;
   for (const ServoTarget& t : targets) {
-    double distance = std::abs(t.position - at(t.servo).position);
+    double distance = std::abs(*t.position - at(t.servo).position);  // never "leave alone" here
     auto fastest =
         std::chrono::duration_cast<Duration>(std::chrono::duration<double>(distance / kMaxSpeed));
     longest = std::max(longest, fastest);
@@ -83,7 +83,7 @@ Result<Duration> XarmServos::move(std::span<const ServoTarget> targets, Duration
     s.mode = ServoMode::servo;
     s.motor_speed = 0;
     s.from = s.position;
-    s.target = t.position;
+    s.target = *t.position;
     s.start = now_;
     s.end = now_ + longest;
     if (longest == Duration::zero()) s.position = s.target;
@@ -151,10 +151,10 @@ void XarmServos::set_mode(ServoId servo, ServoMode mode, std::int16_t speed, Tim
   s.end = now_;
 }
 
-BusServoInfo XarmServos::bus_servo_info() const {
+BusServoInfoReply XarmServos::bus_servo_info() const {
   const Servo& s = at(info_servo_);
-  return BusServoInfo{s.limits, s.offset, position(info_servo_), options_.temperature,
-                      battery_millivolts()};
+  return rc::bus_servo_info_reply(s.limits, s.offset, position(info_servo_),
+                                  options_.temperature, battery_millivolts());
 }
 
 Status XarmServos::write_bus_servo_info(const BusServoLimits& limits) {

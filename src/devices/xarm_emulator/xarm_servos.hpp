@@ -23,7 +23,7 @@
 
 namespace armctl::xarm {
 
-using rc_board::BusServoInfo;
+using rc_board::BusServoInfoReply;
 using rc_board::BusServoLimits;
 using rc_board::PositionRange;
 using rc_board::ServoId;
@@ -61,7 +61,7 @@ class XarmServos final : public rc_board::ArmBackend {
   Status save_offsets(std::span<const ServoId> servos) override;
   std::int8_t offset(ServoId servo) const override;
   void set_mode(ServoId servo, ServoMode mode, std::int16_t speed, TimePoint now) override;
-  BusServoInfo bus_servo_info() const override;
+  BusServoInfoReply bus_servo_info() const override;
   Status write_bus_servo_info(const BusServoLimits& limits) override;
 
   // For tests and tools.
