@@ -37,7 +37,8 @@ double measure(bool wire_timing, std::uint32_t baud, int rounds) {
   auto link = robot_commands::open_link(
       robot_commands::parse_device_uri("serial:" + runner.device_path() + "?baud=" +
                                        std::to_string(baud))
-          .value());
+          .value())
+                  .value();
   robot_commands::Client client(*link, robot_commands::ClientOptions{.reply_timeout = 2s});
   for (int i = 0; i < 3; ++i) client.battery_millivolts().value();  // warm up
   const auto t0 = std::chrono::steady_clock::now();

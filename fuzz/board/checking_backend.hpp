@@ -19,12 +19,13 @@ class CheckingBackend final : public rc_board::ArmBackend {
     if (now < now_) std::abort();  // time went backwards
     now_ = now;
   }
-  Duration move(std::span<const rc_board::ServoTarget> targets, Duration time,
-                TimePoint now) override {
+  Result<Duration> move(std::span<const rc_board::ServoTarget> targets, Duration time,
+                        TimePoint now) override {
     if (now < now_ || targets.empty() || time < Duration::zero()) std::abort();
     for (const auto& t : targets) {
-      if (!position_range(t.servo).contains(t.position)) std::abort();  // out-of-range move
-      positions_[index(t.servo)] = static_cast<std::int16_t>(t.position);
+      if (!t.position) std::abort();  // "leave alone" must have been dropped
+      if (!position_range(t.servo).contains(*t.position)) std::abort();  // out-of-range move
+      positions_[index(t.servo)] = static_cast<std::int16_t>(*t.position);
     }
     return time;
   }
@@ -38,24 +39,24 @@ class CheckingBackend final : public rc_board::ArmBackend {
     if (offset < -125 || offset > 125) std::abort();
     offsets_[index(s)] = offset;
   }
-  bool save_offsets(std::span<const rc_board::ServoId> ids) override {
+  Status save_offsets(std::span<const rc_board::ServoId> ids) override {
     for (auto id : ids) index(id);
-    return true;
+    return Ok{};
   }
   std::int8_t offset(rc_board::ServoId s) const override { return offsets_[index(s)]; }
   void set_mode(rc_board::ServoId s, rc_board::ServoMode, std::int16_t speed, TimePoint) override {
     index(s);
     if (speed < -1000 || speed > 1000) std::abort();
   }
-  rc_board::BusServoInfo bus_servo_info() const override {
-    return {limits_info_, 0, 500, 30, 7500};
+  rc_board::BusServoInfoReply bus_servo_info() const override {
+    return rc::bus_servo_info_reply(limits_info_, 0, 500, 30, 7500);
   }
-  bool write_bus_servo_info(const rc_board::BusServoLimits& l) override {
+  Status write_bus_servo_info(const rc_board::BusServoLimits& l) override {
     if (l.position_min > l.position_max || l.position_max > 1000) std::abort();
-    if (!has_servo(l.servo)) return false;
+    if (!has_servo(l.servo)) return Error{ErrorKind::device, "no such servo"};
     limits_[index(l.servo)] = {l.position_min, l.position_max};
     limits_info_ = l;
-    return true;
+    return Ok{};
   }
 
  private:

@@ -88,12 +88,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     link.clear_transactions();
     const TimePoint start = link.clock().now();
     const bool exists = joint >= 1 && joint <= joints;
-    auto must_refuse = [&](const JointFailure& f) {
+    auto must_refuse = [&](const armctl::Error& e) {
+      const JointFailure* failure = armctl::joint_bus::joint_failure(e);
+      check(failure != nullptr, "every master error carries a JointFailure");
+      const JointFailure& f = *failure;
       if (!exists) {
         check(f.kind == FailureKind::invalid_argument && !f.command_sent, "a missing joint refused");
         check(link.transactions().empty(), "nothing on the bus for a missing joint");
       }
-      check(!f.message.empty(), "failure message");
+      check(!e.message.empty(), "failure message");
     };
 
     switch (op) {
@@ -104,7 +107,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           check(*r == value, "ping succeeded with a wrong echo");
           check(successful_transaction(link, d, joint, cmd_ping, true) == value, "ping value not from the bus");
         } else {
-          must_refuse(r.failure());
+          must_refuse(r.error());
         }
         break;
       }
@@ -121,7 +124,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           check(exists, "success with a missing joint");
           check(successful_transaction(link, d, joint, cmd, true) == *r, "value not from the bus");
         } else {
-          must_refuse(r.failure());
+          must_refuse(r.error());
         }
         break;
       }
@@ -132,7 +135,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           const auto v = successful_transaction(link, d, joint, cmd_check_target_reached, true);
           check(v == (*r ? 1 : 0), "reached flag not the 0/1 the joint sent");
         } else {
-          must_refuse(r.failure());
+          must_refuse(r.error());
         }
         break;
       }
@@ -152,7 +155,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           check(exists, "success with a missing joint");
           successful_transaction(link, d, joint, cmd, false);
         } else {
-          must_refuse(r.failure());
+          must_refuse(r.error());
         }
         break;
       }
@@ -184,7 +187,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             successful_transaction(link, d, joint, cmd_get_position, true);
           }
         } else {
-          must_refuse(r.failure());
+          must_refuse(r.error());
         }
         break;
       }
@@ -203,7 +206,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           check(*r == v, "response not from the bus");
           if (cmd == cmd_ping) check(*r == arg, "ping echo");
         } else {
-          must_refuse(r.failure());
+          must_refuse(r.error());
         }
         break;
       }

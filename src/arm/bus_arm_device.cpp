@@ -26,15 +26,13 @@ BusArmDevice::BusArmDevice(const ArmModel& model, joint_bus::BusMaster& master, 
   transaction_ = wire_time(10, link.baud());
 }
 
-Status BusArmDevice::failed(const joint_bus::JointFailure& f) const {
-  return f.to_error();
-}
+Status BusArmDevice::failed(const Error& e) const { return e; }
 
 Result<std::vector<double>> BusArmDevice::read_positions() {
   std::vector<double> out;
   for (int n : numbers_) {
     auto p = master_.get_position(n);
-    if (!p) return p.failure().to_error();
+    if (!p) return p.error();
     out.push_back(*p);
   }
   return out;
@@ -73,27 +71,27 @@ Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Dur
     const TimePoint due = start + plan.joints[k].start - transaction_ * 2;
     if (due > link_.clock().now()) idle(due - link_.clock().now());
     if (auto s = master_.set_speed(inputs[k].joint, static_cast<std::int16_t>(plan.joints[k].percent)); !s)
-      return failed(s.failure());
-    if (auto d = master_.drive_to(inputs[k].joint, clicks[k]); !d) return failed(d.failure());
+      return failed(s.error());
+    if (auto d = master_.drive_to(inputs[k].joint, clicks[k]); !d) return failed(d.error());
   }
   return Ok{};
 }
 
 Status BusArmDevice::stop() {
-  std::optional<joint_bus::JointFailure> first;
+  std::optional<Error> first;
   for (int n : numbers_) {
     auto s = master_.set_speed(n, 0);
-    if (!s && !first) first = s.failure();  // tell every joint before reporting
+    if (!s && !first) first = s.error();  // tell every joint before reporting
   }
   if (first) return failed(*first);
   return Ok{};
 }
 
 Status BusArmDevice::set_torque(bool on) {
-  std::optional<joint_bus::JointFailure> first;
+  std::optional<Error> first;
   for (int n : numbers_) {
     auto s = master_.set_pid_state(n, on);
-    if (!s && !first) first = s.failure();
+    if (!s && !first) first = s.error();
   }
   if (first) return failed(*first);
   return Ok{};

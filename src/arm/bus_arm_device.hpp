@@ -28,7 +28,7 @@ class BusArmDevice final : public ArmDevice {
   void idle(Duration d) override;
 
  private:
-  Status failed(const joint_bus::JointFailure& f) const;
+  Status failed(const Error& e) const;
 
   joint_bus::BusMaster& master_;
   transport::JointBusLink& link_;

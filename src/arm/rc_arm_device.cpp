@@ -38,7 +38,7 @@ Result<std::vector<double>> RcArmDevice::read_positions() {
 
 Status RcArmDevice::move(const std::vector<std::optional<double>>& targets, Duration duration) {
   const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(duration).count();
-  if (ms < 0 || ms > 30000)
+  if (ms < 0 || ms > rc::kMoveTimeMaxMs)
     return Error{ErrorKind::invalid_argument,
                  fmt::format("a Robot Commands move takes 0..30 s; this one would take {:.1f} s (move a shorter "
                              "distance or faster)", std::chrono::duration<double>(duration).count())};

@@ -111,7 +111,7 @@ class Parser {
     if (time_text.size() > 2 && time_text.substr(time_text.size() - 2) == "ms")
       time_text.remove_suffix(2);
     auto ms = whole_number(time_text);
-    if (!ms || *ms < 0 || *ms > 30000)
+    if (!ms || *ms < 0 || *ms > rc::kMoveTimeMaxMs)
       return fail(line, fields[0].column, fields[0].text,
                   "time must be whole milliseconds 0..30000 (e.g. 1000 or 1000ms)");
     if (fields.size() == 1)

@@ -25,7 +25,7 @@
 
 namespace armctl::motion {
 
-inline constexpr std::size_t kGroupFileMaxActions = 1020;
+inline constexpr std::size_t kGroupFileMaxActions = rc::kActionsMax;
 inline constexpr std::size_t kGroupFileMaxServos = 17;
 
 struct ActionGroupFile {

@@ -13,7 +13,8 @@ namespace armctl::transport {
 class ByteStream {
  public:
   virtual ~ByteStream() = default;
-  // Writes all bytes or throws ArmctlError(io).
+  // Writes all bytes or throws ArmctlError: io, or timeout when the peer stops taking bytes
+  // (every implementation bounds the wait).
   virtual void write(std::span<const std::uint8_t> bytes) = 0;
   // Reads what is available (at least one byte) or waits until `deadline`; 0 = timed out.
   virtual std::size_t read(std::span<std::uint8_t> buffer, TimePoint deadline) = 0;

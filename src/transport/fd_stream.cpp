@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include <fcntl.h>
 #include <poll.h>
 #include <termios.h>
 #include <unistd.h>
@@ -15,13 +16,17 @@ std::string errno_text(const std::string& what, const std::string& path, int err
   return what + " " + path + ": " + std::strerror(err) + " (errno " + std::to_string(err) + ")";
 }
 
-FdStream::FdStream(int fd, std::string name) : fd_(fd), name_(std::move(name)) {}
+FdStream::FdStream(int fd, std::string name) : fd_(fd), name_(std::move(name)) {
+  const int flags = ::fcntl(fd_, F_GETFL);
+  if (flags >= 0 && !(flags & O_NONBLOCK)) ::fcntl(fd_, F_SETFL, flags | O_NONBLOCK);
+}
 
 FdStream::~FdStream() {
   if (fd_ >= 0) ::close(fd_);
 }
 
 void FdStream::write(std::span<const std::uint8_t> bytes) {
+  const TimePoint deadline = clock_.now() + write_timeout_;
   std::size_t done = 0;
   while (done < bytes.size()) {
     const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
@@ -30,12 +35,23 @@ void FdStream::write(std::span<const std::uint8_t> bytes) {
       continue;
     }
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
-      pollfd p{fd_, POLLOUT, 0};
-      ::poll(&p, 1, 1000);  // the output buffer is full: wait until it drains a little
-      continue;
+    if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK) {
+      throw ArmctlError(ErrorKind::io, errno_text("write to", name_, errno));
     }
-    throw ArmctlError(ErrorKind::io, errno_text("write to", name_, errno));
+    // The output buffer is full: wait until the peer takes some, but not past the deadline.
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - clock_.now()).count();
+    if (left <= 0) {
+      throw ArmctlError(
+          ErrorKind::timeout,
+          name_ + ": the peer took " + std::to_string(done) + " of " + std::to_string(bytes.size()) +
+              " bytes and then none within " +
+              std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(write_timeout_).count()) +
+              " ms (is anything reading the other end?)");
+    }
+    pollfd p{fd_, POLLOUT, 0};
+    if (::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1 << 30))) < 0 && errno != EINTR) {
+      throw ArmctlError(ErrorKind::io, errno_text("poll", name_, errno));
+    }
   }
 }
 

@@ -1,5 +1,7 @@
-// A ByteStream over a POSIX file descriptor (tty, pty master, socket), waiting with poll()
-// on the steady clock. SerialPort and Pty build on it.
+// A ByteStream over a POSIX file descriptor (tty, pty master, socket, pipe), waiting with
+// poll() on the steady clock. SerialPort and Pty build on it. No call waits without a
+// deadline: reads take one, and a write gives up after write_timeout() when the peer stops
+// taking bytes (a full pty or pipe buffer, a serial port stuck in flow control).
 #pragma once
 
 #include <string>
@@ -11,17 +13,22 @@ namespace armctl::transport {
 
 class FdStream : public ByteStream {
  public:
-  // Takes ownership of `fd` (closed by the destructor). `name` appears in error messages.
+  // Takes ownership of `fd` (closed by the destructor) and makes it non-blocking, so that
+  // no write can block past its deadline. `name` appears in error messages.
   FdStream(int fd, std::string name);
   ~FdStream() override;
   FdStream(const FdStream&) = delete;
   FdStream& operator=(const FdStream&) = delete;
 
+  // Writes all bytes, or throws ArmctlError: timeout if they are not all taken within
+  // write_timeout() (saying how many were), io if the OS refuses.
   void write(std::span<const std::uint8_t> bytes) override;
   std::size_t read(std::span<std::uint8_t> buffer, TimePoint deadline) override;
   const Clock& clock() const override { return clock_; }
 
   int fd() const { return fd_; }
+  Duration write_timeout() const { return write_timeout_; }
+  void set_write_timeout(Duration timeout) { write_timeout_ = timeout; }
   const std::string& name() const { return name_; }
   // Waits until everything written has left (tcdrain on ttys; no-op elsewhere).
   void drain();
@@ -30,6 +37,9 @@ class FdStream : public ByteStream {
   int fd_;
   std::string name_;
   SteadyClock clock_;
+  // Longer than any frame either protocol sends takes on the wire at 9600 baud (~0.1 s),
+  // short enough that a host notices a peer that stopped reading.
+  Duration write_timeout_ = std::chrono::seconds(2);
 };
 
 // "open /dev/ttyUSB0: Permission denied (errno 13)"

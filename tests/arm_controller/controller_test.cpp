@@ -323,6 +323,9 @@ TEST(JointFaults, DeadJointIsReportedAndAMoveNamingItIsRefused) {
   rig.run_for(800ms);
   EXPECT_EQ(rig.clicks(2), 0) << "refused whole: no joint moved";
   EXPECT_EQ(rig.controller().stats().refused_moves, 1u);
+  // The board counts and logs the refusal: it is never silent.
+  EXPECT_EQ(rig.device->board().stats().refused_moves, 1u);
+  EXPECT_TRUE(rig.logged("MultiServoMove refused: joint 3 (UAE) is not answering"));
   // The others still work, and positions of the others are still read.
   ASSERT_TRUE(rig.client->move({{2, 600}}, 1500).ok());
   rig.run_for(2000ms);
@@ -335,6 +338,25 @@ TEST(JointFaults, DeadJointIsReportedAndAMoveNamingItIsRefused) {
   rig.run_for(300ms);
   EXPECT_TRUE(rig.controller().joint_status(3).answering);
   EXPECT_TRUE(rig.logged("joint 3 (UAE) answers again"));
+}
+
+TEST(JointFaults, AGroupActionNamingADeadJointIsRefusedCountedAndLogged) {
+  Rig rig;
+  rig.arm->set_fault_plan(joint_sim::FaultPlan{}.dead_joint(3));
+  rig.run_for(300ms);
+  const std::vector<robot_commands::GroupAction> actions{{200, {{2, 600}, {3, 600}}},
+                                                         {200, {{2, 550}, {3, 550}}}};
+  ASSERT_TRUE(rig.client->download_group(6, actions).ok());
+  ASSERT_TRUE(rig.client->run_group(6, 1).ok());
+  bool finished = false;
+  while (auto e = rig.client->wait_event(rig.now() + 2s))
+    if (e->kind == GroupEventKind::finished) finished = true;
+  EXPECT_TRUE(finished) << "the run goes on to its end";
+  EXPECT_EQ(rig.clicks(2), 0) << "no action moved a joint";
+  EXPECT_EQ(rig.device->board().stats().refused_moves, 2u);
+  EXPECT_EQ(rig.device->board().group_actions_skipped(), 2u);
+  EXPECT_TRUE(rig.logged("GroupRun: group 6 action 1: move refused: joint 3 (UAE) is not answering"));
+  EXPECT_TRUE(rig.logged("GroupRun: group 6 action 2: move refused"));
 }
 
 TEST(JointFaults, WrongJointNumberIsNeverTakenAsAPosition) {

@@ -187,6 +187,30 @@ TEST_F(XarmCli, MoveWithWaitReachesTheTargetsInDegreesAndUnits) {
   EXPECT_TRUE(contains(r.out, "servo 6:  500")) << r.out;  // keep: left where it was
 }
 
+// The board stretches a 0 ms move to its servos' speed limit (500 units at 1500 units/s):
+// --wait reads the servos back until they are there, instead of sleeping for --time.
+TEST_F(XarmCli, MoveWithWaitWaitsForAStretchedMove) {
+  const Outcome r = xarm("--json move 1=0 2=1000 --time 0 --wait --tolerance 2");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const auto docs = json_lines(r.out);
+  ASSERT_EQ(docs.size(), 1u) << r.out;
+  ASSERT_EQ(docs[0]["positions"].size(), 2u);
+  EXPECT_LE(docs[0]["positions"][0]["position"].get<int>(), 2) << r.out;
+  EXPECT_GE(docs[0]["positions"][1]["position"].get<int>(), 998) << r.out;
+}
+
+// A move the board refuses (servo 1's limits end at 600) leaves the servo where it was:
+// --wait says which servo did not arrive, where it is and where it was sent, and fails.
+TEST_F(XarmCli, MoveWithWaitNamesEveryServoThatDidNotArrive) {
+  ASSERT_EQ(xarm("info write --id 1 --position-min 0 --position-max 600").status, 0);
+  const Outcome r = xarm("move 1=900 3=700 --time 100 --wait --wait-timeout 300");
+  EXPECT_NE(r.status, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "servo 1:  500")) << r.out;
+  EXPECT_TRUE(contains(r.err, "2 of 2 servos did not arrive")) << r.err;
+  EXPECT_TRUE(contains(r.err, "servo 1 at 500 (target 900)")) << r.err;
+  EXPECT_TRUE(contains(r.err, "servo 3 at 500 (target 700)")) << r.err;
+}
+
 TEST_F(XarmCli, JsonOutputParses) {
   const Outcome b = xarm("--json battery");
   ASSERT_EQ(b.status, 0) << b.err;
@@ -340,6 +364,38 @@ TEST_F(XarmCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
   }
   // Nothing was downloaded by the refused files.
   EXPECT_FALSE(fs::exists(fs::path(state_) / "xarm-emulator" / "group-000.grp"));
+}
+
+// ------------------------------------------------- `armctl controller` as a process
+
+// The arm controller refuses a move naming a joint that does not answer (joint 3 is dead
+// here), and no joint moves; `move --wait` sees that the servos did not arrive and says so.
+TEST_F(XarmCli, ThroughTheArmControllerARefusedMoveFailsTheWait) {
+  const std::string link = (dir_ / "scara").string();
+  Process controller({"controller", "--bus", "sim?dead=3", "--link", link}, state_);
+  std::optional<std::string> line;
+  while ((line = controller.read_line()) && line->rfind("/dev/pts/", 0) != 0) {
+  }
+  ASSERT_TRUE(line) << "armctl controller ended before printing its pty";
+
+  const std::string dev = "--device serial:" + link + " --servos 7 ";
+  const Outcome refused = xarm(dev + "move 2=600 3=600 --time 200 --wait --wait-timeout 300");
+  EXPECT_NE(refused.status, 0) << refused.out;
+  EXPECT_TRUE(contains(refused.err, "2 of 2 servos did not arrive")) << refused.err;
+  EXPECT_TRUE(contains(refused.err, "servo 2 at 500 (target 600)")) << refused.err;
+  EXPECT_TRUE(contains(refused.err, "servo 3 at 500 (target 600)")) << refused.err;
+
+  // A move of joints that answer still works and is waited for.
+  const Outcome moved = xarm(dev + "--json move 2=600 --time 300 --wait");
+  ASSERT_EQ(moved.status, 0) << moved.err;
+  const auto docs = json_lines(moved.out);
+  ASSERT_EQ(docs.size(), 1u) << moved.out;
+  EXPECT_NEAR(docs[0]["positions"][0]["position"].get<int>(), 600, 10) << moved.out;
+
+  ASSERT_EQ(::kill(controller.pid(), SIGTERM), 0);
+  const Outcome end = controller.finish();
+  EXPECT_TRUE(contains(end.out + end.err, "MultiServoMove refused: joint 3 (UAE) is not answering"))
+      << end.out << end.err;
 }
 
 // ------------------------------------------------- `armctl sim xarm` as a process

@@ -79,8 +79,8 @@ TEST_P(HilCommands, UnknownCommandIs930AndReadsNoData) {
   for (std::int16_t code : {3, 5, 99, -1}) {
     auto r = m.transact(3, code, std::nullopt);
     ASSERT_FALSE(r.ok());
-    EXPECT_EQ(r.failure().code(), 930) << code;
-    EXPECT_EQ(r.failure().status_word, 930) << code;
+    EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 930) << code;
+    EXPECT_EQ(joint_bus::joint_failure(r.error())->status_word, 930) << code;
   }
   EXPECT_EQ(m.ping(3, 77).value(), 77);  // still in step: no DATA was swallowed
 }
@@ -89,15 +89,15 @@ TEST_P(HilCommands, BadDataIs940AndChangesNothing) {
   auto arm = make();
   BusMaster m(arm->link());
   ASSERT_TRUE(m.drive_to(1, 500).ok());
-  EXPECT_EQ(m.set_speed(1, 101).failure().code(), 940);
-  EXPECT_EQ(m.set_speed(1, -1).failure().code(), 940);
-  EXPECT_EQ(m.set_zone(1, -1).failure().code(), 940);
-  EXPECT_EQ(m.transact(1, joint_bus::cmd_set_pid_state, 5).failure().code(), 940);
+  EXPECT_EQ(joint_bus::joint_failure(m.set_speed(1, 101).error())->code(), 940);
+  EXPECT_EQ(joint_bus::joint_failure(m.set_speed(1, -1).error())->code(), 940);
+  EXPECT_EQ(joint_bus::joint_failure(m.set_zone(1, -1).error())->code(), 940);
+  EXPECT_EQ(joint_bus::joint_failure(m.transact(1, joint_bus::cmd_set_pid_state, 5).error())->code(), 940);
   ASSERT_TRUE(m.drive_to(1, 32767).ok());
   auto r = m.drive_dist(1, 1);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().code(), 940);
-  EXPECT_EQ(r.failure().status_word, 940);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 940);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->status_word, 940);
   EXPECT_EQ(m.get_target(1).value(), 32767);
   EXPECT_EQ(m.counters().failures, 5u);
 }
@@ -110,8 +110,8 @@ TEST_P(HilCommands, BoardSetToAnotherJointNumberIs910) {
   const auto sent_before = arm->bus().stats().bytes_to_joints;
   auto r = m.drive_to(3, 1000);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().code(), 910);
-  EXPECT_FALSE(r.failure().command_sent);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 910);
+  EXPECT_FALSE(joint_bus::joint_failure(r.error())->command_sent);
   EXPECT_EQ(arm->bus().stats().bytes_to_joints, sent_before);
   EXPECT_EQ(m.ping(2, 7).value(), 7);  // the others are fine
   EXPECT_EQ(m.ping(4, 8).value(), 8);
@@ -127,10 +127,10 @@ TEST_P(HilCommands, JointThatNeverAnswersIs990AndBlanksNoOther) {
   for (const auto& o : all) {
     if (o.joint == 5) {
       ASSERT_FALSE(o.result.ok());
-      EXPECT_EQ(o.result.failure().code(), 990);
-      EXPECT_EQ(o.result.failure().stage, joint_bus::Stage::ready);
+      EXPECT_EQ(joint_bus::joint_failure(o.result.error())->code(), 990);
+      EXPECT_EQ(joint_bus::joint_failure(o.result.error())->stage, joint_bus::Stage::ready);
     } else {
-      ASSERT_TRUE(o.result.ok()) << o.joint << ": " << o.result.failure().message;
+      ASSERT_TRUE(o.result.ok()) << o.joint << ": " << o.result.error().message;
       EXPECT_EQ(o.result.value(), o.joint);
     }
   }

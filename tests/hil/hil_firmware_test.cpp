@@ -35,7 +35,7 @@ TEST(HilFirmware, ErasedOrCorruptEepromNeverAnswersAndBlinks) {
   for (int j : {2, 3, 4}) {
     auto r = m.ping(j, 1);
     ASSERT_FALSE(r.ok()) << j;
-    EXPECT_EQ(r.failure().code(), 990) << j;
+    EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 990) << j;
     EXPECT_FALSE(arm->joint(j).chip().uart_receiver_enabled()) << j;
     EXPECT_FALSE(arm->joint(j).tx_enabled()) << j;
   }

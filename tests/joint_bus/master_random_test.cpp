@@ -59,7 +59,7 @@ TEST(MasterRandom, TenThousandTransactionsWithRandomFaults) {
     auto& c = arm->joint(j).controller();
     auto note = [&](const auto& r) {
       ok = r.ok();
-      if (!ok) failure = r.failure();
+      if (!ok) failure = *joint_bus::joint_failure(r.error());
     };
     std::optional<std::int16_t> new_known = known[static_cast<std::size_t>(j)];
 

@@ -58,8 +58,8 @@ TEST_F(MasterOnSim, UnknownCommandIs930AndNothingChanges) {
   BusMaster m(arm->link());
   auto r = m.transact(3, 99, std::nullopt);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().code(), 930);
-  EXPECT_EQ(r.failure().status_word, 930);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 930);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->status_word, 930);
   EXPECT_TRUE(m.ping(3, 1).ok());  // the bus is still in step
 }
 
@@ -68,10 +68,10 @@ TEST_F(MasterOnSim, BadDataIs940AndStateUnchanged) {
   ASSERT_TRUE(m.set_speed(1, 40).ok());
   auto r = m.set_speed(1, 150);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().code(), 940);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 940);
   EXPECT_EQ(joint(1).speed_percent(), 40);
-  EXPECT_EQ(m.set_zone(1, -1).failure().code(), 940);
-  EXPECT_EQ(m.transact(2, joint_bus::cmd_set_pid_state, 5).failure().code(), 940);
+  EXPECT_EQ(joint_bus::joint_failure(m.set_zone(1, -1).error())->code(), 940);
+  EXPECT_EQ(joint_bus::joint_failure(m.transact(2, joint_bus::cmd_set_pid_state, 5).error())->code(), 940);
 }
 
 // master_side vector: "drive_dist of +1 on a target of 32767".
@@ -80,7 +80,7 @@ TEST_F(MasterOnSim, DriveDistPastInt16Is940AndTargetStays) {
   ASSERT_TRUE(m.drive_to(4, 32767).ok());
   auto r = m.drive_dist(4, 1);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().code(), 940);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 940);
   EXPECT_EQ(joint(4).target(), 32767);
 }
 
@@ -94,10 +94,10 @@ TEST_F(MasterOnSim, DeadJointIs990AndNeverBlanksTheOthers) {
   for (const auto& o : all) {
     if (o.joint == 5) {
       ASSERT_FALSE(o.result.ok());
-      EXPECT_EQ(o.result.failure().code(), 990);
-      EXPECT_EQ(o.result.failure().stage, joint_bus::Stage::ready);
+      EXPECT_EQ(joint_bus::joint_failure(o.result.error())->code(), 990);
+      EXPECT_EQ(joint_bus::joint_failure(o.result.error())->stage, joint_bus::Stage::ready);
     } else {
-      ASSERT_TRUE(o.result.ok()) << o.joint << ": " << o.result.failure().message;
+      ASSERT_TRUE(o.result.ok()) << o.joint << ": " << o.result.error().message;
       EXPECT_EQ(o.result.value(), o.joint);
     }
   }
@@ -112,8 +112,8 @@ TEST_F(MasterOnSim, WrongNumberIs910AndNoCommandReachesTheJoint) {
   const auto sent_before = arm->bus().stats().bytes_to_joints;
   auto r = m.drive_to(3, 1000);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().code(), 910);
-  EXPECT_FALSE(r.failure().command_sent);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 910);
+  EXPECT_FALSE(joint_bus::joint_failure(r.error())->command_sent);
   EXPECT_EQ(arm->bus().stats().bytes_to_joints, sent_before);
   EXPECT_FALSE(arm->bus().select(3));
   EXPECT_EQ(joint(3).target(), 0);
@@ -152,12 +152,12 @@ TEST_F(MasterOnSim, EveryInjectedFaultIsReportedNotSwallowed) {
     BusMaster m(a->link());
     auto r = m.get_position(2);
     ASSERT_FALSE(r.ok());
-    EXPECT_EQ(r.failure().kind, c.kind) << r.failure().message;
+    EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, c.kind) << r.error().message;
     // The next transaction works: stale bytes were drained, the joint recovered.
     a->bus().clear_faults();
     a->advance(std::chrono::milliseconds(200));
     auto again = m.get_position(2);
-    EXPECT_TRUE(again.ok()) << again.failure().message;
+    EXPECT_TRUE(again.ok()) << again.error().message;
   }
 }
 
@@ -174,7 +174,7 @@ TEST_F(MasterOnSim, GarbageBeforeReadyIsDrainedOrRefused) {
   BusMaster m2(a->link());
   auto r = m2.get_target(1);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().kind, FailureKind::wrong_joint);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::wrong_joint);
 }
 
 TEST_F(MasterOnSim, RetriesRecoverSafeCommands) {
@@ -183,7 +183,7 @@ TEST_F(MasterOnSim, RetriesRecoverSafeCommands) {
   o.retries = 2;
   BusMaster m(arm->link(), o);
   auto r = m.get_joint_number(6);
-  ASSERT_TRUE(r.ok()) << r.failure().message;
+  ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r.value(), 6);
   EXPECT_EQ(m.counters().retries, 1u);
 }
@@ -204,8 +204,8 @@ TEST_F(MasterOnSim, RelativeMoveIsRetriedOnlyIfTheCommandWasNeverSent) {
     const auto sent_before = arm->bus().stats().bytes_to_joints;
     auto r = m.drive_dist(2, 100);
     ASSERT_FALSE(r.ok());
-    EXPECT_EQ(r.failure().code(), 990);
-    EXPECT_TRUE(r.failure().command_sent);
+    EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 990);
+    EXPECT_TRUE(joint_bus::joint_failure(r.error())->command_sent);
     EXPECT_EQ(m.counters().retries, 0u);
     EXPECT_EQ(arm->bus().stats().bytes_to_joints - sent_before, 4u);  // one COMMAND + DATA
     EXPECT_EQ(joint(2).target(), 200);
@@ -244,7 +244,7 @@ TEST_F(MasterOnSim, VerifyAfterWriteCatchesACorruptedTargetAndNeverFixesItWithAM
   const auto sent_before = a->bus().stats().bytes_to_joints;
   auto r = mv.drive_dist(3, 100);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().kind, FailureKind::verify_mismatch);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::verify_mismatch);
   EXPECT_EQ(a->joint(3).controller().target(), 96);
   // get_target, drive_dist, get_target: no second drive_dist went out.
   EXPECT_EQ(a->bus().stats().bytes_to_joints - sent_before, 2u + 4u + 2u);
@@ -261,10 +261,10 @@ TEST_F(MasterOnSim, DriveAllSendsEveryJointItsValueBeforeVerifying) {
   ASSERT_EQ(out.size(), 7u);
   for (const auto& o2 : out) {
     if (o2.joint == 4) {
-      EXPECT_EQ(o2.result.failure().code(), 990);
+      EXPECT_EQ(joint_bus::joint_failure(o2.result.error())->code(), 990);
       EXPECT_EQ(joint(4).target(), 0);
     } else {
-      EXPECT_TRUE(o2.result.ok()) << o2.result.failure().message;
+      EXPECT_TRUE(o2.result.ok()) << o2.result.error().message;
       EXPECT_EQ(joint(o2.joint).target(), values[static_cast<std::size_t>(o2.joint - 1)]);
     }
   }

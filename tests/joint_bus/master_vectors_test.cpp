@@ -19,14 +19,16 @@ struct Call {
   bool ok = false;
   std::optional<std::int16_t> value;  // RESPONSE-derived value, when the command has one
   std::optional<joint_bus::JointFailure> failure;
+  std::string message;  // the error's, when it failed
 };
 
 template <typename T>
-Call to_call(const joint_bus::BusResult<T>& r) {
+Call to_call(const Result<T>& r) {
   Call c;
   c.ok = r.ok();
   if (!r.ok()) {
-    c.failure = r.failure();
+    c.failure = *joint_bus::joint_failure(r.error());
+    c.message = r.error().message;
   } else if constexpr (std::is_same_v<T, std::int16_t>) {
     c.value = *r;
   } else if constexpr (std::is_same_v<T, bool>) {
@@ -94,7 +96,7 @@ TEST_P(TranscriptTest, MasterReplaysByteExactlyAndReportsTheOutcome) {
   EXPECT_EQ(link.master_log(), link.expected_master_log()) << t.name;
   EXPECT_TRUE(link.all_joint_bytes_sent()) << t.name;
   if (p.status == joint_bus::success_status(p.command)) {
-    ASSERT_TRUE(c.ok) << t.name << ": " << c.failure->message;
+    ASSERT_TRUE(c.ok) << t.name << ": " << c.message;
     if (p.response && p.command != joint_bus::cmd_ping) {
       EXPECT_EQ(c.value, p.response) << t.name;
     }
@@ -124,9 +126,9 @@ TEST(MasterSideVectors, WrongReadyDropsSelectAndSendsNoCommand) {
   BusMaster master(link);
   auto r = master.get_position(3);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().code(), 910);
-  EXPECT_EQ(r.failure().kind, FailureKind::wrong_joint);
-  EXPECT_FALSE(r.failure().command_sent);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 910);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::wrong_joint);
+  EXPECT_FALSE(joint_bus::joint_failure(r.error())->command_sent);
   EXPECT_EQ(link.master_log(), (std::vector<std::string>{"select 3 high", "select 3 low"}));
 }
 
@@ -137,7 +139,7 @@ TEST(MasterSideVectors, PingBadEcho) {
   BusMaster master(link);
   auto r = master.ping(2, 1234);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().code(), 920);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 920);
   EXPECT_EQ(link.master_log(), link.expected_master_log());
 }
 
@@ -148,9 +150,9 @@ TEST(MasterSideVectors, NoReadyIsNoAnswerWithinTheBaudDerivedTimeout) {
   const TimePoint start = link.clock().now();
   auto r = master.get_target(6);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().code(), 990);
-  EXPECT_EQ(r.failure().stage, joint_bus::Stage::ready);
-  EXPECT_FALSE(r.failure().command_sent);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 990);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->stage, joint_bus::Stage::ready);
+  EXPECT_FALSE(joint_bus::joint_failure(r.error())->command_sent);
   EXPECT_EQ(link.master_log(), link.expected_master_log());
   // READY timeout + a quiet period, both one word timeout long.
   EXPECT_EQ(link.clock().now() - start, 2 * master.options().timing.word_timeout(9600));
@@ -163,8 +165,8 @@ TEST(MasterSideVectors, DriveDistOverflowIsBadData) {
   BusMaster master(link);
   auto r = master.drive_dist(1, 1);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().code(), 940);
-  EXPECT_EQ(r.failure().status_word, 940);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 940);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->status_word, 940);
 }
 
 TEST(MasterStatus, StatusThatIsNeitherSuccessNorErrorIsAProtocolError) {
@@ -174,9 +176,9 @@ TEST(MasterStatus, StatusThatIsNeitherSuccessNorErrorIsAProtocolError) {
   BusMaster master(link);
   auto r = master.get_position(4);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().kind, FailureKind::bad_status);
-  EXPECT_EQ(r.failure().status_word, 170);
-  EXPECT_EQ(r.failure().to_error().kind, ErrorKind::protocol);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::bad_status);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->status_word, 170);
+  EXPECT_EQ(r.error().kind, ErrorKind::protocol);
 }
 
 TEST(MasterStatus, MissingStatusIsNoAnswerWithCommandSent) {
@@ -185,9 +187,9 @@ TEST(MasterStatus, MissingStatusIsNoAnswerWithCommandSent) {
   BusMaster master(link);
   auto r = master.drive_to(1, 100);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().code(), 990);
-  EXPECT_EQ(r.failure().stage, joint_bus::Stage::status);
-  EXPECT_TRUE(r.failure().command_sent);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 990);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->stage, joint_bus::Stage::status);
+  EXPECT_TRUE(joint_bus::joint_failure(r.error())->command_sent);
 }
 
 TEST(MasterStatus, MissingResponseIsNoAnswerAndNothingIsMadeUp) {
@@ -196,8 +198,8 @@ TEST(MasterStatus, MissingResponseIsNoAnswerAndNothingIsMadeUp) {
   BusMaster master(link);
   auto r = master.get_position(4);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().code(), 990);
-  EXPECT_EQ(r.failure().stage, joint_bus::Stage::response);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->code(), 990);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->stage, joint_bus::Stage::response);
   EXPECT_EQ(link.master_log(), link.expected_master_log());
 }
 
@@ -207,7 +209,7 @@ TEST(MasterStatus, ReachedAnswerOtherThanZeroOrOneIsRefused) {
   BusMaster master(link);
   auto r = master.check_target_reached(3);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().kind, FailureKind::bad_status);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::bad_status);
 }
 
 TEST(MasterArguments, JointOutsideTheBusIsRefusedBeforeAnythingIsSent) {
@@ -216,7 +218,7 @@ TEST(MasterArguments, JointOutsideTheBusIsRefusedBeforeAnythingIsSent) {
   for (int j : {0, 8, -1}) {
     auto r = master.home(j);
     ASSERT_FALSE(r.ok());
-    EXPECT_EQ(r.failure().kind, FailureKind::invalid_argument);
+    EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::invalid_argument);
   }
   EXPECT_TRUE(link.master_log().empty());
 }
@@ -284,7 +286,7 @@ TEST(LegacyDialect, StandardStatusIsNotSuccessInLegacyDialect) {
   BusMaster master(link, o);
   auto r = master.home(1);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().kind, FailureKind::bad_status);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::bad_status);
 }
 
 }  // namespace

@@ -130,11 +130,11 @@ TEST(SerialJointBusLink, MasterTalksToJointsOverAPtyWithFakeSelectLines) {
   ASSERT_TRUE(m.drive_to(2, -500).ok());
   EXPECT_EQ(joints.target(2), -500);
   EXPECT_EQ(m.get_target(2).value(), -500);
-  EXPECT_EQ(m.transact(1, 99, std::nullopt).failure().code(), 930);
+  EXPECT_EQ(joint_bus::joint_failure(m.transact(1, 99, std::nullopt).error())->code(), 930);
 
   auto dead = m.get_target(6);
   ASSERT_FALSE(dead.ok());
-  EXPECT_EQ(dead.failure().code(), 990);
+  EXPECT_EQ(joint_bus::joint_failure(dead.error())->code(), 990);
   EXPECT_EQ(m.ping(4, -2).value(), -2);  // the others still answer
 
   for (int j = 1; j <= 7; ++j) EXPECT_FALSE(lines_view->level(j)) << j;

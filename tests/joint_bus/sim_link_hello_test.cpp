@@ -107,23 +107,23 @@ TEST(SimLinkHello, ASecondHelloMidSessionIsAProtocolErrorThatClosesTheLink) {
     joint_bus::SimLinkClient link(path);
     ASSERT_EQ(link.joint_count(), 7);
     joint_bus::BusMaster master(link);
-    try {
-      (void)master.ping(5, 0x1234);
-      ADD_FAILURE() << "a second hello was accepted";
-    } catch (const ArmctlError& e) {
-      EXPECT_EQ(e.error().kind, ErrorKind::protocol) << e.what();
-      const std::string m = e.what();
+    {
+      const auto r = master.ping(5, 0x1234);
+      ASSERT_FALSE(r.ok()) << "a second hello was accepted";
+      EXPECT_EQ(r.error().kind, ErrorKind::protocol) << r.error().message;
+      EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, joint_bus::FailureKind::link);
+      const std::string& m = r.error().message;
       EXPECT_NE(m.find("second hello"), std::string::npos) << m;
       EXPECT_NE(m.find("after the first hello (7 joints, 115200 baud)"), std::string::npos) << m;
     }
     EXPECT_EQ(link.joint_count(), 7) << "the first hello's joint count stands";
     // The link is closed now: the next transaction fails as io, never invalid_argument.
-    try {
-      (void)master.ping(5, 0x1234);
-      ADD_FAILURE() << "a closed link carried a transaction";
-    } catch (const ArmctlError& e) {
-      EXPECT_EQ(e.error().kind, ErrorKind::io) << e.what();
-      EXPECT_NE(std::string(e.what()).find("closed after a protocol error"), std::string::npos) << e.what();
+    {
+      const auto r = master.ping(5, 0x1234);
+      ASSERT_FALSE(r.ok()) << "a closed link carried a transaction";
+      EXPECT_EQ(r.error().kind, ErrorKind::io) << r.error().message;
+      EXPECT_NE(r.error().message.find("closed after a protocol error"), std::string::npos)
+          << r.error().message;
     }
     // The arm sees the hang-up at once, before the client object is gone.
     arm.join();

@@ -70,17 +70,17 @@ class SimLinkTest : public ::testing::Test {
 
 TEST_F(SimLinkTest, MasterRunsUnchangedOverTheSocketAndStateSurvivesReconnects) {
   {
-    auto conn = joint_bus::open_bus(joint_bus::UnixDevice{path});
+    auto conn = joint_bus::open_bus(joint_bus::UnixDevice{path}).value();
     joint_bus::BusMaster m(conn->link(), relaxed(conn->default_options()));
     EXPECT_EQ(m.joint_count(), 7);
     EXPECT_EQ(conn->link().baud(), 115200u);
     EXPECT_EQ(m.ping(3, 4321).value(), 4321);
     auto moved = m.drive_to(5, 777);
-    ASSERT_TRUE(moved.ok()) << moved.failure().message;
-    EXPECT_EQ(m.transact(2, 99, std::nullopt).failure().code(), 930);
+    ASSERT_TRUE(moved.ok()) << moved.error().message;
+    EXPECT_EQ(joint_bus::joint_failure(m.transact(2, 99, std::nullopt).error())->code(), 930);
   }
   {  // a second master sees the state the first left
-    auto conn = joint_bus::open_bus(joint_bus::UnixDevice{path});
+    auto conn = joint_bus::open_bus(joint_bus::UnixDevice{path}).value();
     joint_bus::BusMaster m(conn->link(), relaxed(conn->default_options()));
     EXPECT_EQ(m.get_target(5).value(), 777);
     auto all = m.for_each_joint<std::int16_t>([&](int j) { return m.get_joint_number(j); });

@@ -131,9 +131,29 @@ class ScriptedPtyBoard {
   std::thread thread_;
 };
 
+// A board that stops reading (here: nobody reads the pty) fills the line's buffer; the SDK
+// then returns a timeout instead of hanging in write.
+TEST(ClientOverPty, ABoardThatStopsReadingIsATimeoutNotAHang) {
+  auto pty = transport::Pty::open();
+  auto port = transport::SerialPort::open(pty.slave_path());
+  port->set_write_timeout(100ms);
+  StreamLink link(std::move(port), "serial:" + pty.slave_path());
+  Client c(link);
+  Status s = Ok{};
+  int moves = 0;
+  while (s && moves < 1'000'000) {
+    s = c.move({{1, static_cast<std::uint16_t>(moves % 1000)}}, 100);
+    ++moves;
+  }
+  ASSERT_FALSE(s) << "a million frames went into a pty nobody reads";
+  EXPECT_EQ(s.error().kind, ErrorKind::timeout) << s.error().message;
+  EXPECT_NE(s.error().message.find(pty.slave_path()), std::string::npos) << s.error().message;
+  EXPECT_GT(moves, 1) << "the first frames fit in the buffer";
+}
+
 TEST(ClientOverPty, ScriptedFakeBoard) {
   ScriptedPtyBoard board;
-  auto link = open_link(parse_device_uri("serial:" + board.path()).value());
+  auto link = open_link(parse_device_uri("serial:" + board.path()).value()).value();
   Client c(*link, ClientOptions{.reply_timeout = 2s});
   auto mv = c.battery_millivolts();
   ASSERT_TRUE(mv) << mv.error().message;
@@ -151,7 +171,7 @@ TEST(ClientOverPty, ScriptedFakeBoard) {
 TEST(ClientOverPty, EmulatedXarmEveryCommand) {
   xarm::EmulatorRunner runner(xarm::EmulatorRunnerOptions{});
   runner.start();
-  auto link = open_link(parse_device_uri(runner.device_path() + "?baud=115200").value());
+  auto link = open_link(parse_device_uri(runner.device_path() + "?baud=115200").value()).value();
   Client c(*link, ClientOptions{.reply_timeout = 2s, .download_timeout = 2s});
   ASSERT_TRUE(c.move({{1, 200}, {4, 800}}, 0));
   c.pump_events(c.clock().now() + 300ms);  // the emulator's fastest move is not instant

@@ -18,7 +18,7 @@ ActionGroup sample(std::uint16_t tag, std::size_t count = 5) {
   ActionGroup g{2, {}};
   for (std::size_t i = 0; i < count; ++i)
     g.actions.push_back(
-        {tag, {{1, static_cast<std::uint16_t>(i % 1001)}, {2, rc_board::kLeaveAlone}}});
+        {tag, {{1, static_cast<std::uint16_t>(i % 1001)}, {2, std::nullopt}}});  // servo 2 left alone
   return g;
 }
 

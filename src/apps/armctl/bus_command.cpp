@@ -13,6 +13,7 @@
 #include "apps/armctl/commands.hpp"
 #include "core/error.hpp"
 #include "devices/device_registry/device_registry.hpp"
+#include "devices/joint_bus/arrival.hpp"
 #include "devices/joint_bus/bus_connection.hpp"
 #include "devices/joint_bus/bus_master.hpp"
 #include "devices/joint_bus/device_uri.hpp"
@@ -22,7 +23,6 @@ namespace armctl::cli {
 namespace {
 
 using joint_bus::BusMaster;
-using joint_bus::BusResult;
 
 struct BusArgs {
   std::string device = "sim";
@@ -66,11 +66,11 @@ std::vector<int> parse_joints(const std::string& command, const std::string& tex
 }
 
 template <typename T>
-BusRow row_from(int joint, const BusResult<T>& r, const std::function<void(BusRow&, const T&)>& fill) {
+BusRow row_from(int joint, const Result<T>& r, const std::function<void(BusRow&, const T&)>& fill) {
   BusRow row;
   row.joint = joint;
   if (!r.ok()) {
-    row.failure = r.failure();
+    row.error = r.error();
   } else if (fill) {
     fill(row, r.value());
   }
@@ -106,7 +106,7 @@ class BusRunner {
     auto each = [&](const std::function<BusRow(int)>& op) {
       for (int j : joints) report.rows.push_back(op(j));
     };
-    auto done = [](BusRow&, const joint_bus::Done&) {};
+    auto done = [](BusRow&, const Ok&) {};
     auto as_value = [](const char* what) {
       return [what](BusRow& row, const std::int16_t& v) {
         row.value = v;
@@ -124,14 +124,14 @@ class BusRunner {
         });
       });
     } else if (command == "home") {
-      each([&](int j) { return row_from<joint_bus::Done>(j, m.home(j), [](BusRow& r, const auto&) { r.text = "homed (position 0, target 0)"; }); });
+      each([&](int j) { return row_from<Ok>(j, m.home(j), [](BusRow& r, const auto&) { r.text = "homed (position 0, target 0)"; }); });
     } else if (command == "pid") {
       if (args_.value != "on" && args_.value != "off") {
         usage_error(fmt::format("pid: VALUE '{}' is not allowed: use on or off", args_.value));
       }
       const bool on = args_.value == "on";
       each([&](int j) {
-        return row_from<joint_bus::Done>(j, m.set_pid_state(j, on), [on](BusRow& r, const auto&) {
+        return row_from<Ok>(j, m.set_pid_state(j, on), [on](BusRow& r, const auto&) {
           r.value = on;
           r.text = on ? "position loop on" : "position loop off";
         });
@@ -151,10 +151,10 @@ class BusRunner {
         // All joints told back to back so they start together.
         const std::vector<std::int16_t> values(static_cast<std::size_t>(m.joint_count()), v);
         for (auto& o : m.drive_all(kind, values)) {
-          report.rows.push_back(row_from<joint_bus::Done>(o.joint, o.result, done));
+          report.rows.push_back(row_from<Ok>(o.joint, o.result, done));
         }
       } else {
-        each([&](int j) { return row_from<joint_bus::Done>(j, m.drive(kind, j, v), done); });
+        each([&](int j) { return row_from<Ok>(j, m.drive(kind, j, v), done); });
       }
       for (auto& r : report.rows) {
         if (!failed(r)) r.text = fmt::format("{} {} sent", command, v);
@@ -163,10 +163,10 @@ class BusRunner {
       const int max = joint_bus::max_speed_value(dialect);
       const auto v = static_cast<std::int16_t>(parse_integer(command, "VALUE", args_.value, 0, max,
           dialect == joint_bus::Dialect::legacy ? "the legacy PWM cap" : "the speed limit in percent"));
-      each([&](int j) { return row_from<joint_bus::Done>(j, m.set_speed(j, v), [v](BusRow& r, const auto&) { r.value = v; r.text = fmt::format("speed {}", v); }); });
+      each([&](int j) { return row_from<Ok>(j, m.set_speed(j, v), [v](BusRow& r, const auto&) { r.value = v; r.text = fmt::format("speed {}", v); }); });
     } else if (command == "zone") {
       const auto v = static_cast<std::int16_t>(parse_integer(command, "VALUE", args_.value, 0, 32767, "the zone in clicks"));
-      each([&](int j) { return row_from<joint_bus::Done>(j, m.set_zone(j, v), [v](BusRow& r, const auto&) { r.value = v; r.text = fmt::format("zone {}", v); }); });
+      each([&](int j) { return row_from<Ok>(j, m.set_zone(j, v), [v](BusRow& r, const auto&) { r.value = v; r.text = fmt::format("zone {}", v); }); });
     } else if (command == "reached") {
       each([&](int j) {
         return row_from<bool>(j, m.check_target_reached(j), [](BusRow& r, const bool& yes) {
@@ -181,52 +181,27 @@ class BusRunner {
   }
 
  private:
-  // Polls check_target_reached until every joint is in its zone, fails, or time runs out.
+  // Closed loop, in the library: polls until every selected joint is in its zone.
   void wait(const std::vector<int>& joints, BusReport& report) {
     BusMaster& m = *master_;
-    auto& link = connection_->link();
-    const TimePoint start = link.clock().now();
-    const auto timeout = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(args_.wait_timeout_s));
-    std::vector<std::optional<BusRow>> rows(joints.size());
-    // A joint whose poll fails this many times in a row is reported as failed; a single
-    // lost answer while polling is not worth giving up the wait for.
-    constexpr int kMaxFailedPolls = 3;
-    std::vector<int> failed_polls(joints.size(), 0);
-    for (;;) {
-      bool pending = false;
-      for (std::size_t i = 0; i < joints.size(); ++i) {
-        if (rows[i]) continue;
-        auto r = m.check_target_reached(joints[i]);
-        failed_polls[i] = r.ok() ? 0 : failed_polls[i] + 1;
-        if ((!r.ok() && failed_polls[i] >= kMaxFailedPolls) || (r.ok() && r.value())) {
-          const double s = std::chrono::duration<double>(link.clock().now() - start).count();
-          rows[i] = row_from<bool>(joints[i], r, [s](BusRow& row, const bool&) {
-            row.value = s;
-            row.text = fmt::format("reached after {:.2f} s", s);
-          });
-        } else {
-          pending = true;
-        }
+    const TimePoint start = m.clock().now();
+    const auto timeout =
+        std::chrono::duration_cast<Duration>(std::chrono::duration<double>(args_.wait_timeout_s));
+    for (const auto& a : joint_bus::wait_until_reached(m, joints, start + timeout)) {
+      BusRow row;
+      row.joint = a.joint;
+      if (a.arrived) {
+        const double s = std::chrono::duration<double>(a.after).count();
+        row.value = s;
+        row.text = fmt::format("reached after {:.2f} s", s);
+      } else if (joint_bus::joint_failure(*a.error)) {
+        row.error = *a.error;  // its polls failed
+      } else {
+        row.problem = a.error->message;  // still not in its zone at the deadline
       }
-      if (!pending) break;
-      if (link.clock().now() - start >= timeout) {
-        for (std::size_t i = 0; i < joints.size(); ++i) {
-          if (rows[i]) continue;
-          BusRow row;
-          row.joint = joints[i];
-          auto pos = m.get_position(joints[i]);
-          auto tgt = m.get_target(joints[i]);
-          row.problem = fmt::format("not in its zone within {:.1f} s (position {}, target {})", args_.wait_timeout_s,
-                                    pos.ok() ? std::to_string(pos.value()) : "unknown",
-                                    tgt.ok() ? std::to_string(tgt.value()) : "unknown");
-          rows[i] = row;
-        }
-        break;
-      }
-      joint_bus::idle(link, std::chrono::milliseconds(20));
+      report.rows.push_back(std::move(row));
     }
-    for (auto& r : rows) report.rows.push_back(*r);
-    report.extra["elapsed_s"] = std::chrono::duration<double>(link.clock().now() - start).count();
+    report.extra["elapsed_s"] = std::chrono::duration<double>(m.clock().now() - start).count();
   }
 
   BusArgs args_;

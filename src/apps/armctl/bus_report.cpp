@@ -4,6 +4,16 @@
 
 namespace armctl::cli {
 
+namespace {
+
+// The joint-bus failure kind when the error has one ("no answer"), else the error's kind.
+std::string error_kind_text(const Error& e) {
+  if (const auto* f = joint_bus::joint_failure(e)) return joint_bus::to_string(f->kind);
+  return to_string(e.kind);
+}
+
+}  // namespace
+
 int BusReport::failures() const {
   int n = 0;
   for (const auto& r : rows) n += failed(r) ? 1 : 0;
@@ -23,13 +33,14 @@ void print_report(const BusReport& report, bool json) {
       j["ok"] = !failed(r);
       if (r.problem) {
         j["error"] = {{"kind", "not reached"}, {"code", nullptr}, {"status", nullptr}, {"message", *r.problem}};
-      } else if (r.failure) {
-        const auto& f = *r.failure;
-        j["error"] = {{"kind", joint_bus::to_string(f.kind)},
-                      {"code", f.code() == 0 ? nlohmann::json(nullptr) : nlohmann::json(f.code())},
-                      {"status", f.status_word ? nlohmann::json(*f.status_word) : nlohmann::json(nullptr)},
-                      {"command_sent", f.command_sent},
-                      {"message", f.message}};
+      } else if (r.error) {
+        j["error"] = {{"kind", error_kind_text(*r.error)}, {"code", nullptr}, {"status", nullptr},
+                      {"message", r.error->message}};
+        if (const auto* f = joint_bus::joint_failure(*r.error)) {
+          if (f->code() != 0) j["error"]["code"] = f->code();
+          if (f->status_word) j["error"]["status"] = *f->status_word;
+          j["error"]["command_sent"] = f->command_sent;
+        }
       } else if (!r.value.is_null()) {
         j["value"] = r.value;
       }
@@ -42,10 +53,10 @@ void print_report(const BusReport& report, bool json) {
   for (const auto& r : report.rows) {
     if (r.problem) {
       fmt::print("joint {}: FAILED {}\n", r.joint, *r.problem);
-    } else if (r.failure) {
-      const auto& f = *r.failure;
-      fmt::print("joint {}: FAILED {}{}: {}\n", r.joint, joint_bus::to_string(f.kind),
-                 f.code() ? fmt::format(" ({})", f.code()) : std::string(), f.message);
+    } else if (r.error) {
+      const auto* f = joint_bus::joint_failure(*r.error);
+      fmt::print("joint {}: FAILED {}{}: {}\n", r.joint, error_kind_text(*r.error),
+                 f && f->code() ? fmt::format(" ({})", f->code()) : std::string(), r.error->message);
     } else {
       fmt::print("joint {}: {}\n", r.joint, r.text.empty() ? std::string("ok") : r.text);
     }

@@ -14,7 +14,7 @@ namespace armctl::cli {
 
 struct BusRow {
   int joint = 0;
-  std::optional<joint_bus::JointFailure> failure;  // a failed transaction
+  std::optional<Error> error;                      // a failed transaction (JointFailure detail)
   std::optional<std::string> problem;              // a failure that is no transaction's (wait timeout)
   nlohmann::json value;                            // null for commands without a value
   std::string text;                                // the value for people ("position 1200")
@@ -29,7 +29,7 @@ struct BusReport {
   int failures() const;
 };
 
-inline bool failed(const BusRow& r) { return r.failure.has_value() || r.problem.has_value(); }
+inline bool failed(const BusRow& r) { return r.error.has_value() || r.problem.has_value(); }
 
 // Prints the report to stdout (human lines or JSON).
 void print_report(const BusReport& report, bool json);

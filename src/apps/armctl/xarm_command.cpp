@@ -11,6 +11,7 @@
 #include "apps/armctl/xarm_args.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/xarm_session.hpp"
+#include "devices/robot_commands/arrival.hpp"
 #include "motion/action_group_file.hpp"
 #include "protocol/robot_commands/units.hpp"
 
@@ -30,6 +31,8 @@ struct XarmCli {
   std::vector<std::string> targets;
   int time_ms = 1000;
   bool wait = false;
+  int tolerance = 10;
+  int wait_timeout_ms = 1000;
   std::vector<std::string> servos;
   std::string servo;
   std::string offset;
@@ -103,11 +106,31 @@ void run_move(const XarmCli& o) {
   check(s->client->move(targets, static_cast<std::uint16_t>(o.time_ms)));
   if (!o.wait) return done(o, fmt::format("moving {} servos over {} ms", targets.size(), o.time_ms));
   auto& c = *s->client;
-  c.pump_events(c.clock().now() + std::chrono::milliseconds(o.time_ms + 50));
-  std::vector<std::uint8_t> ids;
-  for (const auto& t : targets) ids.push_back(t.servo);
-  print_positions(o, check(c.read_positions(ids)));
+  // Closed loop: read the servos back until they are there. The board may take longer than
+  // --time (the xArm stretches a move to its speed limit) or not move at all (the arm
+  // controller refuses a move for a joint that does not answer).
+  const TimePoint sent = c.clock().now();
+  robot_commands::ArrivalOptions arrival;
+  arrival.tolerance = o.tolerance;
+  arrival.not_before = sent + std::chrono::milliseconds(o.time_ms);
+  const auto report = check(robot_commands::wait_until_arrived(
+      c, targets, arrival.not_before + std::chrono::milliseconds(o.wait_timeout_ms), arrival));
+  std::vector<robot_commands::ServoPosition> positions;
+  for (const auto& a : report.servos) positions.push_back({a.servo, a.position});
+  print_positions(o, positions);
   print_events(o, c);
+  const auto missed = report.missed();
+  if (missed.empty()) return;
+  std::string names;
+  for (const auto& m : missed) {
+    names += fmt::format("{}servo {} at {} (target {})", names.empty() ? "" : ", ", m.servo,
+                         m.position, *m.target);
+  }
+  throw ArmctlError(ErrorKind::device,
+                    fmt::format("{} of {} servos did not arrive within {} ms of the move's {} ms "
+                                "(tolerance {}): {}",
+                                missed.size(), report.servos.size(), o.wait_timeout_ms, o.time_ms,
+                                o.tolerance, names));
 }
 
 void run_positions(const XarmCli& o) {
@@ -216,6 +239,7 @@ void wait_for_group_end(const XarmCli& o, Client& c, std::uint8_t group) {
   while (!interrupted) {
     auto e = c.wait_event(c.clock().now() + std::chrono::milliseconds(100));
     if (!e) {
+      if (e.error().kind != ErrorKind::timeout) throw ArmctlError(e.error());
       if (!started && c.clock().now() >= start_deadline) {
         throw ArmctlError(ErrorKind::timeout,
                           fmt::format("no 'started' notification for group {} within {} ms (is "
@@ -243,7 +267,7 @@ void run_group_run(const XarmCli& o) {
   done(o, o.times == 0 ? fmt::format("group {} running until stopped", group)
                        : fmt::format("group {} running {} times", group, o.times));
   if (o.wait) return wait_for_group_end(o, *s->client, group);
-  s->client->pump_events(s->client->clock().now() + std::chrono::milliseconds(200));
+  check(s->client->pump_events(s->client->clock().now() + std::chrono::milliseconds(200)));
   if (s->client->pending_events() == 0 && !o.json) {
     fmt::print(stderr, "warning: no 'started' notification within 200 ms (is group {} empty on "
                        "this board?)\n", group);
@@ -254,7 +278,7 @@ void run_group_run(const XarmCli& o) {
 void run_group_stop(const XarmCli& o) {
   auto s = open(o);
   check(s->client->stop_group());
-  s->client->pump_events(s->client->clock().now() + std::chrono::milliseconds(100));
+  check(s->client->pump_events(s->client->clock().now() + std::chrono::milliseconds(100)));
   print_events(o, *s->client);
   done(o, "group stopped");
 }
@@ -336,7 +360,7 @@ void run_watch(const XarmCli& o) {
     }
     print_events(o, c);
     std::fflush(stdout);
-    c.pump_events(c.clock().now() + interval);
+    check(c.pump_events(c.clock().now() + interval));
     print_events(o, c);
   }
 }
@@ -370,8 +394,16 @@ void add_xarm_command(CLI::App& app) {
   auto* move = x->add_subcommand("move", "Move servos: 1=500 2=30deg 3=keep");
   move->add_option("targets", o->targets, "SERVO=POSITION (0..1000, -120deg..120deg, keep)")
       ->required();
-  move->add_option("--time", o->time_ms, "Move time in ms")->check(CLI::Range(0, 30000));
-  move->add_flag("--wait", o->wait, "Wait for the move, then print the positions");
+  move->add_option("--time", o->time_ms, "Move time in ms")->check(CLI::Range(0, int{rc::kMoveTimeMaxMs}));
+  move->add_flag("--wait", o->wait,
+                 "Read the servos back until they arrive, print their positions; exit non-zero "
+                 "naming every servo that did not arrive");
+  move->add_option("--tolerance", o->tolerance,
+                   "With --wait: how close counts as arrived, in servo units (default 10)")
+      ->check(CLI::Range(0, 1000));
+  move->add_option("--wait-timeout", o->wait_timeout_ms,
+                   "With --wait: how long after --time to wait for arrival, in ms (default 1000)")
+      ->check(CLI::Range(0, 60000));
   move->callback([o] { run_move(*o); });
 
   auto* positions = x->add_subcommand("positions", "Read servo positions");

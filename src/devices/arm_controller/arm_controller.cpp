@@ -80,7 +80,7 @@ void ArmController::start() {
     timed([&] {
       auto r = master_.set_zone(j.config.number, j.config.zone_clicks);
       if (r) note_success(j);
-      else note_fault(j, r.failure(), "set_zone");
+      else note_fault(j, r.error(), "set_zone");
     });
   }
   for (std::size_t i = 0; i < joints_.size(); ++i) poll_next();
@@ -148,17 +148,19 @@ TimePoint ArmController::effect_instant() const {
   return clock().now() - wire_time(2, link_.baud());
 }
 
-Duration ArmController::move(std::span<const rc_board::ServoTarget> targets, Duration time,
-                             TimePoint now) {
+Result<Duration> ArmController::move(std::span<const rc_board::ServoTarget> targets,
+                                     Duration time, TimePoint now) {
   advance_to(now);
   for (const auto& t : targets) {
     const Joint& j = at(t.servo);
     if (!j.status.answering || !j.status.clicks) {
+      // Refused whole: a synchronized move without one of its joints is not the move asked
+      // for. The Board counts and logs the refusal.
       ++stats_.refused_moves;
-      log(fmt::format("MultiServoMove refused: joint {} ({}) is not answering ({}); no joint moved",
-                      int(t.servo), j.config.name,
-                      j.status.last_fault.empty() ? "never read" : j.status.last_fault));
-      return time;
+      return Error{ErrorKind::device,
+                   fmt::format("joint {} ({}) is not answering ({}); no joint moved", int(t.servo),
+                               j.config.name,
+                               j.status.last_fault.empty() ? "never read" : j.status.last_fault)};
     }
   }
   ++stats_.moves;
@@ -174,7 +176,7 @@ Duration ArmController::move(std::span<const rc_board::ServoTarget> targets, Dur
   for (const auto& t : targets) {
     Joint& j = at(t.servo);
     cancel_ops(t.servo);  // what was not sent yet never happens: the model has only what was
-    const std::int32_t c = target_clicks(t.servo, t.position);
+    const std::int32_t c = target_clicks(t.servo, *t.position);  // the Board dropped "leave alone"
     clicks.push_back(static_cast<std::int16_t>(c));
     PlanInput in;
     in.joint = t.servo;
@@ -295,32 +297,27 @@ void ArmController::adjust_offset(ServoId servo, std::int8_t offset) { at(servo)
 
 std::int8_t ArmController::offset(ServoId servo) const { return at(servo).offset; }
 
-bool ArmController::save_offsets(std::span<const ServoId> servos) {
+Status ArmController::save_offsets(std::span<const ServoId> servos) {
   ControllerSettings before = settings_;
   for (ServoId s : servos) settings_.joints[s].saved_offset = at(s).offset;
-  if (!options_.state_dir) return true;
+  if (!options_.state_dir) return Ok{};
   Status st = save_settings(*options_.state_dir, settings_);
-  if (!st) {
-    settings_ = before;
-    log(fmt::format("ServoOffsetWrite: {}", st.error().message));
-    return false;
-  }
-  return true;
+  if (!st) settings_ = before;
+  return st;
 }
 
-rc_board::BusServoInfo ArmController::bus_servo_info() const {
+rc_board::BusServoInfoReply ArmController::bus_servo_info() const {
   const int n = settings_.info_joint;
-  rc_board::BusServoInfo info;
-  info.limits = settings_.joints.at(n).limits;
-  info.offset = at(n).offset;
-  info.position = position(static_cast<ServoId>(n));
-  info.temp = 0;  // the joint controllers have no temperature sensor
-  info.millivolts = battery_millivolts();
-  return info;
+  // temp 0: the joint controllers have no temperature sensor.
+  return rc::bus_servo_info_reply(settings_.joints.at(n).limits, at(n).offset,
+                                  position(static_cast<ServoId>(n)), 0, battery_millivolts());
 }
 
-bool ArmController::write_bus_servo_info(const rc_board::BusServoLimits& limits) {
-  if (!config_.joint(limits.servo)) return false;  // joints cannot be renumbered from here
+Status ArmController::write_bus_servo_info(const rc_board::BusServoLimits& limits) {
+  if (!config_.joint(limits.servo)) {  // joints cannot be renumbered from here
+    return Error{ErrorKind::device,
+                 fmt::format("joint {} is not configured on this arm controller", int(limits.servo))};
+  }
   ControllerSettings before = settings_;
   settings_.joints[limits.servo].limits = limits;
   settings_.info_joint = limits.servo;
@@ -328,11 +325,10 @@ bool ArmController::write_bus_servo_info(const rc_board::BusServoLimits& limits)
     Status st = save_settings(*options_.state_dir, settings_);
     if (!st) {
       settings_ = before;
-      log(fmt::format("BusServoInfoWrite: {}", st.error().message));
-      return false;
+      return st;
     }
   }
-  return true;
+  return Ok{};
 }
 
 // ---------------------------------------------------------------- bus work
@@ -355,7 +351,7 @@ void ArmController::note_success(Joint& j) {
   j.status.answering = true;
 }
 
-void ArmController::note_fault(Joint& j, const joint_bus::JointFailure& f, const char* doing) {
+void ArmController::note_fault(Joint& j, const Error& f, const char* doing) {
   ++j.status.faults;
   const bool changed = j.status.answering || j.status.last_fault != f.message || j.status.faults == 1;
   j.status.answering = false;
@@ -369,16 +365,16 @@ void ArmController::run_op(const Op& op) {
   Joint& j = at(op.joint);
   ++stats_.commands;
   const char* name = "";
-  std::optional<joint_bus::JointFailure> failure;
+  std::optional<Error> failure;
   timed([&] {
-    joint_bus::BusResult<joint_bus::Done> r = joint_bus::Done{};
+    Status r = Ok{};
     switch (op.kind) {
       case OpKind::loop_on: name = "set_pid_state 1"; r = master_.set_pid_state(op.joint, true); break;
       case OpKind::loop_off: name = "set_pid_state 0"; r = master_.set_pid_state(op.joint, false); break;
       case OpKind::speed: name = "set_speed"; r = master_.set_speed(op.joint, op.value); break;
       case OpKind::drive_to: name = "drive_to"; r = master_.drive_to(op.joint, op.value); break;
     }
-    if (!r) failure = r.failure();
+    if (!r) failure = r.error();
   });
   if (failure) {
     ++stats_.command_failures;
@@ -416,7 +412,7 @@ void ArmController::poll_next() {
       note_success(j);
     } else {
       ++stats_.poll_failures;
-      note_fault(j, r.failure(), "get_position");
+      note_fault(j, r.error(), "get_position");
     }
   });
   if (++poll_index_ == joints_.size()) {

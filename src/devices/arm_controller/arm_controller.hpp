@@ -82,17 +82,18 @@ class ArmController final : public rc_board::ArmBackend {
   std::span<const ServoId> servos() const override { return ids_; }
   rc_board::PositionRange position_range(ServoId servo) const override;
   void advance_to(TimePoint now) override;
-  Duration move(std::span<const rc_board::ServoTarget> targets, Duration time, TimePoint now) override;
+  Result<Duration> move(std::span<const rc_board::ServoTarget> targets, Duration time,
+                        TimePoint now) override;
   std::int16_t position(ServoId servo) const override;
   void torque_off(std::span<const ServoId> servos) override;
   void halt(TimePoint now) override;
   std::uint16_t battery_millivolts() const override;
   void adjust_offset(ServoId servo, std::int8_t offset) override;
-  bool save_offsets(std::span<const ServoId> servos) override;
+  Status save_offsets(std::span<const ServoId> servos) override;
   std::int8_t offset(ServoId servo) const override;
   void set_mode(ServoId servo, rc_board::ServoMode mode, std::int16_t speed, TimePoint now) override;
-  rc_board::BusServoInfo bus_servo_info() const override;
-  bool write_bus_servo_info(const rc_board::BusServoLimits& limits) override;
+  rc_board::BusServoInfoReply bus_servo_info() const override;
+  Status write_bus_servo_info(const rc_board::BusServoLimits& limits) override;
 
   // ---- bus work
   // One step: a command that is due, else (if the next due command or `limit` is closer
@@ -141,7 +142,7 @@ class ArmController final : public rc_board::ArmBackend {
   void poll_next();
   void wait_until(TimePoint t);
   void note_success(Joint& j);
-  void note_fault(Joint& j, const joint_bus::JointFailure& f, const char* doing);
+  void note_fault(Joint& j, const Error& f, const char* doing);
   void timed(const std::function<void()>& transaction);
   void anchor_model(Joint& j, TimePoint t);
   TimePoint effect_instant() const;

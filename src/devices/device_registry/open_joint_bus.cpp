@@ -49,11 +49,9 @@ Result<std::unique_ptr<joint_bus::BusConnection>> open_joint_bus(const joint_bus
 }
 
 Result<std::unique_ptr<joint_bus::BusConnection>> open_joint_bus(std::string_view uri) {
-  try {
-    return open_joint_bus(joint_bus::parse_device_uri(uri));
-  } catch (const ArmctlError& e) {
-    return e.error();
-  }
+  auto parsed = joint_bus::parse_device_uri(uri);
+  if (!parsed) return parsed.error();
+  return open_joint_bus(*parsed);
 }
 
 }  // namespace armctl::devices

@@ -74,7 +74,9 @@ Result<std::unique_ptr<RcConnection>> open_robot_commands(const robot_commands::
     if (uri.kind == robot_commands::DeviceUri::Kind::sim) {
       return std::unique_ptr<RcConnection>(std::make_unique<EmbeddedXarm>());
     }
-    return std::unique_ptr<RcConnection>(std::make_unique<SdkConnection>(robot_commands::open_link(uri)));
+    auto link = robot_commands::open_link(uri);
+    if (!link) return link.error();
+    return std::unique_ptr<RcConnection>(std::make_unique<SdkConnection>(std::move(link).value()));
   } catch (const ArmctlError& e) {
     return e.error();
   }

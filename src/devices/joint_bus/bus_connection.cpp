@@ -57,14 +57,17 @@ class RealBus final : public BusConnection {
 
 }  // namespace
 
-std::unique_ptr<BusConnection> open_bus(const DeviceUri& uri) {
+Result<std::unique_ptr<BusConnection>> open_bus(const DeviceUri& uri) {
   if (std::holds_alternative<SimDevice>(uri)) {
-    throw ArmctlError(ErrorKind::unsupported,
-                      "device \"sim\" (the embedded simulated arm) is a simulator: open it with "
-                      "devices::open_joint_bus (library armctl_device_registry)");
+    return Error{ErrorKind::unsupported,
+                 "device \"sim\" (the embedded simulated arm) is a simulator: open it with "
+                 "devices::open_joint_bus (library armctl_device_registry)"};
   }
-  if (const auto* u = std::get_if<UnixDevice>(&uri)) return std::make_unique<RemoteSim>(*u);
-  return std::make_unique<RealBus>(std::get<SerialDevice>(uri));
+  // The connections' constructors open ports and sockets and throw; this is the boundary.
+  return catch_error([&]() -> Result<std::unique_ptr<BusConnection>> {
+    if (const auto* u = std::get_if<UnixDevice>(&uri)) return {std::make_unique<RemoteSim>(*u)};
+    return {std::make_unique<RealBus>(std::get<SerialDevice>(uri))};
+  });
 }
 
 void idle(transport::JointBusLink& link, Duration d) {

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "core/error.hpp"
 #include "devices/joint_bus/bus_master.hpp"
 #include "devices/joint_bus/device_uri.hpp"
 #include "transport/joint_bus_link.hpp"
@@ -22,9 +23,9 @@ class BusConnection {
   virtual std::string description() const = 0;
 };
 
-// Throws ArmctlError (io, invalid_config, invalid_argument) naming what failed, and
-// (unsupported) for SimDevice.
-std::unique_ptr<BusConnection> open_bus(const DeviceUri& uri);
+// The connection, or an error (io, invalid_config, invalid_argument) naming what failed;
+// unsupported for SimDevice.
+Result<std::unique_ptr<BusConnection>> open_bus(const DeviceUri& uri);
 
 // Lets time pass on the link's clock without a transaction (simulated links advance the
 // arm; real links wait). Bytes that arrive meanwhile are stray and discarded.

@@ -11,7 +11,8 @@ int spec_code(FailureKind kind) {
     case FailureKind::no_answer: return 990;
     case FailureKind::bad_status:
     case FailureKind::verify_mismatch:
-    case FailureKind::invalid_argument: return 0;
+    case FailureKind::invalid_argument:
+    case FailureKind::link: return 0;
   }
   return 0;
 }
@@ -26,6 +27,7 @@ const char* to_string(FailureKind kind) {
     case FailureKind::bad_status: return "bad status";
     case FailureKind::verify_mismatch: return "verify mismatch";
     case FailureKind::invalid_argument: return "invalid argument";
+    case FailureKind::link: return "link failure";
   }
   return "failure";
 }
@@ -41,19 +43,23 @@ const char* to_string(Stage stage) {
   return "?";
 }
 
-Error JointFailure::to_error() const {
-  ErrorKind k = ErrorKind::protocol;
+ErrorKind error_kind(FailureKind kind) {
   switch (kind) {
-    case FailureKind::no_answer: k = ErrorKind::timeout; break;
+    case FailureKind::no_answer: return ErrorKind::timeout;
     case FailureKind::unknown_command:
     case FailureKind::bad_data:
-    case FailureKind::verify_mismatch: k = ErrorKind::device; break;
-    case FailureKind::invalid_argument: k = ErrorKind::invalid_argument; break;
+    case FailureKind::verify_mismatch: return ErrorKind::device;
+    case FailureKind::invalid_argument: return ErrorKind::invalid_argument;
+    case FailureKind::link: return ErrorKind::io;
     case FailureKind::wrong_joint:
     case FailureKind::ping_bad_echo:
-    case FailureKind::bad_status: k = ErrorKind::protocol; break;
+    case FailureKind::bad_status: return ErrorKind::protocol;
   }
-  return Error{k, message};
+  return ErrorKind::protocol;
+}
+
+Error bus_error(const JointFailure& failure, std::string message) {
+  return Error{error_kind(failure.kind), std::move(message), failure};
 }
 
 }  // namespace armctl::joint_bus

@@ -1,13 +1,14 @@
-// How one joint-bus transaction can fail, as a value: the spec's code (910, 920, 930, 940,
-// 990), the raw STATUS word when one arrived, and whether the COMMAND word went out on the
-// wire (which decides whether a relative move may ever be retried).
+// How one joint-bus transaction can fail. The master returns core's Result/Status like
+// every library call; each Error it returns carries a JointFailure as its detail: the
+// spec's code (910, 920, 930, 940, 990), the stage, the joint, the raw STATUS word when one
+// arrived, and whether the COMMAND word went out on the wire (which decides whether a
+// relative move may ever be retried). joint_failure(error) gets it back.
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
-#include <variant>
 
 #include "core/error.hpp"
 
@@ -22,6 +23,7 @@ enum class FailureKind {
   bad_status,        // STATUS is neither this command's success nor an error code
   verify_mismatch,   // verify-after-write read back a target other than the one given
   invalid_argument,  // the caller asked for something the master cannot send
+  link,              // the link itself failed (the OS refused a read or write)
 };
 
 // The spec's code for a kind; 0 for kinds the spec has no code for.
@@ -38,31 +40,18 @@ struct JointFailure {
   int joint;
   std::optional<std::int16_t> status_word;  // raw STATUS, if one was received
   bool command_sent;                        // the COMMAND word went out on the wire
-  std::string message;                      // one line for people
 
   int code() const { return spec_code(kind); }
-  Error to_error() const;  // ErrorKind timeout/protocol/device/invalid_argument
 };
 
-// A value or a JointFailure (the joint bus analogue of core's Result).
-template <typename T>
-class BusResult {
- public:
-  BusResult(T value) : v_(std::move(value)) {}              // NOLINT: implicit by design
-  BusResult(JointFailure failure) : v_(std::move(failure)) {}  // NOLINT
-  bool ok() const { return v_.index() == 0; }
-  explicit operator bool() const { return ok(); }
-  const T& value() const {
-    if (!ok()) throw ArmctlError(failure().to_error());
-    return std::get<0>(v_);
-  }
-  const T& operator*() const { return value(); }
-  const JointFailure& failure() const { return std::get<1>(v_); }
-
- private:
-  std::variant<T, JointFailure> v_;
-};
-
-struct Done {};  // the value of a command that returns nothing
+// timeout (990), device (930, 940, verify), invalid_argument, io (link: the master uses
+// the link's own kind), else protocol.
+ErrorKind error_kind(FailureKind kind);
+// The Error for `failure`, with `message` (one line for people) and the failure as detail.
+Error bus_error(const JointFailure& failure, std::string message);
+// The JointFailure behind an error the master returned; nullptr for any other error.
+inline const JointFailure* joint_failure(const Error& error) {
+  return error.detail_as<JointFailure>();
+}
 
 }  // namespace armctl::joint_bus

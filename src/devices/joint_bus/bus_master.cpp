@@ -50,10 +50,10 @@ BusMaster::BusMaster(transport::JointBusLink& link, MasterOptions options)
 
 Duration BusMaster::word_timeout() const { return options_.timing.word_timeout(link_.baud()); }
 
-JointFailure BusMaster::fail(FailureKind kind, Stage stage, int joint, bool command_sent,
-                             std::optional<std::int16_t> status, std::string message) {
+Error BusMaster::fail(FailureKind kind, Stage stage, int joint, bool command_sent,
+                      std::optional<std::int16_t> status, std::string message) {
   ++counters_.failures;
-  return JointFailure{kind, stage, joint, status, command_sent, std::move(message)};
+  return bus_error(JointFailure{kind, stage, joint, status, command_sent}, std::move(message));
 }
 
 std::optional<std::int16_t> BusMaster::read_word(TimePoint deadline) {
@@ -62,6 +62,14 @@ std::optional<std::int16_t> BusMaster::read_word(TimePoint deadline) {
   const std::optional<std::uint8_t> high = link_.read_byte(deadline);
   if (!high) return std::nullopt;
   return word_from(*low, *high);
+}
+
+void BusMaster::idle_until(TimePoint until) {
+  try {
+    while (link_.read_byte(until)) ++counters_.drained_bytes;
+  } catch (const ArmctlError&) {
+    // A failed link shows in the next transaction's result; idling has none to give.
+  }
 }
 
 void BusMaster::abandon(int joint) {
@@ -81,8 +89,23 @@ void BusMaster::settle() {
   }
 }
 
-BusResult<std::optional<std::int16_t>> BusMaster::attempt(int joint, std::int16_t command,
-                                                          std::optional<std::int16_t> data) {
+Result<std::optional<std::int16_t>> BusMaster::attempt(int joint, std::int16_t command,
+                                                       std::optional<std::int16_t> data) {
+  try {
+    return exchange(joint, command, data);
+  } catch (const ArmctlError& e) {
+    // The link itself failed (a serial port unplugged, a remote simulated arm gone). The
+    // COMMAND word may have gone out: say so, so that a relative move is never repeated.
+    Error error = fail(FailureKind::link, Stage::ready, joint, true, std::nullopt,
+                       fmt::format("joint {}: {} failed on the link: {}", joint,
+                                   command_name(command), e.error().message));
+    error.kind = e.error().kind;  // io, timeout or protocol, as the link said
+    return error;
+  }
+}
+
+Result<std::optional<std::int16_t>> BusMaster::exchange(int joint, std::int16_t command,
+                                                        std::optional<std::int16_t> data) {
   const char* name = command_name(command);
   if (joint < 1 || joint > joint_count()) {
     return fail(FailureKind::invalid_argument, Stage::before_command, joint, false, std::nullopt,
@@ -166,102 +189,100 @@ BusResult<std::optional<std::int16_t>> BusMaster::attempt(int joint, std::int16_
   return response;
 }
 
-BusResult<std::optional<std::int16_t>> BusMaster::transact(int joint, std::int16_t command,
+Result<std::optional<std::int16_t>> BusMaster::transact(int joint, std::int16_t command,
                                                            std::optional<std::int16_t> data) {
   return attempt(joint, command, data);
 }
 
-BusResult<std::optional<std::int16_t>> BusMaster::with_retries(int joint, std::int16_t command,
+Result<std::optional<std::int16_t>> BusMaster::with_retries(int joint, std::int16_t command,
                                                                std::optional<std::int16_t> data) {
   for (int tries = 0;; ++tries) {
-    BusResult<std::optional<std::int16_t>> r = attempt(joint, command, data);
+    Result<std::optional<std::int16_t>> r = attempt(joint, command, data);
     if (r.ok()) return r;
-    const JointFailure& f = r.failure();
-    const bool unsafe = is_relative_move(command) && f.command_sent;
-    if (tries >= options_.retries || !retry_can_help(f.kind) || unsafe) return r;
+    const JointFailure* f = joint_failure(r.error());
+    const bool unsafe = is_relative_move(command) && f->command_sent;
+    if (tries >= options_.retries || !retry_can_help(f->kind) || unsafe) return r;
     ++counters_.retries;
   }
 }
 
-BusResult<Done> BusMaster::command_only(int joint, std::int16_t command,
+Status BusMaster::command_only(int joint, std::int16_t command,
                                         std::optional<std::int16_t> data) {
   auto r = with_retries(joint, command, data);
-  if (!r) return r.failure();
-  return Done{};
+  if (!r) return r.error();
+  return Ok{};
 }
 
-BusResult<std::int16_t> BusMaster::query(int joint, std::int16_t command) {
+Result<std::int16_t> BusMaster::query(int joint, std::int16_t command) {
   auto r = with_retries(joint, command, std::nullopt);
-  if (!r) return r.failure();
+  if (!r) return r.error();
   return r.value().value();  // every query command returns a RESPONSE word
 }
 
-BusResult<std::int16_t> BusMaster::ping(int joint, std::int16_t value) {
+Result<std::int16_t> BusMaster::ping(int joint, std::int16_t value) {
   auto r = with_retries(joint, cmd_ping, value);
-  if (!r) return r.failure();
+  if (!r) return r.error();
   return r.value().value();
 }
 
-BusResult<Done> BusMaster::home(int joint) { return command_only(joint, cmd_home, std::nullopt); }
-BusResult<Done> BusMaster::set_pid_state(int joint, bool on) {
+Status BusMaster::home(int joint) { return command_only(joint, cmd_home, std::nullopt); }
+Status BusMaster::set_pid_state(int joint, bool on) {
   return command_only(joint, cmd_set_pid_state, static_cast<std::int16_t>(on ? 1 : 0));
 }
-BusResult<std::int16_t> BusMaster::get_position(int joint) { return query(joint, cmd_get_position); }
-BusResult<std::int16_t> BusMaster::get_target(int joint) { return query(joint, cmd_get_target); }
-BusResult<std::int16_t> BusMaster::get_joint_number(int joint) {
+Result<std::int16_t> BusMaster::get_position(int joint) { return query(joint, cmd_get_position); }
+Result<std::int16_t> BusMaster::get_target(int joint) { return query(joint, cmd_get_target); }
+Result<std::int16_t> BusMaster::get_joint_number(int joint) {
   return query(joint, cmd_get_joint_number);
 }
-BusResult<Done> BusMaster::set_speed(int joint, std::int16_t speed) {
+Status BusMaster::set_speed(int joint, std::int16_t speed) {
   return command_only(joint, cmd_set_speed, speed);
 }
-BusResult<Done> BusMaster::set_zone(int joint, std::int16_t zone) {
+Status BusMaster::set_zone(int joint, std::int16_t zone) {
   return command_only(joint, cmd_set_zone, zone);
 }
-BusResult<bool> BusMaster::check_target_reached(int joint) {
+Result<bool> BusMaster::check_target_reached(int joint) {
   auto r = query(joint, cmd_check_target_reached);
-  if (!r) return r.failure();
+  if (!r) return r.error();
   if (*r != 0 && *r != 1) {
-    ++counters_.failures;
-    return JointFailure{FailureKind::bad_status, Stage::response, joint, std::nullopt, true,
-                        fmt::format("joint {}: check_target_reached answered {} (allowed: 0 or 1)",
-                                    joint, *r)};
+    return fail(FailureKind::bad_status, Stage::response, joint, true, std::nullopt,
+                fmt::format("joint {}: check_target_reached answered {} (allowed: 0 or 1)", joint,
+                            *r));
   }
   return *r == 1;
 }
 
-BusResult<Done> BusMaster::drive_dist(int joint, std::int16_t d) { return drive(Drive::dist, joint, d); }
-BusResult<Done> BusMaster::drive_dist_max(int joint, std::int16_t d) {
+Status BusMaster::drive_dist(int joint, std::int16_t d) { return drive(Drive::dist, joint, d); }
+Status BusMaster::drive_dist_max(int joint, std::int16_t d) {
   return drive(Drive::dist_max, joint, d);
 }
-BusResult<Done> BusMaster::drive_to(int joint, std::int16_t p) { return drive(Drive::to, joint, p); }
+Status BusMaster::drive_to(int joint, std::int16_t p) { return drive(Drive::to, joint, p); }
 
-BusResult<BusMaster::Reading> BusMaster::read_before_drive(Drive kind, int joint) {
+Result<BusMaster::Reading> BusMaster::read_before_drive(Drive kind, int joint) {
   Reading before;
   if (kind == Drive::dist) {
     auto t = get_target(joint);
-    if (!t) return t.failure();
+    if (!t) return t.error();
     before.target_before = *t;
   } else if (kind == Drive::dist_max) {
     auto p = get_position(joint);
-    if (!p) return p.failure();
+    if (!p) return p.error();
     before.position_before = *p;
   }
   return before;
 }
 
-BusResult<Done> BusMaster::verify_drive(Drive kind, int joint, std::int16_t value,
+Status BusMaster::verify_drive(Drive kind, int joint, std::int16_t value,
                                         const Reading& before) {
   const char* name = command_name(static_cast<std::int16_t>(kind));
-  auto unverified = [&](const JointFailure& f) {
-    JointFailure out = f;
-    out.stage = Stage::verify;
-    out.command_sent = true;
-    out.message = fmt::format("joint {}: {} {} was accepted but could not be verified: {}", joint,
-                              name, value, f.message);
-    return out;
+  auto unverified = [&](const Error& e) {
+    JointFailure f = *joint_failure(e);
+    f.stage = Stage::verify;
+    f.command_sent = true;
+    return bus_error(f, fmt::format("joint {}: {} {} was accepted but could not be verified: {}",
+                                    joint, name, value, e.message));
   };
   auto target = get_target(joint);
-  if (!target) return unverified(target.failure());
+  if (!target) return unverified(target.error());
   const int t = *target;
   bool matches = false;
   std::string expected;
@@ -274,27 +295,26 @@ BusResult<Done> BusMaster::verify_drive(Drive kind, int joint, std::int16_t valu
     expected = fmt::format("{} ({} + {})", want, *before.target_before, value);
   } else {
     auto after = get_position(joint);
-    if (!after) return unverified(after.failure());
+    if (!after) return unverified(after.error());
     const int tol = options_.verify_position_tolerance;
     const int lo = std::min<int>(*before.position_before, *after) - tol;
     const int hi = std::max<int>(*before.position_before, *after) + tol;
     matches = t - value >= lo && t - value <= hi;
     expected = fmt::format("position {}..{} + {}", lo, hi, value);
   }
-  if (matches) return Done{};
-  ++counters_.failures;
-  return JointFailure{FailureKind::verify_mismatch, Stage::verify, joint, std::nullopt, true,
-                      fmt::format("joint {}: target is {} after {} {}, expected {}; not corrected "
-                                  "(a second move could make it worse)",
-                                  joint, t, name, value, expected)};
+  if (matches) return Ok{};
+  return fail(FailureKind::verify_mismatch, Stage::verify, joint, true, std::nullopt,
+              fmt::format("joint {}: target is {} after {} {}, expected {}; not corrected "
+                          "(a second move could make it worse)",
+                          joint, t, name, value, expected));
 }
 
-BusResult<Done> BusMaster::drive(Drive kind, int joint, std::int16_t value) {
+Status BusMaster::drive(Drive kind, int joint, std::int16_t value) {
   const auto command = static_cast<std::int16_t>(kind);
   Reading before;
   if (options_.verify) {
     auto b = read_before_drive(kind, joint);
-    if (!b) return b.failure();  // command_sent stays false: the drive never went out
+    if (!b) return b.error();  // command_sent stays false: the drive never went out
     before = *b;
   }
   auto r = command_only(joint, command, value);
@@ -302,15 +322,15 @@ BusResult<Done> BusMaster::drive(Drive kind, int joint, std::int16_t value) {
   return verify_drive(kind, joint, value, before);
 }
 
-PerJoint<Done> BusMaster::drive_all(Drive kind, std::span<const std::int16_t> values) {
+PerJoint<Ok> BusMaster::drive_all(Drive kind, std::span<const std::int16_t> values) {
   const auto n = static_cast<std::size_t>(joint_count());
-  PerJoint<Done> out;
+  PerJoint<Ok> out;
   out.reserve(n);
   if (values.size() != n) {
     for (int j = 1; j <= joint_count(); ++j) {
-      out.push_back({j, JointFailure{FailureKind::invalid_argument, Stage::before_command, j,
-                                     std::nullopt, false,
-                                     fmt::format("{} values given for {} joints", values.size(), n)}});
+      out.push_back({j, bus_error(JointFailure{FailureKind::invalid_argument, Stage::before_command,
+                                               j, std::nullopt, false},
+                                  fmt::format("{} values given for {} joints", values.size(), n))});
     }
     return out;
   }
@@ -321,7 +341,7 @@ PerJoint<Done> BusMaster::drive_all(Drive kind, std::span<const std::int16_t> va
     if (options_.verify) {
       auto b = read_before_drive(kind, j);
       if (!b) {
-        out.push_back({j, b.failure()});
+        out.push_back({j, b.error()});
         continue;
       }
       before[i] = *b;

@@ -42,7 +42,7 @@ struct MasterCounters {
 template <typename T>
 struct JointOutcome {
   int joint;
-  BusResult<T> result;
+  Result<T> result;
 };
 
 template <typename T>
@@ -58,25 +58,30 @@ class BusMaster {
   int joint_count() const { return link_.joint_count(); }
   const MasterOptions& options() const { return options_; }
   const MasterCounters& counters() const { return counters_; }
+  const Clock& clock() const { return link_.clock(); }
+
+  // Lets time pass until `until` without a transaction (on simulated links this advances
+  // the arm); stray bytes that arrive meanwhile are discarded and counted.
+  void idle_until(TimePoint until);
 
   // One command with one joint (1..joint_count()).
-  BusResult<std::int16_t> ping(int joint, std::int16_t value);
-  BusResult<Done> home(int joint);
-  BusResult<Done> set_pid_state(int joint, bool on);
-  BusResult<std::int16_t> get_position(int joint);
-  BusResult<std::int16_t> get_target(int joint);
-  BusResult<std::int16_t> get_joint_number(int joint);
-  BusResult<Done> drive_dist(int joint, std::int16_t distance);
-  BusResult<Done> drive_dist_max(int joint, std::int16_t distance);
-  BusResult<Done> drive_to(int joint, std::int16_t position);
-  BusResult<Done> drive(Drive kind, int joint, std::int16_t value);
-  BusResult<Done> set_speed(int joint, std::int16_t speed);
-  BusResult<Done> set_zone(int joint, std::int16_t zone);
-  BusResult<bool> check_target_reached(int joint);
+  Result<std::int16_t> ping(int joint, std::int16_t value);
+  Status home(int joint);
+  Status set_pid_state(int joint, bool on);
+  Result<std::int16_t> get_position(int joint);
+  Result<std::int16_t> get_target(int joint);
+  Result<std::int16_t> get_joint_number(int joint);
+  Status drive_dist(int joint, std::int16_t distance);
+  Status drive_dist_max(int joint, std::int16_t distance);
+  Status drive_to(int joint, std::int16_t position);
+  Status drive(Drive kind, int joint, std::int16_t value);
+  Status set_speed(int joint, std::int16_t speed);
+  Status set_zone(int joint, std::int16_t zone);
+  Result<bool> check_target_reached(int joint);
 
   // The same operation on every joint, in joint order; one result per joint.
   template <typename T>
-  PerJoint<T> for_each_joint(const std::function<BusResult<T>(int joint)>& op) {
+  PerJoint<T> for_each_joint(const std::function<Result<T>(int joint)>& op) {
     PerJoint<T> out;
     out.reserve(static_cast<std::size_t>(joint_count()));
     for (int j = 1; j <= joint_count(); ++j) out.push_back(JointOutcome<T>{j, op(j)});
@@ -86,12 +91,12 @@ class BusMaster {
   // Drives every joint with its own value (values.size() == joint_count()). All drive
   // commands go out back to back, so the joints start as close together as the bus
   // allows; verification (if on) follows once every joint has been told.
-  PerJoint<Done> drive_all(Drive kind, std::span<const std::int16_t> values);
+  PerJoint<Ok> drive_all(Drive kind, std::span<const std::int16_t> values);
 
   // One raw transaction, no retries, no verification: the COMMAND code is sent as given
   // (unknown codes included: the joint answers 930 and reads no DATA). Returns the
   // RESPONSE word for commands that return one.
-  BusResult<std::optional<std::int16_t>> transact(int joint, std::int16_t command,
+  Result<std::optional<std::int16_t>> transact(int joint, std::int16_t command,
                                                   std::optional<std::int16_t> data);
 
  private:
@@ -100,19 +105,22 @@ class BusMaster {
     std::optional<std::int16_t> position_before;
   };
 
-  BusResult<std::optional<std::int16_t>> attempt(int joint, std::int16_t command,
-                                                 std::optional<std::int16_t> data);
-  BusResult<std::optional<std::int16_t>> with_retries(int joint, std::int16_t command,
+  // One attempt; an ArmctlError from the link becomes a FailureKind::link error.
+  Result<std::optional<std::int16_t>> attempt(int joint, std::int16_t command,
+                                              std::optional<std::int16_t> data);
+  Result<std::optional<std::int16_t>> exchange(int joint, std::int16_t command,
+                                               std::optional<std::int16_t> data);
+  Result<std::optional<std::int16_t>> with_retries(int joint, std::int16_t command,
                                                       std::optional<std::int16_t> data);
-  BusResult<Done> command_only(int joint, std::int16_t command, std::optional<std::int16_t> data);
-  BusResult<std::int16_t> query(int joint, std::int16_t command);
-  BusResult<Reading> read_before_drive(Drive kind, int joint);
-  BusResult<Done> verify_drive(Drive kind, int joint, std::int16_t value, const Reading& before);
+  Status command_only(int joint, std::int16_t command, std::optional<std::int16_t> data);
+  Result<std::int16_t> query(int joint, std::int16_t command);
+  Result<Reading> read_before_drive(Drive kind, int joint);
+  Status verify_drive(Drive kind, int joint, std::int16_t value, const Reading& before);
 
   std::optional<std::int16_t> read_word(TimePoint deadline);
   void abandon(int joint);  // select low, then settle()
   void settle();            // discard bytes until the bus has been quiet for a while
-  JointFailure fail(FailureKind kind, Stage stage, int joint, bool command_sent,
+  Error fail(FailureKind kind, Stage stage, int joint, bool command_sent,
                     std::optional<std::int16_t> status, std::string message);
   Duration word_timeout() const;
 

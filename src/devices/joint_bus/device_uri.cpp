@@ -93,9 +93,8 @@ SerialDevice parse_serial(std::string_view uri, const transport::UriParts& parts
   return d;
 }
 
-}  // namespace
-
-DeviceUri parse_device_uri(std::string_view uri) {
+// Every check unwinds through bad(); parse_device_uri turns that into the returned error.
+DeviceUri parse_or_throw(std::string_view uri) {
   auto parts = checked(uri, transport::split_uri(uri));
   if (parts.kind == "sim") return parse_sim(uri, parts);
   if (parts.kind == "unix") {
@@ -106,6 +105,12 @@ DeviceUri parse_device_uri(std::string_view uri) {
   }
   if (parts.kind == "serial") return parse_serial(uri, parts);
   bad(uri, "unknown kind of device");
+}
+
+}  // namespace
+
+Result<DeviceUri> parse_device_uri(std::string_view uri) {
+  return catch_error([&]() -> Result<DeviceUri> { return parse_or_throw(uri); });
 }
 
 std::string describe(const DeviceUri& uri) {

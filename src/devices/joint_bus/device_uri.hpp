@@ -15,6 +15,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/error.hpp"
 #include "devices/joint_bus/status_dialect.hpp"
 
 namespace armctl::joint_bus {
@@ -39,8 +40,8 @@ struct SerialDevice {
 
 using DeviceUri = std::variant<SimDevice, UnixDevice, SerialDevice>;
 
-// Throws ArmctlError(invalid_argument) naming what was wrong and what is allowed.
-DeviceUri parse_device_uri(std::string_view uri);
+// The device, or an error (invalid_argument) naming what was wrong and what is allowed.
+Result<DeviceUri> parse_device_uri(std::string_view uri);
 
 std::string describe(const DeviceUri& uri);  // for messages: "serial /dev/ttyAMA0 at 115200 baud"
 

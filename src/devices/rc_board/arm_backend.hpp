@@ -15,19 +15,20 @@
 #include <vector>
 
 #include "core/clock.hpp"
+#include "core/error.hpp"
+#include "protocol/robot_commands/messages.hpp"
 
 namespace armctl::rc_board {
 
 using ServoId = std::uint8_t;
 
-// One servo's target. In a stored action the position may be 0xFF00 ("leave alone",
-// kLeaveAlone in action_group.hpp); move() never receives that marker: the Board drops
-// those entries first.
-struct ServoTarget {
-  ServoId servo = 0;
-  std::uint16_t position = 0;
-  bool operator==(const ServoTarget&) const = default;
-};
+// The Robot Commands types, one definition each (protocol/robot_commands/messages.hpp).
+// A ServoTarget without a position is "leave alone" (0xFF00 on the wire): it may be stored
+// in an action, but move() never receives one: the Board and the player drop them first.
+using rc::BusServoInfoReply;
+using rc::BusServoLimits;
+using rc::ServoMode;
+using rc::ServoTarget;
 
 // Inclusive range of positions a servo accepts as move targets.
 struct PositionRange {
@@ -36,30 +37,6 @@ struct PositionRange {
   bool contains(std::uint16_t p) const { return p >= min && p <= max; }
 };
 
-enum class ServoMode : std::uint8_t { servo = 0, motor = 1 };
-
-// BusServoInfoWrite: limits and LED settings of the servo on the bus.
-struct BusServoLimits {
-  ServoId servo = 1;               // ID to give / address
-  std::uint16_t position_min = 0;  // 0..1000, <= position_max
-  std::uint16_t position_max = 1000;
-  std::uint16_t millivolts_min = 4500;  // 4500..12000, <= millivolts_max
-  std::uint16_t millivolts_max = 12000;
-  std::uint16_t temp_max = 85;   // 50..100 C
-  std::uint8_t led_status = 0;   // 0 enable, 1 disable
-  std::uint8_t led_warning = 0;  // bit0 overheat, bit1 overvoltage, bit2 overposition
-  bool operator==(const BusServoLimits&) const = default;
-};
-
-// BusServoInfoRead: the limits plus live readings.
-struct BusServoInfo {
-  BusServoLimits limits;
-  std::int8_t offset = 0;
-  std::int16_t position = 0;
-  std::uint8_t temp = 0;
-  std::uint16_t millivolts = 0;
-  bool operator==(const BusServoInfo&) const = default;
-};
 
 class ArmBackend {
  public:
@@ -82,8 +59,10 @@ class ArmBackend {
   // One synchronized move starting at `now`: every listed servo moves linearly from where
   // it is and arrives `time` later (0 = as fast as it can). Servos not listed keep what they
   // are doing. Restores torque of listed servos. Returns how long the move really takes
-  // (>= time; a backend may be slower than asked when `time` is shorter than it can do).
-  virtual Duration move(std::span<const ServoTarget> targets, Duration time, TimePoint now) = 0;
+  // (>= time; a backend may be slower than asked when `time` is shorter than it can do),
+  // or an error (device) saying why the backend refused it: then no servo moved.
+  virtual Result<Duration> move(std::span<const ServoTarget> targets, Duration time,
+                                TimePoint now) = 0;
 
   // Current position (may read slightly outside 0..1000 after offsets: signed).
   virtual std::int16_t position(ServoId servo) const = 0;
@@ -97,9 +76,10 @@ class ArmBackend {
   virtual std::uint16_t battery_millivolts() const = 0;
 
   // Offsets, -125..125. adjust: takes effect at once, volatile. save: persists the current
-  // offset of each listed servo (may fail: I/O). read: current (volatile) offset.
+  // offset of each listed servo (may fail: I/O; then nothing changed). read: current
+  // (volatile) offset.
   virtual void adjust_offset(ServoId servo, std::int8_t offset) = 0;
-  virtual bool save_offsets(std::span<const ServoId> servos) = 0;
+  virtual Status save_offsets(std::span<const ServoId> servos) = 0;
   virtual std::int8_t offset(ServoId servo) const = 0;
 
   // ServoSpeed: servo mode (value ignored) or motor mode turning at `speed`
@@ -108,8 +88,9 @@ class ArmBackend {
 
   // BusServoInfoRead/Write address "the servo on the bus". Which servo that is on a
   // multi-servo arm is the backend's decision (documented by each backend).
-  virtual BusServoInfo bus_servo_info() const = 0;
-  virtual bool write_bus_servo_info(const BusServoLimits& limits) = 0;  // false: refused
+  virtual BusServoInfoReply bus_servo_info() const = 0;
+  // An error (device: no such servo here; io: cannot be stored) leaves everything unchanged.
+  virtual Status write_bus_servo_info(const BusServoLimits& limits) = 0;
 };
 
 }  // namespace armctl::rc_board

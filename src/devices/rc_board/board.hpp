@@ -26,6 +26,7 @@
 #include "devices/rc_board/group_store.hpp"
 #include "protocol/robot_commands/frame.hpp"
 #include "protocol/robot_commands/frame_receiver.hpp"
+#include "protocol/robot_commands/messages.hpp"
 
 namespace armctl::rc_board {
 
@@ -60,6 +61,33 @@ class Board {
 
  private:
   void dispatch(const rc::Frame& frame, TimePoint now);
+
+  // One handler per request (board_requests.cpp).
+  void on(const rc::MultiServoMove& m, TimePoint now);
+  void on(const rc::MultiServoOff& m, TimePoint now);
+  void on(const rc::ServoPositionRead& m, TimePoint now);
+  void on(const rc::ServoSpeed& m, TimePoint now);
+  void on(const rc::GetBatteryVoltage& m, TimePoint now);
+  void on(const rc::ServoOffsetAdjust& m, TimePoint now);
+  void on(const rc::ServoOffsetWrite& m, TimePoint now);
+  void on(const rc::ServoOffsetRead& m, TimePoint now);
+  void on(const rc::BusServoInfoWrite& m, TimePoint now);
+  void on(const rc::BusServoInfoRead& m, TimePoint now);
+  void on(const rc::GroupDownloadBegin& m, TimePoint now);
+  void on(const rc::GroupDownloadServoCount& m, TimePoint now);
+  void on(const rc::GroupDownloadBlocks& m, TimePoint now);
+  void on(const rc::GroupDownloadAction& m, TimePoint now);
+  void on(const rc::GroupDownloadEnd& m, TimePoint now);
+  void on(const rc::GroupRun& m, TimePoint now);
+  void on(const rc::GroupStop& m, TimePoint now);
+  void on(const rc::GroupErase& m, TimePoint now);
+  void on(const rc::GroupSpeed& m, TimePoint now);
+
+  // Checks and replies the handlers share.
+  bool all_present(std::span<const std::uint8_t> ids, const char* what);  // rejects if not
+  void reply(const rc::BoardMessage& message);
+  void ack(std::uint8_t sub);  // GroupDownload sub `sub` accepted
+  void download_failed(const Error& e);
   void reject(std::size_t BoardStats::*counter, std::string message);
   void send(const rc::Frame& frame);
   void notify_stopped();

@@ -36,8 +36,8 @@ Status GroupDownload::check_group(const char* sub, std::uint8_t group, State wan
 Status GroupDownload::begin(const rc::GroupDownloadBegin& m) {
   state_ = State::idle;
   if (m.group >= kGroupCount) return fail(fmt::format("sub 1: group {} not in 0..254", m.group));
-  if (m.action_count < 1 || m.action_count > kMaxActions)
-    return fail(fmt::format("sub 1: action count {} not in 1..{}", m.action_count, kMaxActions));
+  if (m.action_count < 1 || m.action_count > rc::kActionsMax)
+    return fail(fmt::format("sub 1: action count {} not in 1..{}", m.action_count, rc::kActionsMax));
   group_ = m.group;
   count_ = m.action_count;
   servo_count_ = 0;
@@ -59,23 +59,23 @@ Status GroupDownload::servo_count(const rc::GroupDownloadServoCount& m, const Ar
 
 Status GroupDownload::blocks(const rc::GroupDownloadBlocks& m) {
   if (auto s = check_group("sub 3", m.group, State::servo_count_known); !s) return s;
-  if (m.block_count != blocks_for(count_))
+  if (m.block_count != rc::blocks_for_actions(count_))
     return fail(fmt::format("sub 3: {} blocks listed but {} actions need {}", m.block_count, count_,
-                            blocks_for(count_)));
+                            rc::blocks_for_actions(count_)));
   state_ = State::blocks_known;
   return Ok{};
 }
 
 Status GroupDownload::action(const rc::GroupDownloadAction& m, const ArmBackend& arm) {
   if (auto s = check_group("sub 4", m.group, State::blocks_known); !s) return s;
-  std::size_t slot = std::size_t{m.block} * kActionsPerBlock + m.index;
-  if (m.block >= blocks_for(count_) || m.index >= kActionsPerBlock || slot >= count_)
+  std::size_t slot = std::size_t{m.block} * rc::kActionsPerBlock + m.index;
+  if (m.block >= rc::blocks_for_actions(count_) || m.index >= rc::kActionsPerBlock || slot >= count_)
     return fail(fmt::format("sub 4: block {} index {} is outside the {} actions announced", m.block,
                             m.index, count_));
   if (m.targets.size() != servo_count_)
     return fail(fmt::format("sub 4: action has {} servos but sub 2 announced {}", m.targets.size(),
                             servo_count_));
-  if (m.time_ms > kMaxMoveMilliseconds)
+  if (m.time_ms > rc::kMoveTimeMaxMs)
     return fail(fmt::format("sub 4: time {} ms not in 0..30000", m.time_ms));
   Action action{m.time_ms, {}};
   for (const rc::ServoTarget& t : m.targets) {
@@ -84,14 +84,13 @@ Status GroupDownload::action(const rc::GroupDownloadAction& m, const ArmBackend&
     for (const ServoTarget& seen : action.positions)
       if (seen.servo == t.servo)
         return fail(fmt::format("sub 4: servo {} appears twice in one action", t.servo));
-    std::uint16_t position = t.position.value_or(kLeaveAlone);
-    if (t.position) {
+    if (t.position) {  // none: leave this servo alone
       PositionRange range = arm.position_range(t.servo);
-      if (!range.contains(position))
+      if (!range.contains(*t.position))
         return fail(fmt::format("sub 4: servo {} position {} outside its range {}..{}", t.servo,
-                                position, range.min, range.max));
+                                *t.position, range.min, range.max));
     }
-    action.positions.push_back({t.servo, position});
+    action.positions.push_back(t);
   }
   if (!slots_[slot]) ++received_;
   slots_[slot] = std::move(action);
@@ -104,8 +103,8 @@ Result<ActionGroup> GroupDownload::end(const rc::GroupDownloadEnd& m) {
     std::size_t missing = 0;
     while (slots_[missing]) ++missing;
     return fail(fmt::format("sub 5: {} of {} actions received (first missing: block {} index {})",
-                            received_, count_, missing / kActionsPerBlock,
-                            missing % kActionsPerBlock))
+                            received_, count_, missing / rc::kActionsPerBlock,
+                            missing % rc::kActionsPerBlock))
         .error();
   }
   ActionGroup group{servo_count_, {}};

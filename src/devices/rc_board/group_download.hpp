@@ -4,7 +4,7 @@
 //   sub 1 begin(group, count)      count 1..1020; starts a new download (any download in
 //                                  progress is abandoned)
 //   sub 2 servo count n            1..servos of the arm, once, after sub 1
-//   sub 3 blocks 0..k-1            k == blocks_for(count), once, after sub 2
+//   sub 3 blocks 0..k-1            k == rc::blocks_for_actions(count), once, after sub 2
 //   sub 4 action (block, index)    after sub 3; block < k, index 0..254 and
 //                                  block*255+index < count; n servos, each present, at most
 //                                  once, position in its range or 0xFF00; time 0..30000.

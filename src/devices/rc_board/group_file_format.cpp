@@ -37,7 +37,7 @@ std::vector<std::uint8_t> encode_group_file(GroupNumber group, const ActionGroup
     put16(out, a.milliseconds);
     for (const ServoTarget& t : a.positions) {
       out.push_back(t.servo);
-      put16(out, t.position);
+      put16(out, t.position.value_or(rc::kLeaveAlone));  // stored as on the wire
     }
   }
   std::uint32_t crc = crc32(out);
@@ -56,7 +56,7 @@ Result<ActionGroup> decode_group_file(std::span<const std::uint8_t> b, GroupNumb
     return corrupt(fmt::format("file holds group {} but is named for group {}", b[8], expected));
   g.servo_count = b[9];
   std::size_t count = get16(b, 10);
-  if (g.servo_count == 0 || count == 0 || count > kMaxActions)
+  if (g.servo_count == 0 || count == 0 || count > rc::kActionsMax)
     return corrupt(
         fmt::format("servo count {} / action count {} out of range", g.servo_count, count));
   std::size_t per_action = 2 + 3 * std::size_t{g.servo_count};
@@ -66,13 +66,19 @@ Result<ActionGroup> decode_group_file(std::span<const std::uint8_t> b, GroupNumb
   for (Action& a : g.actions) {
     a.milliseconds = get16(b, at);
     at += 2;
-    if (a.milliseconds > kMaxMoveMilliseconds) return corrupt("action time above 30000 ms");
+    if (a.milliseconds > rc::kMoveTimeMaxMs) return corrupt("action time above 30000 ms");
     a.positions.resize(g.servo_count);
     for (ServoTarget& t : a.positions) {
       t.servo = b[at];
-      t.position = get16(b, at + 1);
+      const std::uint16_t position = get16(b, at + 1);
       at += 3;
-      if (t.position > 1000 && t.position != kLeaveAlone) return corrupt("position out of range");
+      if (position == rc::kLeaveAlone) {
+        t.position.reset();
+      } else if (position > rc::kPositionMax) {
+        return corrupt("position out of range");
+      } else {
+        t.position = position;
+      }
     }
   }
   return g;

@@ -42,8 +42,8 @@ std::optional<GroupPlayer::Finished> GroupPlayer::step(ArmBackend& arm,
   std::vector<ServoTarget> targets;
   bool valid = true;
   for (const ServoTarget& t : action.positions) {
-    if (t.position == kLeaveAlone) continue;
-    if (!arm.has_servo(t.servo) || !arm.position_range(t.servo).contains(t.position)) valid = false;
+    if (!t.position) continue;  // leave this servo alone
+    if (!arm.has_servo(t.servo) || !arm.position_range(t.servo).contains(*t.position)) valid = false;
     targets.push_back(t);
   }
   Duration wanted = scaled_time(action.milliseconds, speed_percent);
@@ -51,7 +51,15 @@ std::optional<GroupPlayer::Finished> GroupPlayer::step(ArmBackend& arm,
   if (!valid) {
     ++skipped_;
   } else if (!targets.empty()) {
-    took = arm.move(targets, wanted, next_at_);
+    auto moved = arm.move(targets, wanted, next_at_);
+    if (moved) {
+      took = *moved;
+    } else {  // the arm refused (e.g. a joint not answering): nothing moved, the group goes on
+      ++skipped_;
+      ++refused_;
+      last_refusal_ = "group " + std::to_string(group_) + " action " + std::to_string(index_) +
+                      ": move refused: " + moved.error().message;
+    }
   }
   next_at_ += std::max(took, kMinimumActionTime);
   return std::nullopt;

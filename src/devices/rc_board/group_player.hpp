@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
 
 #include "core/clock.hpp"
 #include "devices/rc_board/action_group.hpp"
@@ -34,7 +35,10 @@ class GroupPlayer {
     return running_ ? std::optional<GroupNumber>(group_) : std::nullopt;
   }
   std::uint32_t passes_done() const { return passes_; }
-  std::size_t actions_skipped() const { return skipped_; }
+  std::size_t actions_skipped() const { return skipped_; }  // no longer fit, or refused
+  std::size_t moves_refused() const { return refused_; }    // the arm refused the move
+  // Why the last refused move was refused, naming the group and action.
+  const std::string& last_refusal() const { return last_refusal_; }
 
   // When step() must run next (nothing while stopped).
   std::optional<TimePoint> next_event() const {
@@ -52,6 +56,8 @@ class GroupPlayer {
   std::uint32_t passes_ = 0;
   std::size_t index_ = 0;
   std::size_t skipped_ = 0;
+  std::size_t refused_ = 0;
+  std::string last_refusal_;
   TimePoint next_at_{};
 };
 

@@ -5,9 +5,6 @@
 namespace armctl::robot_commands {
 namespace {
 
-// The motor-mode speed a board accepts (the LX bus-servo convention; rc_board::Board ignores
-// a ServoSpeed frame outside it).
-constexpr int kMotorSpeedLimit = 1000;
 // More would hide a dead link for minutes behind retries.
 constexpr int kMaxReadAttempts = 10;
 
@@ -48,9 +45,21 @@ Result<rc::Frame> Client::build(const rc::Request& request) const {
 }
 
 Status Client::send(const rc::Frame& frame) {
-  link_.send(frame);  // throws ArmctlError(io)
+  try {
+    link_.send(frame);
+  } catch (const ArmctlError& e) {  // links throw on OS failures; the SDK returns them
+    return e.error();
+  }
   ++stats_.frames_sent;
   return Ok{};
+}
+
+Result<std::optional<rc::Frame>> Client::receive(TimePoint deadline) {
+  try {
+    return link_.receive(deadline);
+  } catch (const ArmctlError& e) {
+    return e.error();
+  }
 }
 
 void Client::deliver(const rc::GroupNotification& n) {
@@ -59,19 +68,19 @@ void Client::deliver(const rc::GroupNotification& n) {
   e.count = n.count;
   e.received = link_.clock().now();
   switch (n.kind) {
-    case rc::GroupEventKind::started:
+    case GroupEventKind::started:
       e.kind = GroupEventKind::started;
       e.variant = !n.group;
       stop_sent_ = false;
       break;
-    case rc::GroupEventKind::stopped:
+    case GroupEventKind::stopped:
       // A bare CMD 7 answers our GroupStop; if we sent none, it is a board telling us the
       // group finished (spec "Action groups": real-board variant).
       e.kind = stop_sent_ ? GroupEventKind::stopped : GroupEventKind::finished;
       e.variant = !stop_sent_;
       stop_sent_ = false;
       break;
-    case rc::GroupEventKind::finished:
+    case GroupEventKind::finished:
       e.kind = GroupEventKind::finished;
       break;
   }
@@ -93,10 +102,13 @@ std::optional<rc::BoardMessage> Client::take(const rc::Frame& frame) {
   return msg.value();
 }
 
-void Client::take_arrived() {
+Status Client::take_arrived() {
   const TimePoint now = link_.clock().now();
-  while (auto f = link_.receive(now)) {
-    if (take(*f)) ++stats_.stale_replies;
+  for (;;) {
+    auto f = receive(now);
+    if (!f) return f.error();
+    if (!*f) return Ok{};
+    if (take(**f)) ++stats_.stale_replies;
   }
 }
 
@@ -116,13 +128,15 @@ Result<rc::BoardMessage> Client::transact_read(const rc::Frame& frame) {
 
 Result<rc::BoardMessage> Client::transact(const rc::Frame& frame, std::optional<std::uint8_t> sub,
                                           Duration timeout) {
-  take_arrived();
-  send(frame);
+  if (auto drained = take_arrived(); !drained) return drained.error();
+  if (auto sent = send(frame); !sent) return sent.error();
   const TimePoint deadline = link_.clock().now() + timeout;
   const char* name = "reply";
   if (auto c = rc::command_from_byte(frame.cmd)) name = rc::command_name(*c);
   for (;;) {
-    auto incoming = link_.receive(deadline);
+    auto received = receive(deadline);
+    if (!received) return received.error();
+    const std::optional<rc::Frame>& incoming = *received;
     if (!incoming) {
       return Error{ErrorKind::timeout,
                    fmt::format("no {} reply (CMD {}{}) from {} within {} ms", name, frame.cmd,
@@ -257,11 +271,11 @@ Status Client::save_offsets(const std::vector<std::uint8_t>& servos) {
 }
 
 Status Client::set_mode(std::uint8_t servo, ServoMode mode, std::int16_t speed) {
-  if (speed < -kMotorSpeedLimit || speed > kMotorSpeedLimit) {
+  if (speed < -rc::kMotorSpeedMax || speed > rc::kMotorSpeedMax) {
     return Error{ErrorKind::invalid_argument,
                  fmt::format("ServoSpeed: speed {} is out of range (allowed -{}..{}; negative "
                              "turns in reverse, servo mode ignores it)",
-                             speed, kMotorSpeedLimit, kMotorSpeedLimit)};
+                             speed, rc::kMotorSpeedMax, rc::kMotorSpeedMax)};
   }
   auto f = build(rc::ServoSpeed{servo, mode, static_cast<std::uint16_t>(speed)});
   if (!f) return f.error();
@@ -374,23 +388,33 @@ std::optional<GroupEvent> Client::next_event() {
   return e;
 }
 
-std::size_t Client::pump_events(TimePoint deadline) {
+Result<std::size_t> Client::pump_events(TimePoint deadline) {
   std::size_t delivered = 0;
-  while (auto f = link_.receive(deadline)) {
+  for (;;) {
+    auto f = receive(deadline);
+    if (!f) return f.error();
+    if (!*f) return delivered;
     const std::size_t queued = events_.size();
-    if (take(*f)) ++stats_.stale_replies;
+    if (take(**f)) ++stats_.stale_replies;
     delivered += events_.size() - queued;
   }
-  return delivered;
 }
 
-std::optional<GroupEvent> Client::wait_event(TimePoint deadline) {
+Result<GroupEvent> Client::wait_event(TimePoint deadline) {
+  const TimePoint asked_at = link_.clock().now();
   while (events_.empty()) {
-    auto f = link_.receive(deadline);
-    if (!f) break;
-    if (take(*f)) ++stats_.stale_replies;
+    auto f = receive(deadline);
+    if (!f) return f.error();
+    if (!*f) {
+      return Error{ErrorKind::timeout,
+                   fmt::format("no action-group notification from {} within {} ms",
+                               link_.describe(),
+                               std::chrono::duration_cast<std::chrono::milliseconds>(deadline - asked_at)
+                                   .count())};
+    }
+    if (take(**f)) ++stats_.stale_replies;
   }
-  return next_event();
+  return *next_event();
 }
 
 }  // namespace armctl::robot_commands

@@ -5,7 +5,8 @@
 // wait for the frame with the same CMD (and, for GroupDownload, the same sub-command),
 // bounded by reply_timeout. Notifications that arrive meanwhile are queued as GroupEvents
 // (and passed to the callback, if set); nothing is lost. Not thread-safe: one thread uses
-// one Client.
+// one Client. Every call returns its failure (docs/architecture.md "Errors"): a link's I/O
+// failure comes back as an io error, never as an exception.
 #pragma once
 
 #include <cstdint>
@@ -108,9 +109,9 @@ class Client {
   std::optional<GroupEvent> next_event();
   std::size_t pending_events() const { return events_.size(); }
   // Receives (and queues) notifications until `deadline`; returns how many arrived.
-  std::size_t pump_events(TimePoint deadline);
-  // Waits for the next event until `deadline`.
-  std::optional<GroupEvent> wait_event(TimePoint deadline);
+  Result<std::size_t> pump_events(TimePoint deadline);
+  // The next event (queued first); a timeout error if none arrives before `deadline`.
+  Result<GroupEvent> wait_event(TimePoint deadline);
 
   // ---- misc
   rc::ServoRange servos() const { return servos_; }
@@ -127,6 +128,8 @@ class Client {
  private:
   Result<rc::Frame> build(const rc::Request& request) const;
   Status send(const rc::Frame& frame);
+  // The link's next frame; the link's ArmctlError (io) becomes the returned error.
+  Result<std::optional<rc::Frame>> receive(TimePoint deadline);
   // Sends `frame` and waits for the reply with `cmd` (and `sub` for GroupDownload acks).
   Result<rc::BoardMessage> transact(const rc::Frame& frame, std::optional<std::uint8_t> sub,
                                     Duration timeout);
@@ -134,7 +137,7 @@ class Client {
   Result<rc::BoardMessage> transact_read(const rc::Frame& frame);
   // Takes every frame that has already arrived (queues notifications, counts late
   // replies as stale), so a late answer to an earlier request is not taken for the next.
-  void take_arrived();
+  Status take_arrived();
   // Handles one incoming frame; returns the board message if it is a reply.
   std::optional<rc::BoardMessage> take(const rc::Frame& frame);
   void deliver(const rc::GroupNotification& n);

@@ -40,17 +40,20 @@ Result<DeviceUri> parse_device_uri(const std::string& text) {
   return uri;
 }
 
-std::unique_ptr<RcLink> open_link(const DeviceUri& uri) {
+Result<std::unique_ptr<RcLink>> open_link(const DeviceUri& uri) {
   if (uri.kind == DeviceUri::Kind::sim) {
-    throw ArmctlError(ErrorKind::unsupported,
-                      "device \"sim\" (the embedded emulated xArm) is a simulator: open it with "
-                      "devices::open_robot_commands (library armctl_device_registry)");
+    return Error{ErrorKind::unsupported,
+                 "device \"sim\" (the embedded emulated xArm) is a simulator: open it with "
+                 "devices::open_robot_commands (library armctl_device_registry)"};
   }
-  if (uri.kind == DeviceUri::Kind::hid) return HidLink::open_board(uri.target);
-  auto port = transport::SerialPort::open(uri.target, uri.baud);
-  const std::string description =
-      "serial:" + uri.target + " at " + std::to_string(uri.baud) + " baud";
-  return std::make_unique<StreamLink>(std::move(port), description);
+  // Opening is done by constructors, which throw; this is where that becomes a Result.
+  return catch_error([&]() -> Result<std::unique_ptr<RcLink>> {
+    if (uri.kind == DeviceUri::Kind::hid) return {HidLink::open_board(uri.target)};
+    auto port = transport::SerialPort::open(uri.target, uri.baud);
+    const std::string description =
+        "serial:" + uri.target + " at " + std::to_string(uri.baud) + " baud";
+    return {std::make_unique<StreamLink>(std::move(port), description)};
+  });
 }
 
 }  // namespace armctl::robot_commands

@@ -22,7 +22,8 @@ struct DeviceUri {
 // Errors (invalid_argument) name what was wrong and list the accepted forms.
 Result<DeviceUri> parse_device_uri(const std::string& text);
 
-// Opens the link. Throws ArmctlError(io) if the device cannot be opened, (unsupported) for sim.
-std::unique_ptr<RcLink> open_link(const DeviceUri& uri);
+// Opens the link, or an error: io naming the device and why it cannot be opened,
+// unsupported for sim.
+Result<std::unique_ptr<RcLink>> open_link(const DeviceUri& uri);
 
 }  // namespace armctl::robot_commands

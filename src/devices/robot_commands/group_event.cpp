@@ -4,15 +4,6 @@
 
 namespace armctl::robot_commands {
 
-const char* to_string(GroupEventKind kind) {
-  switch (kind) {
-    case GroupEventKind::started: return "started";
-    case GroupEventKind::stopped: return "stopped";
-    case GroupEventKind::finished: return "finished";
-  }
-  return "unknown";
-}
-
 std::string describe(const GroupEvent& e) {
   std::string out = e.group ? fmt::format("group {} {}", *e.group, to_string(e.kind))
                             : fmt::format("group {}", to_string(e.kind));

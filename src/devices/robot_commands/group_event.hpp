@@ -6,10 +6,14 @@
 #include <string>
 
 #include "core/clock.hpp"
+#include "protocol/robot_commands/messages.hpp"
 
 namespace armctl::robot_commands {
 
-enum class GroupEventKind { started, stopped, finished };
+// The protocol's kinds; the SDK tells a board's "finished" CMD 7 from the answer to our
+// GroupStop (see Client), so `stopped` here means a stop this host asked for.
+using rc::GroupEventKind;
+using rc::to_string;
 
 struct GroupEvent {
   GroupEventKind kind = GroupEventKind::started;
@@ -22,7 +26,6 @@ struct GroupEvent {
   bool operator==(const GroupEvent&) const = default;
 };
 
-const char* to_string(GroupEventKind kind);
 // "group 2 finished (3 times)", "group stopped", ...
 std::string describe(const GroupEvent& event);
 

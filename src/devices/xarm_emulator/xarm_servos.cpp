@@ -66,11 +66,12 @@ void XarmServos::advance_to(TimePoint now) {
   now_ = now;
 }
 
-Duration XarmServos::move(std::span<const ServoTarget> targets, Duration time, TimePoint now) {
+Result<Duration> XarmServos::move(std::span<const ServoTarget> targets, Duration time,
+                                  TimePoint now) {
   advance_to(now);
   Duration longest = time;
   for (const ServoTarget& t : targets) {
-    double distance = std::abs(t.position - at(t.servo).position);
+    double distance = std::abs(*t.position - at(t.servo).position);  // never "leave alone" here
     auto fastest =
         std::chrono::duration_cast<Duration>(std::chrono::duration<double>(distance / kMaxSpeed));
     longest = std::max(longest, fastest);
@@ -82,7 +83,7 @@ Duration XarmServos::move(std::span<const ServoTarget> targets, Duration time, T
     s.mode = ServoMode::servo;
     s.motor_speed = 0;
     s.from = s.position;
-    s.target = t.position;
+    s.target = *t.position;
     s.start = now_;
     s.end = now_ + longest;
     if (longest == Duration::zero()) s.position = s.target;
@@ -131,13 +132,13 @@ std::int8_t XarmServos::offset(ServoId servo) const {
   return at(servo).offset;
 }
 
-bool XarmServos::save_offsets(std::span<const ServoId> ids) {
+Status XarmServos::save_offsets(std::span<const ServoId> ids) {
   std::array<std::int8_t, kServoCount> before{};
   for (std::size_t i = 0; i < kServoCount; ++i) before[i] = servos_[i].saved_offset;
   for (ServoId id : ids) at(id).saved_offset = at(id).offset;
-  if (save_settings()) return true;
+  if (save_settings()) return Ok{};
   for (std::size_t i = 0; i < kServoCount; ++i) servos_[i].saved_offset = before[i];
-  return false;
+  return Error{ErrorKind::io, "the servo settings could not be stored in the state directory"};
 }
 
 void XarmServos::set_mode(ServoId servo, ServoMode mode, std::int16_t speed, TimePoint now) {
@@ -150,23 +151,26 @@ void XarmServos::set_mode(ServoId servo, ServoMode mode, std::int16_t speed, Tim
   s.end = now_;
 }
 
-BusServoInfo XarmServos::bus_servo_info() const {
+BusServoInfoReply XarmServos::bus_servo_info() const {
   const Servo& s = at(info_servo_);
-  return BusServoInfo{s.limits, s.offset, position(info_servo_), options_.temperature,
-                      battery_millivolts()};
+  return rc::bus_servo_info_reply(s.limits, s.offset, position(info_servo_),
+                                  options_.temperature, battery_millivolts());
 }
 
-bool XarmServos::write_bus_servo_info(const BusServoLimits& limits) {
-  if (!has_servo(limits.servo)) return false;
+Status XarmServos::write_bus_servo_info(const BusServoLimits& limits) {
+  if (!has_servo(limits.servo)) {
+    return Error{ErrorKind::device,
+                 fmt::format("servo {} is not on this arm (servos 1..{})", limits.servo, kServoCount)};
+  }
   Servo& s = at(limits.servo);
   BusServoLimits before = s.limits;
   ServoId info_before = info_servo_;
   s.limits = limits;
   info_servo_ = limits.servo;
-  if (save_settings()) return true;
+  if (save_settings()) return Ok{};
   s.limits = before;
   info_servo_ = info_before;
-  return false;
+  return Error{ErrorKind::io, "the servo settings could not be stored in the state directory"};
 }
 
 bool XarmServos::save_settings() {

@@ -23,7 +23,7 @@
 
 namespace armctl::xarm {
 
-using rc_board::BusServoInfo;
+using rc_board::BusServoInfoReply;
 using rc_board::BusServoLimits;
 using rc_board::PositionRange;
 using rc_board::ServoId;
@@ -51,17 +51,18 @@ class XarmServos final : public rc_board::ArmBackend {
   std::span<const ServoId> servos() const override { return ids_; }
   PositionRange position_range(ServoId servo) const override;
   void advance_to(TimePoint now) override;
-  Duration move(std::span<const ServoTarget> targets, Duration time, TimePoint now) override;
+  Result<Duration> move(std::span<const ServoTarget> targets, Duration time,
+                        TimePoint now) override;
   std::int16_t position(ServoId servo) const override;
   void torque_off(std::span<const ServoId> servos) override;
   void halt(TimePoint now) override;
   std::uint16_t battery_millivolts() const override;
   void adjust_offset(ServoId servo, std::int8_t offset) override;
-  bool save_offsets(std::span<const ServoId> servos) override;
+  Status save_offsets(std::span<const ServoId> servos) override;
   std::int8_t offset(ServoId servo) const override;
   void set_mode(ServoId servo, ServoMode mode, std::int16_t speed, TimePoint now) override;
-  BusServoInfo bus_servo_info() const override;
-  bool write_bus_servo_info(const BusServoLimits& limits) override;
+  BusServoInfoReply bus_servo_info() const override;
+  Status write_bus_servo_info(const BusServoLimits& limits) override;
 
   // For tests and tools.
   bool torque(ServoId servo) const { return at(servo).torque; }

@@ -7,6 +7,23 @@
 #include "protocol/robot_commands/wire_bytes.hpp"
 
 namespace armctl::rc {
+
+BusServoInfoReply bus_servo_info_reply(const BusServoLimits& l, std::int8_t offset,
+                                       std::int16_t position, std::uint8_t temp,
+                                       std::uint16_t millivolts) {
+  return BusServoInfoReply{l.servo,     l.position_min, l.position_max, l.millivolts_min,
+                           l.millivolts_max, l.temp_max, l.led_status,   l.led_warning,
+                           offset,      position,       temp,           millivolts};
+}
+
+const char* to_string(GroupEventKind kind) {
+  switch (kind) {
+    case GroupEventKind::started: return "started";
+    case GroupEventKind::stopped: return "stopped";
+    case GroupEventKind::finished: return "finished";
+  }
+  return "unknown";
+}
 namespace {
 
 using wire::put_u16;

@@ -46,6 +46,9 @@ constexpr int kBlocksMax = 4;
 constexpr std::uint16_t kSpeedPercentMin = 1;   // 0 % would never finish
 constexpr std::uint16_t kSpeedPercentMax = 1000;
 constexpr std::size_t kMaxServosPerFrame = 19;  // 3 + 3 n <= 60 bytes of DATA
+// ServoSpeed in motor mode: a signed speed -kMotorSpeedMax..kMotorSpeedMax (the LX bus-servo
+// convention; a board ignores a frame outside it, the SDK refuses to send one).
+constexpr int kMotorSpeedMax = 1000;
 
 enum class ServoMode : std::uint8_t { servo = 0, motor = 1 };
 
@@ -137,8 +140,10 @@ struct ServoSpeed {
   std::uint16_t milliseconds = 0;  // the spec's u16 (no range); the SDK sends -1000..1000 as i16
   bool operator==(const ServoSpeed&) const = default;
 };
-struct BusServoInfoWrite {
-  std::uint8_t servo = 0;  // sets the ID of the single servo on the bus
+// The limits and LED settings of a bus servo: what BusServoInfoWrite sends, and what a
+// board keeps (and persists) per servo.
+struct BusServoLimits {
+  std::uint8_t servo = 0;  // BusServoInfoWrite: sets the ID of the single servo on the bus
   std::uint16_t position_min = 0;
   std::uint16_t position_max = 1000;
   std::uint16_t millivolts_min = 4500;
@@ -146,8 +151,9 @@ struct BusServoInfoWrite {
   std::uint16_t temp_max = 85;
   std::uint8_t led_status = 0;   // 0 enable, 1 disable
   std::uint8_t led_warning = 0;  // bit0 overheat, bit1 overvoltage, bit2 overposition
-  bool operator==(const BusServoInfoWrite&) const = default;
+  bool operator==(const BusServoLimits&) const = default;
 };
+using BusServoInfoWrite = BusServoLimits;
 struct BusServoInfoRead {
   bool operator==(const BusServoInfoRead&) const = default;
 };
@@ -205,8 +211,14 @@ struct BusServoInfoReply {
   bool operator==(const BusServoInfoReply&) const = default;
 };
 
+// The reply for a servo with these limits and live readings.
+BusServoInfoReply bus_servo_info_reply(const BusServoLimits& limits, std::int8_t offset,
+                                       std::int16_t position, std::uint8_t temp,
+                                       std::uint16_t millivolts);
+
 // ---------------------------------------------------------------- notifications
 enum class GroupEventKind : std::uint8_t { started, stopped, finished };
+const char* to_string(GroupEventKind kind);  // "started", "stopped", "finished"
 
 // started: CMD 6 `group count` (or no DATA on some boards); stopped: CMD 7 no DATA (some
 // boards also send this when a group finishes: see the SDK); finished: CMD 8 `group count`.
