@@ -31,8 +31,9 @@ class ArmDevice {
   virtual Status stop() = 0;
   // Torque off: the joints can be moved by hand. On: they hold where they stand.
   virtual Status set_torque(bool on) = 0;
-  // Lets `d` pass on the device's clock (a simulated device runs meanwhile).
-  virtual void idle(Duration d) = 0;
+  // Lets `d` pass on the device's clock (a simulated device runs meanwhile); an error if the
+  // link failed meanwhile.
+  virtual Status idle(Duration d) = 0;
 };
 
 }  // namespace armctl::arm

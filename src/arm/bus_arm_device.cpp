@@ -69,7 +69,7 @@ Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Dur
                    [&](std::size_t a, std::size_t b) { return plan.joints[a].start < plan.joints[b].start; });
   for (std::size_t k : order) {
     const TimePoint due = start + plan.joints[k].start - transaction_ * 2;
-    if (due > link_.clock().now()) idle(due - link_.clock().now());
+    if (due > link_.clock().now()) (void)idle(due - link_.clock().now());
     if (auto s = master_.set_speed(inputs[k].joint, static_cast<std::int16_t>(plan.joints[k].percent)); !s)
       return failed(s.error());
     if (auto d = master_.drive_to(inputs[k].joint, clicks[k]); !d) return failed(d.error());
@@ -97,6 +97,9 @@ Status BusArmDevice::set_torque(bool on) {
   return Ok{};
 }
 
-void BusArmDevice::idle(Duration d) { joint_bus::idle(link_, d); }
+Status BusArmDevice::idle(Duration d) {
+  joint_bus::idle(link_, d);
+  return Ok{};
+}
 
 }  // namespace armctl::arm

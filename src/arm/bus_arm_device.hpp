@@ -25,7 +25,7 @@ class BusArmDevice final : public ArmDevice {
   // set_speed 0 to every joint, back to back: each brakes at its own deceleration and holds.
   Status stop() override;
   Status set_torque(bool on) override;  // set_pid_state
-  void idle(Duration d) override;
+  Status idle(Duration d) override;
 
  private:
   Status failed(const Error& e) const;

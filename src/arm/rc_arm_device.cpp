@@ -74,6 +74,10 @@ Status RcArmDevice::set_torque(bool on) {
   return move(hold, Duration{0});
 }
 
-void RcArmDevice::idle(Duration d) { client_.pump_events(client_.clock().now() + d); }
+Status RcArmDevice::idle(Duration d) {
+  auto pumped = client_.pump_events(client_.clock().now() + d);  // notifications are kept
+  if (!pumped) return pumped.error();
+  return Ok{};
+}
 
 }  // namespace armctl::arm

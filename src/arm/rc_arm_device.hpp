@@ -25,7 +25,7 @@ class RcArmDevice final : public ArmDevice {
   // Stops any action group, then holds every servo where it reads now.
   Status stop() override;
   Status set_torque(bool on) override;
-  void idle(Duration d) override;
+  Status idle(Duration d) override;
 
  private:
   robot_commands::Client& client_;
