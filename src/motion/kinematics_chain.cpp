@@ -101,7 +101,13 @@ int Planar2R::solve(const Eigen::Vector2d& d, std::array<Solution, 2>& out, doub
   }
   const double beta = std::atan2(cross2(l1, l2), l1.dot(l2));  // l2's angle from l1 at zero
   const double c = std::clamp((r * r - L1 * L1 - L2 * L2) / (2 * L1 * L2), -1.0, 1.0);
-  const double g = std::acos(c);  // the links' relative angle, this branch
+  double g = std::acos(c);  // the links' relative angle, this branch
+  // Stretched or folded: acos turns a rounding error of c into an angle of ~1e-8 rad, two
+  // solutions that are one. Snapping to the singular angle moves the end by about
+  // L1 L2 g^2 / (2 r) (second order): snap while that stays below a picometre.
+  const double snap = 1e-12 * 2 * std::max(r, 1e-300) / (L1 * L2);
+  if (g * g < snap) g = 0;
+  if ((kPi - g) * (kPi - g) < snap) g = kPi;
   const int count = (g == 0 || g == kPi) ? 1 : 2;
   for (int k = 0; k < count; ++k) {
     const double rel = k == 0 ? g : -g;
