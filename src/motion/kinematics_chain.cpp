@@ -104,30 +104,9 @@ Turn Turn::half_turn() const { return {angle + kPi, -c, -s}; }
 
 Turn turn_of(double angle) { return {angle, std::cos(angle), std::sin(angle)}; }
 
-Turn rotation_turn(const Eigen::Vector3d& w, const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
-  const Eigen::Vector3d xp = x - w * w.dot(x);
-  const Eigen::Vector3d yp = y - w * w.dot(y);
-  const double s = w.dot(xp.cross(yp)), c = xp.dot(yp);
-  const double h = std::sqrt(c * c + s * s);  // values near 1: no overflow for hypot to guard
-  if (!(h > 0)) return Turn{};
-  return Turn{std::atan2(s, c), c / h, s / h};
-}
-
-Eigen::Matrix3d rotation(const Eigen::Vector3d& w, const Turn& t) {
-  // I + s K + (1 - c) K^2, with K^2 = w w^T - I.
-  const double v = 1 - t.c;
-  Eigen::Matrix3d m;
-  m << t.c + v * w.x() * w.x(), v * w.x() * w.y() - t.s * w.z(), v * w.x() * w.z() + t.s * w.y(),
-      v * w.y() * w.x() + t.s * w.z(), t.c + v * w.y() * w.y(), v * w.y() * w.z() - t.s * w.x(),
-      v * w.z() * w.x() - t.s * w.y(), v * w.z() * w.y() + t.s * w.x(), t.c + v * w.z() * w.z();
-  return m;
-}
-
 double distance_to_line(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& w) {
   return (p - a).cross(w).norm();
 }
-
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 Eigen::Vector2d rotate2(const Eigen::Vector2d& v, double angle) {
   const double c = std::cos(angle), s = std::sin(angle);
@@ -192,18 +171,8 @@ std::string limits_text(bool revolute, const PositionLimits& l) {
 
 int fit_into_limits(const ChainModel& chain, std::span<const PositionLimits> limits, const JointVector& near,
                     JointVector& q) {
-  constexpr double kRounding = 1e-9;  // rad or m: a value this close to a limit is at it
   for (int i = 0; i < chain.size(); ++i) {
-    const PositionLimits& l = limits[std::size_t(i)];
-    double v = q[i];
-    if (chain.revolute(i)) {
-      // The turn of v nearest `near`, then the nearest turn that fits if that one does not.
-      if (std::abs(near[i] - v) > kPi) v += 2 * kPi * std::round((near[i] - v) / (2 * kPi));
-      if (v > l.upper + kRounding) v -= 2 * kPi * std::ceil((v - l.upper - kRounding) / (2 * kPi));
-      if (v < l.lower - kRounding) v += 2 * kPi * std::ceil((l.lower - kRounding - v) / (2 * kPi));
-    }
-    if (v > l.upper + kRounding || v < l.lower - kRounding) return i;
-    q[i] = std::clamp(v, l.lower, l.upper);
+    if (!fit_joint(chain, limits, near, i, q[i])) return i;
   }
   return -1;
 }
@@ -306,7 +275,8 @@ Error limits_refused(const ChainModel& chain, std::span<const PositionLimits> li
   std::string all;
   for (const auto& r : refusals) {
     if (!all.empty()) all += "; ";
-    all += fmt::format("elbow {}{}{}: {}", to_string(r.elbow), r.branch.empty() ? "" : ", ", r.branch,
+    const std::string elbow = r.elbow ? fmt::format("elbow {}", to_string(*r.elbow)) : std::string();
+    all += fmt::format("{}{}{}: {}", elbow, elbow.empty() || r.branch.empty() ? "" : ", ", r.branch,
                        limit_miss_text(chain, limits, r.joint, r.value));
   }
   return unreachable("no solution inside the joint limits: " + all);

@@ -4,7 +4,11 @@
 // Internal to src/motion (the families' .cpp files).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <numbers>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -68,12 +72,31 @@ Turn turn_of(double angle);
 
 // The rotation about unit axis w that takes x's component across w onto y's (Paden-Kahan
 // subproblem 1). Zero when either has no such component.
-Turn rotation_turn(const Eigen::Vector3d& w, const Eigen::Vector3d& x, const Eigen::Vector3d& y);
+inline Turn rotation_turn(const Eigen::Vector3d& w, const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
+  const Eigen::Vector3d xp = x - w * w.dot(x);
+  const Eigen::Vector3d yp = y - w * w.dot(y);
+  const double s = w.dot(xp.cross(yp)), c = xp.dot(yp);
+  const double h = std::sqrt(c * c + s * s);  // values near 1: no overflow for hypot to guard
+  if (!(h > 0)) return Turn{};
+  return Turn{std::atan2(s, c), c / h, s / h};
+}
 inline double rotation_angle(const Eigen::Vector3d& w, const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
   return rotation_turn(w, x, y).angle;
 }
+// v turned by `t` about unit axis w (Rodrigues).
+inline Eigen::Vector3d rotated(const Eigen::Vector3d& w, const Turn& t, const Eigen::Vector3d& v) {
+  return t.c * v + t.s * w.cross(v) + (1 - t.c) * w.dot(v) * w;
+}
 // The rotation matrix of `t` about unit axis w (Rodrigues).
-Eigen::Matrix3d rotation(const Eigen::Vector3d& w, const Turn& t);
+inline Eigen::Matrix3d rotation(const Eigen::Vector3d& w, const Turn& t) {
+  // I + s K + (1 - c) K^2, with K^2 = w w^T - I.
+  const double v = 1 - t.c;
+  Eigen::Matrix3d m;
+  m << t.c + v * w.x() * w.x(), v * w.x() * w.y() - t.s * w.z(), v * w.x() * w.z() + t.s * w.y(),
+      v * w.y() * w.x() + t.s * w.z(), t.c + v * w.y() * w.y(), v * w.y() * w.z() - t.s * w.x(),
+      v * w.z() * w.x() - t.s * w.y(), v * w.z() * w.y() + t.s * w.x(), t.c + v * w.z() * w.z();
+  return m;
+}
 
 // Distance of point p from the line through a with unit direction w.
 double distance_to_line(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& w);
@@ -102,7 +125,7 @@ struct Planar2R {
   Turn beta;  // l2's angle from l1
 };
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+inline double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 Eigen::Vector2d rotate2(const Eigen::Vector2d& v, double angle);
 inline Eigen::Vector2d rotate2(const Eigen::Vector2d& v, const Turn& t) {
   return {t.c * v.x() - t.s * v.y(), t.s * v.x() + t.c * v.y()};
@@ -116,12 +139,28 @@ std::string joint_value_text(bool revolute, double value);
 // first joint that stays outside (-1: none); `limit_miss_text` says it for people.
 int fit_into_limits(const ChainModel& chain, std::span<const PositionLimits> limits, const JointVector& near,
                     JointVector& q);
+// The same for joint i alone (false: outside), so that a branch can stop early.
+inline bool fit_joint(const ChainModel& chain, std::span<const PositionLimits> limits, const JointVector& near, int i,
+               double& value) {
+  constexpr double kRounding = 1e-9;  // rad or m: a value this close to a limit is at it
+  const PositionLimits& l = limits[std::size_t(i)];
+  double v = value;
+  if (chain.revolute(i)) {
+    // The turn of v nearest `near`, then the nearest turn that fits if that one does not.
+    if (std::abs(near[i] - v) > std::numbers::pi) v += 2 * std::numbers::pi * std::round((near[i] - v) / (2 * std::numbers::pi));
+    if (v > l.upper + kRounding) v -= 2 * std::numbers::pi * std::ceil((v - l.upper - kRounding) / (2 * std::numbers::pi));
+    if (v < l.lower - kRounding) v += 2 * std::numbers::pi * std::ceil((l.lower - kRounding - v) / (2 * std::numbers::pi));
+  }
+  if (v > l.upper + kRounding || v < l.lower - kRounding) return false;
+  value = std::clamp(v, l.lower, l.upper);
+  return true;
+}
 std::string limit_miss_text(const ChainModel& chain, std::span<const PositionLimits> limits, int joint,
                             double value);
 
 // A branch the limits refused: kept as numbers, put in words only when nothing was found.
 struct Refusal {
-  Elbow elbow;
+  std::optional<Elbow> elbow;
   std::string_view branch;  // the rest of the configuration: "wrist flipped" (static text)
   int joint;
   double value;

@@ -186,14 +186,13 @@ class ScaraKinematics final : public Kinematics {
         q[kWrist2] = w[std::size_t(k)][1];
         q[kWrist3] = w[std::size_t(k)][2];
         const bool flipped = std::remainder(q[kWrist2], 2 * kPi) < 0;
-        JointVector fitted = q;
-        const int miss = detail::fit_into_limits(chain_, limits_, near, fitted);
+        const int miss = detail::fit_into_limits(chain_, limits_, near, q);  // q[miss] stays as it was
         if (miss >= 0) {
           refused[refused_count++] =
               detail::Refusal{elbow, flipped ? "wrist flipped" : "wrist not flipped", miss, q[miss]};
           continue;
         }
-        solutions.push_back(IkSolution{fitted, Configuration{elbow, flipped, std::nullopt}});
+        solutions.push_back(IkSolution{q, Configuration{elbow, flipped, std::nullopt}});
       }
     }
     if (solutions.empty()) {

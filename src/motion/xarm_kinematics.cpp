@@ -156,7 +156,7 @@ class XarmKinematics final : public Kinematics {
     if (radius > 1e-9) {
       const detail::Turn facing = detail::rotation_turn(g_.up, g_.facing, horizontal);
       bases = {Base{facing, false}, Base{facing.half_turn(), true}};
-      const Eigen::Vector3d normal = detail::rotation(g_.up, facing) * g_.pitch;
+      const Eigen::Vector3d normal = facing.c * g_.pitch + facing.s * g_.up.cross(g_.pitch);
       const double out_of_plane = approach.dot(normal);
       if (std::abs(out_of_plane) > kPlaneTolerance || request.nearest_orientation) {
         Eigen::Vector3d in_plane = approach - out_of_plane * normal;
@@ -186,11 +186,20 @@ class XarmKinematics final : public Kinematics {
     double best_shortfall = 0, best_distance = 0;
     bool any_reach = false;
     const Eigen::Matrix3d chain_rotation = r * g_.tool_rotation0.transpose();
+    const Eigen::Vector3d chain_roll = chain_rotation * g_.roll, chain_pitch = chain_rotation * g_.pitch;
     for (const Base& base : bases) {
-      const Eigen::Matrix3d arm_rotation = detail::rotation(g_.up, -base.turn) * chain_rotation;
-      const detail::Turn pitch_sum = detail::rotation_turn(g_.pitch, g_.roll, arm_rotation * g_.roll);
-      const Eigen::Matrix3d rolled = detail::rotation(g_.pitch, -pitch_sum) * arm_rotation;
-      const double roll = detail::rotation_angle(g_.roll, g_.pitch, rolled * g_.pitch);
+      // The base first: half the reaching-back branches end here.
+      double base_angle = base.turn.angle;
+      if (!detail::fit_joint(chain_, limits_, near, kBase, base_angle)) {
+        refused[refused_count++] = detail::Refusal{std::nullopt, base.back ? "reaching back" : "facing the point", kBase,
+                                                   base.turn.angle};
+        continue;
+      }
+      // With the base turned back: Rot(pitch, pitch_sum) Rot(roll, roll) is what is left.
+      const Eigen::Vector3d roll_axis = detail::rotated(g_.up, -base.turn, chain_roll);
+      const Eigen::Vector3d pitch_axis = detail::rotated(g_.up, -base.turn, chain_pitch);
+      const detail::Turn pitch_sum = detail::rotation_turn(g_.pitch, g_.roll, roll_axis);
+      const double roll = detail::rotation_angle(g_.roll, g_.pitch, detail::rotated(g_.pitch, -pitch_sum, pitch_axis));
       const Eigen::Vector3d across = base.turn.c * g_.across + base.turn.s * g_.up.cross(g_.across);
       const Eigen::Vector2d tool(rel.dot(across), height);
       const Eigen::Vector2d wrist = tool - detail::rotate2(g_.wrist_to_tool, pitch_sum);
@@ -216,18 +225,19 @@ class XarmKinematics final : public Kinematics {
         q[kWristRoll] = roll;
         const double side = detail::cross2(reach, p.elbow) * (reach.x() >= 0 ? 1 : -1);
         const Elbow elbow = side > 0 ? Elbow::up : Elbow::down;
-        JointVector fitted = q;
-        const int miss = detail::fit_into_limits(chain_, limits_, near, fitted);
+        const int miss = detail::fit_into_limits(chain_, limits_, near, q);  // q[miss] stays as it was
         if (miss >= 0) {
           refused[refused_count++] = detail::Refusal{elbow, base.back ? "reaching back" : "", miss, q[miss]};
           continue;
         }
-        solutions.push_back(IkSolution{fitted, Configuration{elbow, std::nullopt, base.back}});
+        solutions.push_back(IkSolution{q, Configuration{elbow, std::nullopt, base.back}});
       }
     }
     if (solutions.empty()) {
       if (refused_count == 0) return reach_error(best_distance, best_shortfall);
-      return detail::limits_refused(chain_, limits_, std::span(refused.data(), refused_count));
+      Error e = detail::limits_refused(chain_, limits_, std::span(refused.data(), refused_count));
+      if (any_reach) e.message += "; otherwise " + reach_error(best_distance, best_shortfall).message;
+      return e;
     }
     detail::sort_and_dedupe(chain_, near, solutions);
     return solutions;
