@@ -2,6 +2,7 @@
 // random configurations, FK(IK(p)) = p over random reachable poses (every solution inside
 // the limits, the configuration the pose came from among them), and the Jacobian.
 // ARMCTL_KINEMATICS_SAMPLES sets the sample count (default 100000 per arm and check).
+#include <cstdio>
 #include <cstdlib>
 
 #include <gtest/gtest.h>
@@ -14,6 +15,12 @@ namespace {
 
 using testing::position_error;
 using testing::rotation_error;
+
+std::string sci(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", v);
+  return text;
+}
 
 int samples() {
   if (const char* s = std::getenv("ARMCTL_KINEMATICS_SAMPLES")) return std::max(1, std::atoi(s));
@@ -54,7 +61,8 @@ TEST_P(KinematicsVsKdl, ForwardAgreesWithKdl) {
   }
   EXPECT_LT(worst_position, 1e-9);
   EXPECT_LT(worst_rotation, 1e-9);
-  RecordProperty("worst_position_m", std::to_string(worst_position));
+  RecordProperty("fk_worst_position_m", sci(worst_position));
+  RecordProperty("fk_worst_rotation", sci(worst_rotation));
 }
 
 TEST_P(KinematicsVsKdl, InverseReachesEveryRandomReachablePose) {
@@ -99,7 +107,9 @@ TEST_P(KinematicsVsKdl, InverseReachesEveryRandomReachablePose) {
   EXPECT_EQ(missing_original, 0);
   EXPECT_LT(worst_position, 1e-9);
   EXPECT_LT(worst_rotation, 1e-9);
-  RecordProperty("solutions_per_pose", std::to_string(double(total_solutions) / samples()));
+  RecordProperty("ik_worst_position_m", sci(worst_position));
+  RecordProperty("ik_worst_rotation", sci(worst_rotation));
+  RecordProperty("solutions_per_pose", sci(double(total_solutions) / samples()));
 }
 
 TEST_P(KinematicsVsKdl, SolutionsAreSortedNearestFirst) {
