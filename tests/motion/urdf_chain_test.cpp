@@ -75,6 +75,17 @@ TEST(UrdfChain, RefusesWhatIsNotUrdf) {
   expect_refused("<notarobot name=\"x\"/>", "base_link", "tool", {"URDF not accepted"});
 }
 
+TEST(UrdfChain, RefusesTextThatIsNotUtf8) {
+  // A cut-short UTF-8 character at the end made urdfdom's XML parser read past the text.
+  std::string text = urdf_text("xarm");
+  expect_refused(text + "\xC3", "base_link", "tool", {"byte " + std::to_string(text.size()) + " is not UTF-8"});
+  expect_refused(edited(text, "xArm", "x\xFFrm"), "base_link", "tool", {"is not UTF-8"});
+  expect_refused(edited(text, "xArm", "x\xED\xA0\x80rm"), "base_link", "tool", {"is not UTF-8"});  // a surrogate
+  expect_refused(edited(text, "xArm", std::string("x\0rm", 4)), "base_link", "tool", {"is not UTF-8"});
+  // Real UTF-8 is fine.
+  EXPECT_TRUE(read_urdf_chain(edited(text, "xArm", "x\xC3\xA4rm \xE2\x80\x94 \xF0\x9F\xA4\x96"), "base_link", "tool").ok());
+}
+
 TEST(UrdfChain, RefusesMissingLinks) {
   expect_refused(urdf_text("scara"), "floor", "tool", {"no <link name=\"floor\">", "base link"});
   expect_refused(urdf_text("scara"), "base_link", "hand", {"no <link name=\"hand\">", "tip link"});
