@@ -59,6 +59,12 @@ const char* to_string(Singularity s) {
   return "?";
 }
 
+std::vector<PositionLimits> urdf_position_limits(const UrdfChain& chain) {
+  std::vector<PositionLimits> out;
+  for (const auto& j : chain.joints) out.push_back(PositionLimits{j.limits.lower, j.limits.upper});
+  return out;
+}
+
 Result<std::unique_ptr<Kinematics>> make_kinematics(KinematicFamily family, const UrdfChain& chain,
                                                     std::span<const PositionLimits> limits) {
   switch (family) {

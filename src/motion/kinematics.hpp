@@ -102,6 +102,9 @@ class Kinematics {
   virtual Singularity singularity(const JointVector& joints, double tolerance = 1e-3) const = 0;
 };
 
+// The URDF's <limit> lower..upper of each chain joint, base to tool.
+std::vector<PositionLimits> urdf_position_limits(const UrdfChain& chain);
+
 // The kinematics of `family` for `chain` (from read_urdf_chain), with the chain joints'
 // position limits (one per chain joint, base to tool; the arm file's, which may be tighter
 // than the URDF's). Refused (invalid_config, naming the joint) when the chain does not have

@@ -26,12 +26,13 @@ double degrees(double rad) { return rad * 180 / kPi; }
 // Everything the IK needs, taken from the chain at zero (base frame).
 struct ScaraGeometry {
   Eigen::Vector3d up;                  // joint Z's direction; joints 2..4 turn about it
-  double s_shoulder = 1, s_elbow = 1;  // their axes' signs along `up`
+  double s_shoulder = 1, s_elbow = 1, s_wrist1 = 1;  // their axes' signs along `up`
   Eigen::Vector3d ex, ey;              // the plane across `up`, ex x ey = up
   Eigen::Vector2d shoulder;            // the shoulder axis in that plane
   detail::Planar2R arm;                // shoulder -> elbow -> wrist centre
   Eigen::Vector3d wrist_centre0;       // where the wrist axes meet, at zero
   Eigen::Vector3d w1, w2, w3;          // the wrist axes (UAJ, SKE, SKF) at zero
+  Eigen::Vector3d across3;             // square to w3 (and w2): what SKF's angle turns
   Eigen::Vector3d tool_to_centre;      // tool point to wrist centre, in the tool frame
   Eigen::Matrix3d tool_rotation0;      // the tool frame's rotation at zero
   Eigen::Vector2d flat(const Eigen::Vector3d& p) const { return {p.dot(ex), p.dot(ey)}; }
@@ -61,6 +62,7 @@ Result<ScaraGeometry> scara_geometry(const ChainModel& c) {
   }
   g.s_shoulder = c.axis0(kShoulder).dot(g.up) > 0 ? 1 : -1;
   g.s_elbow = c.axis0(kElbow).dot(g.up) > 0 ? 1 : -1;
+  g.s_wrist1 = c.axis0(kWrist1).dot(g.up) > 0 ? 1 : -1;
   g.w1 = c.axis0(kWrist1);
   g.w2 = c.axis0(kWrist2);
   g.w3 = c.axis0(kWrist3);
@@ -95,8 +97,7 @@ Result<ScaraGeometry> scara_geometry(const ChainModel& c) {
   g.ex = across.normalized();
   g.ey = g.up.cross(g.ex);
   g.shoulder = g.flat(c.point0(kShoulder));
-  g.arm.l1 = g.flat(c.point0(kElbow) - c.point0(kShoulder));
-  g.arm.l2 = g.flat(g.wrist_centre0 - c.point0(kElbow));
+  g.arm = detail::Planar2R(g.flat(c.point0(kElbow) - c.point0(kShoulder)), g.flat(g.wrist_centre0 - c.point0(kElbow)));
   if (g.arm.length1() < 1e-6) {
     return shape_error(fmt::format("joint {}'s axis is on joint {}'s: the upper arm has no length", c.name(kElbow),
                                    c.name(kShoulder)));
@@ -105,6 +106,7 @@ Result<ScaraGeometry> scara_geometry(const ChainModel& c) {
     return shape_error(fmt::format("the wrist centre is on joint {}'s axis: the forearm has no length",
                                    c.name(kElbow)));
   }
+  g.across3 = g.w3.cross(g.w2).normalized();
   g.tool_rotation0 = c.tool0().linear();
   g.tool_to_centre = g.tool_rotation0.transpose() * (g.wrist_centre0 - c.tool0().translation());
   return g;
@@ -152,38 +154,49 @@ class ScaraKinematics final : public Kinematics {
     if (planar_count == 0) return reach_error(reach.norm(), shortfall);
 
     std::vector<IkSolution> solutions;
-    std::vector<std::string> refused;
+    solutions.reserve(4);
+    std::array<detail::Refusal, 4> refused;
+    std::size_t refused_count = 0;
+    const Eigen::Matrix3d chain_rotation = r * g_.tool_rotation0.transpose();
+    std::array<std::array<double, 3>, 2> w{};
+    int wrist_count = 0;
+    bool wrist_aligned = false;
+    double first_turn = 0;
     for (int b = 0; b < planar_count; ++b) {
       const auto& p = planar[std::size_t(b)];
       JointVector q(6);
       q[kZ] = (centre - g_.wrist_centre0).dot(g_.up);
-      q[kShoulder] = g_.s_shoulder * p.a1;
-      q[kElbow] = g_.s_elbow * p.a2;
+      q[kShoulder] = g_.s_shoulder * p.a1.angle;
+      q[kElbow] = g_.s_elbow * p.a2.angle;
       const Elbow elbow = detail::cross2(reach, p.elbow) < 0 ? Elbow::right : Elbow::left;
       // What is left for the wrist once the shoulder and elbow have turned about `up`.
-      const Eigen::Matrix3d wrist =
-          Eigen::AngleAxisd(-(p.a1 + p.a2), g_.up).toRotationMatrix() * r * g_.tool_rotation0.transpose();
-      std::array<std::array<double, 3>, 2> w{};
-      const int wrist_count = solve_wrist(wrist, near[kWrist1], w);
+      // UAJ turns about `up` too, so the other elbow's wrist differs from the first's only
+      // in UAJ, by the difference in shoulder + elbow (unless the wrist is aligned: then UAJ
+      // stays at `near` and the wrist is solved again).
+      if (b == 0 || wrist_aligned) {
+        const Eigen::Matrix3d wrist = detail::rotation(g_.up, -(p.a1 + p.a2)) * chain_rotation;
+        wrist_count = solve_wrist(wrist, near[kWrist1], w, wrist_aligned);
+        first_turn = p.a1.angle + p.a2.angle;
+      } else {
+        const double shift = g_.s_wrist1 * (first_turn - (p.a1.angle + p.a2.angle));
+        for (int k = 0; k < wrist_count; ++k) w[std::size_t(k)][0] += shift;
+      }
       for (int k = 0; k < wrist_count; ++k) {
         q[kWrist1] = w[std::size_t(k)][0];
         q[kWrist2] = w[std::size_t(k)][1];
         q[kWrist3] = w[std::size_t(k)][2];
         const bool flipped = std::remainder(q[kWrist2], 2 * kPi) < 0;
-        JointVector fitted = q;
-        const std::string why = detail::fit_into_limits(chain_, limits_, near, fitted);
-        if (!why.empty()) {
-          refused.push_back(fmt::format("elbow {}, wrist {}: {}", to_string(elbow), flipped ? "flipped" : "not flipped",
-                                        why));
+        const int miss = detail::fit_into_limits(chain_, limits_, near, q);  // q[miss] stays as it was
+        if (miss >= 0) {
+          refused[refused_count++] =
+              detail::Refusal{elbow, flipped ? "wrist flipped" : "wrist not flipped", miss, q[miss]};
           continue;
         }
-        solutions.push_back(IkSolution{fitted, Configuration{elbow, flipped, std::nullopt}});
+        solutions.push_back(IkSolution{q, Configuration{elbow, flipped, std::nullopt}});
       }
     }
     if (solutions.empty()) {
-      std::string all;
-      for (const auto& s : refused) all += (all.empty() ? "" : "; ") + s;
-      return detail::unreachable("no solution inside the joint limits: " + all);
+      return detail::limits_refused(chain_, limits_, std::span(refused.data(), refused_count));
     }
     detail::sort_and_dedupe(chain_, near, solutions);
     return solutions;
@@ -213,7 +226,9 @@ class ScaraKinematics final : public Kinematics {
 
   // exp(w1 a) exp(w2 b) exp(w3 c) = wrist: the two solutions (one when the wrist is
   // aligned: then the first angle stays at `near1` and the last takes up the rest).
-  int solve_wrist(const Eigen::Matrix3d& wrist, double near1, std::array<std::array<double, 3>, 2>& out) const {
+  int solve_wrist(const Eigen::Matrix3d& wrist, double near1, std::array<std::array<double, 3>, 2>& out,
+                  bool& any_aligned) const {
+    any_aligned = false;
     const Eigen::Vector3d& w1 = g_.w1;
     const Eigen::Vector3d& w2 = g_.w2;
     const Eigen::Vector3d& x = g_.w3;
@@ -225,16 +240,15 @@ class ScaraKinematics final : public Kinematics {
     const double gamma2 = (1 - alpha * alpha - beta * beta - 2 * alpha * beta * k) / n.squaredNorm();
     const double gamma = std::sqrt(std::max(0.0, gamma2));
     const int count = gamma > 0 ? 2 : 1;
-    const Eigen::Vector3d y3 = x.cross(w2).normalized();
     for (int s = 0; s < count; ++s) {
       const Eigen::Vector3d z = alpha * w1 + beta * w2 + (s == 0 ? gamma : -gamma) * n;
-      const double b = detail::rotation_angle(w2, x, z);
+      const detail::Turn b = detail::rotation_turn(w2, x, z);
       const bool aligned = (z - w1 * w1.dot(z)).norm() < 1e-9;
-      const double a = aligned ? near1 : detail::rotation_angle(w1, z, y);
-      const Eigen::Matrix3d first =
-          (Eigen::AngleAxisd(a, w1) * Eigen::AngleAxisd(b, w2)).toRotationMatrix().transpose() * wrist;
-      const double c = detail::rotation_angle(x, y3, first * y3);
-      out[std::size_t(s)] = {a, b, c};
+      any_aligned = any_aligned || aligned;
+      const detail::Turn a = aligned ? detail::turn_of(near1) : detail::rotation_turn(w1, z, y);
+      const Eigen::Matrix3d first = (detail::rotation(w1, a) * detail::rotation(w2, b)).transpose() * wrist;
+      const double c = detail::rotation_angle(x, g_.across3, first * g_.across3);
+      out[std::size_t(s)] = {a.angle, b.angle, c};
     }
     return count;
   }

@@ -1,6 +1,7 @@
 #include "motion/urdf_chain.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <mutex>
 #include <sstream>
@@ -42,7 +43,41 @@ std::mutex& parse_mutex() {
   return m;
 }
 
+// Where `text` stops being well-formed UTF-8 (or holds a NUL byte); npos when it does not.
+// urdfdom's XML parser (TinyXML 2.6) trusts UTF-8 lead bytes and reads past the end of a
+// text whose last character is cut short, so such text never reaches it.
+std::size_t bad_utf8_at(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto b = static_cast<unsigned char>(text[i]);
+    if (b == 0) return i;
+    if (b < 0x80) {
+      ++i;
+      continue;
+    }
+    std::size_t n = 0;
+    std::uint32_t cp = 0;
+    if ((b & 0xE0) == 0xC0) n = 1, cp = b & 0x1F;
+    else if ((b & 0xF0) == 0xE0) n = 2, cp = b & 0x0F;
+    else if ((b & 0xF8) == 0xF0) n = 3, cp = b & 0x07;
+    else return i;
+    if (i + n >= text.size()) return i;  // cut short
+    for (std::size_t k = 1; k <= n; ++k) {
+      const auto c = static_cast<unsigned char>(text[i + k]);
+      if ((c & 0xC0) != 0x80) return i;
+      cp = (cp << 6) | (c & 0x3F);
+    }
+    const std::uint32_t min[] = {0, 0x80, 0x800, 0x10000};
+    if (cp < min[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return i;
+    i += n + 1;
+  }
+  return std::string_view::npos;
+}
+
 Result<urdf::ModelInterfaceSharedPtr> parse_model(const std::string& xml) {
+  if (const auto at = bad_utf8_at(xml); at != std::string_view::npos) {
+    return config_error(fmt::format("URDF not accepted: byte {} is not UTF-8 text (a URDF is XML, UTF-8 encoded)", at));
+  }
   std::lock_guard lock(parse_mutex());
   CollectingHandler handler;
   console_bridge::useOutputHandler(&handler);

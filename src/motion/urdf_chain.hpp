@@ -48,7 +48,7 @@ struct UrdfChain {
 };
 
 // The chain from base_link to tip_link of the URDF text. Errors (invalid_config) name the
-// URDF element and what is allowed: not URDF, a missing link, a tip not below the base,
+// URDF element and what is allowed: not URDF (or not UTF-8 text), a missing link, a tip not below the base,
 // joint types other than revolute, prismatic and fixed along the chain, a zero axis,
 // limits that are missing, not finite or empty, mimic joints in the chain.
 Result<UrdfChain> read_urdf_chain(std::string_view urdf_xml, std::string_view base_link,

@@ -93,8 +93,8 @@ Result<XarmGeometry> xarm_geometry(const ChainModel& c) {
   g.across = g.up.cross(g.pitch);
   g.facing = -g.across;
   g.shoulder = g.flat(c.point0(kShoulder));
-  g.arm.l1 = g.flat(c.point0(kElbow)) - g.shoulder;
-  g.arm.l2 = g.flat(c.point0(kWristPitch)) - g.flat(c.point0(kElbow));
+  g.arm = detail::Planar2R(g.flat(c.point0(kElbow)) - g.shoulder,
+                           g.flat(c.point0(kWristPitch)) - g.flat(c.point0(kElbow)));
   if (g.arm.length1() < 1e-6) {
     return shape_error(fmt::format("joint {}'s axis is on joint {}'s: the upper arm has no length", c.name(kElbow),
                                    c.name(kShoulder)));
@@ -148,15 +148,15 @@ class XarmKinematics final : public Kinematics {
 
     // The base angles that put the point (or, over the base axis, the approach) in the arm's plane.
     struct Base {
-      double angle;
+      detail::Turn turn;
       bool back;
     };
     std::array<Base, 2> bases{};
     Eigen::Vector3d approach = r * g_.approach_in_tool;
     if (radius > 1e-9) {
-      const double facing = detail::rotation_angle(g_.up, g_.facing, horizontal);
-      bases = {Base{facing, false}, Base{facing + kPi, true}};
-      const Eigen::Vector3d normal = Eigen::AngleAxisd(facing, g_.up) * g_.pitch;
+      const detail::Turn facing = detail::rotation_turn(g_.up, g_.facing, horizontal);
+      bases = {Base{facing, false}, Base{facing.half_turn(), true}};
+      const Eigen::Vector3d normal = facing.c * g_.pitch + facing.s * g_.up.cross(g_.pitch);
       const double out_of_plane = approach.dot(normal);
       if (std::abs(out_of_plane) > kPlaneTolerance || request.nearest_orientation) {
         Eigen::Vector3d in_plane = approach - out_of_plane * normal;
@@ -172,24 +172,35 @@ class XarmKinematics final : public Kinematics {
         }
         r = nearest;
       }
-      approach = r * g_.approach_in_tool;
     } else {
       const Eigen::Vector3d level = approach - approach.dot(g_.up) * g_.up;
-      const double facing = level.norm() > 1e-9 ? detail::rotation_angle(g_.up, g_.facing, level) : near[kBase];
-      bases = {Base{facing, false}, Base{facing + kPi, true}};
+      const detail::Turn facing = level.norm() > 1e-9 ? detail::rotation_turn(g_.up, g_.facing, level)
+                                                      : detail::turn_of(near[kBase]);
+      bases = {Base{facing, false}, Base{facing.half_turn(), true}};
     }
 
     std::vector<IkSolution> solutions;
-    std::vector<std::string> refused;
+    solutions.reserve(4);
+    std::array<detail::Refusal, 4> refused;
+    std::size_t refused_count = 0;
     double best_shortfall = 0, best_distance = 0;
     bool any_reach = false;
+    const Eigen::Matrix3d chain_rotation = r * g_.tool_rotation0.transpose();
+    const Eigen::Vector3d chain_roll = chain_rotation * g_.roll, chain_pitch = chain_rotation * g_.pitch;
     for (const Base& base : bases) {
-      const Eigen::Matrix3d arm_rotation =
-          Eigen::AngleAxisd(-base.angle, g_.up).toRotationMatrix() * r * g_.tool_rotation0.transpose();
-      const double pitch_sum = detail::rotation_angle(g_.pitch, g_.roll, arm_rotation * g_.roll);
-      const Eigen::Matrix3d rolled = Eigen::AngleAxisd(-pitch_sum, g_.pitch).toRotationMatrix() * arm_rotation;
-      const double roll = detail::rotation_angle(g_.roll, g_.pitch, rolled * g_.pitch);
-      const Eigen::Vector3d across = Eigen::AngleAxisd(base.angle, g_.up) * g_.across;
+      // The base first: half the reaching-back branches end here.
+      double base_angle = base.turn.angle;
+      if (!detail::fit_joint(chain_, limits_, near, kBase, base_angle)) {
+        refused[refused_count++] = detail::Refusal{std::nullopt, base.back ? "reaching back" : "facing the point", kBase,
+                                                   base.turn.angle};
+        continue;
+      }
+      // With the base turned back: Rot(pitch, pitch_sum) Rot(roll, roll) is what is left.
+      const Eigen::Vector3d roll_axis = detail::rotated(g_.up, -base.turn, chain_roll);
+      const Eigen::Vector3d pitch_axis = detail::rotated(g_.up, -base.turn, chain_pitch);
+      const detail::Turn pitch_sum = detail::rotation_turn(g_.pitch, g_.roll, roll_axis);
+      const double roll = detail::rotation_angle(g_.roll, g_.pitch, detail::rotated(g_.pitch, -pitch_sum, pitch_axis));
+      const Eigen::Vector3d across = base.turn.c * g_.across + base.turn.s * g_.up.cross(g_.across);
       const Eigen::Vector2d tool(rel.dot(across), height);
       const Eigen::Vector2d wrist = tool - detail::rotate2(g_.wrist_to_tool, pitch_sum);
       const Eigen::Vector2d reach = wrist - g_.shoulder;
@@ -207,27 +218,26 @@ class XarmKinematics final : public Kinematics {
       for (int b = 0; b < count; ++b) {
         const auto& p = planar[std::size_t(b)];
         JointVector q(5);
-        q[kBase] = base.angle;
-        q[kShoulder] = p.a1;
-        q[kElbow] = g_.s_elbow * p.a2;
-        q[kWristPitch] = g_.s_wrist * (pitch_sum - p.a1 - p.a2);
+        q[kBase] = base.turn.angle;
+        q[kShoulder] = p.a1.angle;
+        q[kElbow] = g_.s_elbow * p.a2.angle;
+        q[kWristPitch] = g_.s_wrist * (pitch_sum.angle - p.a1.angle - p.a2.angle);
         q[kWristRoll] = roll;
         const double side = detail::cross2(reach, p.elbow) * (reach.x() >= 0 ? 1 : -1);
         const Elbow elbow = side > 0 ? Elbow::up : Elbow::down;
-        JointVector fitted = q;
-        const std::string why = detail::fit_into_limits(chain_, limits_, near, fitted);
-        if (!why.empty()) {
-          refused.push_back(fmt::format("elbow {}{}: {}", to_string(elbow), base.back ? ", reaching back" : "", why));
+        const int miss = detail::fit_into_limits(chain_, limits_, near, q);  // q[miss] stays as it was
+        if (miss >= 0) {
+          refused[refused_count++] = detail::Refusal{elbow, base.back ? "reaching back" : "", miss, q[miss]};
           continue;
         }
-        solutions.push_back(IkSolution{fitted, Configuration{elbow, std::nullopt, base.back}});
+        solutions.push_back(IkSolution{q, Configuration{elbow, std::nullopt, base.back}});
       }
     }
     if (solutions.empty()) {
-      if (refused.empty()) return reach_error(best_distance, best_shortfall);
-      std::string all;
-      for (const auto& s : refused) all += (all.empty() ? "" : "; ") + s;
-      return detail::unreachable("no solution inside the joint limits: " + all);
+      if (refused_count == 0) return reach_error(best_distance, best_shortfall);
+      Error e = detail::limits_refused(chain_, limits_, std::span(refused.data(), refused_count));
+      if (any_reach) e.message += "; otherwise " + reach_error(best_distance, best_shortfall).message;
+      return e;
     }
     detail::sort_and_dedupe(chain_, near, solutions);
     return solutions;
