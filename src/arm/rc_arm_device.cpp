@@ -55,23 +55,23 @@ Status RcArmDevice::move(const std::vector<std::optional<double>>& targets, Dura
   return client_.move(out, static_cast<std::uint16_t>(ms));
 }
 
-Status RcArmDevice::stop() {
-  if (auto s = client_.stop_group(); !s) return s;
+Status RcArmDevice::hold_where_they_stand() {
   auto now = read_positions();
   if (!now) return now.error();
   std::vector<std::optional<double>> hold(now->begin(), now->end());
-  for (auto& h : hold) h = std::clamp(*h, 0.0, 1000.0);
+  for (auto& h : hold) h = std::clamp(*h, 0.0, 1000.0);  // read-back can lie past 0..1000
   return move(hold, Duration{0});
+}
+
+Status RcArmDevice::stop() {
+  if (auto s = client_.stop_group(); !s) return s;
+  // A board may stop only group playback on GroupStop: the hold stops a plain move too.
+  return hold_where_they_stand();
 }
 
 Status RcArmDevice::set_torque(bool on) {
   if (!on) return client_.servos_off(servos_);
-  // Any move restores a servo's torque: hold where each stands.
-  auto now = read_positions();
-  if (!now) return now.error();
-  std::vector<std::optional<double>> hold(now->begin(), now->end());
-  for (auto& h : hold) h = std::clamp(*h, 0.0, 1000.0);
-  return move(hold, Duration{0});
+  return hold_where_they_stand();  // any move restores a servo's torque
 }
 
 Status RcArmDevice::idle(Duration d) {

@@ -28,6 +28,8 @@ class RcArmDevice final : public ArmDevice {
   Status idle(Duration d) override;
 
  private:
+  Status hold_where_they_stand();  // a move to where every servo reads, in no time
+
   robot_commands::Client& client_;
   std::vector<std::uint8_t> servos_;  // per joint, in the model's order
 };

@@ -282,4 +282,12 @@ Error limits_refused(const ChainModel& chain, std::span<const PositionLimits> li
   return unreachable("no solution inside the joint limits: " + all);
 }
 
+void ChainKinematics::check_size(const JointVector& joints) const {
+  if (joints.size() != chain_.size()) {
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      fmt::format("{} kinematics: {} joint values given, the chain has {}", to_string(family()),
+                                  joints.size(), chain_.size()));
+  }
+}
+
 }  // namespace armctl::motion::detail

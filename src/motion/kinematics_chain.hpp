@@ -61,6 +61,31 @@ class ChainModel {
   Eigen::Isometry3d tool0_ = Eigen::Isometry3d::Identity();
 };
 
+// What both analytic families share: forward kinematics and the Jacobian straight from the
+// chain, the joint count checked on every call, the chain joints' limits.
+class ChainKinematics : public Kinematics {
+ public:
+  ChainKinematics(ChainModel chain, std::span<const PositionLimits> limits)
+      : chain_(std::move(chain)), limits_(limits.begin(), limits.end()) {}
+  int joint_count() const override { return chain_.size(); }
+  Pose forward(const JointVector& joints) const override {
+    check_size(joints);
+    const Eigen::Isometry3d t = chain_.forward(joints);
+    return Pose{t.translation(), Eigen::Quaterniond(t.linear())};
+  }
+  Jacobian jacobian(const JointVector& joints) const override {
+    check_size(joints);
+    return chain_.jacobian(joints);
+  }
+
+ protected:
+  // Throws ArmctlError(invalid_argument): a caller's bug, not outside input.
+  void check_size(const JointVector& joints) const;
+
+  ChainModel chain_;
+  std::vector<PositionLimits> limits_;
+};
+
 // An angle with its cosine and sine (the solvers pass these on instead of calling sin/cos).
 struct Turn {
   double angle = 0, c = 1, s = 0;

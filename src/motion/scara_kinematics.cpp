@@ -112,25 +112,12 @@ Result<ScaraGeometry> scara_geometry(const ChainModel& c) {
   return g;
 }
 
-class ScaraKinematics final : public Kinematics {
+class ScaraKinematics final : public detail::ChainKinematics {
  public:
   ScaraKinematics(ChainModel chain, ScaraGeometry geometry, std::span<const PositionLimits> limits)
-      : chain_(std::move(chain)), g_(std::move(geometry)), limits_(limits.begin(), limits.end()) {}
+      : detail::ChainKinematics(std::move(chain), limits), g_(std::move(geometry)) {}
 
   KinematicFamily family() const override { return KinematicFamily::scara; }
-  int joint_count() const override { return 6; }
-
-  Pose forward(const JointVector& joints) const override {
-    check_size(joints);
-    const Eigen::Isometry3d t = chain_.forward(joints);
-    return Pose{t.translation(), Eigen::Quaterniond(t.linear())};
-  }
-
-  Jacobian jacobian(const JointVector& joints) const override {
-    check_size(joints);
-    return chain_.jacobian(joints);
-  }
-
   Singularity singularity(const JointVector& joints, double tolerance) const override {
     check_size(joints);
     if (std::abs(g_.arm.bend_sine(g_.s_elbow * joints[kElbow])) < tolerance) return Singularity::arm_stretched;
@@ -203,13 +190,6 @@ class ScaraKinematics final : public Kinematics {
   }
 
  private:
-  void check_size(const JointVector& joints) const {
-    if (joints.size() != 6) {
-      throw ArmctlError(ErrorKind::invalid_argument,
-                        fmt::format("scara kinematics: {} joint values given, the chain has 6", joints.size()));
-    }
-  }
-
   Error reach_error(double distance, double shortfall) const {
     const std::string& axis = chain_.name(kShoulder);
     if (shortfall > 0) {
@@ -253,9 +233,7 @@ class ScaraKinematics final : public Kinematics {
     return count;
   }
 
-  ChainModel chain_;
   ScaraGeometry g_;
-  std::vector<PositionLimits> limits_;
 };
 
 }  // namespace

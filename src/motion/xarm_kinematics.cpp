@@ -109,25 +109,12 @@ Result<XarmGeometry> xarm_geometry(const ChainModel& c) {
   return g;
 }
 
-class XarmKinematics final : public Kinematics {
+class XarmKinematics final : public detail::ChainKinematics {
  public:
   XarmKinematics(ChainModel chain, XarmGeometry geometry, std::span<const PositionLimits> limits)
-      : chain_(std::move(chain)), g_(std::move(geometry)), limits_(limits.begin(), limits.end()) {}
+      : detail::ChainKinematics(std::move(chain), limits), g_(std::move(geometry)) {}
 
   KinematicFamily family() const override { return KinematicFamily::xarm; }
-  int joint_count() const override { return 5; }
-
-  Pose forward(const JointVector& joints) const override {
-    check_size(joints);
-    const Eigen::Isometry3d t = chain_.forward(joints);
-    return Pose{t.translation(), Eigen::Quaterniond(t.linear())};
-  }
-
-  Jacobian jacobian(const JointVector& joints) const override {
-    check_size(joints);
-    return chain_.jacobian(joints);
-  }
-
   Singularity singularity(const JointVector& joints, double tolerance) const override {
     check_size(joints);
     if (std::abs(g_.arm.bend_sine(g_.s_elbow * joints[kElbow])) < tolerance) return Singularity::arm_stretched;
@@ -244,13 +231,6 @@ class XarmKinematics final : public Kinematics {
   }
 
  private:
-  void check_size(const JointVector& joints) const {
-    if (joints.size() != 5) {
-      throw ArmctlError(ErrorKind::invalid_argument,
-                        fmt::format("xarm kinematics: {} joint values given, the chain has 5", joints.size()));
-    }
-  }
-
   Error reach_error(double distance, double shortfall) const {
     const std::string& wrist = chain_.name(kWristPitch);
     const std::string& shoulder = chain_.name(kShoulder);
@@ -266,9 +246,7 @@ class XarmKinematics final : public Kinematics {
         shoulder, -shortfall * 1000, wrist, distance * 1000, std::abs(g_.arm.length1() - g_.arm.length2()) * 1000));
   }
 
-  ChainModel chain_;
   XarmGeometry g_;
-  std::vector<PositionLimits> limits_;
 };
 
 }  // namespace
