@@ -250,7 +250,7 @@ Result<JointState> Arm::wait(const WaitOptions& options) {
     if (device_->clock().now() >= deadline)
       return Error{ErrorKind::timeout,
                    fmt::format("not arrived after {:.1f} s: {}", std::chrono::duration<double>(options.timeout).count(), late)};
-    if (auto idled = device_->idle(options.poll); !idled) return idled.error();
+    if (auto idled = device_->idle(options.poll.value_or(device_->poll_interval())); !idled) return idled.error();
   }
 }
 

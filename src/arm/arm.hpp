@@ -45,7 +45,8 @@ struct CartesianGoal {
 
 struct WaitOptions {
   Duration timeout = std::chrono::seconds(10);
-  Duration poll = std::chrono::milliseconds(50);  // between position reads
+  // Between position reads; empty: the device's own (500 ms on HID, 200 ms on serial).
+  std::optional<Duration> poll;
   double angle_tolerance = 0.0087;  // rad (0.5 deg: two xArm servo units)
   double length_tolerance = 0.0005;  // m
 };

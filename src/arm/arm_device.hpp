@@ -22,6 +22,10 @@ class ArmDevice {
   virtual std::string description() const = 0;
   virtual const Clock& clock() const = 0;
 
+  // How often a closed-loop wait may read positions (HID boards: slowly; reads during a
+  // move make a real xArm's servos jerk).
+  virtual Duration poll_interval() const = 0;
+
   // Where every joint stands, in device units.
   virtual Result<std::vector<double>> read_positions() = 0;
   // Moves the joints that have a target so that all of them arrive `duration` from now

@@ -18,6 +18,7 @@ class RcArmDevice final : public ArmDevice {
   Protocol protocol() const override { return Protocol::robot_commands; }
   std::string description() const override;
   const Clock& clock() const override { return client_.clock(); }
+  Duration poll_interval() const override { return client_.options().poll_interval; }
   Result<std::vector<double>> read_positions() override;
   // The board moves every servo linearly over the time (0..30 s); positions round to whole
   // servo units.
