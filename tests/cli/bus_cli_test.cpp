@@ -82,6 +82,10 @@ TEST(BusCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
       {"bus frobnicate", "unknown command 'frobnicate'; allowed: ping"},
       {"bus drive-to 3", "value"},
       {"bus", "a command is required; allowed: ping"},
+      {"bus ping 1 ''", "VALUE '' is not allowed"},
+      {"bus wait --timeout nan", "--timeout must be above 0"},
+      {"bus wait --timeout 0", "--timeout must be above 0"},
+      {"sim scara --link /tmp/armctl-x --state-dir /tmp/armctl-y", "belong to --robot-commands"},
   };
   for (const auto& [args, want] : cases) {
     const CliRun r = armctl(args);

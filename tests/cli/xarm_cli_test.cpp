@@ -350,7 +350,10 @@ TEST_F(XarmCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
       {"group download " + mixed, mixed + ":2:"},
       {"group download " + (dir_ / "missing.grp").string(), "missing.grp"},
       {"group run 255", "group 255 is out of range (allowed 0..254)"},
-      {"group erase 300", "allowed 0..255"},
+      {"group erase 300", "allowed 0..254"},
+      {"group erase 255", "group (0..254 or all) 255 is out of range"},  // "all" is the word
+      {"group speed 255 50", "group (0..254 or all) 255 is out of range"},
+      {"mode 1 motor", "mode motor needs --speed"},
       {"group speed 1 0", "speed percentage 0 is out of range (allowed 1..1000)"},
       {"offset adjust 1 200", "offset 200 is out of range (allowed -125..125)"},
       {"mode 1 motor --speed 5000", "--speed 5000 is out of range (allowed -1000..1000)"},

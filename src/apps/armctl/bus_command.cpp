@@ -1,6 +1,7 @@
 // armctl bus [--device URI] [--json] [--retries N] [--verify] COMMAND [JOINT|all] [VALUE]
 // The joint bus master from the command line: one command to one joint or to all joints.
 #include <chrono>
+#include <cmath>
 #include <charconv>
 #include <functional>
 #include <memory>
@@ -31,6 +32,7 @@ struct BusArgs {
   bool verify = false;
   std::string joint = "all";
   std::string value;
+  bool value_given = false;  // VALUE typed, even empty ('' is refused, not the default)
   double wait_timeout_s = 30.0;
 };
 
@@ -116,7 +118,7 @@ class BusRunner {
 
     if (command == "ping") {
       const auto v = static_cast<std::int16_t>(
-          args_.value.empty() ? 1234 : parse_integer(command, "VALUE", args_.value, -32768, 32767, "the ping value"));
+          !args_.value_given ? 1234 : parse_integer(command, "VALUE", args_.value, -32768, 32767, "the ping value"));
       each([&](int j) {
         return row_from<std::int16_t>(j, m.ping(j, v), [](BusRow& row, const std::int16_t& echo) {
           row.value = echo;
@@ -252,12 +254,25 @@ void add_bus_command(CLI::App& app) {
     CLI::App* sub = bus->add_subcommand(spec.name, spec.help);
     sub->add_option("joint", args->joint, "Joint 1..7 or all (default all)");
     if (!spec.value_help.empty()) {
-      auto* opt = sub->add_option("value", args->value, spec.value_help);
+      auto* opt = sub->add_option("value", args->value, spec.value_help)->each([args](const std::string&) {
+        args->value_given = true;
+      });
       if (!spec.value_optional) opt->required();
     }
     if (spec.name == "wait") {
       sub->add_option("--timeout", args->wait_timeout_s, "Give up after this many seconds (default 30)")
-          ->check(CLI::Range(0.0, 3600.0));
+          ->check(CLI::Validator(
+              [](std::string& text) -> std::string {
+                double v = 0;
+                try {
+                  v = std::stod(text);
+                } catch (const std::exception&) {
+                  return "--timeout '" + text + "' is not a number of seconds";
+                }
+                if (!std::isfinite(v) || v <= 0 || v > 3600) return "--timeout must be above 0 up to 3600 s, not " + text;
+                return "";
+              },
+              "SECONDS in (0, 3600]"));
     }
     const std::string name = spec.name;
     sub->callback([args, name] { run_bus(*args, name); });

@@ -36,6 +36,10 @@ void run_sim_scara(const SimArgs& args) {
     throw ArmctlError(ErrorKind::invalid_argument,
                       fmt::format("--baud {} is not a standard rate ({})", args.baud, transport::standard_bauds_text()));
   }
+  if (!args.robot_commands && (!args.serve.link.empty() || !args.serve.state_dir.empty()))
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      "--link and --state-dir belong to --robot-commands (the arm controller's pty); without it "
+                      "the simulated arm serves the joint bus on --listen");
   joint_sim::ArmConfig config = args.config.empty() ? joint_sim::load_arm_config(joint_sim::default_arm_config_path())
                                                     : joint_sim::load_arm_config(args.config);
   if (args.baud != 0) config.baud = args.baud;

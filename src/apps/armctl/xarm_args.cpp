@@ -69,9 +69,10 @@ robot_commands::ServoTarget parse_target(const std::string& text, int servo_coun
 }
 
 std::uint8_t parse_group(const std::string& text, bool all_allowed) {
+  // "all" is the word for every group; its wire value 255 is not a group number, so typing
+  // 255 is refused like any other number outside 0..254 (help, message and code agree).
   if (all_allowed && text == "all") return 255;
-  return static_cast<std::uint8_t>(
-      parse_int(text, 0, all_allowed ? 255 : 254, all_allowed ? "group (or all)" : "group"));
+  return static_cast<std::uint8_t>(parse_int(text, 0, 254, all_allowed ? "group (0..254 or all)" : "group"));
 }
 
 }  // namespace armctl::cli::xarm_args

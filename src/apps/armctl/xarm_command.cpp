@@ -38,6 +38,7 @@ struct XarmCli {
   std::string offset;
   std::string mode;
   std::string speed = "0";
+  bool speed_given = false;
   std::string file;
   std::string group;
   int times = 1;
@@ -188,8 +189,11 @@ void run_mode(const XarmCli& o) {
   else if (o.mode == "motor") mode = rc::ServoMode::motor;
   else throw ArmctlError(ErrorKind::invalid_argument,
                          fmt::format("mode \"{}\" is not allowed (servo or motor)", o.mode));
-  auto s = open(o);
+  if (mode == rc::ServoMode::motor && !o.speed_given)
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      "mode motor needs --speed -1000..1000 (negative = reverse; 0 holds the motor still)");
   const auto speed = xarm_args::parse_int(o.speed, -1000, 1000, "--speed");
+  auto s = open(o);
   check(s->client->set_mode(servo, mode, static_cast<std::int16_t>(speed)));
   done(o, fmt::format("servo {} in {} mode", servo, o.mode));
 }
@@ -432,7 +436,8 @@ void add_xarm_command(CLI::App& app) {
   auto* mode = x->add_subcommand("mode", "Servo or motor mode (ServoSpeed)");
   mode->add_option("servo", o->servo)->required();
   mode->add_option("mode", o->mode, "servo | motor")->required();
-  mode->add_option("--speed", o->speed, "Motor-mode speed -1000..1000 (negative = reverse)");
+  mode->add_option("--speed", o->speed, "Motor-mode speed -1000..1000 (negative = reverse); required for motor")
+      ->each([o](const std::string&) { o->speed_given = true; });
   mode->callback([o] { run_mode(*o); });
 
   auto* info = x->add_subcommand("info", "Bus-servo info (one servo on the bus)");
