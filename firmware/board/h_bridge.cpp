@@ -59,11 +59,11 @@ void h_bridge_apply(int16_t duty, bool enable) {
   const uint8_t magnitude = clamp_magnitude(duty);
   // Release the side that must be off before driving the other: never both HIGH.
   if (duty >= 0) {
-    set_right(0);
-    set_left(magnitude);
-  } else {
     set_left(0);
     set_right(magnitude);
+  } else {
+    set_right(0);
+    set_left(magnitude);
   }
   PORTD |= _BV(bridge_enable_bit);
 }
