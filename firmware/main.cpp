@@ -146,8 +146,8 @@ int main() {
     ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
       firmware::apply_encoder_edges();
       // The board's own counters, for read_diagnostic (a few loads and stores).
-      const armctl::joint_bus::BoardDiagnostics d = {board::bus_events_lost(), firmware::encoder_edges_lost,
-                                                     board::uart_rx_errors(), board_reset_cause};
+      const armctl::joint_bus::BoardDiagnostics d = {
+          {board::bus_events_lost(), firmware::encoder_edges_lost, board::uart_rx_errors(), board_reset_cause}};
       joint.set_board_diagnostics(d);
     }
     handle_bus_events();

@@ -18,7 +18,7 @@ namespace joint_bus {
 
 class FaultMonitor {
  public:
-  static const uint16_t runaway_ticks = 200;        // 200 ms at the 1 kHz tick
+  static const uint16_t runaway_ticks = 100;        // 100 ms at the 1 kHz tick
   static const int16_t runaway_min_clicks = 64;     // moved against the drive over that time
   static const int16_t following_limit_clicks = 4096;
   static const uint16_t following_ticks = 500;      // 500 ms

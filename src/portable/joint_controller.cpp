@@ -46,7 +46,7 @@ void JointController::on_rx_byte(uint8_t byte, uint32_t now_us) {
   // Legacy dialect: set_speed is 0..255 (scaled to 0..100 %, rounded up so that only 0
   // stops), STATUS is the command code on success, 93 unknown, 94 bad data.
   if (legacy && command == cmd_set_speed) {
-    data = (data < 0 || data > 255) ? int16_t{-1}
+    data = static_cast<uint16_t>(data) > 255u ? int16_t{-1}
                                     : static_cast<int16_t>((static_cast<uint16_t>(data) * 100u + 255u) >> 8);
   }
   const CommandResult r = execute(command, data);
@@ -61,21 +61,25 @@ void JointController::on_rx_byte(uint8_t byte, uint32_t now_us) {
 
 DriveOutput JointController::control_compute() {
   if (!configured_) return DriveOutput{0, false};
-  if (faults_ != 0) {
-    loop_.hold(sampled_count_);
-    last_output_ = DriveOutput{0, false};
-    return last_output_;
-  }
-  DriveOutput out = loop_.tick(sampled_count_);
-  if (!out.enable) {
-    monitor_.reset();
-  } else {
-    const int16_t raised = monitor_.tick(loop_.error_q8(), static_cast<uint16_t>(sampled_count_), out.duty);
-    if (raised != 0) {
-      faults_ = static_cast<int16_t>(faults_ | raised);
-      loop_.hold(sampled_count_);
-      out = DriveOutput{0, false};
+  DriveOutput out = DriveOutput{0, false};
+  if (faults_ == 0) {
+    out = loop_.tick(sampled_count_);
+    if (!out.enable) {
+      monitor_.reset();
+    } else {
+      const int16_t raised = monitor_.tick(loop_.error_q8(), static_cast<uint16_t>(sampled_count_), out.duty);
+      if (raised != 0) {
+        faults_ = raised;
+        brake_ticks_ = fault_brake_ticks;
+      }
     }
+  }
+  if (faults_ != 0) {
+    // Brake first (bridge on, both inputs LOW: the motor's own back-EMF stops it within
+    // tens of ms), then bridge off: a heavy joint left to coast would roll on for seconds.
+    loop_.hold(sampled_count_);
+    out = DriveOutput{0, brake_ticks_ != 0};
+    if (brake_ticks_ != 0) --brake_ticks_;
   }
   if (options_.polarity == MotorPolarity::reversed) out.duty = static_cast<int16_t>(-out.duty);
   last_output_ = out;
@@ -83,18 +87,14 @@ DriveOutput JointController::control_compute() {
 }
 
 int16_t JointController::diagnostic(int16_t index) const {
-  // Counters go out as unsigned 16-bit words (they saturate, never wrap).
+  // Counters go out as unsigned 16-bit words (they saturate, never wrap; the decoder's
+  // count stops at 65535, the board's at 255).
   if (index == diagnostic_faults) return faults_;
-  if (index == diagnostic_encoder_edges_lost) {
-    const uint16_t errors = decoder_.errors();
-    const uint16_t sum = static_cast<uint16_t>(errors + board_.encoder_edges_lost);
-    return static_cast<int16_t>(sum < errors ? 0xFFFFu : sum);
-  }
-  if (index == diagnostic_bus_events_lost) return board_.bus_events_lost;
-  if (index == diagnostic_uart_errors) return board_.uart_errors;
-  if (index == diagnostic_reset_cause) return board_.reset_cause;
   if (index == diagnostic_abandoned) return static_cast<int16_t>(transaction_.abandoned_count());
-  return settings_;
+  if (index == diagnostic_settings) return settings_;
+  uint16_t word = board_.counts[index - diagnostic_bus_events_lost];
+  if (index == diagnostic_encoder_edges_lost) word = static_cast<uint16_t>(word + decoder_.errors());
+  return static_cast<int16_t>(word);
 }
 
 CommandResult JointController::execute(int16_t command, int16_t data) {
@@ -139,10 +139,12 @@ CommandResult JointController::execute(int16_t command, int16_t data) {
       return success(command);
     case cmd_check_target_reached: return answer(command, loop_.target_reached(count) ? 1 : 0);
     case cmd_read_diagnostic:
-      if (data < 0 || data >= diagnostic_count) return kBadData;
+      // Refused, it still sends its RESPONSE word (0): the transaction keeps its shape.
+      if (data < 0 || data >= diagnostic_count) return CommandResult{status_bad_data, true, 0};
       return answer(command, diagnostic(data));
     case cmd_clear_faults:
       faults_ = 0;
+      brake_ticks_ = 0;
       monitor_.reset();
       loop_.hold(count);  // holds where it is: clearing never moves the joint
       return success(command);

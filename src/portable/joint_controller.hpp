@@ -67,10 +67,9 @@ struct CommandResult {
 // Counters only the board layer sees (read over the bus with read_diagnostic). The
 // simulator leaves them 0 (reset cause: power-on).
 struct BoardDiagnostics {
-  uint8_t bus_events_lost;
-  uint8_t encoder_edges_lost;
-  uint8_t uart_errors;
-  uint8_t reset_cause;
+  // In the order of their read_diagnostic indices 1..4 (diagnostic_bus_events_lost ...):
+  // bus events lost, encoder edges lost, UART errors, reset cause (MCUSR bits).
+  uint8_t counts[4];
 };
 
 class JointController {
@@ -119,9 +118,12 @@ class JointController {
   // set_speed takes 0..100 (%); in legacy-master mode the bus hands it the legacy 0..255.
   CommandResult execute(int16_t command, int16_t data);
 
-  // Faults (fault_* bits): raised by the control step, held with the bridge off (the target
-  // follows the position, drive commands are refused with 940) until clear_faults.
+  // Faults (fault_* bits): raised by the control step, held until clear_faults: the bridge
+  // brakes for fault_brake_ticks (enabled, duty 0: motor shorted), then is off; the target
+  // follows the position and drive commands are refused with 940.
+  static const uint16_t fault_brake_ticks = 500;
   int16_t faults() const { return faults_; }
+  bool braking() const { return faults_ != 0 && brake_ticks_ != 0; }
   // The board's own counters, for read_diagnostic (call from the main loop, masked).
   void set_board_diagnostics(const BoardDiagnostics& d) { board_ = d; }
   const JointOptions& options() const { return options_; }
@@ -152,11 +154,12 @@ class JointController {
   PositionLoop loop_;
   BusTransaction transaction_;
   FaultMonitor monitor_;
-  BoardDiagnostics board_ = BoardDiagnostics{0, 0, 0, 0};
+  BoardDiagnostics board_ = BoardDiagnostics{{0, 0, 0, 0}};
   uint8_t settings_ = 0;  // setting_* bits, from the options
   JointOptions options_;
   DriveOutput last_output_ = DriveOutput{0, false};
   int16_t faults_ = 0;
+  uint16_t brake_ticks_ = 0;  // ticks of braking left after a fault was raised
   uint8_t joint_number_ = 0;
   bool configured_ = false;
 };

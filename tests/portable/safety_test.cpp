@@ -88,19 +88,26 @@ TEST_F(SafetyTest, WrongPolarityIsARunawayThatSwitchesTheBridgeOffAndHoldsIt) {
     first_fault_ms = -1;
     start(swapped ? MotorPolarity::original : MotorPolarity::reversed, swapped);
     cmd(cmd_drive_to, 3000);
-    const int at = run_ms(1000);
+    while (joint.faults() == 0 && elapsed_ms < 1000) run_ms(1);
+    const int at = first_fault_ms;
     ASSERT_GE(at, 0) << "no fault: the joint ran away unnoticed";
     EXPECT_EQ(joint.faults(), fault_runaway);
-    // Stated time: 200 ms of a growing error while driving against it (plus the first
-    // ticks before the error grows).
+    // Stated time: runaway_ticks (100 ms) of a growing error while driving against it (plus
+    // the first ticks before the error grows).
     EXPECT_GE(at, static_cast<int>(FaultMonitor::runaway_ticks));
     EXPECT_LE(at, static_cast<int>(FaultMonitor::runaway_ticks) + 50);
     EXPECT_LT(plant.position(), 0) << "it did run the wrong way";
-    EXPECT_FALSE(joint.last_output().enable);
+    // First it brakes (bridge on, duty 0), then the bridge is off.
+    EXPECT_TRUE(joint.braking());
     EXPECT_EQ(joint.last_output().duty, 0);
+    run_ms(JointController::fault_brake_ticks);
+    EXPECT_FALSE(joint.braking());
+    EXPECT_FALSE(joint.last_output().enable);
+    EXPECT_LT(std::abs(plant.speed_cps()), 1.0) << "braked to rest";
     // Held: the bridge stays off, drive commands are refused and change nothing.
     run_ms(500);
     EXPECT_FALSE(joint.last_output().enable);
+    EXPECT_EQ(joint.last_output().duty, 0);
     EXPECT_EQ(cmd(cmd_drive_to, 100).status, status_bad_data);
     EXPECT_EQ(cmd(cmd_drive_dist, 100).status, status_bad_data);
     EXPECT_EQ(cmd(cmd_drive_dist_max, 100).status, status_bad_data);
@@ -159,6 +166,7 @@ TEST_F(SafetyTest, AStalledJointRaisesTheFollowingErrorFault) {
   const int at = run_ms(3000);
   ASSERT_GE(at, 0);
   EXPECT_EQ(joint.faults(), fault_following_error);
+  run_ms(JointController::fault_brake_ticks);
   EXPECT_FALSE(joint.last_output().enable);
   // A stall below the limit (3000 clicks) raises nothing however long it lasts.
   plant = MotorPlant();
@@ -185,7 +193,7 @@ TEST_F(SafetyTest, ReadDiagnosticReportsEveryWordAndRefusesOthers) {
   o.legacy_master = true;
   ASSERT_TRUE(joint.begin(4, default_tuning(), 9600, o));
   joint.init_encoder(false, false);
-  joint.set_board_diagnostics(BoardDiagnostics{3, 5, 7, 8});
+  joint.set_board_diagnostics(BoardDiagnostics{{3, 5, 7, 8}});
   joint.on_encoder_edge(true, true);  // both channels at once: one decoder error
   const auto word = [&](int16_t i) { return cmd(cmd_read_diagnostic, i).response; };
   EXPECT_EQ(word(diagnostic_faults), 0);
