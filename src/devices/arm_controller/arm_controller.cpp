@@ -20,7 +20,9 @@ using motion::plan_synchronized_move;
 
 namespace {
 
-constexpr int kFaultLogEvery = 100;  // a dead joint fails every sweep: log changes, then 1 in 100
+constexpr int kFaultLogEvery = 100;
+// A joint off its plan without a fault is asked again this often.
+constexpr Duration kFaultRecheck = std::chrono::milliseconds(250);  // a dead joint fails every sweep: log changes, then 1 in 100
 
 }  // namespace
 
@@ -372,10 +374,13 @@ void ArmController::examine_faults(Joint& j, const std::string& why) {
   const joint_bus::JointDiagnostics& diag = read.value();
   const joint_bus::JointDiagnostics* d = &diag;
   ++stats_.fault_reads;
+  j.status.faults_read_at = clock().now();
+  const bool first = j.status.diagnostics.empty() || j.status.joint_faults != d->faults;
   j.status.joint_faults = d->faults;
   j.status.diagnostics = joint_bus::describe(diag);
   if (d->runaway()) ++stats_.runaway_faults;
   if (d->following_error()) ++stats_.following_error_faults;
+  if (!first) return;  // re-read, nothing new: no second log line
   log(fmt::format("joint {} {} stopped following ({}); {}{}", n, j.config.name, why, j.status.diagnostics,
                   d->faults != 0 ? fmt::format("; fix the cause, then `armctl bus clear-faults {}`", n)
                                  : std::string()));
@@ -439,12 +444,19 @@ void ArmController::poll_next() {
         const int planned = j.model.setpoint_clicks_at(j.status.read_at);
         const int gap = std::abs(*r - planned);
         stats_.max_model_gap = std::max(stats_.max_model_gap, double(gap));
+        const std::string why = fmt::format("at {} clicks, planned {}", *r, planned);
         if (gap > kNotFollowingClicks && j.status.following) {
           j.status.following = false;
           ++stats_.following_lost;
-          examine_faults(j, fmt::format("at {} clicks, planned {}", *r, planned));
+          examine_faults(j, why);
+        } else if (gap > kNotFollowingClicks && j.status.joint_faults == 0 &&
+                   clock().now() - j.status.faults_read_at >= kFaultRecheck) {
+          // Still off its plan with no fault yet: the joint may raise one any moment (its
+          // runaway and following-error checks take 100 and 500 ms).
+          examine_faults(j, why);
         } else if (gap <= kNotFollowingClicks / 2) {
           j.status.following = true;
+          j.status.joint_faults = 0;  // following again: its faults were cleared
         }
       }
     } else {

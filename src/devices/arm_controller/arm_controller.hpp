@@ -58,6 +58,7 @@ struct JointStatus {
   bool following = true;
   std::uint16_t joint_faults = 0;  // fault_* bits it reported then (0: none, or not read)
   std::string diagnostics;         // its diagnostic line then ("" if never read)
+  TimePoint faults_read_at{};      // when they were last read
 };
 
 // How far (clicks) a polled position may be from the planned setpoint before the joint
@@ -75,8 +76,9 @@ struct ControllerStats {
   std::uint64_t moving_starts = 0; // joints planned from a moving start (motion model)
   double max_model_gap = 0;        // clicks: largest |polled position - modelled setpoint|
   std::uint64_t following_lost = 0;       // a joint stopped following its plan
-  std::uint64_t fault_reads = 0;          // ... and its faults were read
-  std::uint64_t runaway_faults = 0;       // joints that reported a runaway fault then
+  std::uint64_t fault_reads = 0;          // ... and its faults were read (again every 250 ms
+                                          // while it is off its plan without a fault)
+  std::uint64_t runaway_faults = 0;       // reads that found a runaway fault
   std::uint64_t following_error_faults = 0;
 };
 
