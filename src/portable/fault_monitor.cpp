@@ -5,7 +5,7 @@
 namespace armctl {
 namespace joint_bus {
 
-__attribute__((noinline)) int16_t FaultMonitor::tick(int32_t error_q8, uint16_t count16, int16_t duty) {
+int16_t FaultMonitor::tick(int32_t error_q8, uint16_t count16, int16_t duty) {
   // The rest is 16-bit on purpose (flash and cycles on the AVR): the error magnitude
   // saturates at 32767 clicks, far beyond both limits, and the motion of one run is taken
   // from the low 16 bits of the count, exact for runs under 32768 clicks (0.1 s at the
