@@ -330,3 +330,22 @@ TEST(UnknownCommands, StandardUnknownCodeAnsweredOddlyIsNotCalledSuccess1090) {
 
 }  // namespace
 }  // namespace armctl::test
+
+namespace armctl::test {
+namespace {
+
+TEST(UnknownCommands, TheOriginalFirmwareAnswersReadDiagnosticAsUnknownWithoutAResponse) {
+  // Original firmware: no RESPONSE for a code it does not know, STATUS 93 after select falls.
+  ScriptedLink link({{true, "select 4 high"}, {false, "04 00"}, {true, "28 00 00 00"}, {true, "select 4 low"},
+                     {false, "5D 00"}});
+  MasterOptions o;
+  o.dialect = Dialect::legacy;
+  BusMaster master(link, o);
+  auto r = master.read_diagnostics(4);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.failure().kind, FailureKind::unknown_command);
+  EXPECT_NE(r.failure().message.find("does not know read_diagnostic"), std::string::npos) << r.failure().message;
+}
+
+}  // namespace
+}  // namespace armctl::test

@@ -149,6 +149,21 @@ Result<std::optional<std::int16_t>> BusMaster::exchange(int joint, std::int16_t 
   std::optional<std::int16_t> response;
   if (shape.returns_value) {
     response = read_word(link_.clock().now() + word_timeout());
+    if (!response && command == cmd_read_diagnostic) {
+      // A joint running the original firmware sends no RESPONSE to this extension: it
+      // waits for select to fall and answers "unknown" (93). Listen for that STATUS so
+      // the caller learns why, instead of a bare 990.
+      link_.set_select(joint, false);
+      const std::optional<std::int16_t> status = read_word(link_.clock().now() + word_timeout());
+      settle();
+      if (status && interpret_status(options_.dialect, command, *status) == StatusMeaning::unknown_command) {
+        return fail(FailureKind::unknown_command, Stage::status, joint, true, status,
+                    fmt::format("joint {}: command {} unknown to the joint (STATUS {}, 930)", joint, command,
+                                *status));
+      }
+      return fail(FailureKind::no_answer, Stage::response, joint, true, status,
+                  fmt::format("joint {}: no RESPONSE to {} within {:.2f} ms (990)", joint, name, timeout_ms));
+    }
     if (!response) {
       abandon(joint);
       return fail(FailureKind::no_answer, Stage::response, joint, true, std::nullopt,
