@@ -41,7 +41,7 @@ void expect_settles(ArmBackend& arm, BusMaster& m, int joint) {
   arm.advance(milliseconds(1500));
   EXPECT_NEAR(arm.hardware(joint).position_clicks(), 1500, 8);
   const auto d = m.read_diagnostics(joint);
-  ASSERT_TRUE(d.ok()) << d.failure().message;
+  ASSERT_TRUE(d.ok()) << d.error().message;
   EXPECT_EQ(d.value().faults, 0);
 }
 
@@ -70,7 +70,7 @@ TEST_P(HilSafety, WrongPolarityRunsAwayIsStoppedAndReportedUntilCleared) {
   ASSERT_TRUE(m.drive_to(3, 1500).ok());
   arm->advance(milliseconds(600));
   const auto d = m.read_diagnostics(3);
-  ASSERT_TRUE(d.ok()) << d.failure().message;
+  ASSERT_TRUE(d.ok()) << d.error().message;
   EXPECT_TRUE(d.value().runaway());
   const double stopped_at = arm->hardware(3).position_clicks();
   EXPECT_LT(stopped_at, -64) << "it ran the wrong way";
@@ -81,7 +81,7 @@ TEST_P(HilSafety, WrongPolarityRunsAwayIsStoppedAndReportedUntilCleared) {
   std::printf("runaway: %.0f clicks at 600 ms, at rest at %.0f\n", stopped_at, arm->hardware(3).position_clicks());
   const auto refused = m.drive_to(3, 0);
   ASSERT_FALSE(refused.ok());
-  EXPECT_EQ(refused.failure().kind, joint_bus::FailureKind::bad_data);
+  EXPECT_EQ(joint_bus::joint_failure(refused.error())->kind, joint_bus::FailureKind::bad_data);
   if (auto* avr = dynamic_cast<AvrBackend*>(arm.get())) {
     EXPECT_FALSE(avr->arm().joint(3).chip().bridge_inputs().enable);
   }
@@ -102,7 +102,7 @@ TEST_P(HilSafety, DiagnosticsReportResetCauseAndSettings) {
   auto arm = make(s);
   BusMaster m(arm->link());
   const auto d = m.read_diagnostics(5);
-  ASSERT_TRUE(d.ok()) << d.failure().message;
+  ASSERT_TRUE(d.ok()) << d.error().message;
   EXPECT_EQ(d.value().reset_cause & 1u, 1u) << "power-on reset";
   EXPECT_EQ(d.value().uart_errors, 0);
   EXPECT_EQ(d.value().bus_events_lost, 0);
@@ -110,7 +110,7 @@ TEST_P(HilSafety, DiagnosticsReportResetCauseAndSettings) {
   EXPECT_FALSE(d.value().legacy_master());
   const auto bad = m.read_diagnostic(5, joint_bus::diagnostic_count);
   ASSERT_FALSE(bad.ok());
-  EXPECT_EQ(bad.failure().code(), 940);
+  EXPECT_EQ(joint_bus::joint_failure(bad.error())->code(), 940);
 }
 
 // The original Mega master, on the simulated bus.
@@ -208,7 +208,7 @@ TEST_P(HilSafety, LegacyMasterModeAnswersTheOriginalMasterForEveryCommand) {
   EXPECT_TRUE(m.set_speed(j, 200).ok());
   const auto unknown = m.transact(j, 93, std::nullopt);
   ASSERT_FALSE(unknown.ok()) << "93 answered with 93 is unknown, not success";
-  EXPECT_EQ(unknown.failure().kind, FailureKind::unknown_command);
+  EXPECT_EQ(joint_bus::joint_failure(unknown.error())->kind, FailureKind::unknown_command);
   EXPECT_TRUE(m.read_diagnostics(j).value().legacy_master());
 }
 

@@ -313,7 +313,7 @@ TEST(UnknownCommands, LegacyNinetyThreeAnsweredWithNinetyThreeIsUnknownNotSucces
   BusMaster master(link, o);
   auto r = master.transact(1, 93, std::nullopt);
   ASSERT_FALSE(r.ok()) << "STATUS 93 after command 93 read as success";
-  EXPECT_EQ(r.failure().kind, FailureKind::unknown_command);
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::unknown_command);
 }
 
 TEST(UnknownCommands, StandardUnknownCodeAnsweredOddlyIsNotCalledSuccess1090) {
@@ -322,10 +322,10 @@ TEST(UnknownCommands, StandardUnknownCodeAnsweredOddlyIsNotCalledSuccess1090) {
   BusMaster master(link);
   auto r = master.transact(1, 99, std::nullopt);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().kind, FailureKind::bad_status);
-  EXPECT_EQ(r.failure().message.find("success (1090)"), std::string::npos) << r.failure().message;
-  EXPECT_NE(r.failure().message.find("no joint knows"), std::string::npos) << r.failure().message;
-  EXPECT_NE(r.failure().message.find("930"), std::string::npos) << r.failure().message;
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::bad_status);
+  EXPECT_EQ(r.error().message.find("success (1090)"), std::string::npos) << r.error().message;
+  EXPECT_NE(r.error().message.find("no joint knows"), std::string::npos) << r.error().message;
+  EXPECT_NE(r.error().message.find("930"), std::string::npos) << r.error().message;
 }
 
 }  // namespace
@@ -343,8 +343,8 @@ TEST(UnknownCommands, TheOriginalFirmwareAnswersReadDiagnosticAsUnknownWithoutAR
   BusMaster master(link, o);
   auto r = master.read_diagnostics(4);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.failure().kind, FailureKind::unknown_command);
-  EXPECT_NE(r.failure().message.find("does not know read_diagnostic"), std::string::npos) << r.failure().message;
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::unknown_command);
+  EXPECT_NE(r.error().message.find("does not know read_diagnostic"), std::string::npos) << r.error().message;
 }
 
 }  // namespace
