@@ -6,7 +6,7 @@
 
 namespace firmware {
 
-extern armctl::joint_bus::JointController joint;
+extern armctl::joint_bus::JointController& joint;
 // Set once the controller is configured; the timer ISR runs the loop only then.
 extern volatile bool joint_running;
 

@@ -13,6 +13,7 @@
 #include "board/encoder_input.hpp"
 #include "board/h_bridge.hpp"
 #include "board/joint_config.hpp"
+#include "board/reset_cause.hpp"
 #include "board/select_line.hpp"
 #include "board/status_led.hpp"
 #include "board/tick_timer.hpp"
@@ -20,7 +21,17 @@
 #include "joint_firmware.hpp"
 
 namespace firmware {
-armctl::joint_bus::JointController joint;
+namespace {
+// Zero-filled at start-up (.bss) instead of copied from flash (.data): begin() sets every
+// field whose power-up value is not zero, and the ~150 bytes of initial values are flash
+// the image does not have to spare (docs/firmware.md "Budgets").
+union JointStorage {
+  JointStorage() {}
+  armctl::joint_bus::JointController joint;
+};
+JointStorage storage;
+}  // namespace
+armctl::joint_bus::JointController& joint = storage.joint;
 volatile bool joint_running = false;
 }  // namespace firmware
 
@@ -103,14 +114,14 @@ int main() {
   wdt_enable(watchdog_timeout);
   set_sleep_mode(SLEEP_MODE_IDLE);  // timers and UART keep running in idle sleep
 
-  board::JointConfig config = {0, 9600};
+  board::JointConfig config = {0, 9600, armctl::joint_bus::JointOptions()};
   if (!board::joint_config_load(&config)) {
     sei();
     run_unconfigured();
   }
   armctl::joint_bus::JointTuning tuning = board::joint_tuning_load();
   if (tuning.pwm_max > 255 || tuning.pwm_max < 1) tuning.pwm_max = 255;  // 8-bit timers
-  if (!joint.begin(config.joint_number, tuning, config.baud)) {
+  if (!joint.begin(config.joint_number, tuning, config.baud, config.options)) {
     sei();
     run_unconfigured();
   }
@@ -132,7 +143,13 @@ int main() {
       fed_at_ms = ms;
       wdt_reset();
     }
-    ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { firmware::apply_encoder_edges(); }
+    ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+      firmware::apply_encoder_edges();
+      // The board's own counters, for read_diagnostic (a few loads and stores).
+      const armctl::joint_bus::BoardDiagnostics d = {
+          {board::bus_events_lost(), firmware::encoder_edges_lost, board::uart_rx_errors(), board_reset_cause}};
+      joint.set_board_diagnostics(d);
+    }
     handle_bus_events();
     service_tx();
     bool in_transaction;

@@ -38,7 +38,9 @@ using armctl::joint_bus::JointController;
 static JointController joint;
 volatile uint8_t sink;
 int main() {
-  joint.begin(3, armctl::joint_bus::default_tuning(), 9600);
+  armctl::joint_bus::JointOptions options;
+  options.legacy_master = sink & 1;
+  joint.begin(3, armctl::joint_bus::default_tuning(), 9600, options);
   joint.init_encoder(false, false);
   uint32_t now = 0;
   for (;;) {
@@ -54,6 +56,8 @@ int main() {
     out = joint.control_compute();
     sink = static_cast<uint8_t>(out.duty);
     sink = static_cast<uint8_t>(joint.position() + joint.target() + joint.loop_enabled());
+    joint.set_board_diagnostics(armctl::joint_bus::BoardDiagnostics{{sink, sink, sink, sink}});
+    sink = static_cast<uint8_t>(joint.faults() + joint.diagnostic(sink & 7));
     now += 1000;
   }
 }

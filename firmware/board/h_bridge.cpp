@@ -39,10 +39,7 @@ void h_bridge_safe_state() {
 }
 
 void h_bridge_begin() {
-  PORTB &= static_cast<uint8_t>(~(_BV(bridge_left_bit) | _BV(bridge_right_bit)));
-  DDRB |= _BV(bridge_left_bit) | _BV(bridge_right_bit);
-  PORTD &= static_cast<uint8_t>(~_BV(bridge_enable_bit));
-  DDRD |= _BV(bridge_enable_bit);
+  // The pins are already outputs driven LOW: board_safe_state_at_reset (.init3) did that.
   OCR1B = 0;
   OCR2A = 0;
   TCCR1A = _BV(WGM10);  // phase-correct PWM, 8-bit (TOP 0xFF), outputs disconnected
@@ -59,11 +56,11 @@ void h_bridge_apply(int16_t duty, bool enable) {
   const uint8_t magnitude = clamp_magnitude(duty);
   // Release the side that must be off before driving the other: never both HIGH.
   if (duty >= 0) {
-    set_right(0);
-    set_left(magnitude);
-  } else {
     set_left(0);
     set_right(magnitude);
+  } else {
+    set_right(0);
+    set_left(magnitude);
   }
   PORTD |= _BV(bridge_enable_bit);
 }

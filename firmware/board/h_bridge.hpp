@@ -10,8 +10,9 @@
 namespace board {
 
 void h_bridge_begin();  // safe state: enable LOW, both inputs LOW
-// duty > 0 drives left, duty < 0 drives right, |duty| is clamped to 255. enable = false is
-// the safe state whatever duty says.
+// duty > 0 drives right (D11), duty < 0 drives left (D10), |duty| is clamped to 255 (the
+// controller has already applied the motor polarity). enable = false is the safe state
+// whatever duty says.
 void h_bridge_apply(int16_t duty, bool enable);
 void h_bridge_safe_state();
 

@@ -1,6 +1,7 @@
 #include "board/joint_config.hpp"
 
 #include <avr/eeprom.h>
+#include <string.h>
 
 #include "portable/joint_bus_codes.hpp"
 
@@ -9,13 +10,16 @@ namespace board {
 bool joint_config_decode(const uint8_t bytes[joint_config_size], JointConfig* config) {
   const uint8_t magic = bytes[0];
   const uint8_t joint = bytes[1];
-  const uint8_t baud_code = bytes[2];
+  const uint8_t settings = bytes[2];
   if (magic != joint_config_magic) return false;
-  if (bytes[3] != joint_config_check(joint, baud_code)) return false;
+  if (bytes[3] != joint_config_check(joint, settings)) return false;
   if (joint < 1 || joint > armctl::joint_bus::max_joints) return false;
-  if (baud_code > 1) return false;
+  if (settings > (joint_setting_fast_baud | joint_setting_reversed | joint_setting_legacy_master)) return false;
   config->joint_number = joint;
-  config->baud = baud_code == 0 ? 9600UL : 115200UL;
+  config->baud = (settings & joint_setting_fast_baud) ? 115200UL : 9600UL;
+  config->options.polarity = (settings & joint_setting_reversed) ? armctl::joint_bus::MotorPolarity::reversed
+                                                                 : armctl::joint_bus::MotorPolarity::original;
+  config->options.legacy_master = (settings & joint_setting_legacy_master) != 0;
   return true;
 }
 
@@ -28,13 +32,11 @@ bool joint_config_load(JointConfig* config) {
 }  // namespace board
 
 namespace board {
-namespace {
-int32_t read_int32_le(const uint8_t* p) {
-  return static_cast<int32_t>(static_cast<uint32_t>(p[0]) | (static_cast<uint32_t>(p[1]) << 8) |
-                              (static_cast<uint32_t>(p[2]) << 16) |
-                              (static_cast<uint32_t>(p[3]) << 24));
-}
-}  // namespace
+
+// The block's fields are the JointTuning fields in order, little-endian like the AVR, and
+// avr-gcc aligns nothing: the struct is the block, copied in one go (no per-field code).
+static_assert(sizeof(armctl::joint_bus::JointTuning) == joint_tuning_size - 2,
+              "JointTuning must be the 22 bytes of the EEPROM tuning block");
 
 bool joint_tuning_decode(const uint8_t bytes[joint_tuning_size],
                          armctl::joint_bus::JointTuning* tuning) {
@@ -42,13 +44,7 @@ bool joint_tuning_decode(const uint8_t bytes[joint_tuning_size],
   uint8_t check = 0xFF;
   for (uint8_t i = 0; i < joint_tuning_size - 1; ++i) check ^= bytes[i];
   if (check != bytes[joint_tuning_size - 1]) return false;
-  tuning->max_speed_cps = read_int32_le(bytes + 1);
-  tuning->max_accel_cps2 = read_int32_le(bytes + 5);
-  tuning->kp_q8 = read_int32_le(bytes + 9);
-  tuning->ki_q8 = read_int32_le(bytes + 13);
-  tuning->kd_q8 = read_int32_le(bytes + 17);
-  tuning->pwm_max = static_cast<int16_t>(static_cast<uint16_t>(bytes[21]) |
-                                         (static_cast<uint16_t>(bytes[22]) << 8));
+  memcpy(tuning, bytes + 1, sizeof *tuning);
   // begin() clamps every field into its documented range, so no further check is needed.
   return true;
 }

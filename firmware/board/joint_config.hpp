@@ -3,8 +3,12 @@
 // Layout (4 bytes at EEPROM address 0; tools/joint_eeprom.sh writes it):
 //   0: magic       0x4A ('J')
 //   1: joint       1..7
-//   2: baud code   0 = 9600, 1 = 115200
-//   3: check       0xFF ^ magic ^ joint ^ baud code
+//   2: settings    bit 0: baud (0 = 9600, 1 = 115200)
+//                  bit 1: motor polarity (0 = original wiring, 1 = reversed; MOTOR_POLARITY=)
+//                  bit 2: legacy-master mode (DIALECT=legacy); other bits must be 0
+//   3: check       0xFF ^ magic ^ joint ^ settings
+// (Images written before the polarity and dialect bits existed read as original polarity,
+// standard master.)
 // An erased EEPROM (all 0xFF) or any mismatch is "not configured": the joint never answers
 // on the bus, keeps the motor off and blinks the LED (docs/firmware.md).
 //
@@ -18,6 +22,7 @@
 
 #include <stdint.h>
 
+#include "portable/joint_options.hpp"
 #include "portable/joint_tuning.hpp"
 
 namespace board {
@@ -25,13 +30,18 @@ namespace board {
 const uint8_t joint_config_magic = 0x4A;
 const uint8_t joint_config_size = 4;
 
+const uint8_t joint_setting_fast_baud = 1;
+const uint8_t joint_setting_reversed = 2;
+const uint8_t joint_setting_legacy_master = 4;
+
 struct JointConfig {
   uint8_t joint_number;  // 1..7
   uint32_t baud;         // 9600 or 115200
+  armctl::joint_bus::JointOptions options;
 };
 
-inline uint8_t joint_config_check(uint8_t joint, uint8_t baud_code) {
-  return static_cast<uint8_t>(0xFF ^ joint_config_magic ^ joint ^ baud_code);
+inline uint8_t joint_config_check(uint8_t joint, uint8_t settings) {
+  return static_cast<uint8_t>(0xFF ^ joint_config_magic ^ joint ^ settings);
 }
 
 // Decodes the 4 bytes; false if they are not a valid configuration.

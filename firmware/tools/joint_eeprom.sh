@@ -1,12 +1,29 @@
 #!/usr/bin/env bash
 # Writes the EEPROM image (Intel HEX) that makes a joint controller board joint N.
-#   tools/joint_eeprom.sh JOINT [BAUD] OUTPUT.eep
-# JOINT 1..7; BAUD 9600 (default) or 115200. Layout: firmware/board/joint_config.hpp
-# (magic 0x4A, joint, baud code, check = 0xFF ^ magic ^ joint ^ baud code).
+#   tools/joint_eeprom.sh [--polarity original|reversed] [--dialect standard|legacy] \
+#                         JOINT [BAUD] OUTPUT.eep
+# JOINT 1..7; BAUD 9600 (default) or 115200; --polarity: original (default, the wiring of
+# the original firmware: D11 counts the encoder up) or reversed; --dialect: standard
+# (default) or legacy (legacy-master mode, for a bus still run by the original Mega master).
+# Layout: firmware/board/joint_config.hpp (magic 0x4A, joint, settings = baud bit 0 |
+# reversed bit 1 | legacy bit 2, check = 0xFF ^ magic ^ joint ^ settings).
 # Program it with: avrdude -p atmega328p -c arduino -P PORT -b 115200 -U eeprom:w:OUTPUT.eep:i
 set -euo pipefail
 
-usage() { echo "usage: $0 JOINT(1..7) [BAUD(9600|115200)] OUTPUT.eep" >&2; exit 2; }
+usage() {
+  echo "usage: $0 [--polarity original|reversed] [--dialect standard|legacy] JOINT(1..7) [BAUD(9600|115200)] OUTPUT.eep" >&2
+  exit 2
+}
+polarity=original
+dialect=standard
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --polarity) [ $# -ge 2 ] || usage; polarity=$2; shift 2 ;;
+    --dialect) [ $# -ge 2 ] || usage; dialect=$2; shift 2 ;;
+    --*) echo "$0: unknown option '$1' (allowed: --polarity, --dialect)" >&2; exit 2 ;;
+    *) break ;;
+  esac
+done
 [ $# -eq 2 ] || [ $# -eq 3 ] || usage
 joint=$1
 if [ $# -eq 3 ]; then baud=$2; out=$3; else baud=9600; out=$2; fi
@@ -19,6 +36,17 @@ case "$baud" in
   9600) code=0 ;;
   115200) code=1 ;;
   *) echo "$0: baud '$baud' is not allowed: use 9600 or 115200" >&2; exit 2 ;;
+esac
+
+case "$polarity" in
+  original) ;;
+  reversed) code=$(( code | 2 )) ;;
+  *) echo "$0: motor polarity '$polarity' is not allowed: use original or reversed" >&2; exit 2 ;;
+esac
+case "$dialect" in
+  standard) ;;
+  legacy) code=$(( code | 4 )) ;;
+  *) echo "$0: dialect '$dialect' is not allowed: use standard or legacy" >&2; exit 2 ;;
 esac
 
 magic=$((0x4A))
@@ -35,4 +63,4 @@ done
 line+=$(printf '%02X' $(( (0x100 - (sum & 0xFF)) & 0xFF )))
 mkdir -p "$(dirname "$out")"
 printf '%s\n:00000001FF\n' "$line" > "$out"
-echo "$out: joint $joint at $baud baud"
+echo "$out: joint $joint at $baud baud, motor polarity $polarity, $dialect master"

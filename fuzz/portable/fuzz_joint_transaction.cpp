@@ -4,7 +4,10 @@
 //    just fell is still going out, and never longer than the timeout after select fell;
 //  - next_tx_byte() never hands out a byte while TX is not enabled;
 //  - the H-bridge duty stays within +-pwm_max and is 0 whenever the bridge is disabled;
-// and at the end the joint must serve a clean ping transaction byte-exactly.
+//  - a joint holding a fault drives nothing (duty 0: braking, then bridge off);
+// and at the end the joint must serve a clean ping transaction byte-exactly. Byte 1 also
+// picks legacy-master mode (after select falls it may still receive COMMAND/DATA, each
+// byte within the timeout of the last) and the motor polarity.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -25,8 +28,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size < 2) return 0;
   const std::uint8_t number = static_cast<std::uint8_t>(1 + data[0] % 7);
   const std::uint32_t baud = (data[1] & 1) ? 115200u : 9600u;
+  armctl::joint_bus::JointOptions options;
+  options.legacy_master = (data[1] & 2) != 0;
+  options.polarity = (data[1] & 4) ? armctl::joint_bus::MotorPolarity::reversed
+                                   : armctl::joint_bus::MotorPolarity::original;
   JointController joint;
-  check(joint.begin(number, armctl::joint_bus::default_tuning(), baud));
+  check(joint.begin(number, armctl::joint_bus::default_tuning(), baud, options));
   joint.init_encoder(false, false);
   const std::uint32_t timeout = joint.transaction().timeout_us();
 
@@ -74,13 +81,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const DriveOutput out = joint.control_tick();
         check(out.duty <= 255 && out.duty >= -255);
         check(out.enable || out.duty == 0);
+        if (joint.faults() != 0) check(out.duty == 0);  // braking (enabled) or off
         break;
       }
     }
     joint.poll(now);
     if (joint.tx_enabled()) {
       check(selected || joint.transaction().state() == BusTransaction::State::send_status);
-      if (!selected) check(now - fell_at <= timeout + 31u * (timeout / 8u));
+      // Legacy: up to 4 more bytes (COMMAND, DATA), each within the timeout of the last.
+      const std::uint32_t windows = options.legacy_master ? 5u : 1u;
+      if (!selected) check(now - fell_at <= windows * (timeout + 31u * (timeout / 8u)));
     }
     check(joint.transaction().selected() == selected);
   }
@@ -103,7 +113,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   joint.on_select(false, ++now);
   n = 0;
   while (n < 8 && joint.next_tx_byte(&out[n])) ++n;
-  check(n == 2 && out[0] == 100 && out[1] == 0);
+  check(n == 2 && out[0] == (options.legacy_master ? 0 : 100) && out[1] == 0);
   check(!joint.tx_enabled());
   return 0;
 }

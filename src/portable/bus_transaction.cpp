@@ -10,8 +10,11 @@ const uint32_t kTimeoutBitTimes = 80;       // 4 words of 2 bytes x 10 bits (8N1
 const uint32_t kTurnaroundUs = 2000;        // the master's own reaction time
 }  // namespace
 
-void BusTransaction::begin(int16_t ready_word, uint32_t baud) {
+void BusTransaction::begin(int16_t ready_word, uint32_t baud, bool legacy_master,
+                           int16_t unknown_status) {
   ready_word_ = ready_word;
+  legacy_master_ = legacy_master;
+  unknown_status_ = unknown_status;
   if (baud == 0) baud = 1;
   timeout_us_ = kTimeoutBitTimes * UINT32_C(1000000) / baud + kTurnaroundUs;
   state_ = State::idle;
@@ -72,11 +75,13 @@ void BusTransaction::on_select(bool high, uint32_t now_us) {
     arm_timeout(now_us);
     return;
   }
-  if (state_ == State::done && tx_count_ == 0) {
-    queue_word(status_);
-    state_ = State::send_status;
+  if (state_ == State::done && (tx_count_ == 0 || legacy_master_)) {
+    // (Legacy master: it lowers select without waiting for RESPONSE; STATUS follows it.)
+    send_status(now_us);
+  } else if (legacy_master_ && (state_ == State::await_command || state_ == State::await_data)) {
+    // The legacy master lowers select while COMMAND/DATA are still on the wire: keep
+    // receiving; the timeout still ends a transaction whose bytes never come.
     arm_timeout(now_us);
-    if (completed_count_ != 0xFFFFu) ++completed_count_;
   } else if (state_ == State::abandoned) {
     state_ = State::idle;
   } else if (state_ != State::idle && state_ != State::send_status) {
@@ -85,10 +90,20 @@ void BusTransaction::on_select(bool high, uint32_t now_us) {
   }
 }
 
-BusTransaction::Event BusTransaction::on_rx_byte(uint8_t byte, uint32_t now_us) {
-  // Bytes while not selected belong to other joints' transactions; bytes after the command
-  // is complete are surplus: both are ignored.
-  if (!selected_ || (state_ != State::await_command && state_ != State::await_data)) {
+void BusTransaction::send_status(uint32_t now_us) {
+  queue_word(status_);
+  state_ = State::send_status;
+  arm_timeout(now_us);
+  if (completed_count_ != 0xFFFFu) ++completed_count_;
+}
+
+// Out of line: inlined into the board's main loop it costs flash the firmware needs.
+__attribute__((noinline)) BusTransaction::Event BusTransaction::on_rx_byte(uint8_t byte, uint32_t now_us) {
+  // Bytes while not selected belong to other joints' transactions (except, for a legacy
+  // master, the rest of ours after select fell); bytes after the command is complete are
+  // surplus: both are ignored.
+  if (state_ != State::await_command && state_ != State::await_data) return Event::none;
+  if (!selected_ && !legacy_master_) {
     return Event::none;
   }
   if (timed_out(now_us)) {
@@ -111,7 +126,7 @@ BusTransaction::Event BusTransaction::on_rx_byte(uint8_t byte, uint32_t now_us) 
       // No DATA is read for an unknown command: the next bytes are not ours to interpret.
       state_ = State::done;
       timeout_armed_ = false;
-      complete(status_unknown_command, false, 0);
+      complete(unknown_status_, false, 0);
       return Event::none;
     }
     if (shape.takes_data) {
@@ -131,6 +146,8 @@ void BusTransaction::complete(int16_t status, bool has_response, int16_t respons
   if (state_ != State::done) return;
   status_ = status;
   if (has_response) queue_word(response);
+  // Select already fell (legacy master): RESPONSE and STATUS go out now, back to back.
+  if (!selected_) send_status(last_activity_us_);
 }
 
 void BusTransaction::poll(uint32_t now_us) {

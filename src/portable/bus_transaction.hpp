@@ -17,6 +17,13 @@
 //                                                              (no STATUS)
 //   Abandoned       (TX released, bytes ignored) --select falls--> Idle
 //   SendStatus/Idle --select rises--> AwaitCommand (a pending STATUS is dropped)
+//
+// Legacy-master mode (begin(..., legacy_master = true); the original Mega master lowers
+// select while COMMAND and DATA are still on the wire):
+//   AwaitCommand/AwaitData --select falls--> same state, still receiving (the timeout
+//                                            bounds it), then command_ready
+//   command complete after select fell --complete()--> SendStatus (RESPONSE, then STATUS)
+//   Done with RESPONSE unsent --select falls--> SendStatus (rest of RESPONSE, then STATUS)
 #pragma once
 
 #include <stdint.h>
@@ -37,7 +44,9 @@ class BusTransaction {
   enum class Event : uint8_t { none, command_ready };
 
   // joint_number goes out as READY; baud sets the timeout (see timeout_us()).
-  void begin(int16_t ready_word, uint32_t baud);
+  // unknown_status: the STATUS for an unknown command (930, or 93 in the legacy dialect).
+  void begin(int16_t ready_word, uint32_t baud, bool legacy_master = false,
+             int16_t unknown_status = 930);
 
   void on_select(bool high, uint32_t now_us);
   Event on_rx_byte(uint8_t byte, uint32_t now_us);
@@ -65,6 +74,7 @@ class BusTransaction {
 
  private:
   void abandon();
+  void send_status(uint32_t now_us);
   void queue_word(int16_t word);
   void arm_timeout(uint32_t now_us);
   bool timed_out(uint32_t now_us) const;
@@ -75,13 +85,15 @@ class BusTransaction {
   int16_t command_ = 0;
   int16_t data_ = 0;
   int16_t status_ = 0;
-  uint8_t tx_[4] = {0, 0, 0, 0};  // at most READY+RESPONSE or one STATUS are pending
+  int16_t unknown_status_ = 930;
+  uint8_t tx_[4] = {0, 0, 0, 0};  // at most READY+RESPONSE or RESPONSE+STATUS are pending
   uint8_t tx_head_ = 0;
   uint8_t tx_count_ = 0;
   uint8_t low_byte_ = 0;
   bool have_low_byte_ = false;
   bool selected_ = false;
   bool timeout_armed_ = false;
+  bool legacy_master_ = false;
   State state_ = State::idle;
   uint16_t abandoned_count_ = 0;
   uint16_t completed_count_ = 0;

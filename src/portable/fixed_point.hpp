@@ -11,6 +11,10 @@ inline int32_t clamp32(int32_t v, int32_t lo, int32_t hi) {
   return v < lo ? lo : (v > hi ? hi : v);
 }
 
+// clamp32 out of line, for start-up code (tuning and gains): one copy instead of one per
+// use saves firmware flash; never used per tick.
+int32_t clamp_setting(int32_t v, int32_t lo, int32_t hi);
+
 inline uint32_t abs32(int32_t v) {
   return v < 0 ? static_cast<uint32_t>(0) - static_cast<uint32_t>(v) : static_cast<uint32_t>(v);
 }

@@ -20,7 +20,37 @@ enum Command : int16_t {
   cmd_set_speed = 15,
   cmd_set_zone = 16,
   cmd_check_target_reached = 20,
+  // Extensions outside the seed's codes (docs/joint-controller.md "Faults and diagnostics").
+  // The original firmware answers both as unknown (93), so a master can tell it apart.
+  cmd_read_diagnostic = 40,  // DATA: which word (diagnostic_*); RESPONSE: that word
+  cmd_clear_faults = 41,     // faults := 0; the joint holds where it is, bridge on again
 };
+
+// The words read_diagnostic returns, by index (DATA). Counters saturate at their maximum.
+enum Diagnostic : int16_t {
+  diagnostic_faults = 0,              // fault_* bits held until clear_faults
+  diagnostic_bus_events_lost = 1,     // board: bus event queue overflows
+  diagnostic_encoder_edges_lost = 2,  // board: encoder edges lost (queue full) + decoder
+                                      // errors (both channels changed at once)
+  diagnostic_uart_errors = 3,         // board: framing / overrun errors
+  diagnostic_reset_cause = 4,         // board: MCUSR at the last reset (1 power-on, 2 external,
+                                      // 4 brown-out, 8 watchdog)
+  diagnostic_abandoned = 5,           // transactions abandoned (timeouts, early select drop)
+  diagnostic_settings = 6,            // setting_* bits: how this joint was flashed
+  diagnostic_count = 7,
+};
+
+// Fault bits (diagnostic_faults). Any of them keeps the H-bridge off until clear_faults.
+const int16_t fault_runaway = 1;          // error grew while the loop drove against it
+const int16_t fault_following_error = 2;  // joint too far behind its setpoint for too long
+
+// Settings bits (diagnostic_settings).
+const int16_t setting_motor_reversed = 1;  // MOTOR_POLARITY=reversed
+const int16_t setting_legacy_master = 2;   // DIALECT=legacy (legacy-master mode)
+
+// STATUS words of the legacy dialect (the original firmware): the command code on success.
+const int16_t legacy_status_unknown_command = 93;
+const int16_t legacy_status_bad_data = 94;
 
 enum StatusCode : int16_t {
   status_no_error = 0,
@@ -54,6 +84,8 @@ inline CommandShape command_shape(int16_t command) {
     case cmd_get_target:
     case cmd_get_joint_number:
     case cmd_check_target_reached: return CommandShape{true, false, true};
+    case cmd_read_diagnostic: return CommandShape{true, true, true};
+    case cmd_clear_faults: return CommandShape{true, false, false};
     case cmd_drive_dist:
     case cmd_drive_dist_max:
     case cmd_drive_to:

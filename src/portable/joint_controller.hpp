@@ -46,7 +46,9 @@
 #include <stdint.h>
 
 #include "portable/bus_transaction.hpp"
+#include "portable/fault_monitor.hpp"
 #include "portable/joint_bus_codes.hpp"
+#include "portable/joint_options.hpp"
 #include "portable/joint_tuning.hpp"
 #include "portable/position_loop.hpp"
 #include "portable/quadrature_decoder.hpp"
@@ -56,9 +58,18 @@ namespace joint_bus {
 
 // What executing one command produced (also usable without the bus, e.g. by tests).
 struct CommandResult {
-  int16_t status;      // 100 + 10 x command, 930 or 940
+  int16_t status;      // 100 + 10 x command, 930 or 940 (the bus maps them to the legacy
+                       // dialect in legacy-master mode)
   bool has_response;   // a RESPONSE word goes out before STATUS
   int16_t response;
+};
+
+// Counters only the board layer sees (read over the bus with read_diagnostic). The
+// simulator leaves them 0 (reset cause: power-on).
+struct BoardDiagnostics {
+  // In the order of their read_diagnostic indices 1..4 (diagnostic_bus_events_lost ...):
+  // bus events lost, encoder edges lost, UART errors, reset cause (MCUSR bits).
+  uint8_t counts[4];
 };
 
 class JointController {
@@ -66,8 +77,9 @@ class JointController {
   // joint_number 1..7 (EEPROM on the AVR); baud sets the transaction timeouts. Returns
   // false (and the joint then stays silent on the bus, loop off) if joint_number is out of
   // range or baud is 0. Power-up state: position 0, target 0, loop on (holds where it is),
-  // speed 100 %, zone 0.
-  bool begin(uint8_t joint_number, const JointTuning& tuning, uint32_t baud);
+  // speed 100 %, zone 0, no faults. options: motor polarity, legacy-master mode.
+  bool begin(uint8_t joint_number, const JointTuning& tuning, uint32_t baud,
+             const JointOptions& options = JointOptions());
   // Take the current encoder levels as reference without counting (call once after begin).
   void init_encoder(bool a, bool b) { decoder_.reset(a, b); }
 
@@ -103,7 +115,20 @@ class JointController {
   DriveOutput control_compute();
 
   // Run one command against the joint state (what the bus does once COMMAND/DATA are in).
+  // set_speed takes 0..100 (%); in legacy-master mode the bus hands it the legacy 0..255.
   CommandResult execute(int16_t command, int16_t data);
+
+  // Faults (fault_* bits): raised by the control step, held until clear_faults: the bridge
+  // brakes for fault_brake_ticks (enabled, duty 0: motor shorted), then is off; the target
+  // follows the position and drive commands are refused with 940.
+  static const uint16_t fault_brake_ticks = 500;
+  int16_t faults() const { return faults_; }
+  bool braking() const { return faults_ != 0 && brake_ticks_ != 0; }
+  // The board's own counters, for read_diagnostic (call from the main loop, masked).
+  void set_board_diagnostics(const BoardDiagnostics& d) { board_ = d; }
+  const JointOptions& options() const { return options_; }
+  // One read_diagnostic word (index 0..diagnostic_count-1, joint_bus_codes.hpp).
+  int16_t diagnostic(int16_t index) const;
 
   // Read-only views for tests, simulator and firmware (no side effects).
   bool configured() const { return configured_; }
@@ -128,7 +153,13 @@ class JointController {
   int32_t sampled_count_ = 0;  // the count control_compute() works on
   PositionLoop loop_;
   BusTransaction transaction_;
+  FaultMonitor monitor_;
+  BoardDiagnostics board_ = BoardDiagnostics{{0, 0, 0, 0}};
+  uint8_t settings_ = 0;  // setting_* bits, from the options
+  JointOptions options_;
   DriveOutput last_output_ = DriveOutput{0, false};
+  int16_t faults_ = 0;
+  uint16_t brake_ticks_ = 0;  // ticks of braking left after a fault was raised
   uint8_t joint_number_ = 0;
   bool configured_ = false;
 };

@@ -40,9 +40,10 @@ inline JointTuning default_tuning() {
   return t;
 }
 
-// What the H-bridge should do. duty > 0 drives "left" (D10/OC1B), duty < 0 drives "right"
-// (D11/OC2A); |duty| <= pwm_max. Positive duty must make the encoder count go up (wire A/B
-// or the motor leads accordingly). enable = false: H-bridge disabled (motor coasts), duty 0.
+// What the H-bridge should do. duty > 0 drives "right" (D11/OC2A), duty < 0 drives "left"
+// (D10/OC1B); |duty| <= pwm_max. The controller applies the joint's MotorPolarity
+// (joint_options.hpp): with the original polarity, duty > 0 is what counts the encoder up.
+// enable = false: H-bridge disabled (motor coasts), duty 0.
 struct DriveOutput {
   int16_t duty;
   bool enable;

@@ -9,12 +9,16 @@ namespace {
 // Each term is kept within +-2^28 so that P + I + D can never overflow int32.
 const int32_t kTermLimit = INT32_C(1) << 28;
 
-int32_t input_limit(int32_t gain_q8) { return gain_q8 > 0 ? kTermLimit / gain_q8 : kTermLimit; }
+__attribute__((noinline)) int32_t input_limit(int32_t gain_q8) {
+  // Unsigned division (gains are 0..65535): one division routine less in the firmware.
+  return gain_q8 > 0 ? static_cast<int32_t>(static_cast<uint32_t>(kTermLimit) / static_cast<uint32_t>(gain_q8))
+                     : kTermLimit;
+}
 
 // Largest movement per tick the D term looks at (Q8): 64 clicks per tick.
 const int32_t kMovedLimit = INT32_C(16384);
 
-uint16_t gain16(int32_t gain_q8) { return static_cast<uint16_t>(clamp32(gain_q8, 0, INT32_C(65535))); }
+uint16_t gain16(int32_t gain_q8) { return static_cast<uint16_t>(clamp_setting(gain_q8, 0, INT32_C(65535))); }
 
 // gain x input, |input| <= 2^28 / gain: a 16 x 32-bit product that fits int32.
 inline int32_t times_gain(uint16_t gain, int32_t input) { return static_cast<int32_t>(gain) * input; }
@@ -31,9 +35,9 @@ void PidController::configure(int32_t kp_q8, int32_t ki_q8, int32_t kd_q8, int16
   kp_q8_ = gain16(kp_q8);
   ki_q8_ = gain16(ki_q8);
   kd_q8_ = gain16(kd_q8);
-  output_max_q16_ = clamp32(output_max, 1, 4095) * INT32_C(65536);
+  output_max_q16_ = clamp_setting(output_max, 1, 4095) * INT32_C(65536);
   error_input_max_ = input_limit(kp_q8_ > ki_q8_ ? kp_q8_ : ki_q8_);
-  d_input_max_ = static_cast<int16_t>(clamp32(input_limit(kd_q8_), 0, INT32_C(32767)));
+  d_input_max_ = static_cast<int16_t>(clamp_setting(input_limit(kd_q8_), 0, INT32_C(32767)));
   integral_q16_ = 0;
 }
 

@@ -19,22 +19,27 @@ JointTuning clamped(const JointTuning& t) {
   JointTuning c = t;
   // Ranges: docs/joint-controller.md "Tuning ranges" (what the SCARA joints need, and what
   // keeps the tick inside its cycle budget). They convert exactly to the ramp's bounds.
-  c.max_speed_cps = clamp32(t.max_speed_cps, 1, max_speed_cps_limit);
-  c.max_accel_cps2 = clamp32(t.max_accel_cps2, min_accel_cps2_limit, max_accel_cps2_limit);
-  c.kp_q8 = clamp32(t.kp_q8, 0, INT32_C(65535));
-  c.ki_q8 = clamp32(t.ki_q8, 0, INT32_C(65535));
-  c.kd_q8 = clamp32(t.kd_q8, 0, INT32_C(65535));
-  c.pwm_max = static_cast<int16_t>(clamp32(t.pwm_max, 1, 4095));
+  c.max_speed_cps = clamp_setting(t.max_speed_cps, 1, max_speed_cps_limit);
+  c.max_accel_cps2 = clamp_setting(t.max_accel_cps2, min_accel_cps2_limit, max_accel_cps2_limit);
+  c.kp_q8 = clamp_setting(t.kp_q8, 0, INT32_C(65535));
+  c.ki_q8 = clamp_setting(t.ki_q8, 0, INT32_C(65535));
+  c.kd_q8 = clamp_setting(t.kd_q8, 0, INT32_C(65535));
+  c.pwm_max = static_cast<int16_t>(clamp_setting(t.pwm_max, 1, 4095));
   return c;
 }
 }  // namespace
+
+__attribute__((noinline)) int32_t clamp_setting(int32_t v, int32_t lo, int32_t hi) { return clamp32(v, lo, hi); }
 
 void PositionLoop::begin(const JointTuning& tuning, int32_t count) {
   tuning_ = clamped(tuning);
   // clicks/s -> Q8 clicks/tick: * 256 / 1000 = * 32 / 125 (rounded); clicks/s^2 -> Q8
   // clicks/tick^2: * 256 / 1e6 = * 32 / 125000 (rounded). Both stay far inside int32.
-  const int32_t top_speed_q8 = (tuning_.max_speed_cps * 32 + 62) / 125;
-  const int32_t accel_q8 = (tuning_.max_accel_cps2 * 32 + 62500) / INT32_C(125000);
+  // (Unsigned: both are clamped positive, and one division routine less in the firmware.)
+  const int32_t top_speed_q8 =
+      static_cast<int32_t>((static_cast<uint32_t>(tuning_.max_speed_cps) * 32u + 62u) / 125u);
+  const int32_t accel_q8 =
+      static_cast<int32_t>((static_cast<uint32_t>(tuning_.max_accel_cps2) * 32u + 62500u) / UINT32_C(125000));
   ramp_.configure(top_speed_q8, accel_q8);
   pid_.configure(tuning_.kp_q8, tuning_.ki_q8, tuning_.kd_q8, tuning_.pwm_max);
   speed_percent_ = 100;
@@ -57,7 +62,9 @@ DriveOutput PositionLoop::tick(int32_t count) {
     return DriveOutput{0, false};
   }
   const int32_t setpoint = ramp_.step(static_cast<int32_t>(target_) * 256);
-  return DriveOutput{pid_.update(setpoint, static_cast<int16_t>(ramp_.velocity_q8()), count_to_q8(count)), true};
+  const int32_t measured = count_to_q8(count);
+  error_q8_ = setpoint - measured;
+  return DriveOutput{pid_.update(setpoint, static_cast<int16_t>(ramp_.velocity_q8()), measured), true};
 }
 
 void PositionLoop::set_enabled(bool on, int32_t count) {

@@ -31,6 +31,9 @@ class PositionLoop {
   // Command side (each is atomic; the caller validated the data).
   void set_enabled(bool on, int32_t count);
   void home();  // the caller sets the encoder count to 0 at the same time
+  // Bridge off while a fault is held: target follows the position like a loop that is off,
+  // so clearing the fault holds the joint where it then is.
+  void hold(int32_t count) { sync_to(count); }
   void set_target(int16_t target) { target_ = target; }
   void set_speed_percent(uint8_t percent) { speed_percent_ = percent; ramp_.set_speed_percent(percent); }
   void set_zone(int16_t zone) { zone_ = zone; }
@@ -40,6 +43,8 @@ class PositionLoop {
   uint8_t speed_percent() const { return speed_percent_; }
   int16_t zone() const { return zone_; }
   bool target_reached(int32_t count) const;
+  // Setpoint - position of the last running tick, Q8 clicks (for the fault monitor).
+  int32_t error_q8() const { return error_q8_; }
   const SetpointRamp& ramp() const { return ramp_; }
   const PidController& pid() const { return pid_; }
   const JointTuning& tuning() const { return tuning_; }
@@ -50,6 +55,7 @@ class PositionLoop {
   JointTuning tuning_ = JointTuning();
   SetpointRamp ramp_;
   PidController pid_;
+  int32_t error_q8_ = 0;
   int16_t target_ = 0;
   int16_t zone_ = 0;
   uint8_t speed_percent_ = 100;

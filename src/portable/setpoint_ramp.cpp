@@ -6,8 +6,8 @@ namespace armctl {
 namespace joint_bus {
 
 void SetpointRamp::configure(int32_t top_speed_q8, int32_t accel_q8) {
-  const uint16_t top = static_cast<uint16_t>(clamp32(top_speed_q8, 0, top_speed_max_q8));
-  const uint16_t a = static_cast<uint16_t>(clamp32(accel_q8, 1, accel_max_q8));
+  const uint16_t top = static_cast<uint16_t>(clamp_setting(top_speed_q8, 0, top_speed_max_q8));
+  const uint16_t a = static_cast<uint16_t>(clamp_setting(accel_q8, 1, accel_max_q8));
   accel_q8_ = static_cast<int16_t>(a);
   // Beyond this distance even the top speed can brake in time, so braking is ignored
   // (and 2*a*distance below is only computed for distances that keep it inside uint32).
@@ -15,8 +15,10 @@ void SetpointRamp::configure(int32_t top_speed_q8, int32_t accel_q8) {
   half_accel_q8_ = static_cast<uint16_t>(a / 2u);
   twice_accel_q8_ = static_cast<uint16_t>(a * 2u);
   quarter_accel_sq_ = static_cast<uint32_t>(a) * a / 4u;
-  top_per_percent_ = static_cast<uint8_t>(top / 100u);
-  top_remainder_ = static_cast<uint8_t>(top % 100u);
+  // In 32 bits on purpose: the firmware then needs only the 32-bit division routine.
+  const uint32_t top32 = top;
+  top_per_percent_ = static_cast<uint8_t>(top32 / 100u);
+  top_remainder_ = static_cast<uint8_t>(top32 - 100u * top_per_percent_);
   set_speed_percent(100);
 }
 

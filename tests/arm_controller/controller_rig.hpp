@@ -41,10 +41,14 @@ class SimRcLink final : public robot_commands::RcLink {
 };
 
 struct Rig {
+  // leads_swapped: joints whose motor leads are the other way round (they run away).
   explicit Rig(std::optional<std::filesystem::path> state_dir = std::nullopt,
-               std::uint32_t baud = 0) {
+               std::uint32_t baud = 0, const std::vector<int>& leads_swapped = {}) {
     auto sim_config = joint_sim::load_arm_config(joint_sim::default_arm_config_path());
     if (baud != 0) sim_config.baud = baud;
+    for (auto& j : sim_config.joints) {
+      for (int n : leads_swapped) j.hardware.leads_swapped = j.hardware.leads_swapped || j.number == n;
+    }
     arm = std::make_unique<joint_sim::SimArm>(std::move(sim_config));
     DeviceOptions o;
     o.state_dir = std::move(state_dir);

@@ -135,3 +135,45 @@ TEST(SimScaraCli, BadBaudIsRefused) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(BusCli, FaultsShowsEveryJointsFaultsCountersAndSettings) {
+  const CliRun r = armctl("bus faults all");
+  EXPECT_EQ(r.status, 0) << r.out;
+  for (int j = 1; j <= 7; ++j) {
+    EXPECT_NE(r.out.find("joint " + std::to_string(j) + ": faults: none; lost bus events 0"), std::string::npos) << r.out;
+  }
+  EXPECT_NE(r.out.find("last reset: power-on; motor polarity original, standard master"), std::string::npos) << r.out;
+  const auto doc = nlohmann::json::parse(stdout_only("bus --json faults 3"));
+  ASSERT_EQ(doc["joints"].size(), 1u);
+  const auto& v = doc["joints"][0]["value"];
+  EXPECT_EQ(v["faults"], nlohmann::json::array());
+  EXPECT_EQ(v["fault_bits"], 0);
+  EXPECT_EQ(v["encoder_edges_lost"], 0);
+  EXPECT_EQ(v["motor_polarity"], "original");
+  EXPECT_EQ(v["master"], "standard");
+  EXPECT_EQ(v["reset_cause"], "power-on");
+}
+
+TEST(BusCli, ClearFaultsAnswersPerJoint) {
+  const CliRun r = armctl("bus clear-faults all");
+  EXPECT_EQ(r.status, 0) << r.out;
+  for (int j = 1; j <= 7; ++j) EXPECT_NE(r.out.find("joint " + std::to_string(j) + ": faults cleared"), std::string::npos) << r.out;
+  const CliRun dead = armctl("bus --device 'sim?dead=4' clear-faults 4");
+  EXPECT_NE(dead.status, 0);
+  EXPECT_NE(dead.out.find("joint 4: FAILED no answer (990)"), std::string::npos) << dead.out;
+}
+
+TEST(BusCli, TheSimulatedArmOffersLegacyMasterJoints) {
+  const CliRun r = armctl("bus --device 'sim?dialect=legacy' faults 2");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("legacy master"), std::string::npos) << r.out;
+  EXPECT_EQ(armctl("bus --device 'sim?dialect=legacy' speed 3 200").status, 0);
+  EXPECT_NE(armctl("bus --device 'sim?dialect=legacy' speed 3 256").status, 0);
+  const CliRun ping = armctl("bus --device 'sim?dialect=legacy' ping 5 42");
+  EXPECT_EQ(ping.status, 0) << ping.out;
+  EXPECT_NE(ping.out.find("joint 5: answered, echo 42"), std::string::npos) << ping.out;
+}
+
+}  // namespace

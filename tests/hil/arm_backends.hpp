@@ -27,6 +27,10 @@ struct Scenario {
   // "sim").
   std::set<int> dead_lines;
   std::uint32_t baud = 0;  // 0: the config's
+  // How every board was flashed (EEPROM settings byte on "avr", begin() options on "sim").
+  joint_bus::JointOptions options{};
+  // Lines whose motor leads are swapped (the motor model turns the other way).
+  std::set<int> leads_swapped;
 };
 
 class ArmBackend {
@@ -40,21 +44,23 @@ class ArmBackend {
   TimePoint now() { return bus().now(); }
 };
 
-inline joint_sim::ArmConfig hil_arm_config(std::uint32_t baud) {
+inline joint_sim::ArmConfig hil_arm_config(std::uint32_t baud, const std::set<int>& leads_swapped = {}) {
   joint_sim::ArmConfig config = joint_sim::load_arm_config(joint_sim::default_arm_config_path());
   if (baud != 0) config.baud = baud;
+  for (auto& j : config.joints) j.hardware.leads_swapped = leads_swapped.count(j.number) != 0;
   return config;
 }
 
 class SimBackend final : public ArmBackend {
  public:
-  explicit SimBackend(const Scenario& s) : config_(hil_arm_config(s.baud)) {
+  explicit SimBackend(const Scenario& s) : config_(hil_arm_config(s.baud, s.leads_swapped)) {
     std::vector<joint_sim::BusEndpoint*> endpoints(config_.joints.size(), nullptr);
     for (const auto& j : config_.joints) {
       if (s.dead_lines.count(j.number)) continue;
       std::uint8_t number = j.number;
       if (auto it = s.believed_number.find(j.number); it != s.believed_number.end()) number = it->second;
-      joints_[j.number] = std::make_unique<joint_sim::SimJoint>(number, j.tuning, config_.baud, j.hardware);
+      joints_[j.number] = std::make_unique<joint_sim::SimJoint>(number, j.tuning, config_.baud, j.hardware,
+                                                                TimePoint{}, s.options);
       endpoints[j.number - 1u] = joints_[j.number].get();
     }
     bus_ = std::make_unique<joint_sim::SimBus>(config_.baud, endpoints);
@@ -75,11 +81,12 @@ class SimBackend final : public ArmBackend {
 class AvrBackend final : public ArmBackend {
  public:
   explicit AvrBackend(const Scenario& s) {
-    joint_sim::ArmConfig config = hil_arm_config(s.baud);
+    joint_sim::ArmConfig config = hil_arm_config(s.baud, s.leads_swapped);
     joint_avr::AvrArmOptions options;
+    options.joints = s.options;
     for (const auto& [line, number] : s.believed_number) {
       options.eeprom_overrides[line] =
-          joint_avr::joint_eeprom_image(number, config.baud, config.joint(line).tuning);
+          joint_avr::joint_eeprom_image(number, config.baud, config.joint(line).tuning, s.options);
     }
     arm_ = std::make_unique<joint_avr::AvrArm>(std::move(config), options);
     for (int line : s.dead_lines) arm_->joint(line).set_held_in_reset(true);

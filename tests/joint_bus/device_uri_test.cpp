@@ -13,6 +13,8 @@ TEST(DeviceUri, AcceptsTheThreeForms) {
   EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim?baud=115200").value()).baud, 115200u);
   EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim?dead=2,6").value()).dead_joints, (std::vector<int>{2, 6}));
   EXPECT_EQ(std::get<UnixDevice>(parse_device_uri("unix:/tmp/a.sock").value()).path, "/tmp/a.sock");
+  EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim").value()).dialect, Dialect::standard);
+  EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim?dialect=legacy").value()).dialect, Dialect::legacy);
   const auto s = std::get<SerialDevice>(
       parse_device_uri("serial:/dev/ttyAMA0?baud=115200&chip=gpiochip0&select=17,27,22,5,6,13,19&dialect=legacy").value());
   EXPECT_EQ(s.path, "/dev/ttyAMA0");
@@ -32,6 +34,7 @@ TEST(DeviceUri, RefusesBadInputWithAMessageNamingIt) {
       {"tcp:1.2.3.4", "unknown kind"},
       {"sim?baud=12345", "not a standard rate"},
       {"sim?speed=1", "unknown option 'speed'"},
+      {"sim?dialect=mega", "dialect 'mega' is neither standard nor legacy"},
       {"sim?dead=9", "dead joint '9' is not a joint (allowed 1..7"},
       {"sim?dead=0", "dead joint '0' is not a joint (allowed 1..7"},
       {"sim?dead=", "dead joint '' is not a joint (allowed 1..7"},

@@ -291,3 +291,61 @@ TEST(LegacyDialect, StandardStatusIsNotSuccessInLegacyDialect) {
 
 }  // namespace
 }  // namespace armctl::test
+
+namespace armctl::test {
+namespace {
+
+// Unknown command codes have no success STATUS in either dialect (issue 14, section 6).
+TEST(UnknownCommands, LegacyNinetyThreeAnsweredWithNinetyThreeIsUnknownNotSuccess) {
+  EXPECT_EQ(joint_bus::interpret_status(Dialect::legacy, 93, 93), joint_bus::StatusMeaning::unknown_command);
+  EXPECT_EQ(joint_bus::interpret_status(Dialect::legacy, 94, 94), joint_bus::StatusMeaning::bad_data);
+  EXPECT_EQ(joint_bus::interpret_status(Dialect::legacy, 12, 12), joint_bus::StatusMeaning::success);
+  EXPECT_EQ(joint_bus::interpret_status(Dialect::legacy, 40, 40), joint_bus::StatusMeaning::success);
+  EXPECT_EQ(joint_bus::interpret_status(Dialect::standard, 99, 1090), joint_bus::StatusMeaning::unexpected);
+  EXPECT_FALSE(joint_bus::success_status(Dialect::standard, 99).has_value());
+  EXPECT_FALSE(joint_bus::success_status(Dialect::legacy, 93).has_value());
+  EXPECT_EQ(joint_bus::success_status(Dialect::standard, 41), 510);
+
+  ScriptedLink link({{true, "select 1 high"}, {false, "01 00"}, {true, "5D 00"}, {true, "select 1 low"},
+                     {false, "5D 00"}});
+  MasterOptions o;
+  o.dialect = Dialect::legacy;
+  BusMaster master(link, o);
+  auto r = master.transact(1, 93, std::nullopt);
+  ASSERT_FALSE(r.ok()) << "STATUS 93 after command 93 read as success";
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::unknown_command);
+}
+
+TEST(UnknownCommands, StandardUnknownCodeAnsweredOddlyIsNotCalledSuccess1090) {
+  ScriptedLink link({{true, "select 1 high"}, {false, "01 00"}, {true, "63 00"}, {true, "select 1 low"},
+                     {false, "42 04"}});  // STATUS 1090 = 100 + 10 x 99
+  BusMaster master(link);
+  auto r = master.transact(1, 99, std::nullopt);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::bad_status);
+  EXPECT_EQ(r.error().message.find("success (1090)"), std::string::npos) << r.error().message;
+  EXPECT_NE(r.error().message.find("no joint knows"), std::string::npos) << r.error().message;
+  EXPECT_NE(r.error().message.find("930"), std::string::npos) << r.error().message;
+}
+
+}  // namespace
+}  // namespace armctl::test
+
+namespace armctl::test {
+namespace {
+
+TEST(UnknownCommands, TheOriginalFirmwareAnswersReadDiagnosticAsUnknownWithoutAResponse) {
+  // Original firmware: no RESPONSE for a code it does not know, STATUS 93 after select falls.
+  ScriptedLink link({{true, "select 4 high"}, {false, "04 00"}, {true, "28 00 00 00"}, {true, "select 4 low"},
+                     {false, "5D 00"}});
+  MasterOptions o;
+  o.dialect = Dialect::legacy;
+  BusMaster master(link, o);
+  auto r = master.read_diagnostics(4);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(joint_bus::joint_failure(r.error())->kind, FailureKind::unknown_command);
+  EXPECT_NE(r.error().message.find("does not know read_diagnostic"), std::string::npos) << r.error().message;
+}
+
+}  // namespace
+}  // namespace armctl::test

@@ -16,12 +16,16 @@ class MotorPlant {
   double tau_s = 0.020;          // mechanical time constant
   double load_cps = 0.0;         // constant speed lost to a load (sign: pulls toward -)
   bool stalled = false;          // a blocked joint: never moves
+  // Wiring: false = the original boards' (bridge duty > 0, the "right" input D11, counts
+  // the encoder up); true = motor leads swapped (D11 counts down).
+  bool leads_swapped = false;
   int16_t pwm_max = 255;
 
   // One 1 ms control period: tick the controller, then integrate the motor for 1 ms.
   DriveOutput step(JointController& joint) {
     const DriveOutput out = joint.control_tick();
-    const double drive = out.enable ? no_load_cps * out.duty / pwm_max : 0.0;
+    const double sign = leads_swapped ? -1.0 : 1.0;
+    const double drive = out.enable ? sign * no_load_cps * out.duty / pwm_max : 0.0;
     const int substeps = 10;
     const double dt = 0.001 / substeps;
     for (int i = 0; i < substeps; ++i) {

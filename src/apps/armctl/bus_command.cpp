@@ -67,6 +67,22 @@ std::vector<int> parse_joints(const std::string& command, const std::string& tex
   return {static_cast<int>(j)};
 }
 
+nlohmann::json diagnostics_json(const joint_bus::JointDiagnostics& d) {
+  nlohmann::json faults = nlohmann::json::array();
+  if (d.runaway()) faults.push_back("runaway");
+  if (d.following_error()) faults.push_back("following_error");
+  return {{"faults", faults},
+          {"fault_bits", d.faults},
+          {"bus_events_lost", d.bus_events_lost},
+          {"encoder_edges_lost", d.encoder_edges_lost},
+          {"uart_errors", d.uart_errors},
+          {"abandoned_transactions", d.abandoned_transactions},
+          {"reset_cause", joint_bus::describe_reset_cause(d.reset_cause)},
+          {"reset_cause_bits", d.reset_cause},
+          {"motor_polarity", d.motor_reversed() ? "reversed" : "original"},
+          {"master", d.legacy_master() ? "legacy" : "standard"}};
+}
+
 template <typename T>
 BusRow row_from(int joint, const Result<T>& r, const std::function<void(BusRow&, const T&)>& fill) {
   BusRow row;
@@ -178,6 +194,19 @@ class BusRunner {
       });
     } else if (command == "wait") {
       wait(joints, report);
+    } else if (command == "faults") {
+      each([&](int j) {
+        return row_from<joint_bus::JointDiagnostics>(j, m.read_diagnostics(j), [](BusRow& r, const joint_bus::JointDiagnostics& d) {
+          r.value = diagnostics_json(d);
+          r.text = joint_bus::describe(d);
+        });
+      });
+    } else if (command == "clear-faults") {
+      each([&](int j) {
+        return row_from<Ok>(j, m.clear_faults(j), [](BusRow& r, const auto&) {
+          r.text = "faults cleared (holding where it is, bridge on if the loop is on)";
+        });
+      });
     }
     return report;
   }
@@ -249,6 +278,8 @@ void add_bus_command(CLI::App& app) {
       {"zone", "Zone in clicks within which the target counts as reached", "0..32767", false},
       {"reached", "Is each joint within its zone of its target?", "", false},
       {"wait", "Poll until every selected joint is within its zone", "", false},
+      {"faults", "Read each joint's faults and diagnostic counters (runaway, following error, lost events, reset cause, settings)", "", false},
+      {"clear-faults", "Clear each joint's faults: it holds where it is and drives again", "", false},
   };
   for (const auto& spec : specs) {
     CLI::App* sub = bus->add_subcommand(spec.name, spec.help);

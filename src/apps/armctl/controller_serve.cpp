@@ -58,9 +58,16 @@ void serve_controller(transport::JointBusLink& bus, joint_bus::MasterOptions mas
   const auto& c = device.arm().stats();
   fmt::print(stderr,
              "{}: stopped; {} frames ({} handled, {} ignored); {} moves ({} refused: joint not answering); "
-             "{} polls in {} sweeps, {} poll failures, {} command failures\n",
+             "{} polls in {} sweeps, {} poll failures, {} command failures; {} times a joint stopped "
+             "following ({} runaway, {} following-error faults reported)\n",
              label, b.frames, b.handled, b.ignored(), c.moves, c.refused_moves, c.polls, c.sweeps,
-             c.poll_failures, c.command_failures);
+             c.poll_failures, c.command_failures, c.following_lost, c.runaway_faults, c.following_error_faults);
+  for (int j : device.arm().servos()) {
+    const auto& s = device.arm().joint_status(j);
+    if (s.joint_faults != 0) {
+      fmt::print(stderr, "{}: joint {} {}: {}\n", label, j, device.arm().config().joint(j)->name, s.diagnostics);
+    }
+  }
 }
 
 }  // namespace armctl::cli

@@ -20,7 +20,9 @@ using motion::plan_synchronized_move;
 
 namespace {
 
-constexpr int kFaultLogEvery = 100;  // a dead joint fails every sweep: log changes, then 1 in 100
+constexpr int kFaultLogEvery = 100;
+// A joint off its plan without a fault is asked again this often.
+constexpr Duration kFaultRecheck = std::chrono::milliseconds(250);  // a dead joint fails every sweep: log changes, then 1 in 100
 
 }  // namespace
 
@@ -361,6 +363,29 @@ void ArmController::note_fault(Joint& j, const Error& f, const char* doing) {
                     int(j.config.number), j.config.name, f.message));
 }
 
+void ArmController::examine_faults(Joint& j, const std::string& why) {
+  const int n = j.config.number;
+  auto read = master_.read_diagnostics(n);
+  if (!read) {
+    log(fmt::format("joint {} {} stopped following ({}); its faults could not be read: {}", n, j.config.name,
+                    why, read.error().message));
+    return;
+  }
+  const joint_bus::JointDiagnostics& diag = read.value();
+  const joint_bus::JointDiagnostics* d = &diag;
+  ++stats_.fault_reads;
+  j.status.faults_read_at = clock().now();
+  const bool first = j.status.diagnostics.empty() || j.status.joint_faults != d->faults;
+  j.status.joint_faults = d->faults;
+  j.status.diagnostics = joint_bus::describe(diag);
+  if (d->runaway()) ++stats_.runaway_faults;
+  if (d->following_error()) ++stats_.following_error_faults;
+  if (!first) return;  // re-read, nothing new: no second log line
+  log(fmt::format("joint {} {} stopped following ({}); {}{}", n, j.config.name, why, j.status.diagnostics,
+                  d->faults != 0 ? fmt::format("; fix the cause, then `armctl bus clear-faults {}`", n)
+                                 : std::string()));
+}
+
 void ArmController::run_op(const Op& op) {
   Joint& j = at(op.joint);
   ++stats_.commands;
@@ -380,6 +405,14 @@ void ArmController::run_op(const Op& op) {
     ++stats_.command_failures;
     j.model.forget();  // it may or may not have taken effect
     note_fault(j, *failure, name);
+    const joint_bus::JointFailure* jf = joint_bus::joint_failure(*failure);
+    if (op.kind == OpKind::drive_to && jf != nullptr && jf->kind == joint_bus::FailureKind::bad_data &&
+        j.status.following) {
+      // A joint holding a fault refuses every drive with 940: find out why.
+      j.status.following = false;
+      ++stats_.following_lost;
+      examine_faults(j, fmt::format("drive_to {} refused", op.value));
+    }
     if (op.kind == OpKind::speed || op.kind == OpKind::loop_on) {
       // The drive that should follow would run at a wrong speed or not at all: drop it.
       std::erase_if(ops_, [&](const Op& o) { return o.joint == op.joint && o.kind == OpKind::drive_to; });
@@ -405,11 +438,27 @@ void ArmController::poll_next() {
     if (r) {
       j.status.clicks = *r;
       j.status.read_at = clock().now();
-      if (j.model.known() && j.status.loop_on)
-        stats_.max_model_gap =
-            std::max(stats_.max_model_gap, std::abs(*r - j.model.setpoint_clicks_at(j.status.read_at)));
       ++j.status.reads;
       note_success(j);
+      if (j.model.known() && j.status.loop_on) {
+        const int planned = j.model.setpoint_clicks_at(j.status.read_at);
+        const int gap = std::abs(*r - planned);
+        stats_.max_model_gap = std::max(stats_.max_model_gap, double(gap));
+        const std::string why = fmt::format("at {} clicks, planned {}", *r, planned);
+        if (gap > kNotFollowingClicks && j.status.following) {
+          j.status.following = false;
+          ++stats_.following_lost;
+          examine_faults(j, why);
+        } else if (gap > kNotFollowingClicks && j.status.joint_faults == 0 &&
+                   clock().now() - j.status.faults_read_at >= kFaultRecheck) {
+          // Still off its plan with no fault yet: the joint may raise one any moment (its
+          // runaway and following-error checks take 100 and 500 ms).
+          examine_faults(j, why);
+        } else if (gap <= kNotFollowingClicks / 2) {
+          j.status.following = true;
+          j.status.joint_faults = 0;  // following again: its faults were cleared
+        }
+      }
     } else {
       ++stats_.poll_failures;
       note_fault(j, r.error(), "get_position");

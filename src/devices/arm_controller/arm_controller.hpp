@@ -52,7 +52,18 @@ struct JointStatus {
   bool jogging = false;         // motor mode (continuous velocity)
   std::optional<std::int16_t> target;  // last drive_to sent (clicks)
   TimePoint arrive_at{};        // when that target is planned to be reached
+  // Following: the polled position within kNotFollowingClicks of the planned setpoint.
+  // When a joint stops following (or refuses a drive, as a faulted joint does), its fault
+  // and diagnostic words are read once and kept here.
+  bool following = true;
+  std::uint16_t joint_faults = 0;  // fault_* bits it reported then (0: none, or not read)
+  std::string diagnostics;         // its diagnostic line then ("" if never read)
+  TimePoint faults_read_at{};      // when they were last read
 };
+
+// How far (clicks) a polled position may be from the planned setpoint before the joint
+// counts as no longer following (normal tracking stays under 300: moving_start_test).
+inline constexpr int kNotFollowingClicks = 500;
 
 struct ControllerStats {
   std::uint64_t polls = 0;
@@ -64,6 +75,11 @@ struct ControllerStats {
   std::uint64_t refused_moves = 0; // a named joint not answering
   std::uint64_t moving_starts = 0; // joints planned from a moving start (motion model)
   double max_model_gap = 0;        // clicks: largest |polled position - modelled setpoint|
+  std::uint64_t following_lost = 0;       // a joint stopped following its plan
+  std::uint64_t fault_reads = 0;          // ... and its faults were read (again every 250 ms
+                                          // while it is off its plan without a fault)
+  std::uint64_t runaway_faults = 0;       // reads that found a runaway fault
+  std::uint64_t following_error_faults = 0;
 };
 
 class ArmController final : public rc_board::ArmBackend {
@@ -143,6 +159,8 @@ class ArmController final : public rc_board::ArmBackend {
   void wait_until(TimePoint t);
   void note_success(Joint& j);
   void note_fault(Joint& j, const Error& f, const char* doing);
+  // Reads and logs the joint's faults (once per episode of not following).
+  void examine_faults(Joint& j, const std::string& why);
   void timed(const std::function<void()>& transaction);
   void anchor_model(Joint& j, TimePoint t);
   TimePoint effect_instant() const;

@@ -12,12 +12,15 @@ namespace {
 
 class EmbeddedSim final : public joint_bus::BusConnection {
  public:
-  explicit EmbeddedSim(const joint_bus::SimDevice& d) {
+  explicit EmbeddedSim(const joint_bus::SimDevice& d) : dialect_(d.dialect) {
     joint_sim::ArmConfig config = d.config.empty()
                                       ? joint_sim::load_arm_config(joint_sim::default_arm_config_path())
                                       : joint_sim::load_arm_config(d.config);
     if (d.baud) config.baud = *d.baud;
-    arm_ = std::make_unique<joint_sim::SimArm>(std::move(config));
+    // dialect=legacy: every joint as if flashed with DIALECT=legacy (legacy-master mode).
+    joint_sim::SimArmOptions options;
+    options.joints.legacy_master = d.dialect == joint_bus::Dialect::legacy;
+    arm_ = std::make_unique<joint_sim::SimArm>(std::move(config), options);
     if (!d.dead_joints.empty()) {
       joint_sim::FaultPlan faults;
       for (int j : d.dead_joints) faults.dead_joint(j);
@@ -25,12 +28,18 @@ class EmbeddedSim final : public joint_bus::BusConnection {
     }
   }
   transport::JointBusLink& link() override { return arm_->link(); }
-  joint_bus::MasterOptions default_options() const override { return {}; }
+  joint_bus::MasterOptions default_options() const override {
+    joint_bus::MasterOptions o;
+    o.dialect = dialect_;
+    return o;
+  }
   std::string description() const override {
-    return fmt::format("embedded simulated arm at {} baud", arm_->config().baud);
+    return fmt::format("embedded simulated arm at {} baud{}", arm_->config().baud,
+                       dialect_ == joint_bus::Dialect::legacy ? ", legacy-master joints" : "");
   }
 
  private:
+  joint_bus::Dialect dialect_;
   std::unique_ptr<joint_sim::SimArm> arm_;
 };
 

@@ -26,7 +26,7 @@ AvrArm::AvrArm(joint_sim::ArmConfig config, AvrArmOptions options) : config_(std
     } else {
       std::optional<joint_bus::JointTuning> tuning;
       if (options.write_tuning) tuning = j.tuning;
-      setup.eeprom = joint_eeprom_image(j.number, config_.baud, tuning);
+      setup.eeprom = joint_eeprom_image(j.number, config_.baud, tuning, options.joints);
     }
     auto joint = std::make_unique<AvrJoint>(setup);
     endpoints[j.number - 1u] = joint.get();

@@ -13,6 +13,7 @@
 #include "devices/joint_avr/avr_joint.hpp"
 #include "devices/joint_sim/arm_config.hpp"
 #include "devices/joint_sim/sim_bus.hpp"
+#include "portable/joint_options.hpp"
 
 namespace armctl::joint_avr {
 
@@ -24,6 +25,8 @@ struct AvrArmOptions {
   // Write each joint's tuning from the config into its EEPROM tuning block (so the
   // firmware runs the same gains as the portable-code simulation).
   bool write_tuning = true;
+  // Motor polarity and legacy-master mode written into every joint's EEPROM (settings byte).
+  joint_bus::JointOptions joints{};
 };
 
 // The firmware ELF built by this CMake build (ARMCTL_FIRMWARE_ELF).

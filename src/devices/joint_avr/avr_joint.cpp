@@ -53,8 +53,9 @@ void AvrJoint::on_encoder_edge(bool a, bool b, TimePoint t) {
 
 void AvrJoint::apply_drive() {
   const BridgeInputs in = chip_->bridge_inputs();
-  // Both inputs high brakes just like both low: the motor sees their difference.
-  hardware_.set_drive_fraction(in.left - in.right, in.enable);
+  // Both inputs high brakes just like both low: the motor sees their difference. "Right"
+  // (D11) positive: the original boards' wiring (JointHardwareParams::leads_swapped).
+  hardware_.set_drive_fraction(in.right - in.left, in.enable);
 }
 
 void AvrJoint::advance_to(TimePoint t) {

@@ -27,7 +27,8 @@ std::vector<std::uint8_t> raw_eeprom_image(std::uint8_t magic, std::uint8_t join
 }
 
 std::vector<std::uint8_t> joint_eeprom_image(std::uint8_t joint, std::uint32_t baud,
-                                             const std::optional<joint_bus::JointTuning>& tuning) {
+                                             const std::optional<joint_bus::JointTuning>& tuning,
+                                             const joint_bus::JointOptions& options) {
   if (joint < 1 || joint > 7) {
     throw ArmctlError(ErrorKind::invalid_argument,
                       "joint number " + std::to_string(joint) + " is not allowed (use 1..7)");
@@ -41,6 +42,8 @@ std::vector<std::uint8_t> joint_eeprom_image(std::uint8_t joint, std::uint32_t b
     throw ArmctlError(ErrorKind::invalid_argument, "joint firmware baud " + std::to_string(baud) +
                                                        " is not allowed (use 9600 or 115200)");
   }
+  if (options.polarity == joint_bus::MotorPolarity::reversed) baud_code |= 2u;
+  if (options.legacy_master) baud_code |= 4u;
   const auto check = static_cast<std::uint8_t>(0xFF ^ config_magic ^ joint ^ baud_code);
   std::vector<std::uint8_t> image = raw_eeprom_image(config_magic, joint, baud_code, check);
   if (tuning) {

@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "portable/joint_options.hpp"
 #include "portable/joint_tuning.hpp"
 
 namespace armctl::joint_avr {
@@ -14,10 +15,12 @@ namespace armctl::joint_avr {
 inline constexpr std::uint16_t eeprom_size = 1024;
 inline constexpr std::uint16_t eeprom_tuning_address = 16;
 
-// Joint 1..7 and baud 9600 or 115200 (ArmctlError(invalid_argument) otherwise). The rest
-// of the 1 KiB is 0xFF (erased), except the tuning block if given.
+// Joint 1..7 and baud 9600 or 115200 (ArmctlError(invalid_argument) otherwise); options:
+// motor polarity and legacy-master mode (settings byte, firmware/board/joint_config.hpp).
+// The rest of the 1 KiB is 0xFF (erased), except the tuning block if given.
 std::vector<std::uint8_t> joint_eeprom_image(std::uint8_t joint, std::uint32_t baud,
-                                             const std::optional<joint_bus::JointTuning>& tuning);
+                                             const std::optional<joint_bus::JointTuning>& tuning,
+                                             const joint_bus::JointOptions& options = {});
 
 // A raw image for tests of bad EEPROM: 4 configuration bytes as given, rest erased.
 std::vector<std::uint8_t> raw_eeprom_image(std::uint8_t magic, std::uint8_t joint,

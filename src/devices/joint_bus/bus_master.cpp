@@ -41,6 +41,8 @@ const char* command_name(std::int16_t command) {
     case cmd_set_speed: return "set_speed";
     case cmd_set_zone: return "set_zone";
     case cmd_check_target_reached: return "check_target_reached";
+    case cmd_read_diagnostic: return "read_diagnostic";
+    case cmd_clear_faults: return "clear_faults";
     default: return "unknown";
   }
 }
@@ -147,6 +149,21 @@ Result<std::optional<std::int16_t>> BusMaster::exchange(int joint, std::int16_t 
   std::optional<std::int16_t> response;
   if (shape.returns_value) {
     response = read_word(link_.clock().now() + word_timeout());
+    if (!response && command == cmd_read_diagnostic) {
+      // A joint running the original firmware sends no RESPONSE to this extension: it
+      // waits for select to fall and answers "unknown" (93). Listen for that STATUS so
+      // the caller learns why, instead of a bare 990.
+      link_.set_select(joint, false);
+      const std::optional<std::int16_t> status = read_word(link_.clock().now() + word_timeout());
+      settle();
+      if (status && interpret_status(options_.dialect, command, *status) == StatusMeaning::unknown_command) {
+        return fail(FailureKind::unknown_command, Stage::status, joint, true, status,
+                    fmt::format("joint {}: command {} unknown to the joint (STATUS {}, 930)", joint, command,
+                                *status));
+      }
+      return fail(FailureKind::no_answer, Stage::response, joint, true, status,
+                  fmt::format("joint {}: no RESPONSE to {} within {:.2f} ms (990)", joint, name, timeout_ms));
+    }
     if (!response) {
       abandon(joint);
       return fail(FailureKind::no_answer, Stage::response, joint, true, std::nullopt,
@@ -175,11 +192,22 @@ Result<std::optional<std::int16_t>> BusMaster::exchange(int joint, std::int16_t 
       return fail(FailureKind::bad_data, Stage::status, joint, true, status,
                   fmt::format("joint {}: {} refused data {} (STATUS {}, 940); nothing changed",
                               joint, name, data ? *data : 0, *status));
-    case StatusMeaning::unexpected:
+    case StatusMeaning::unexpected: {
       settle();
+      const std::optional<std::int16_t> success = success_status(options_.dialect, command);
+      if (!success) {
+        // No code means success for a command the joints do not know (1090 is nothing).
+        return fail(FailureKind::bad_status, Stage::status, joint, true, status,
+                    fmt::format("joint {}: STATUS {} after command {}, which no joint knows "
+                                "(expected the unknown-command answer {})",
+                                joint, *status, command,
+                                options_.dialect == Dialect::legacy ? legacy_status_unknown_command
+                                                                    : std::int16_t{status_unknown_command}));
+      }
       return fail(FailureKind::bad_status, Stage::status, joint, true, status,
                   fmt::format("joint {}: STATUS {} is neither success ({}) nor an error code after {}",
-                              joint, *status, success_status(options_.dialect, command), name));
+                              joint, *status, *success, name));
+    }
   }
   if (command == cmd_ping && response != data) {
     return fail(FailureKind::ping_bad_echo, Stage::response, joint, true, status,
@@ -249,6 +277,33 @@ Result<bool> BusMaster::check_target_reached(int joint) {
                             *r));
   }
   return *r == 1;
+}
+
+Result<std::int16_t> BusMaster::read_diagnostic(int joint, std::int16_t index) {
+  auto r = with_retries(joint, cmd_read_diagnostic, index);
+  if (!r) return r.error();
+  return r.value().value();
+}
+
+Status BusMaster::clear_faults(int joint) { return command_only(joint, cmd_clear_faults, std::nullopt); }
+
+Result<JointDiagnostics> BusMaster::read_diagnostics(int joint) {
+  std::array<std::uint16_t, diagnostic_count> words{};
+  for (std::int16_t i = 0; i < diagnostic_count; ++i) {
+    auto w = read_diagnostic(joint, i);
+    if (!w) {
+      Error e = w.error();
+      const JointFailure* f = joint_failure(e);
+      if (f != nullptr && f->kind == FailureKind::unknown_command) {
+        e.message = fmt::format("joint {}: no fault reading: its firmware does not know read_diagnostic "
+                                "(the original firmware? STATUS {})",
+                                joint, f->status_word.value_or(0));
+      }
+      return e;
+    }
+    words[static_cast<std::size_t>(i)] = static_cast<std::uint16_t>(*w);
+  }
+  return diagnostics_from_words(words);
 }
 
 Status BusMaster::drive_dist(int joint, std::int16_t d) { return drive(Drive::dist, joint, d); }

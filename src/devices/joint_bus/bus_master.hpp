@@ -13,6 +13,7 @@
 
 #include "devices/joint_bus/bus_failure.hpp"
 #include "devices/joint_bus/bus_timing.hpp"
+#include "devices/joint_bus/joint_diagnostics.hpp"
 #include "devices/joint_bus/status_dialect.hpp"
 #include "transport/joint_bus_link.hpp"
 
@@ -78,6 +79,11 @@ class BusMaster {
   Status set_speed(int joint, std::int16_t speed);
   Status set_zone(int joint, std::int16_t zone);
   Result<bool> check_target_reached(int joint);
+  // Extensions (codes 40, 41; the original firmware answers them as unknown).
+  Result<std::int16_t> read_diagnostic(int joint, std::int16_t index);
+  Status clear_faults(int joint);
+  // Every diagnostic word of a joint (diagnostic_count transactions).
+  Result<JointDiagnostics> read_diagnostics(int joint);
 
   // The same operation on every joint, in joint order; one result per joint.
   template <typename T>

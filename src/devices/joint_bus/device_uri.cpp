@@ -13,7 +13,7 @@ namespace armctl::joint_bus {
 namespace {
 
 constexpr const char* kForms =
-    "sim, sim?baud=N&config=FILE&dead=J[,J...], unix:/path/to/socket, or "
+    "sim, sim?baud=N&config=FILE&dead=J[,J...]&dialect=legacy, unix:/path/to/socket, or "
     "serial:/dev/ttyAMA0?select=17,27,22,5,6,13,19[&baud=9600][&chip=gpiochip0][&dialect=legacy]";
 
 [[noreturn]] void bad(std::string_view uri, const std::string& why) {
@@ -35,12 +35,19 @@ unsigned parse_unsigned(std::string_view uri, const std::string& what, std::stri
   return v;
 }
 
+Dialect parse_dialect(std::string_view uri, const std::string& text) {
+  auto dialect = dialect_from_string(text);
+  if (!dialect) bad(uri, fmt::format("dialect '{}' is neither standard nor legacy", text));
+  return *dialect;
+}
+
 SimDevice parse_sim(std::string_view uri, transport::UriParts& parts) {
   if (parts.has_path) bad(uri, "sim takes options after '?', not a path");
-  checked(uri, transport::check_options(parts, {"baud", "config", "dead"}));
+  checked(uri, transport::check_options(parts, {"baud", "config", "dead", "dialect"}));
   SimDevice d;
   auto& opts = parts.options;
   if (opts.contains("baud")) d.baud = checked(uri, transport::parse_baud(opts["baud"]));
+  if (opts.contains("dialect")) d.dialect = parse_dialect(uri, opts["dialect"]);
   if (opts.contains("dead")) {
     std::string_view list = opts["dead"];
     while (true) {
@@ -73,11 +80,7 @@ SerialDevice parse_serial(std::string_view uri, const transport::UriParts& parts
     if (opts["chip"].empty()) bad(uri, "chip needs a GPIO chip name such as gpiochip0");
     d.chip = opts["chip"];
   }
-  if (opts.contains("dialect")) {
-    auto dialect = dialect_from_string(opts["dialect"]);
-    if (!dialect) bad(uri, fmt::format("dialect '{}' is neither standard nor legacy", opts["dialect"]));
-    d.dialect = *dialect;
-  }
+  if (opts.contains("dialect")) d.dialect = parse_dialect(uri, opts["dialect"]);
   if (!opts.contains("select")) bad(uri, "serial: needs select=LINE,... (one GPIO line per joint, joint 1 first)");
   std::string_view list = opts["select"];
   std::set<unsigned> seen;
@@ -115,8 +118,9 @@ Result<DeviceUri> parse_device_uri(std::string_view uri) {
 
 std::string describe(const DeviceUri& uri) {
   if (const auto* s = std::get_if<SimDevice>(&uri)) {
-    return s->baud ? fmt::format("embedded simulated arm at {} baud", *s->baud)
-                   : std::string("embedded simulated arm");
+    const std::string legacy = s->dialect == Dialect::legacy ? ", legacy-master joints" : "";
+    return s->baud ? fmt::format("embedded simulated arm at {} baud{}", *s->baud, legacy)
+                   : "embedded simulated arm" + legacy;
   }
   if (const auto* u = std::get_if<UnixDevice>(&uri)) return fmt::format("simulated arm at {}", u->path);
   const auto& s = std::get<SerialDevice>(uri);

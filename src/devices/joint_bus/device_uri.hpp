@@ -1,7 +1,8 @@
 // Where the joint bus is: parsed and validated `--device` URIs.
 //   sim                      an embedded simulated SCARA arm, in this process (default);
 //                            optional ?baud=N&config=FILE&dead=J[,J...] (joints that never
-//                            answer: to see how a dead joint is reported)
+//                            answer: to see how a dead joint is reported)&dialect=legacy
+//                            (joints in legacy-master mode, answering the legacy dialect)
 //   unix:/path               a running `armctl sim scara --listen /path`
 //   serial:/dev/ttyAMA0?baud=115200&chip=gpiochip0&select=17,27,22,5,6,13,19[&dialect=legacy]
 //                            a real bus: UART + one GPIO line per joint (joints 1..N in
@@ -24,6 +25,7 @@ struct SimDevice {
   std::optional<std::uint32_t> baud;  // empty: the config's baud
   std::string config;  // empty: the built-in config/scara.json
   std::vector<int> dead_joints;  // joints 1..7 whose controller never answers
+  Dialect dialect = Dialect::standard;  // legacy: every joint in legacy-master mode
 };
 
 struct UnixDevice {

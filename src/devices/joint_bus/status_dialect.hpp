@@ -17,11 +17,15 @@ std::optional<Dialect> dialect_from_string(std::string_view name);  // "standard
 enum class StatusMeaning { success, unknown_command, bad_data, unexpected };
 
 // Interprets `status` as the answer to `command` in `dialect`. A success code that belongs
-// to another command is `unexpected`: the joint answered something we did not ask.
+// to another command is `unexpected`: the joint answered something we did not ask. A
+// command the joints do not know has no success code at all: whatever it is answered with
+// is an error or unexpected (in the legacy dialect command 93 answered with 93 is
+// unknown_command, not success).
 StatusMeaning interpret_status(Dialect dialect, std::int16_t command, std::int16_t status);
 
-// The STATUS a joint sends for success of `command` in `dialect`.
-std::int16_t success_status(Dialect dialect, std::int16_t command);
+// The STATUS a joint sends for success of `command` in `dialect`; empty for a command
+// code no joint knows (there is no success for it).
+std::optional<std::int16_t> success_status(Dialect dialect, std::int16_t command);
 
 // Highest set_speed value the joints accept: 100 (%) standard, 255 (PWM cap) legacy.
 int max_speed_value(Dialect dialect);

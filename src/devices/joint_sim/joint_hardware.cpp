@@ -38,7 +38,7 @@ void JointHardware::set_drive(std::int16_t duty, bool enable) {
 
 void JointHardware::set_drive_fraction(double duty, bool enable) {
   duty = std::clamp(duty, -1.0, 1.0);
-  voltage_ = duty * p_.motor.supply_v;
+  voltage_ = (p_.leads_swapped ? -duty : duty) * p_.motor.supply_v;
   enabled_ = enable;
   update_stuck();
 }

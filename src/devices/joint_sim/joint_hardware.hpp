@@ -46,6 +46,10 @@ struct JointHardwareParams {
   std::uint32_t encoder_lines_per_rev = 125;  // motor revolution; clicks = 4 x lines
   std::optional<EndStops> end_stops;
   std::int16_t pwm_max = 255;
+  // Wiring of the motor leads: false = as the original boards are wired (the H-bridge's
+  // "right" input D11, duty > 0, turns the motor the way that counts the encoder up);
+  // true = leads swapped (duty > 0 counts down).
+  bool leads_swapped = false;
   // Grid for placing encoder edges in time and detecting end-stop contact (the motion itself
   // is exact whatever the step). 1 ms suits the portable controller, which samples the count
   // at its 1 kHz tick; emulated chips that time edges to the microsecond want <= 50 us.
@@ -70,8 +74,8 @@ class JointHardware {
  public:
   explicit JointHardware(const JointHardwareParams& params, TimePoint start = TimePoint{});
 
-  // H-bridge inputs from now on. duty in [-pwm_max, pwm_max] (clamped); > 0 turns the motor
-  // in the direction that counts the encoder up.
+  // H-bridge inputs from now on. duty in [-pwm_max, pwm_max] (clamped); > 0 drives the
+  // "right" input (D11), which counts the encoder up unless leads_swapped.
   void set_drive(std::int16_t duty, bool enable);
   // Same with duty as a fraction of full scale in [-1, 1] (for PWM read off timer registers).
   void set_drive_fraction(double duty, bool enable);

@@ -6,13 +6,15 @@
 
 namespace armctl::joint_sim {
 
-SimArm::SimArm(ArmConfig config) : config_(std::move(config)) {
+SimArm::SimArm(ArmConfig config, SimArmOptions options)
+    : config_(std::move(config)), options_(options) {
   int lines = 0;
   for (const JointConfig& j : config_.joints) lines = std::max(lines, int(j.number));
   joints_.resize(static_cast<std::size_t>(lines));
   std::vector<BusEndpoint*> endpoints(static_cast<std::size_t>(lines), nullptr);
   for (const JointConfig& j : config_.joints) {
-    auto joint = std::make_unique<SimJoint>(j.number, j.tuning, config_.baud, j.hardware);
+    auto joint = std::make_unique<SimJoint>(j.number, j.tuning, config_.baud, j.hardware, TimePoint{},
+                                            options_.joints);
     endpoints[j.number - 1u] = joint.get();
     joints_[j.number - 1u] = std::move(joint);
   }

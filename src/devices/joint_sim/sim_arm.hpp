@@ -12,9 +12,15 @@
 
 namespace armctl::joint_sim {
 
+// How every joint of the simulated arm was "flashed" (joint_options.hpp): legacy-master
+// mode (`sim?dialect=legacy`) and motor polarity.
+struct SimArmOptions {
+  joint_bus::JointOptions joints{};
+};
+
 class SimArm {
  public:
-  explicit SimArm(ArmConfig config);
+  explicit SimArm(ArmConfig config, SimArmOptions options = {});
   // config/scara.json from the source tree.
   static std::unique_ptr<SimArm> from_default_config();
 
@@ -24,6 +30,7 @@ class SimArm {
   transport::JointBusLink& link() { return *bus_; }
   SimBus& bus() { return *bus_; }
   const ArmConfig& config() const { return config_; }
+  const SimArmOptions& options() const { return options_; }
 
   TimePoint now() const { return bus_->now(); }
   void run_until(TimePoint t) { bus_->run_until(t); }
@@ -37,6 +44,7 @@ class SimArm {
 
  private:
   ArmConfig config_;
+  SimArmOptions options_;
   std::vector<std::unique_ptr<SimJoint>> joints_;  // index = number - 1 (null if absent)
   std::unique_ptr<SimBus> bus_;
 };

@@ -7,15 +7,17 @@
 namespace armctl::joint_sim {
 
 SimJoint::SimJoint(std::uint8_t joint_number, const joint_bus::JointTuning& tuning,
-                   std::uint32_t baud, const JointHardwareParams& hardware, TimePoint start)
+                   std::uint32_t baud, const JointHardwareParams& hardware, TimePoint start,
+                   const joint_bus::JointOptions& options)
     : hardware_(hardware, start), now_(start), next_tick_(start + control_period) {
-  if (!controller_.begin(joint_number, tuning, baud)) {
+  if (!controller_.begin(joint_number, tuning, baud, options)) {
     throw ArmctlError(ErrorKind::invalid_argument,
                       "simulated joint: joint number " + std::to_string(joint_number) +
                           " or baud " + std::to_string(baud) +
                           " refused (allowed: joint 1..7, baud > 0)");
   }
   controller_.init_encoder(hardware_.encoder_a(), hardware_.encoder_b());
+  controller_.set_board_diagnostics(joint_bus::BoardDiagnostics{{0, 0, 0, 1}});  // power-on reset
 }
 
 std::uint32_t SimJoint::micros(TimePoint t) {

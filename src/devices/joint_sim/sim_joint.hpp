@@ -18,7 +18,8 @@ class SimJoint final : public BusEndpoint, private EncoderEdgeSink {
  public:
   // Throws ArmctlError(invalid_argument) if the controller refuses joint_number or baud.
   SimJoint(std::uint8_t joint_number, const joint_bus::JointTuning& tuning, std::uint32_t baud,
-           const JointHardwareParams& hardware, TimePoint start = TimePoint{});
+           const JointHardwareParams& hardware, TimePoint start = TimePoint{},
+           const joint_bus::JointOptions& options = {});
 
   // BusEndpoint
   void advance_to(TimePoint t) override;

@@ -1,0 +1,46 @@
+// The arm controller and joint faults: a joint that stops following its plan (here one
+// whose motor leads are swapped, so it runs away and stops itself) has its faults read,
+// logged, counted, and kept in its status; the other joints carry on.
+#include <gtest/gtest.h>
+
+#include "controller_rig.hpp"
+#include "portable/joint_bus_codes.hpp"
+
+namespace armctl::arm_controller::testing {
+namespace {
+
+TEST(JointFaultReports, ARunawayJointIsReportedWhenItStopsFollowing) {
+  Rig rig(std::nullopt, 115200, {3});
+  ASSERT_TRUE(rig.client->move({{2, 700}, {3, 700}}, 1500).ok());
+  rig.run_for(std::chrono::milliseconds(2500));
+  const auto& s = rig.controller().stats();
+  EXPECT_EQ(s.following_lost, 1u);
+  EXPECT_GE(s.fault_reads, 1u);
+  EXPECT_LE(s.fault_reads, 3u) << "read when it left its plan, then every 250 ms until the fault showed";
+  EXPECT_EQ(s.runaway_faults, 1u);
+  EXPECT_EQ(s.following_error_faults, 0u);
+  const JointStatus& j3 = rig.controller().joint_status(3);
+  EXPECT_FALSE(j3.following);
+  EXPECT_EQ(j3.joint_faults, joint_bus::fault_runaway);
+  EXPECT_NE(j3.diagnostics.find("faults: runaway"), std::string::npos) << j3.diagnostics;
+  EXPECT_TRUE(rig.logged("joint 3 UAE stopped following"));
+  EXPECT_TRUE(rig.logged("armctl bus clear-faults 3"));
+  // Joint 2 arrived; it never stopped following.
+  EXPECT_TRUE(rig.controller().joint_status(2).following);
+  EXPECT_EQ(rig.controller().joint_status(2).joint_faults, 0);
+  // Once the fault is known it is not read again.
+  const auto reads = rig.controller().stats().fault_reads;
+  rig.run_for(std::chrono::milliseconds(1000));
+  EXPECT_EQ(rig.controller().stats().fault_reads, reads);
+}
+
+TEST(JointFaultReports, HealthyArmNeverReadsFaults) {
+  Rig rig(std::nullopt, 115200);
+  ASSERT_TRUE(rig.client->move({{1, 300}, {2, 700}, {3, 700}}, 1500).ok());
+  rig.run_for(std::chrono::milliseconds(2500));
+  EXPECT_EQ(rig.controller().stats().following_lost, 0u);
+  EXPECT_EQ(rig.controller().stats().fault_reads, 0u);
+}
+
+}  // namespace
+}  // namespace armctl::arm_controller::testing
