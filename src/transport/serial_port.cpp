@@ -66,6 +66,12 @@ std::unique_ptr<SerialPort> SerialPort::open(const std::string& path, std::uint3
     ::close(fd);
     throw ArmctlError(ErrorKind::io, errno_text(what, path, err));
   };
+  // A regular file or a FIFO would "work" until the first reply timed out: say what it is.
+  if (!::isatty(fd)) {
+    ::close(fd);
+    throw ArmctlError(ErrorKind::io, path + " is not a serial port or pty (not a tty): name the board's "
+                                            "/dev/ttyUSB*, /dev/ttyACM*, /dev/ttyAMA* or a pty");
+  }
   // Exclusive: a second armctl (or ModemManager) must not interleave bytes with ours.
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     const int err = errno;

@@ -116,3 +116,20 @@ TEST_F(ArmCli, BadValuesAreRefusedClearly) {
 }
 
 }  // namespace
+
+namespace {
+
+// Any command: a failed write of the output is an error, a closed or full stderr never
+// turns exit status 1 into an abort, and a file that is not a tty is named as such.
+TEST(CliOutput, FailedWritesAndNonTtyDevicesAreErrors) {
+  auto full = run_armctl("arm joints", "2>&1 >/dev/full");  // stderr to the pipe, stdout full
+  EXPECT_EQ(full.status, 1) << full.out;
+  EXPECT_TRUE(contains(full.out, "could not write the output")) << full.out;
+  EXPECT_EQ(run_armctl("arm move-joints servo6=300deg", "2>&-").status, 1);
+  EXPECT_EQ(run_armctl("arm move-joints servo6=300deg", "2>/dev/full").status, 1);
+  auto not_tty = run_armctl("xarm --device serial:/etc/passwd battery");
+  EXPECT_EQ(not_tty.status, 1) << not_tty.out;
+  EXPECT_TRUE(contains(not_tty.out, "/etc/passwd is not a serial port or pty")) << not_tty.out;
+}
+
+}  // namespace

@@ -79,16 +79,34 @@ int main(int argc, char** argv) {
   armctl::cli::add_list_command(app);
   armctl::cli::add_controller_command(app);
   name_missing_subcommands(app);
+  // Messages go to stderr even when it is closed or full: a failed write of a message must
+  // not turn an exit status 1 into an abort.
+  auto report = [](const std::string& line) {
+    try {
+      fmt::print(stderr, "{}\n", line);
+    } catch (const std::exception&) {
+    }
+  };
   try {
     check_command_words(app, argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);  // usage errors: message on stderr, exit status 2 (106 for CLI11 internals)
+    try {
+      return app.exit(e);  // usage errors: message on stderr, exit status 2 (106 for CLI11 internals)
+    } catch (const std::exception&) {
+      return 2;
+    }
   } catch (const armctl::ArmctlError& e) {
-    fmt::print(stderr, "armctl: {}: {}\n", armctl::to_string(e.error().kind), e.what());
+    report(fmt::format("armctl: {}: {}", armctl::to_string(e.error().kind), e.what()));
     return 1;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "armctl: error: {}\n", e.what());
+    report(fmt::format("armctl: error: {}", e.what()));
+    return 1;
+  }
+  // Output that did not reach stdout (a full disk, /dev/full, a closed pipe) is a failure:
+  // a script must not read "0" as "printed".
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    report("armctl: I/O error: could not write the output to stdout");
     return 1;
   }
   return 0;
