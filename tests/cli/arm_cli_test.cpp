@@ -26,7 +26,7 @@ class ArmCli : public ::testing::Test {
   std::filesystem::path state;
 };
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using armctl::cli_test::contains;
 
 TEST_F(ArmCli, JointsAndPoseOfBothArms) {
   auto x = run_armctl("arm joints");

@@ -6,7 +6,11 @@
 
 #include <array>
 #include <cstdio>
+#include <sstream>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace armctl::cli_test {
 
@@ -24,6 +28,28 @@ inline CliRun run_armctl(const std::string& args, const std::string& redirect = 
   while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
   const int st = ::pclose(p);
   return CliRun{WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+// Shell-free argument lists: "move 1=500 --wait" -> {"move", "1=500", "--wait"}.
+inline std::vector<std::string> split_args(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> args;
+  for (std::string a; in >> a;) args.push_back(a);
+  return args;
+}
+
+inline bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// Every non-empty line of `out` must be one JSON document (throws if not).
+inline std::vector<nlohmann::json> json_lines(const std::string& out) {
+  std::vector<nlohmann::json> docs;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) docs.push_back(nlohmann::json::parse(line));
+  }
+  return docs;
 }
 
 }  // namespace armctl::cli_test

@@ -21,6 +21,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "run_armctl.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -120,26 +122,9 @@ class Process {
   std::size_t line_pos_ = 0;
 };
 
-std::vector<std::string> split_args(const std::string& text) {
-  std::istringstream in(text);
-  std::vector<std::string> args;
-  for (std::string a; in >> a;) args.push_back(a);
-  return args;
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
-// Every non-empty stdout line must be one JSON document.
-std::vector<nlohmann::json> json_lines(const std::string& out) {
-  std::vector<nlohmann::json> docs;
-  std::istringstream in(out);
-  for (std::string line; std::getline(in, line);) {
-    if (!line.empty()) docs.push_back(nlohmann::json::parse(line));  // throws if not JSON
-  }
-  return docs;
-}
+using armctl::cli_test::contains;
+using armctl::cli_test::json_lines;
+using armctl::cli_test::split_args;
 
 class XarmCli : public ::testing::Test {
  protected:

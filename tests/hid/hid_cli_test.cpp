@@ -22,6 +22,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../cli/run_armctl.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -85,25 +87,9 @@ Outcome run(const std::vector<std::string>& args, const std::map<std::string, st
   return o;
 }
 
-std::vector<std::string> split(const std::string& text) {
-  std::istringstream in(text);
-  std::vector<std::string> v;
-  for (std::string a; in >> a;) v.push_back(a);
-  return v;
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
-std::vector<nlohmann::json> json_lines(const std::string& out) {
-  std::vector<nlohmann::json> docs;
-  std::istringstream in(out);
-  for (std::string line; std::getline(in, line);) {
-    if (!line.empty()) docs.push_back(nlohmann::json::parse(line));
-  }
-  return docs;
-}
+using armctl::cli_test::contains;
+using armctl::cli_test::json_lines;
+std::vector<std::string> split(const std::string& text) { return armctl::cli_test::split_args(text); }
 
 class HidCli : public ::testing::Test {
  protected:
