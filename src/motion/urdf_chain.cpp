@@ -206,6 +206,12 @@ Result<UrdfChain> read_urdf_chain(std::string_view urdf_xml, std::string_view ba
   Eigen::Isometry3d pending = Eigen::Isometry3d::Identity();
   for (auto it = path.rbegin(); it != path.rend(); ++it) {
     const urdf::Joint& j = **it;
+    // urdfdom accepts name="" (found by fuzz_urdf_chain): a joint nobody can name cannot be
+    // mapped to a device or reported in an error.
+    if (j.name.empty())
+      return config_error(fmt::format("URDF joint between links '{}' and '{}' has an empty name; every <joint> "
+                                      "on the chain needs a name",
+                                      j.parent_link_name, j.child_link_name));
     auto origin = to_isometry(j.parent_to_joint_origin_transform, j.name);
     if (!origin) return origin.error();
     if (j.type == urdf::Joint::FIXED) {

@@ -150,3 +150,20 @@ TEST(UrdfChain, FileErrorsNameTheFile) {
 
 }  // namespace
 }  // namespace armctl::motion
+
+namespace armctl::motion {
+namespace {
+
+// Found by fuzz_urdf_chain: urdfdom accepts a joint with name="".
+TEST(UrdfChain, AJointWithoutANameIsRefused) {
+  const std::string urdf =
+      "<robot name=\"r\"><link name=\"base_link\"/><link name=\"tool\"/>"
+      "<joint name=\"\" type=\"revolute\"><parent link=\"base_link\"/><child link=\"tool\"/>"
+      "<axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint></robot>";
+  auto c = read_urdf_chain(urdf, "base_link", "tool");
+  ASSERT_FALSE(c.ok());
+  EXPECT_THAT(c.error().message, ::testing::HasSubstr("empty name"));
+}
+
+}  // namespace
+}  // namespace armctl::motion
