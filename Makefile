@@ -52,7 +52,7 @@ build: configure
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600
-	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(TEST_FUZZ_SECONDS)
+	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(TEST_FUZZ_SECONDS) FUZZ_SEED=1
 
 demo: build
 	./scripts/demo.sh $(BUILD)/armctl
@@ -65,7 +65,7 @@ bench: deps
 fuzz: deps
 	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARMCTL_FUZZ=ON
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target armctl_fuzz_all
-	./scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+	./scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_SEED)
 
 # Joint controller firmware into build/firmware/ (docs/firmware.md). flash programs one
 # board through its bootloader and sets its joint number in EEPROM:

@@ -3,6 +3,11 @@
 set -euo pipefail
 build=${1:-build/fuzz}
 seconds=${2:-60}
+# A fixed seed (make test passes 1) makes a short run repeat the same inputs, so a finding in
+# CI can be reproduced; `make fuzz` leaves it out and explores afresh every run.
+seed=${3:-}
+seed_flag=()
+[ -n "$seed" ] && seed_flag=(-seed="$seed")
 shopt -s nullglob
 for f in "$build"/fuzz/fuzz_*; do
   [ -x "$f" ] || continue
@@ -12,8 +17,8 @@ for f in "$build"/fuzz/fuzz_*; do
   seeds=fuzz/corpus/$name
   echo "== $name for ${seconds}s"
   if [ -d "$seeds" ]; then
-    "$f" -max_total_time="$seconds" -print_final_stats=1 "$corpus" "$seeds" 2>&1 | tail -n 3
+    "$f" "${seed_flag[@]}" -max_total_time="$seconds" -print_final_stats=1 "$corpus" "$seeds" 2>&1 | tail -n 3
   else
-    "$f" -max_total_time="$seconds" -print_final_stats=1 "$corpus" 2>&1 | tail -n 3
+    "$f" "${seed_flag[@]}" -max_total_time="$seconds" -print_final_stats=1 "$corpus" 2>&1 | tail -n 3
   fi
 done
