@@ -106,12 +106,7 @@ bool same_name(std::string_view a, std::string_view b) {
 // Throws ArmctlError(invalid_config) on the first problem.
 ArmModel parse(std::string_view arm_json, const std::string& source, std::string_view urdf_text,
                const std::string& urdf_source) {
-  json doc;
-  try {
-    doc = json::parse(arm_json);
-  } catch (const json::exception& e) {
-    throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: not valid JSON: {}", source, e.what()));
-  }
+  const json doc = json_reader::parse_document(arm_json, source);
   ObjectReader r(source, doc, "");
   ArmModel m;
   m.name = name_of(r, r.require("name"), "name");
@@ -280,24 +275,6 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
   return m;
 }
 
-std::string read_file(const std::filesystem::path& path, const char* what) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const auto status = fs::status(path, ec);
-  if (ec || !fs::exists(status))
-    throw ArmctlError(ErrorKind::io, fmt::format("cannot open {} {}: no such file", what, path.string()));
-  if (!fs::is_regular_file(status))
-    throw ArmctlError(ErrorKind::io, fmt::format("{} {} is not a regular file", what, path.string()));
-  constexpr std::uintmax_t kMaxSize = 1 << 20;  // arm files and URDFs are a few kB
-  if (fs::file_size(path, ec) > kMaxSize)
-    throw ArmctlError(ErrorKind::invalid_config, fmt::format("{} {} is larger than 1 MiB", what, path.string()));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ArmctlError(ErrorKind::io, fmt::format("cannot open {} {}", what, path.string()));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 }  // namespace
 
 const char* to_string(Protocol p) { return p == Protocol::robot_commands ? "robot_commands" : "joint_bus"; }
@@ -351,7 +328,7 @@ Result<ArmModel> parse_arm_model(std::string_view arm_json, std::string_view sou
 
 Result<ArmModel> load_arm_model(const std::filesystem::path& arm_file) {
   try {
-    const std::string text = read_file(arm_file, "arm file");
+    const std::string text = json_reader::read_config_file(arm_file, "arm file");
     // The URDF's name, read before the full parse so the URDF can be found beside the file.
     std::string urdf_name;
     try {
@@ -362,7 +339,7 @@ Result<ArmModel> load_arm_model(const std::filesystem::path& arm_file) {
     if (urdf_name.empty()) return parse_arm_model(text, arm_file.string(), "", "(no urdf)");
     std::filesystem::path urdf_path = urdf_name;
     if (urdf_path.is_relative()) urdf_path = arm_file.parent_path() / urdf_path;
-    const std::string urdf = read_file(urdf_path, "URDF");
+    const std::string urdf = json_reader::read_config_file(urdf_path, "URDF");
     Result<ArmModel> m = parse_arm_model(text, arm_file.string(), urdf, urdf_path.string());
     if (!m) return m;
     ArmModel model = std::move(m.value());

@@ -77,14 +77,7 @@ const ControllerJointConfig* ControllerConfig::joint(int number) const {
 }
 
 ControllerConfig parse_controller_config(std::string_view json_text, const std::string& source) {
-  json doc;
-  try {
-    doc = json::parse(json_text);
-  } catch (const json::exception& e) {
-    // json::exception, not only parse_error: a number too large for a double ("1e400") is
-    // an out_of_range from the parser (found by fuzz_controller_config), and must not escape.
-    throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: not valid JSON: {}", source, e.what()));
-  }
+  const json doc = json_reader::parse_document(json_text, source);
   ObjectReader r(source, doc, "");
   ControllerConfig config;
   if (const json* mv = r.find("supply_millivolts"))
@@ -110,12 +103,7 @@ ControllerConfig parse_controller_config(std::string_view json_text, const std::
 }
 
 ControllerConfig load_controller_config(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in)
-    throw ArmctlError(ErrorKind::io, fmt::format("cannot open arm config {}", path.string()));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_controller_config(text.str(), path.string());
+  return parse_controller_config(json_reader::read_config_file(path, "arm config"), path.string());
 }
 
 std::filesystem::path default_controller_config_path() { return find_config_file("scara-arm.json"); }

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/json_reader.hpp"
 
 namespace armctl::joint_sim {
 
@@ -280,14 +281,7 @@ const JointConfig& ArmConfig::joint(int number) const {
 }
 
 ArmConfig parse_arm_config(std::string_view json_text, const std::string& source) {
-  json root;
-  try {
-    root = json::parse(json_text);
-  } catch (const json::exception& e) {
-    // json::exception, not only parse_error: a number too large for a double ("1e400") is
-    // an out_of_range from the parser (found by fuzz_arm_config), and must not escape.
-    throw ArmctlError(ErrorKind::invalid_config, source + ": not valid JSON: " + e.what());
-  }
+  const json root = json_reader::parse_document(json_text, source);
   if (!root.is_object()) {
     throw ArmctlError(ErrorKind::invalid_config,
                       source + ": expected a JSON object at the top, got " + type_name(root));
@@ -335,13 +329,7 @@ ArmConfig parse_arm_config(std::string_view json_text, const std::string& source
 }
 
 ArmConfig load_arm_config(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw ArmctlError(ErrorKind::io, "cannot open arm config " + path.string());
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_arm_config(text.str(), path.string());
+  return parse_arm_config(json_reader::read_config_file(path, "arm config"), path.string());
 }
 
 std::filesystem::path default_arm_config_path() { return find_config_file("scara.json"); }
