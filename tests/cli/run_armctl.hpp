@@ -3,6 +3,9 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
 
 #include <array>
 #include <cstdio>
@@ -28,6 +31,20 @@ inline CliRun run_armctl(const std::string& args, const std::string& redirect = 
   while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
   const int st = ::pclose(p);
   return CliRun{WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+// Appends what one read() of `fd` gives to `into`; false at end of file or on an error.
+inline bool read_some(int fd, std::string& into) {
+  char buf[4096];
+  for (;;) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n > 0) {
+      into.append(buf, static_cast<std::size_t>(n));
+      return true;
+    }
+    if (n < 0 && errno == EINTR) continue;
+    return false;
+  }
 }
 
 // Shell-free argument lists: "move 1=500 --wait" -> {"move", "1=500", "--wait"}.

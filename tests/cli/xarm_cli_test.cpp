@@ -101,18 +101,7 @@ class Process {
   }
 
  private:
-  static bool read_some(int fd, std::string& into) {
-    char buf[4096];
-    for (;;) {
-      const ssize_t n = ::read(fd, buf, sizeof buf);
-      if (n > 0) {
-        into.append(buf, static_cast<std::size_t>(n));
-        return true;
-      }
-      if (n < 0 && errno == EINTR) continue;
-      return false;
-    }
-  }
+  static bool read_some(int fd, std::string& into) { return armctl::cli_test::read_some(fd, into); }
 
   pid_t pid_ = -1;
   int out_ = -1;

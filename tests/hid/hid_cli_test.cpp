@@ -35,18 +35,7 @@ struct Outcome {
   long long elapsed_ms = 0;
 };
 
-bool read_some(int fd, std::string& into) {
-  char buf[4096];
-  for (;;) {
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n > 0) {
-      into.append(buf, static_cast<std::size_t>(n));
-      return true;
-    }
-    if (n < 0 && errno == EINTR) continue;
-    return false;
-  }
-}
+using armctl::cli_test::read_some;
 
 // Runs armctl_fake_hid with `args` and `env` added to the environment, to the end.
 Outcome run(const std::vector<std::string>& args, const std::map<std::string, std::string>& env) {
