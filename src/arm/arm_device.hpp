@@ -35,6 +35,17 @@ class ArmDevice {
   virtual Status stop() = 0;
   // Torque off: the joints can be moved by hand. On: they hold where they stand.
   virtual Status set_torque(bool on) = 0;
+  // Streaming (arm/motion_executor.hpp). The shortest interval between two stream points the
+  // link carries without falling behind: the wire time of one point's frames (plus a
+  // position read's, if `with_read`).
+  virtual Duration stream_period(bool with_read) const = 0;
+  // Time from handing a point to the link until the device acts on it (its frame's wire
+  // time): the executor sends each point this much early.
+  virtual Duration stream_latency() const = 0;
+  // One stream point: every joint to `targets` (device units, one per joint) `in` from now,
+  // arriving at `velocities` (device units/s). No read-back, no planning: the executor has
+  // checked the whole motion before the first point.
+  virtual Status stream(const std::vector<double>& targets, const std::vector<double>& velocities, Duration in) = 0;
   // Lets `d` pass on the device's clock (a simulated device runs meanwhile); an error if the
   // link failed meanwhile.
   virtual Status idle(Duration d) = 0;

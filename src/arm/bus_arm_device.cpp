@@ -59,6 +59,7 @@ Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Dur
     which.push_back(i);
   }
   if (inputs.empty()) return Ok{};
+  streamed_percent_.clear();
   const TimePoint start = link_.clock().now();
   const auto plan = motion::plan_synchronized_move(inputs, duration, transaction_, transaction_ * 2);
   // Each joint gets set_speed and drive_to back to back, timed so that it starts when the
@@ -78,6 +79,7 @@ Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Dur
 }
 
 Status BusArmDevice::stop() {
+  streamed_percent_.clear();
   std::optional<Error> first;
   for (int n : numbers_) {
     auto s = master_.set_speed(n, 0);
@@ -94,6 +96,36 @@ Status BusArmDevice::set_torque(bool on) {
     if (!s && !first) first = s.error();
   }
   if (first) return failed(*first);
+  return Ok{};
+}
+
+Duration BusArmDevice::stream_period(bool with_read) const {
+  const auto joints = static_cast<std::int64_t>(numbers_.size());
+  return transaction_ * joints * (with_read ? 2 : 1);
+}
+
+Status BusArmDevice::stream(const std::vector<double>& targets, const std::vector<double>& velocities, Duration) {
+  // The joint's ramp brakes so as to stop on its target: aimed at the point itself it would
+  // lag by its braking distance v^2 / 2a. The target sent leads the point by that distance in
+  // the direction of motion, and the speed cap is the point's speed (rounded up to a whole
+  // percent, plus one), so the setpoint runs at the point's speed through it; at the end of
+  // a motion the velocity is zero and the last target is the point itself.
+  if (streamed_percent_.size() != numbers_.size()) streamed_percent_.assign(numbers_.size(), -1);
+  for (std::size_t i = 0; i < targets.size() && i < numbers_.size(); ++i) {
+    const double v = i < velocities.size() ? velocities[i] : 0.0;
+    const double a = std::max(1.0, profiles_[i].max_accel_cps2);
+    const double lead = v * std::abs(v) / (2 * a);
+    const long c = std::lround(targets[i] + lead);
+    if (c < -32768 || c > 32767)
+      return Error{ErrorKind::invalid_argument, fmt::format("joint {}: {} clicks is outside -32768..32767", numbers_[i], c)};
+    const double top = std::max(1.0, profiles_[i].max_speed_cps);
+    const int percent = std::clamp(static_cast<int>(std::ceil(std::abs(v) / top * 100.0)) + 1, 1, 100);
+    if (percent != streamed_percent_[i]) {
+      if (auto s = master_.set_speed(numbers_[i], static_cast<std::int16_t>(percent)); !s) return failed(s.error());
+      streamed_percent_[i] = percent;
+    }
+    if (auto d = master_.drive_to(numbers_[i], static_cast<std::int16_t>(c)); !d) return failed(d.error());
+  }
   return Ok{};
 }
 

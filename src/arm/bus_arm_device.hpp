@@ -27,6 +27,11 @@ class BusArmDevice final : public ArmDevice {
   // set_speed 0 to every joint, back to back: each brakes at its own deceleration and holds.
   Status stop() override;
   Status set_torque(bool on) override;  // set_pid_state
+  // A stream point is one drive_to per joint (and a set_speed where the speed changes): the
+  // joint's setpoint ramp follows the moving target at the speed the point asks for.
+  Duration stream_period(bool with_read) const override;
+  Duration stream_latency() const override { return transaction_; }
+  Status stream(const std::vector<double>& targets, const std::vector<double>& velocities, Duration in) override;
   Status idle(Duration d) override;
 
  private:
@@ -38,6 +43,7 @@ class BusArmDevice final : public ArmDevice {
   std::vector<int> numbers_;  // joint-bus number per model joint
   std::vector<motion::JointProfile> profiles_;
   Duration transaction_;  // one set_speed or drive_to on this bus
+  std::vector<int> streamed_percent_;  // set_speed last sent while streaming (-1: not yet)
 };
 
 }  // namespace armctl::arm

@@ -74,6 +74,32 @@ Status RcArmDevice::set_torque(bool on) {
   return hold_where_they_stand();  // any move restores a servo's torque
 }
 
+// Serial-form sizes: header 2, length, command, count, then per servo (protocol spec).
+Duration RcArmDevice::stream_period(bool with_read) const {
+  const std::size_t n = servos_.size();
+  Duration d = client_.link().frame_time(7 + 3 * n);  // MultiServoMove: + time (2), id + position (3 each)
+  if (with_read) d += client_.link().frame_time(5 + n) + client_.link().frame_time(5 + 3 * n);
+  return d;
+}
+
+Duration RcArmDevice::stream_latency() const { return client_.link().frame_time(7 + 3 * servos_.size()); }
+
+Status RcArmDevice::stream(const std::vector<double>& targets, const std::vector<double>&, Duration in) {
+  // A bus servo interpolates linearly to each point over the time it is given, so the
+  // velocities need not be sent: consecutive short moves make the same path.
+  std::vector<rc::ServoTarget> out;
+  for (std::size_t i = 0; i < targets.size() && i < servos_.size(); ++i) {
+    const long p = std::lround(targets[i]);
+    if (p < 0 || p > 1000)
+      return Error{ErrorKind::invalid_argument,
+                   fmt::format("servo {}: position {} is outside 0..1000", int(servos_[i]), p)};
+    out.push_back(rc::ServoTarget{servos_[i], static_cast<std::uint16_t>(p)});
+  }
+  const auto ms = std::clamp<long long>(std::llround(std::chrono::duration<double, std::milli>(in).count()), 0,
+                                        rc::kMoveTimeMaxMs);
+  return client_.move(out, static_cast<std::uint16_t>(ms));
+}
+
 Status RcArmDevice::idle(Duration d) {
   auto pumped = client_.pump_events(client_.clock().now() + d);  // notifications are kept
   if (!pumped) return pumped.error();

@@ -26,6 +26,11 @@ class RcArmDevice final : public ArmDevice {
   // Stops any action group, then holds every servo where it reads now.
   Status stop() override;
   Status set_torque(bool on) override;
+  // A stream point is one MultiServoMove of every servo (7 + 3 n bytes: 25 for six, 26 ms at
+  // 9600 baud), timed to arrive when the point is due; a read adds its request and reply.
+  Duration stream_period(bool with_read) const override;
+  Duration stream_latency() const override;
+  Status stream(const std::vector<double>& targets, const std::vector<double>& velocities, Duration in) override;
   Status idle(Duration d) override;
 
  private:

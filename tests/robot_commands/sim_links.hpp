@@ -2,6 +2,7 @@
 // Waiting in receive() is what advances the SimClock; nothing sleeps.
 #pragma once
 
+#include <algorithm>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -61,44 +62,71 @@ class ScriptedLink final : public RcLink {
 };
 
 // The emulated xArm (board helper's XarmEmulator) in process, on a SimClock. Frames go
-// through the serial form so the board's own receiver is exercised too.
+// through the serial form so the board's own receiver is exercised too. With a baud set,
+// the line is modelled: each frame reaches the other end its wire time after the line is
+// free (one line each way), as on a serial port; without one, frames arrive at once.
 class EmulatedLink final : public RcLink {
  public:
-  EmulatedLink()
-      : emulator_(clock_, xarm::XarmEmulatorOptions{},
-                  [this](const rc::Frame& f) { out_.push_back(f); }) {}
+  explicit EmulatedLink(std::uint32_t baud = 0)
+      : baud_(baud), emulator_(clock_, xarm::XarmEmulatorOptions{}, [this](const rc::Frame& f) { from_board(f); }) {}
 
   void send(const rc::Frame& frame) override {
     sent.push_back(frame);
-    emulator_.receive(rc::encode_frame(frame));
+    auto bytes = rc::encode_frame(frame);
+    if (baud_ == 0) {
+      emulator_.receive(bytes);
+      return;
+    }
+    to_board_free_ = std::max(to_board_free_, clock_.now()) + wire_time(bytes.size(), baud_);
+    to_board_.push_back({to_board_free_, std::move(bytes)});
   }
   std::optional<rc::Frame> receive(TimePoint deadline) override {
-    // Each round either returns or moves time strictly forward (to the board's next
-    // playback instant or to the deadline), so this always ends.
+    // Each round either returns or moves time strictly forward (to the next frame's arrival,
+    // the board's next playback instant or the deadline), so this always ends.
     for (;;) {
-      if (!out_.empty()) {
-        rc::Frame f = out_.front();
+      while (!to_board_.empty() && to_board_.front().first <= clock_.now()) {
+        emulator_.receive(to_board_.front().second);
+        to_board_.pop_front();
+      }
+      if (!out_.empty() && out_.front().first <= clock_.now()) {
+        rc::Frame f = out_.front().second;
         out_.pop_front();
         return f;
       }
       if (clock_.now() >= deadline) return std::nullopt;
       TimePoint step = deadline;
-      const auto wake = emulator_.board().next_wakeup();
-      if (wake && *wake > clock_.now() && *wake < deadline) step = *wake;
+      auto sooner = [&](TimePoint t) {
+        if (t > clock_.now() && t < step) step = t;
+      };
+      if (const auto wake = emulator_.board().next_wakeup()) sooner(*wake);
+      if (!to_board_.empty()) sooner(to_board_.front().first);
+      if (!out_.empty()) sooner(out_.front().first);
       clock_.advance_to(step);
       emulator_.poll();
     }
   }
   const Clock& clock() const override { return clock_; }
   std::string describe() const override { return "emulated xArm (SimClock)"; }
+  Duration frame_time(std::size_t serial_bytes) const override {
+    return baud_ ? wire_time(serial_bytes, baud_) : RcLink::frame_time(serial_bytes);
+  }
 
   xarm::XarmEmulator& emulator() { return emulator_; }
   SimClock& sim_clock() { return clock_; }
   std::vector<rc::Frame> sent;
 
  private:
+  void from_board(const rc::Frame& f) {
+    TimePoint at = clock_.now();
+    if (baud_) at = from_board_free_ = std::max(from_board_free_, at) + wire_time(rc::encode_frame(f).size(), baud_);
+    out_.push_back({at, f});
+  }
+
+  std::uint32_t baud_;
   SimClock clock_;
-  std::deque<rc::Frame> out_;
+  std::deque<std::pair<TimePoint, std::vector<std::uint8_t>>> to_board_;
+  std::deque<std::pair<TimePoint, rc::Frame>> out_;
+  TimePoint to_board_free_{}, from_board_free_{};
   xarm::XarmEmulator emulator_;
 };
 

@@ -52,7 +52,7 @@ Result<std::unique_ptr<RcLink>> open_link(const DeviceUri& uri) {
     auto port = transport::SerialPort::open(uri.target, uri.baud);
     const std::string description =
         "serial:" + uri.target + " at " + std::to_string(uri.baud) + " baud";
-    return {std::make_unique<StreamLink>(std::move(port), description)};
+    return {std::make_unique<StreamLink>(std::move(port), description, uri.baud)};
   });
 }
 

@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include <algorithm>
+
 #include <fmt/core.h>
 
 #include "core/error.hpp"
@@ -125,6 +127,13 @@ Status await_first_contact(Client& client) {
                            "switched on? Is another program using it (fwupd: `systemctl status fwupd`)? See "
                            "docs/usb-hid.md",
                            mv.error().message)};
+}
+
+Duration HidLink::frame_time(std::size_t serial_bytes) const {
+  const std::size_t reports = (serial_bytes + 63) / 64;
+  const std::size_t servos = serial_bytes > 7 ? (serial_bytes - 7) / 3 : 0;
+  return std::max<Duration>(std::chrono::milliseconds(1) * static_cast<std::int64_t>(reports),
+                            wire_time(servos * 10, 115200));
 }
 
 }  // namespace armctl::robot_commands

@@ -47,6 +47,10 @@ class HidLink final : public RcLink {
   // Names the programs that also have the node open, if any: their replies reach us too.
   std::string describe() const override;
   std::size_t discarded() const override { return discarded_; }
+  // One 64-byte report per USB frame (1 ms, full speed), and the board then forwards each
+  // servo's command on its servo bus: 10 bytes per servo at 115200 baud. A frame of
+  // `serial_bytes` bytes moving n = (bytes - 7) / 3 servos is paced by the slower of the two.
+  Duration frame_time(std::size_t serial_bytes) const override;
 
   // Things a user should know about this board, found while opening (not an xArm product
   // string, other programs with the node open). The CLI prints them as warnings.

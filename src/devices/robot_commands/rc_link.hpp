@@ -21,6 +21,10 @@ class RcLink {
   virtual const Clock& clock() const = 0;
   // "serial:/dev/ttyUSB0 at 9600 baud", "hid:/dev/hidraw3 (serial 4987...)": for errors.
   virtual std::string describe() const = 0;
+  // How long a frame of `serial_bytes` bytes (its serial form) occupies the link: what
+  // streaming is paced by. Serial links: 10 bit times per byte at their baud; the default
+  // is the protocol's 9600 baud.
+  virtual Duration frame_time(std::size_t serial_bytes) const { return wire_time(serial_bytes, 9600); }
   // Bytes/reports thrown away as unreadable so far (resynchronisation, bad reports).
   virtual std::size_t discarded() const { return 0; }
 };

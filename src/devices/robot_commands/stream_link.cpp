@@ -4,8 +4,8 @@
 
 namespace armctl::robot_commands {
 
-StreamLink::StreamLink(std::unique_ptr<transport::ByteStream> stream, std::string description)
-    : stream_(std::move(stream)), description_(std::move(description)) {}
+StreamLink::StreamLink(std::unique_ptr<transport::ByteStream> stream, std::string description, std::uint32_t baud)
+    : stream_(std::move(stream)), description_(std::move(description)), baud_(baud) {}
 
 void StreamLink::send(const rc::Frame& frame) { stream_->write(rc::encode_frame(frame)); }
 

@@ -52,7 +52,7 @@ void XarmServos::advance_to(TimePoint now) {
   if (now <= now_) return;
   double dt = seconds(now - now_);
   for (Servo& s : servos_) {
-    if (!s.torque) continue;
+    if (!s.torque || s.blocked) continue;
     if (s.mode == ServoMode::motor) {
       double p = std::fmod(s.position + s.motor_speed * kMotorUnitsPerSpeed * dt, kTurn);
       s.position = p < 0 ? p + kTurn : p;

@@ -71,6 +71,9 @@ class XarmServos final : public rc_board::ArmBackend {
   std::int8_t saved_offset(ServoId servo) const { return at(servo).saved_offset; }
   double commanded_position(ServoId servo) const { return at(servo).position; }
   void set_battery_millivolts(std::uint16_t mv) { options_.battery_millivolts = mv; }
+  // An obstacle holds the servo where it is (moves to it are accepted but it does not
+  // follow them): following-error tests.
+  void set_blocked(ServoId servo, bool blocked) { at(servo).blocked = blocked; }
   // Last error from saving settings (empty if none).
   const std::string& last_save_error() const { return last_save_error_; }
 
@@ -82,6 +85,7 @@ class XarmServos final : public rc_board::ArmBackend {
     TimePoint start{};
     TimePoint end{};  // moving while now < end
     bool torque = true;
+    bool blocked = false;
     ServoMode mode = ServoMode::servo;
     std::int16_t motor_speed = 0;
     std::int8_t offset = 0;

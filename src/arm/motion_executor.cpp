@@ -1,0 +1,257 @@
+#include "arm/motion_executor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/core.h>
+
+namespace armctl::arm {
+
+namespace {
+
+double seconds(Duration d) { return std::chrono::duration<double>(d).count(); }
+
+// Quintic "smootherstep": rate and its first two derivatives continuous at both ends, so a
+// pause or a stop adds no jerk step. Peak slope 15/8.
+constexpr double kRampPeakSlope = 1.875;
+double smootherstep(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * x * (x * (x * 6 - 15) + 10);
+}
+
+class RateRamp {
+ public:
+  explicit RateRamp(double rate) : from_(rate), to_(rate) {}
+  void start(TimePoint at, double from, double to, double length_s) {
+    at_ = at;
+    from_ = from;
+    to_ = to;
+    length_ = std::max(length_s, 1e-9);
+    active_ = true;
+  }
+  double at(TimePoint now) {
+    if (!active_) return to_;
+    const double x = seconds(now - at_) / length_;
+    if (x >= 1) active_ = false;
+    return from_ + (to_ - from_) * smootherstep(x);
+  }
+  bool active() const { return active_; }
+  double goal() const { return to_; }
+
+ private:
+  TimePoint at_{};
+  double from_ = 0, to_ = 0, length_ = 1;
+  bool active_ = false;
+};
+
+// Device units per joint, and device units/s for velocities (the maps are affine, so the
+// difference of two points is the linear part).
+void to_device(const ArmModel& model, Protocol p, const std::vector<double>& q, const std::vector<double>& v,
+               std::vector<double>& dq, std::vector<double>& dv) {
+  dq = model.to_device(p, q);
+  std::vector<double> ahead(q.size());
+  for (std::size_t i = 0; i < q.size(); ++i) ahead[i] = q[i] + v[i];
+  dv = model.to_device(p, ahead);
+  for (std::size_t i = 0; i < dv.size(); ++i) dv[i] -= dq[i];
+}
+
+double threshold(const ArmModel& model, std::size_t joint, const ExecutorOptions& o) {
+  return model.joints[joint].dimension == Dimension::length ? o.following_error_length : o.following_error_angle;
+}
+
+}  // namespace
+
+double rate_ramp_seconds(const std::vector<double>& nominal_velocity, const std::vector<double>& accel_budget,
+                         double rate_change) {
+  double worst = 0;  // s^2 of nominal velocity per unit of budget
+  for (std::size_t i = 0; i < nominal_velocity.size() && i < accel_budget.size(); ++i)
+    if (accel_budget[i] > 0) worst = std::max(worst, std::abs(nominal_velocity[i]) / accel_budget[i]);
+  return kRampPeakSlope * std::abs(rate_change) * worst;
+}
+
+namespace {
+
+class Execution {
+ public:
+  Execution(Arm& arm, const PlannedMotion& motion, const ExecutorOptions& options)
+      : arm_(arm), motion_(motion), options_(options), model_(arm.model()), device_(arm.device()),
+        clock_(arm.clock()) {
+    const std::size_t n = std::size_t(model_.joint_count());
+    pos_.resize(n);
+    vel_.resize(n);
+    acc_.resize(n);
+  }
+
+  Result<MotionReport> run() {
+    const double top = std::clamp(options_.speed_override, 0.0, 1.0);
+    if (!(top > 0))
+      return Error{ErrorKind::invalid_argument,
+                   fmt::format("speed override {:.0f} %: allowed is above 0 up to 100 %", options_.speed_override * 100)};
+    if (!motion_.sample || !(motion_.duration >= 0) || !std::isfinite(motion_.duration))
+      return Error{ErrorKind::invalid_argument, "the motion has no samples or no finite duration"};
+    if (auto at_start = check_start(); !at_start) return at_start.error();
+
+    period_ = options_.period.value_or(device_.stream_period(false));
+    if (period_ <= Duration{0}) period_ = std::chrono::milliseconds(1);
+    read_time_ = device_.stream_period(true) - device_.stream_period(false);
+    const Duration read_every = options_.read_interval.value_or(device_.poll_interval());
+    latency_ = device_.stream_latency();
+    report_.period = period_;
+
+    const TimePoint start = clock_.now();
+    TimePoint last = start, next_read = start + read_every;
+    double rate = top;
+    bool paused = false, stopping = false;
+    RateRamp ramp(top);
+
+    for (;;) {
+      const TimePoint now = clock_.now();
+      const double new_rate = ramp.at(now);
+      t_ += 0.5 * (rate + new_rate) * seconds(now - last);
+      rate = new_rate;
+      last = now;
+      t_ = std::min(t_, motion_.duration);
+      MotionProgress progress{now - start, t_, motion_.duration, rate, paused, report_.points};
+
+      if (t_ >= motion_.duration) return finish(start, true, false);
+      if (stopping && !ramp.active() && rate <= 0) return finish(start, false, true);
+
+      const MotionCommand cmd = options_.command ? options_.command(progress) : MotionCommand::none;
+      if (cmd == MotionCommand::abort) {
+        if (auto s = device_.stop(); !s) return s.error();
+        return finish(start, false, true);
+      }
+      if ((cmd == MotionCommand::pause || cmd == MotionCommand::stop) && !stopping && (ramp.goal() > 0)) {
+        ramp.start(now, rate, 0, ramp_seconds(rate, 0));
+        paused = cmd == MotionCommand::pause;
+        stopping = cmd == MotionCommand::stop;
+      } else if (cmd == MotionCommand::stop && paused) {
+        paused = false;
+        stopping = true;
+      } else if (cmd == MotionCommand::resume && paused) {
+        ramp.start(now, rate, top, ramp_seconds(rate, top));
+        paused = false;
+      }
+
+      const bool read_now = now >= next_read;
+      if (rate > 0 || ramp.active()) {
+        const Duration in = period_ + (read_now ? read_time_ : Duration{0});
+        const double due = std::min(motion_.duration, t_ + rate * seconds(latency_ + in));
+        motion_.sample(due, pos_, vel_, acc_);
+        for (double& v : vel_) v *= rate;
+        std::vector<double> dq, dv;
+        to_device(model_, device_.protocol(), pos_, vel_, dq, dv);
+        if (auto s = device_.stream(dq, dv, in); !s) return halted(s.error());
+        ++report_.points;
+      }
+      if (read_now) {
+        if (auto f = read_back(start, t_, rate); !f) return halted(f.error());
+        next_read = clock_.now() + read_every;
+      }
+      if (options_.on_point) options_.on_point(MotionProgress{clock_.now() - start, t_, motion_.duration, rate,
+                                                                paused, report_.points});
+      const TimePoint due_next = now + period_ + (read_now ? read_time_ : Duration{0});
+      if (due_next > clock_.now())
+        if (auto s = device_.idle(due_next - clock_.now()); !s) return halted(s.error());
+    }
+  }
+
+ private:
+  Status check_start() {
+    auto now = arm_.read();
+    if (!now) return now.error();
+    motion_.sample(0, pos_, vel_, acc_);
+    for (std::size_t i = 0; i < pos_.size(); ++i)
+      if (std::abs(now->positions[i] - pos_[i]) > threshold(model_, i, options_))
+        return Error{ErrorKind::invalid_argument,
+                     fmt::format("{}: joint {} is at {}, but the motion starts at {}: plan it from where the arm "
+                                 "stands", motion_.what, model_.joints[i].name,
+                                 format_joint_value(model_, int(i), now->positions[i]),
+                                 format_joint_value(model_, int(i), pos_[i]))};
+    return Ok{};
+  }
+
+  // The ramp length from `from` to `to` that keeps every joint's extra acceleration
+  // (|dq/dt_nominal| |dr/dt|) within what its limit leaves over the motion's own
+  // acceleration in the stretch the ramp covers (at least a quarter of the limit).
+  double ramp_seconds(double from, double to) {
+    std::vector<double> peak_v(pos_.size(), 0.0), peak_a(pos_.size(), 0.0), budget(pos_.size());
+    double length = 2 * seconds(period_);
+    for (int pass = 0; pass < 3; ++pass) {
+      const double span = 0.5 * (from + to) * length + 1e-3;
+      for (int k = 0; k <= 16; ++k) {
+        motion_.sample(std::min(motion_.duration, t_ + span * k / 16.0), pos_, vel_, acc_);
+        for (std::size_t i = 0; i < pos_.size(); ++i) {
+          peak_v[i] = std::max(peak_v[i], std::abs(vel_[i]));
+          peak_a[i] = std::max(peak_a[i], std::abs(acc_[i]));
+        }
+      }
+      const double r2 = std::max(from, to) * std::max(from, to);
+      for (std::size_t i = 0; i < pos_.size(); ++i) {
+        const double limit = model_.joints[i].limits.acceleration;
+        budget[i] = std::max(0.25 * limit, limit - peak_a[i] * r2);
+      }
+      length = std::max(length, rate_ramp_seconds(peak_v, budget, to - from));
+    }
+    return length;
+  }
+
+  Status read_back(TimePoint start, double t_now, double rate) {
+    const TimePoint before = clock_.now();
+    auto s = arm_.read();
+    if (!s) return s.error();
+    ++report_.reads;
+    // The device answers about halfway through the exchange.
+    const double t_read = std::min(motion_.duration, t_now + rate * 0.5 * seconds(clock_.now() - before));
+    motion_.sample(t_read, pos_, vel_, acc_);
+    report_.reads_log.push_back({clock_.now() - start, pos_, s->positions});
+    for (std::size_t i = 0; i < pos_.size(); ++i) {
+      const double err = std::abs(s->positions[i] - pos_[i]);
+      if (err > report_.largest_following_error) {
+        report_.largest_following_error = err;
+        report_.largest_following_joint = int(i);
+      }
+      if (err > threshold(model_, i, options_))
+        return Error{ErrorKind::device,
+                     fmt::format("{}: following error on joint {}: it is at {} but should be at {} ({} behind the "
+                                 "plan, the limit is {}); the arm was halted",
+                                 motion_.what, model_.joints[i].name,
+                                 format_joint_value(model_, int(i), s->positions[i]),
+                                 format_joint_value(model_, int(i), pos_[i]), format_joint_value(model_, int(i), err),
+                                 format_joint_value(model_, int(i), threshold(model_, i, options_)))};
+    }
+    return Ok{};
+  }
+
+  Error halted(const Error& e) {
+    (void)device_.stop();  // best effort: the error is what the caller needs
+    return e;
+  }
+
+  Result<MotionReport> finish(TimePoint start, bool completed, bool stopped) {
+    report_.elapsed = clock_.now() - start;
+    report_.t_reached = t_;
+    report_.completed = completed;
+    report_.stopped = stopped;
+    return report_;
+  }
+
+  Arm& arm_;
+  const PlannedMotion& motion_;
+  const ExecutorOptions& options_;
+  const ArmModel& model_;
+  ArmDevice& device_;
+  const Clock& clock_;
+  std::vector<double> pos_, vel_, acc_;
+  double t_ = 0;
+  Duration period_{}, read_time_{}, latency_{};
+  MotionReport report_;
+};
+
+}  // namespace
+
+Result<MotionReport> execute_motion(Arm& arm, const PlannedMotion& motion, const ExecutorOptions& options) {
+  return Execution(arm, motion, options).run();
+}
+
+}  // namespace armctl::arm

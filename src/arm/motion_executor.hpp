@@ -1,0 +1,88 @@
+// The motion executor: plays a motion computed on the host (a jerk-limited joint trajectory,
+// a Cartesian path) to the arm as a stream of short moves, at the rate the link allows.
+//
+// Timing: the motion has a nominal time t in [0, duration]; the executor advances t at a
+// rate r (1 = as planned; the speed override caps it). Pause, resume and stop change r
+// smoothly (a quintic ramp whose length keeps every joint's extra acceleration within its
+// limit), so the arm slows down and comes to rest ON the path; abort halts at once.
+// Each point is sent early by the link's latency plus one period, so that the device,
+// interpolating to it over one period, is there when the plan says.
+// Following error: every few points the positions are read back and compared with the plan
+// at the instant of the read; beyond the threshold the arm is halted and the error names
+// the joint. Docs: docs/motion.md.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "arm/arm.hpp"
+#include "core/clock.hpp"
+#include "core/error.hpp"
+
+namespace armctl::arm {
+
+// A motion checked and timed before anything moves: every joint of the arm (SI, the model's
+// order) at nominal time t in [0, duration] (clamped), with velocity and acceleration.
+struct PlannedMotion {
+  std::string what;   // for messages: "LIN to (200.0, 0.0, 150.0) mm"
+  double duration = 0;  // nominal s
+  std::function<void(double t, std::vector<double>& position, std::vector<double>& velocity,
+                     std::vector<double>& acceleration)>
+      sample;
+};
+
+enum class MotionCommand { none, pause, resume, stop, abort };
+
+struct MotionProgress {
+  Duration elapsed{};    // since the start, on the device's clock
+  double t = 0;          // nominal time reached
+  double duration = 0;   // nominal duration
+  double rate = 1;       // current dt/dt_nominal
+  bool paused = false;
+  std::size_t points = 0;  // stream points sent
+};
+
+struct ExecutorOptions {
+  double speed_override = 1.0;      // (0, 1]: the rate's ceiling
+  std::optional<Duration> period;   // between points; empty: the device's floor
+  // Between read-backs; empty: the device's poll interval (HID boards: slowly).
+  std::optional<Duration> read_interval;
+  double following_error_angle = 0.087;   // rad (5 deg)
+  double following_error_length = 0.005;  // m
+  // Asked before every point (a flag set by a signal handler, a key, a test script).
+  std::function<MotionCommand(const MotionProgress&)> command;
+  // After every point (progress lines, test probes).
+  std::function<void(const MotionProgress&)> on_point;
+};
+
+struct FollowingSample {
+  Duration elapsed{};
+  std::vector<double> planned, measured;  // SI
+};
+
+struct MotionReport {
+  Duration elapsed{};
+  double t_reached = 0;   // nominal time where the motion ended
+  bool completed = false;  // reached the end of the motion
+  bool stopped = false;    // by a stop command (at rest on the path)
+  std::size_t points = 0;
+  std::size_t reads = 0;
+  Duration period{};
+  double largest_following_error = 0;  // SI, the largest over all joints and reads
+  int largest_following_joint = -1;
+  std::vector<FollowingSample> reads_log;  // every read-back
+};
+
+// Runs `motion` on `arm` from its current position (which must be the motion's start: the
+// caller planned it from a fresh read). Errors: the device's (the arm is halted first), or
+// device "following error" naming the joint, where it is and where it should be.
+Result<MotionReport> execute_motion(Arm& arm, const PlannedMotion& motion, const ExecutorOptions& options = {});
+
+// The smallest stop (or pause) ramp length, s of device time, that keeps every joint's extra
+// acceleration |dq/dt_nominal| * |dr/dt| within `budget` of its limit, from rate `rate`.
+double rate_ramp_seconds(const std::vector<double>& nominal_velocity, const std::vector<double>& accel_budget,
+                         double rate_change);
+
+}  // namespace armctl::arm

@@ -1,0 +1,235 @@
+// The motion executor on both simulated arms, on simulated time: a stream of short moves
+// at the link's rate, pause/resume, stop on the path, abort, following-error stop.
+//
+// The motions here are hand-made (a cosine blend between two joint sets: smooth, with
+// known velocity and acceleration), so that these tests check the executor alone.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "arm/arm.hpp"
+#include "arm/bus_arm_device.hpp"
+#include "arm/motion_executor.hpp"
+#include "arm/rc_arm_device.hpp"
+#include "arm_files.hpp"
+#include "joint_bus/sim_fixture.hpp"
+#include "robot_commands/sim_links.hpp"
+
+namespace armctl::arm {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+constexpr double kPi = std::numbers::pi;
+
+// From `a` to `b` in `T` s with a cosine velocity profile: x(t) = a + (b - a)(1 - cos(pi t/T))/2.
+PlannedMotion cosine_motion(std::vector<double> a, std::vector<double> b, double T) {
+  PlannedMotion m;
+  m.what = "test motion";
+  m.duration = T;
+  m.sample = [a, b, T](double t, std::vector<double>& p, std::vector<double>& v, std::vector<double>& acc) {
+    t = std::clamp(t, 0.0, T);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const double d = b[i] - a[i];
+      p[i] = a[i] + d * (1 - std::cos(kPi * t / T)) / 2;
+      v[i] = d * kPi / (2 * T) * std::sin(kPi * t / T);
+      acc[i] = d * kPi * kPi / (2 * T * T) * std::cos(kPi * t / T);
+    }
+  };
+  return m;
+}
+
+// Distance of `q` from the joint-space segment a..b, relative to its length (0 = on it).
+double off_line(const std::vector<double>& q, const std::vector<double>& a, const std::vector<double>& b) {
+  double dd = 0, dq = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    dd += (b[i] - a[i]) * (b[i] - a[i]);
+    dq += (q[i] - a[i]) * (b[i] - a[i]);
+  }
+  const double f = dq / dd;
+  double off = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double e = q[i] - (a[i] + f * (b[i] - a[i]));
+    off += e * e;
+  }
+  return std::sqrt(off / dd);
+}
+
+class RcStream : public ::testing::Test {
+ protected:
+  robot_commands::testing::EmulatedLink link{9600};
+  robot_commands::Client client{link};
+  Arm arm{testing::shipped("xarm"), std::make_unique<RcArmDevice>(testing::shipped("xarm"), client)};
+
+  std::vector<double> here() { return arm.read().value().positions; }
+  std::vector<double> goal() {
+    auto g = here();
+    g[0] = 60 * kDeg;   // servo6
+    g[1] = -30 * kDeg;  // servo5
+    g[2] = 45 * kDeg;   // servo4
+    return g;
+  }
+};
+
+TEST_F(RcStream, PeriodIsTheWireTimeOfOneMultiServoMove) {
+  // Six servos: 7 + 3 x 6 = 25 bytes = 250 bit times at 9600 baud.
+  EXPECT_EQ(arm.device().stream_period(false), wire_time(25, 9600));
+  using Ms = std::chrono::duration<double, std::milli>;
+  EXPECT_NEAR(Ms(arm.device().stream_period(false)).count(), 26.04, 0.01);
+}
+
+TEST_F(RcStream, FollowsTheMotionAndArrives) {
+  const auto a = here(), b = goal();
+  auto m = cosine_motion(a, b, 2.0);
+  auto r = execute_motion(arm, m);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->completed);
+  // 2 s at one point per 26 ms (a read every 200 ms takes a slot): about 70 points.
+  EXPECT_GT(r->points, 60u);
+  EXPECT_LT(r->points, 80u);
+  EXPECT_GE(r->reads, 7u);  // every 200 ms plus the read itself
+  // Read back during the motion: within a few servo units (0.24 deg each) of the plan.
+  EXPECT_LT(r->largest_following_error, 2.5 * kDeg) << "joint " << r->largest_following_joint;
+  ASSERT_TRUE(arm.wait());
+  const auto end = here();
+  for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(end[i], b[i], 0.25 * kDeg) << i;
+}
+
+TEST_F(RcStream, SpeedOverrideStretchesTime) {
+  auto m = cosine_motion(here(), goal(), 1.0);
+  ExecutorOptions o;
+  o.speed_override = 0.5;
+  auto r = execute_motion(arm, m, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_NEAR(std::chrono::duration<double>(r->elapsed).count(), 2.0, 0.06);
+  o.speed_override = 0;
+  auto refused = execute_motion(arm, m, o);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("override"), std::string::npos);
+}
+
+TEST_F(RcStream, StopComesToRestOnThePath) {
+  const auto a = here(), b = goal();
+  auto m = cosine_motion(a, b, 2.0);
+  ExecutorOptions o;
+  o.command = [](const MotionProgress& p) { return p.t > 0.8 ? MotionCommand::stop : MotionCommand::none; };
+  auto r = execute_motion(arm, m, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->stopped);
+  EXPECT_FALSE(r->completed);
+  EXPECT_GT(r->t_reached, 0.8);
+  EXPECT_LT(r->t_reached, 1.9);
+  ASSERT_TRUE(arm.wait());
+  const auto end = here();
+  // On the joint-space line (within servo resolution), short of the goal.
+  EXPECT_LT(off_line(end, a, b), 0.01);
+  EXPECT_GT(std::abs(end[0] - b[0]), 2 * kDeg);
+  // The stop ramp's extra acceleration stays within the joints' limits: the deceleration
+  // read back from the plan's rate is bounded (checked through the elapsed time instead of
+  // samples: a ramp that kept the joint within its limit cannot be shorter than this).
+  EXPECT_GT(std::chrono::duration<double>(r->elapsed).count(), 0.8 * 1.0 + 0.05);
+}
+
+TEST_F(RcStream, PauseHoldsAndResumeFinishes) {
+  const auto a = here(), b = goal();
+  auto m = cosine_motion(a, b, 2.0);
+  ExecutorOptions o;
+  std::vector<double> held;
+  Duration paused_at{};
+  o.command = [&](const MotionProgress& p) {
+    if (p.t > 0.6 && !p.paused && paused_at == Duration{0}) {
+      paused_at = p.elapsed;
+      return MotionCommand::pause;
+    }
+    if (p.paused && p.elapsed > paused_at + std::chrono::seconds(2)) return MotionCommand::resume;
+    return MotionCommand::none;
+  };
+  std::vector<double> t_while_paused;
+  o.on_point = [&](const MotionProgress& p) {
+    if (p.paused && p.rate == 0) t_while_paused.push_back(p.t);
+  };
+  auto r = execute_motion(arm, m, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->completed);
+  ASSERT_GT(t_while_paused.size(), 10u);
+  EXPECT_DOUBLE_EQ(t_while_paused.front(), t_while_paused.back());  // nominal time stood still
+  EXPECT_GT(std::chrono::duration<double>(r->elapsed).count(), 3.9);
+  ASSERT_TRUE(arm.wait());
+  EXPECT_NEAR(here()[0], b[0], 0.25 * kDeg);
+}
+
+TEST_F(RcStream, AbortHaltsAtOnce) {
+  auto m = cosine_motion(here(), goal(), 2.0);
+  ExecutorOptions o;
+  o.command = [](const MotionProgress& p) { return p.t > 1.0 ? MotionCommand::abort : MotionCommand::none; };
+  auto r = execute_motion(arm, m, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->stopped);
+  EXPECT_LT(r->t_reached, 1.05);
+}
+
+TEST_F(RcStream, FollowingErrorHaltsAndNamesTheJoint) {
+  auto m = cosine_motion(here(), goal(), 2.0);
+  link.emulator().servos().set_blocked(4, true);  // servo4: joint index 2
+  auto r = execute_motion(arm, m);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().kind, ErrorKind::device);
+  EXPECT_NE(r.error().message.find("following error on joint servo4"), std::string::npos) << r.error().message;
+}
+
+TEST_F(RcStream, RefusesAMotionThatDoesNotStartWhereTheArmIs) {
+  auto g = goal();
+  auto m = cosine_motion(g, g, 1.0);
+  const std::size_t before = link.sent.size();
+  auto r = execute_motion(arm, m);
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("plan it from where the arm stands"), std::string::npos) << r.error().message;
+  // Only the position read went out.
+  EXPECT_EQ(link.sent.size(), before + 1);
+}
+
+class BusStream : public ::testing::Test {
+ protected:
+  std::unique_ptr<joint_sim::SimArm> sim = test::make_arm(115200);
+  joint_bus::BusMaster master{sim->link()};
+  Arm arm{testing::shipped("scara"),
+          std::make_unique<BusArmDevice>(testing::shipped("scara"), master, sim->link(), "simulated SCARA")};
+  std::vector<double> here() { return arm.read().value().positions; }
+};
+
+TEST_F(BusStream, FollowsTheMotionAndArrives) {
+  const auto a = here();
+  auto b = a;
+  b[1] = a[1] + 30 * kDeg;  // SHOULDER
+  b[2] = a[2] - 20 * kDeg;  // UAE
+  auto m = cosine_motion(a, b, 2.0);
+  auto r = execute_motion(arm, m);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->completed);
+  EXPECT_GT(r->reads, 20u);
+  EXPECT_LT(r->largest_following_error, 1.5 * kDeg) << "joint " << r->largest_following_joint;
+  ASSERT_TRUE(arm.wait());
+  const auto end = here();
+  EXPECT_NEAR(end[1], b[1], 0.1 * kDeg);
+  EXPECT_NEAR(end[2], b[2], 0.1 * kDeg);
+}
+
+TEST_F(BusStream, StopComesToRestOnThePath) {
+  const auto a = here();
+  auto b = a;
+  b[1] = a[1] + 30 * kDeg;
+  b[2] = a[2] - 20 * kDeg;
+  auto m = cosine_motion(a, b, 2.0);
+  ExecutorOptions o;
+  o.command = [](const MotionProgress& p) { return p.t > 0.9 ? MotionCommand::stop : MotionCommand::none; };
+  auto r = execute_motion(arm, m, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->stopped);
+  ASSERT_TRUE(arm.wait());
+  const auto end = here();
+  EXPECT_LT(off_line(end, a, b), 0.01);
+  EXPECT_GT(std::abs(end[1] - b[1]), 2 * kDeg);
+}
+
+}  // namespace
+}  // namespace armctl::arm
