@@ -155,23 +155,25 @@ motion::Rpy Arm::tool_rpy(const motion::Pose& pose, const motion::JointVector& c
   return std::abs(wrap(other.yaw - pointing)) < std::abs(wrap(rpy.yaw - pointing)) ? other : rpy;
 }
 
+motion::Rpy Arm::goal_rpy(const CartesianGoal& goal, const motion::Rpy& current) const {
+  motion::Rpy rpy{goal.roll.value_or(current.roll), goal.pitch.value_or(current.pitch),
+                  goal.yaw.value_or(current.yaw)};
+  // The 5-joint arm's yaw is where it points: left open, it follows the position.
+  if (model_.family == motion::KinematicFamily::xarm && !goal.yaw)
+    rpy.yaw = std::atan2(goal.position.y(), goal.position.x());
+  return rpy;
+}
+
 Result<std::vector<motion::IkSolution>> Arm::inverse(const CartesianGoal& goal, const JointState& now) const {
   for (int k = 0; k < 3; ++k)
     if (!std::isfinite(goal.position[k])) return refuse("the tool position is not a finite number");
   for (const auto& a : {goal.roll, goal.pitch, goal.yaw})
     if (a && !std::isfinite(*a)) return refuse("the tool orientation is not a finite number");
   const motion::JointVector near = chain_part(model_, now.positions);
-  const motion::Pose here = forward(near);
-  const motion::Rpy current = tool_rpy(here, near);
-  motion::Rpy rpy{goal.roll.value_or(current.roll), goal.pitch.value_or(current.pitch),
-                  goal.yaw.value_or(current.yaw)};
+  const motion::Rpy rpy = goal_rpy(goal, tool_rpy(forward(near), near));
   motion::IkRequest request;
   request.nearest_orientation = goal.nearest_orientation;
-  if (model_.family == motion::KinematicFamily::xarm && !goal.yaw) {
-    // The 5-joint arm's yaw is where it points: left open, it follows the position.
-    rpy.yaw = std::atan2(goal.position.y(), goal.position.x());
-    request.nearest_orientation = true;
-  }
+  if (model_.family == motion::KinematicFamily::xarm && !goal.yaw) request.nearest_orientation = true;
   auto solve = [&](const motion::Rpy& o) {
     motion::Pose tool_pose;
     tool_pose.position = goal.position;

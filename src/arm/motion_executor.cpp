@@ -229,6 +229,9 @@ class Execution {
   }
 
   Result<MotionReport> finish(TimePoint start, bool completed, bool stopped) {
+    // Where the last point sent leads (for a stop: where the ramp came to rest).
+    motion_.sample(std::min(motion_.duration, t_), pos_, vel_, acc_);
+    arm_.expect_at(pos_);
     report_.elapsed = clock_.now() - start;
     report_.t_reached = t_;
     report_.completed = completed;
