@@ -1,0 +1,252 @@
+#include "motion/jerk_profile.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace armctl::motion {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// Interior samples between two neighbouring breakpoints of the family's shape. The
+// family's functions are smooth between breakpoints but not monotone; these catch the
+// roots of "no cruise needed" that lie between breakpoints and tighten the durations known
+// possible (docs/trajectories.md "Blocked intervals").
+constexpr int kSamplesBetween = 3;
+
+// A root of f between x0 and x1, where f0 and f1 have opposite signs: regula falsi with the
+// Illinois modification, bisecting whenever the bracket fails to halve, to the last bits.
+template <typename F>
+double bracketed_root(F f, double x0, double f0, double x1, double f1) {
+  double width = std::abs(x1 - x0);
+  int side = 0;
+  for (int i = 0; i < 200; ++i) {
+    const double scale = std::max(std::abs(x0), std::abs(x1));
+    if (std::abs(x1 - x0) <= 2 * kEps * scale || std::abs(x1 - x0) < 1e-300) break;
+    double x = (x0 * f1 - x1 * f0) / (f1 - f0);
+    const bool slow = (i % 3 == 2) && std::abs(x1 - x0) > 0.5 * width;
+    if (slow) width = std::abs(x1 - x0);
+    if (slow || !(x > std::min(x0, x1) && x < std::max(x0, x1))) x = 0.5 * (x0 + x1);
+    const double fx = f(x);
+    if (fx == 0) return x;
+    if ((fx > 0) == (f1 > 0)) {
+      x1 = x, f1 = fx;
+      if (side == -1) f0 /= 2;
+      side = -1;
+    } else {
+      x0 = x, f0 = fx;
+      if (side == 1) f1 /= 2;
+      side = 1;
+    }
+  }
+  return std::abs(f0) < std::abs(f1) ? x0 : x1;
+}
+
+int sign(double x) { return (x > 0) - (x < 0); }
+
+}  // namespace
+
+VelocityChange velocity_change(double v0, double a0, double v1, const JerkLimits& limits) {
+  const double j = limits.jerk, amax = limits.acceleration;
+  // Bringing a to 0 at once ends at v_stop: above it the change starts with jerk +j, below
+  // it with -j. Mirrored so that it is always +j.
+  const double v_stop = v0 + a0 * std::abs(a0) / (2 * j);
+  const double s = v1 >= v_stop ? 1.0 : -1.0;
+  const double u0 = s * v0, b0 = s * a0, dv = s * v1 - u0;
+  // Peak acceleration ap of a triangle: dv = (2 ap^2 - b0^2) / (2j); a plateau at amax if
+  // that would exceed it.
+  double ap = std::sqrt(std::max(0.0, dv * j + b0 * b0 / 2));
+  double hold = 0;
+  if (ap > amax) {
+    ap = amax;
+    hold = std::max(0.0, (dv - (2 * amax * amax - b0 * b0) / (2 * j)) / amax);
+  }
+  VelocityChange c;
+  c.jerk = s * j;
+  c.ramp_up = std::max(0.0, (ap - b0) / j);
+  c.hold = hold;
+  c.ramp_down = ap / j;
+  c.duration = c.ramp_up + c.hold + c.ramp_down;
+  double p = 0, u = u0;
+  const double t1 = c.ramp_up, t3 = c.ramp_down;
+  p += t1 * (u + t1 * (b0 / 2 + t1 * j / 6));
+  u += t1 * (b0 + t1 * j / 2);
+  p += hold * (u + hold * ap / 2);
+  u += hold * ap;
+  p += t3 * (u + t3 * (ap / 2 - t3 * j / 6));
+  c.displacement = s * p;
+  return c;
+}
+
+JerkPlan::Point JerkPlan::evaluate(double vp) const {
+  const VelocityChange first = velocity_change(task_.velocity, task_.acceleration, vp, limits_);
+  const VelocityChange last = velocity_change(vp, 0, task_.target_velocity, limits_);
+  Point p;
+  p.vp = vp;
+  p.ramps = first.duration + last.duration;
+  p.remaining = (task_.target_position - task_.position) - first.displacement - last.displacement;
+  if (vp != 0)
+    p.duration = p.ramps + p.remaining / vp;
+  else
+    p.duration = p.remaining == 0 ? p.ramps : kInf;
+  return p;
+}
+
+double JerkPlan::root_of_remaining(const Point& x, const Point& y) const {
+  return bracketed_root([this](double vp) { return evaluate(vp).remaining; }, x.vp, x.remaining, y.vp,
+                        y.remaining);
+}
+
+double JerkPlan::vp_for_duration(const Point& x, const Point& y, double duration) const {
+  if (duration == x.duration) return x.vp;
+  if (duration == y.duration) return y.vp;
+  // vp (T - ramps) - remaining: vp times the duration missing, finite at vp = 0.
+  auto f = [&](const Point& p) { return p.vp * (duration - p.ramps) - p.remaining; };
+  const double fx = f(x), fy = f(y);
+  if (fx == 0) return x.vp;
+  if (fy == 0) return y.vp;
+  if (sign(fx) == sign(fy)) return std::abs(fx) < std::abs(fy) ? x.vp : y.vp;  // rounding at an end
+  return bracketed_root([&](double vp) { return f(evaluate(vp)); }, x.vp, fx, y.vp, fy);
+}
+
+void JerkPlan::plan(const JerkTask& task, const JerkLimits& limits) {
+  task_ = task;
+  limits_ = limits;
+  point_count_ = 0;
+  interval_count_ = 0;
+  const double vmax = limits.velocity, amax = limits.acceleration, j = limits.jerk;
+  const double v0 = task.velocity, a0 = task.acceleration, vf = task.target_velocity;
+
+  // At rest on the target: stays there for any duration.
+  if (task.target_position == task.position && v0 == 0 && a0 == 0 && vf == 0) {
+    points_[0] = Point{0, 0, 0, 0};
+    point_count_ = 1;
+    intervals_[0] = Interval{0, kInf, 0, -1};
+    interval_count_ = 1;
+    min_duration_ = 0;
+    return;
+  }
+
+  // Breakpoints of the family's shape in vp: 0 (the cruise's direction), where the first
+  // change turns round (v_stop) and where either change starts to need a plateau at amax.
+  double breaks[10];
+  int n = 0;
+  const double v_stop = v0 + a0 * std::abs(a0) / (2 * j);
+  const double reach_first = (amax * amax - a0 * a0 / 2) / j;
+  const double reach_last = amax * amax / j;
+  const double candidates[] = {0, v_stop, v0 + reach_first, v0 - reach_first, vf + reach_last, vf - reach_last};
+  breaks[n++] = -vmax;
+  for (double c : candidates)
+    if (c > -vmax && c < vmax) breaks[n++] = c;
+  breaks[n++] = vmax;
+  for (int i = 1; i < n; ++i)  // insertion sort: a handful of values
+    for (int k = i; k > 0 && breaks[k] < breaks[k - 1]; --k) std::swap(breaks[k], breaks[k - 1]);
+
+  Point samples[kMaxSamples];
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    if (i > 0 && breaks[i] == breaks[i - 1]) continue;
+    if (i > 0) {
+      const double lo = breaks[i - 1], hi = breaks[i];
+      for (int k = 1; k <= kSamplesBetween; ++k)
+        samples[m++] = evaluate(lo + (hi - lo) * k / (kSamplesBetween + 1));
+    }
+    samples[m++] = evaluate(breaks[i]);
+  }
+
+  // Points: the samples with the roots of `remaining` (profiles with no cruise) between.
+  for (int i = 0; i < m; ++i) {
+    if (i > 0 && sign(samples[i - 1].remaining) * sign(samples[i].remaining) < 0) {
+      Point r = evaluate(root_of_remaining(samples[i - 1], samples[i]));
+      r.remaining = 0;  // the cruise is dropped: what is left is rounding
+      r.duration = r.ramps;
+      points_[point_count_++] = r;
+    }
+    points_[point_count_++] = samples[i];
+  }
+
+  // Durations possible: on each stretch between neighbouring points where the cruise runs
+  // forward (vp and remaining of one sign), the duration is continuous, so every value
+  // between its ends' durations is taken. A root flanked by impossible stretches on both
+  // sides is a single possible duration.
+  auto add = [this](double lo, double hi, int a, int b) {
+    intervals_[interval_count_++] = Interval{lo, hi, a, b};
+  };
+  for (int i = 0; i + 1 < point_count_; ++i) {
+    const Point &x = points_[i], &y = points_[i + 1];
+    const int side = sign(x.vp + y.vp);
+    int rem = x.remaining != 0 ? sign(x.remaining) : sign(y.remaining);
+    if (x.vp == 0 || y.vp == 0) {
+      const Point& at_zero = x.vp == 0 ? x : y;
+      if (at_zero.remaining == 0) continue;  // the limit at vp -> 0 is not at_zero's duration
+      rem = sign(at_zero.remaining);
+    } else if (rem == 0) {
+      rem = sign(evaluate(0.5 * (x.vp + y.vp)).remaining);
+    }
+    if (side * rem > 0)
+      add(std::min(x.duration, y.duration), std::max(x.duration, y.duration), i, i + 1);
+    else if (x.remaining == 0 && x.vp != 0)
+      add(x.duration, x.duration, i, i);
+  }
+  const Point& last = points_[point_count_ - 1];
+  if (last.remaining == 0) add(last.duration, last.duration, point_count_ - 1, point_count_ - 1);
+  // Exactly at rest after the first change and before the last: any cruise at vp = 0.
+  for (int i = 0; i < point_count_; ++i)
+    if (points_[i].vp == 0 && points_[i].remaining == 0) add(points_[i].ramps, kInf, i, -1);
+
+  min_duration_ = kInf;
+  for (int i = 0; i < interval_count_; ++i) min_duration_ = std::min(min_duration_, intervals_[i].lo);
+}
+
+double JerkPlan::next_possible(double t) const {
+  double next = kInf;
+  for (int i = 0; i < interval_count_; ++i) {
+    const Interval& in = intervals_[i];
+    if (in.lo <= t && t <= in.hi) return t;
+    if (in.lo > t) next = std::min(next, in.lo);
+  }
+  return next;
+}
+
+void JerkPlan::build(double duration, JerkSegments& out) const {
+  const Interval* chosen = nullptr;
+  for (int i = 0; i < interval_count_ && !chosen; ++i)
+    if (intervals_[i].lo <= duration && duration <= intervals_[i].hi) chosen = &intervals_[i];
+  double vp = 0;
+  if (chosen && chosen->b >= 0)
+    vp = vp_for_duration(points_[chosen->a], points_[chosen->b], duration);
+  else if (chosen)
+    vp = points_[chosen->a].vp;
+  const VelocityChange first = velocity_change(task_.velocity, task_.acceleration, vp, limits_);
+  const VelocityChange last = velocity_change(vp, 0, task_.target_velocity, limits_);
+  const double cruise = std::max(0.0, duration - first.duration - last.duration);
+
+  const double durations[kProfileSegments] = {first.ramp_up, first.hold,    first.ramp_down, cruise,
+                                              last.ramp_up,  last.hold,     last.ramp_down};
+  const double jerks[kProfileSegments] = {first.jerk, 0, -first.jerk, 0, last.jerk, 0, -last.jerk};
+  JerkSegment s;
+  s.position = task_.position;
+  s.velocity = task_.velocity;
+  s.acceleration = task_.acceleration;
+  double start = 0;
+  for (int k = 0; k < kProfileSegments; ++k) {
+    s.start = start;
+    s.duration = durations[k];
+    s.jerk = jerks[k];
+    // Plateaus and the cruise hold what the ramp before them reached exactly.
+    if ((k == 1 || k == 5) && durations[k] > 0) s.acceleration = sign(jerks[k - 1]) * limits_.acceleration;
+    if (k == 3) s.velocity = vp;
+    if (k == 3 || k == 4) s.acceleration = 0;
+    out[k] = s;
+    const JerkState next = advance(s, s.duration);
+    s.position = next.position;
+    s.velocity = next.velocity;
+    s.acceleration = next.acceleration;
+    start += s.duration;
+  }
+}
+
+}  // namespace armctl::motion

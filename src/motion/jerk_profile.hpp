@@ -1,0 +1,91 @@
+// One joint's jerk-limited profile between two states, the building block of trajectory.hpp.
+//
+// The family (docs/trajectories.md "Method"): a velocity change from (v0, a0) to a peak
+// velocity vp with a = 0, a cruise at vp for tc >= 0, a velocity change from vp to vf with
+// a = 0. Each velocity change is the fastest one the limits allow (jerk +-j, a plateau at
+// +-amax if the change is large enough, jerk back), so a profile is fixed by vp and the
+// duration it must take. Pure arithmetic: no I/O, no allocation, no exceptions.
+#pragma once
+
+#include <array>
+
+namespace armctl::motion {
+
+struct JerkLimits {
+  double velocity = 1, acceleration = 1, jerk = 1;  // all > 0, finite
+};
+
+// Where a joint starts and where it must arrive (target acceleration is 0).
+struct JerkTask {
+  double position = 0, velocity = 0, acceleration = 0;
+  double target_position = 0, target_velocity = 0;
+};
+
+// A piece of constant jerk: the state at its start and how long it lasts.
+struct JerkSegment {
+  double start = 0;  // s, from the start of its section
+  double duration = 0;
+  double position = 0, velocity = 0, acceleration = 0, jerk = 0;
+};
+
+inline constexpr int kProfileSegments = 7;
+using JerkSegments = std::array<JerkSegment, kProfileSegments>;
+
+// The durations a joint can take to do its task within the family, as closed intervals
+// (the last one unbounded), and how to build the profile for any one of them. Filled by
+// `plan`; bounded storage, no heap.
+class JerkPlan {
+ public:
+  // Samples of vp across [-vmax, vmax]: breakpoints where the family's shape changes,
+  // points between them, the roots of "no cruise needed".
+  static constexpr int kMaxSamples = 40;
+  static constexpr int kMaxPoints = 2 * kMaxSamples;
+  static constexpr int kMaxIntervals = kMaxPoints + 1;
+
+  void plan(const JerkTask& task, const JerkLimits& limits);
+  double min_duration() const { return min_duration_; }
+  // The smallest duration >= t this joint can take (t itself if it can).
+  double next_possible(double t) const;
+  // The profile of exactly `duration` (a value next_possible returned unchanged).
+  void build(double duration, JerkSegments& out) const;
+
+ private:
+  struct Point {
+    double vp, remaining, ramps, duration;  // remaining: distance left for the cruise
+  };
+  struct Interval {
+    double lo, hi;
+    int a, b;  // points whose durations bracket the interval (b == -1: cruise at vp = 0)
+  };
+  Point evaluate(double vp) const;
+  double root_of_remaining(const Point& x, const Point& y) const;
+  double vp_for_duration(const Point& x, const Point& y, double duration) const;
+
+  JerkTask task_{};
+  JerkLimits limits_{};
+  Point points_[kMaxPoints]{};
+  int point_count_ = 0;
+  Interval intervals_[kMaxIntervals]{};
+  int interval_count_ = 0;
+  double min_duration_ = 0;
+};
+
+// The fastest velocity change from (v0, a0) to (v1, 0), as up to three segments: jerk
+// toward v1, a plateau at +-amax, jerk back to a = 0. Requires |a0| <= amax.
+struct VelocityChange {
+  double jerk = 0;            // signed jerk of the first segment (the last has -jerk)
+  double ramp_up = 0, hold = 0, ramp_down = 0;  // s
+  double duration = 0, displacement = 0;
+};
+VelocityChange velocity_change(double v0, double a0, double v1, const JerkLimits& limits);
+
+// The state after `dt` of constant jerk from a segment's start state.
+struct JerkState {
+  double position = 0, velocity = 0, acceleration = 0;
+};
+inline JerkState advance(const JerkSegment& s, double dt) {
+  return {s.position + dt * (s.velocity + dt * (s.acceleration / 2 + dt * s.jerk / 6)),
+          s.velocity + dt * (s.acceleration + dt * s.jerk / 2), s.acceleration + dt * s.jerk};
+}
+
+}  // namespace armctl::motion
