@@ -98,7 +98,8 @@ class Execution {
     period_ = options_.period.value_or(device_.stream_period(false));
     if (period_ <= Duration{0}) period_ = std::chrono::milliseconds(1);
     read_time_ = device_.stream_period(true) - device_.stream_period(false);
-    const Duration read_every = options_.read_interval.value_or(device_.poll_interval());
+    // Reads take the link from the stream: at most one in four slots by default.
+    const Duration read_every = options_.read_interval.value_or(std::max(device_.poll_interval(), 4 * period_));
     latency_ = device_.stream_latency();
     report_.period = period_;
 

@@ -156,6 +156,24 @@ double tool_following_error(const arm::Arm& arm, const arm::MotionReport& r) {
   return worst * 1e3;
 }
 
+// The largest distance of the tool point, as read back during the motion, from the path
+// itself (mm): the path sampled every 0.5 mm of its length.
+double tool_path_error(const arm::Arm& arm, const arm::MotionReport& r, const motion::CartesianPath& path) {
+  std::vector<Eigen::Vector3d> points;
+  double length = 0;
+  for (const auto& seg : path.segments()) length += seg.length;
+  const int n = std::max(2, static_cast<int>(length / 0.0005));
+  for (int k = 0; k <= n; ++k) points.push_back(path.at(path.duration() * k / n).position);
+  double worst = 0;
+  for (const auto& s : r.reads_log) {
+    const Eigen::Vector3d p = arm.forward(arm.chain_of(s.measured)).position;
+    double nearest = 1e9;
+    for (const auto& q : points) nearest = std::min(nearest, (q - p).norm());
+    worst = std::max(worst, nearest);
+  }
+  return worst * 1e3;
+}
+
 }  // namespace
 
 void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& moves, const MotionCliOptions& options) {
@@ -200,19 +218,27 @@ void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& mo
     auto report = arm::execute_motion(arm, piece.motion, eo);
     if (progress_line) fmt::print(stderr, "\r\033[K");
     if (!report) throw ArmctlError(ErrorKind(report.error().kind), fmt::format("{}: {}", piece.label, report.error().message));
-    const double error_mm = tool_following_error(arm, *report);
-    if (options.json)
-      fmt::print("{}\n", json{{"event", report->completed ? "done" : "stopped"},
-                              {"line", piece.line},
-                              {"elapsed_s", std::chrono::duration<double>(report->elapsed).count()},
-                              {"points", report->points},
-                              {"period_ms", std::chrono::duration<double, std::milli>(report->period).count()},
-                              {"following_error_mm", error_mm}}
-                             .dump());
-    else
-      fmt::print("{}: {} in {:.2f} s, {} points every {:.1f} ms, tool within {:.2f} mm of the plan\n", piece.label,
-                 report->completed ? "done" : "stopped", std::chrono::duration<double>(report->elapsed).count(),
-                 report->points, std::chrono::duration<double, std::milli>(report->period).count(), error_mm);
+    const double following_mm = tool_following_error(arm, *report);
+    const std::optional<double> path_mm =
+        piece.path ? std::optional(tool_path_error(arm, *report, *piece.path)) : std::nullopt;
+    if (options.json) {
+      json event{{"event", report->completed ? "done" : "stopped"},
+                 {"line", piece.line},
+                 {"elapsed_s", std::chrono::duration<double>(report->elapsed).count()},
+                 {"points", report->points},
+                 {"reads", report->reads},
+                 {"period_ms", std::chrono::duration<double, std::milli>(report->period).count()},
+                 {"following_error_mm", following_mm}};
+      if (path_mm) event["path_error_mm"] = *path_mm;
+      fmt::print("{}\n", event.dump());
+    } else {
+      fmt::print("{}: {} in {:.2f} s, {} points every {:.1f} ms; read back {} times: tool within {:.2f} mm of the "
+                 "plan{}\n",
+                 piece.label, report->completed ? "done" : "stopped",
+                 std::chrono::duration<double>(report->elapsed).count(), report->points,
+                 std::chrono::duration<double, std::milli>(report->period).count(), report->reads, following_mm,
+                 path_mm ? fmt::format(", {:.2f} mm of the path", *path_mm) : std::string());
+    }
     std::fflush(stdout);
     if (!report->completed)
       throw ArmctlError(ErrorKind::device, fmt::format("stopped by a signal at {} (the arm is at rest on the path)",
