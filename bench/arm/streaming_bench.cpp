@@ -63,7 +63,7 @@ Result run_lin(arm::Arm& arm, const Eigen::Vector3d& offset, double speed, TrueJ
   seg.speed = speed;
   const auto plan = arm::plan_path(arm.model(), start, std::span(&seg, 1));
   if (!plan) {
-    std::fprintf(stderr, "bench_motion: %s\n", plan.error().message.c_str());
+    std::fprintf(stderr, "bench_streaming: %s\n", plan.error().message.c_str());
     std::exit(1);
   }
   Result r;
@@ -74,7 +74,7 @@ Result run_lin(arm::Arm& arm, const Eigen::Vector3d& offset, double speed, TrueJ
   };
   const auto report = arm::execute_motion(arm, plan->motion, o);
   if (!report) {
-    std::fprintf(stderr, "bench_motion: %s\n", report.error().message.c_str());
+    std::fprintf(stderr, "bench_streaming: %s\n", report.error().message.c_str());
     std::exit(1);
   }
   (void)arm.wait();
@@ -100,7 +100,7 @@ void print(const char* arm, unsigned baud, const Result& r) {
               r.link_use / 0.9);
 }
 
-void xarm(std::uint32_t baud) {
+void run_xarm(std::uint32_t baud) {
   robot_commands::testing::EmulatedLink link(baud);
   robot_commands::Client client(link);
   arm::Arm arm(model("xarm"), std::make_unique<arm::RcArmDevice>(model("xarm"), client));
@@ -119,7 +119,7 @@ void xarm(std::uint32_t baud) {
   print("xarm", baud, run_lin(arm, {0, 0.08, 0}, 0.04, true_joints, point, read));
 }
 
-void scara(std::uint32_t baud) {
+void run_scara(std::uint32_t baud) {
   auto c = joint_sim::load_arm_config(joint_sim::default_arm_config_path());
   c.baud = baud;
   joint_sim::SimArm sim(std::move(c));
@@ -142,8 +142,8 @@ void scara(std::uint32_t baud) {
 
 int main() {
   for (std::uint32_t baud : {9600u, 115200u}) {
-    xarm(baud);
-    scara(baud);
+    run_xarm(baud);
+    run_scara(baud);
   }
   return 0;
 }
