@@ -33,19 +33,6 @@ double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, c
   return (p - (a + f * d)).norm();
 }
 
-// Tool displacement (m) of half a device unit on every chain joint at `q` (SI, every joint).
-double quantization_limit(const arm::Arm& arm, const std::vector<double>& q, arm::Protocol p) {
-  const auto& m = arm.model();
-  const motion::Jacobian j = m.kinematics->jacobian(arm.chain_of(q));
-  double limit = 0;
-  for (int i = 0; i < m.chain_joints(); ++i) {
-    const auto& map = m.joints[std::size_t(i)].map(p);
-    const double half_unit = 0.5 / std::abs(map->device_per_unit());
-    limit += half_unit * j.block<3, 1>(0, i).norm();
-  }
-  return limit;
-}
-
 struct Result {
   double deviation = 0, end_error = 0, limit = 0, link_use = 0;
 };
@@ -83,7 +70,7 @@ Result run_lin(arm::Arm& arm, const Eigen::Vector3d& offset, double speed, TrueJ
   std::vector<double> middle = start;
   const auto& last = plan->checked->joints[plan->checked->joints.size() / 2];
   for (int i = 0; i < last.size(); ++i) middle[std::size_t(i)] = last[i];
-  r.limit = quantization_limit(arm, middle, arm.device().protocol());
+  r.limit = arm::tool_quantization(arm.model(), arm.device().protocol(), middle);
   const double busy = std::chrono::duration<double>(wire_per_point * std::int64_t(report->points) +
                                                     wire_per_read * std::int64_t(report->reads))
                           .count();

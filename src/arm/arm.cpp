@@ -240,8 +240,13 @@ Result<JointState> Arm::wait(const WaitOptions& options) {
     for (std::size_t i = 0; i < last_targets_.size(); ++i) {
       if (!last_targets_[i]) continue;
       const JointModel& j = model_.joints[i];
-      const double tol = j.dimension == Dimension::angle ? options.angle_tolerance : options.length_tolerance;
-      if (previous && std::abs(s->positions[i] - previous->positions[i]) > tol / 4) resting = false;
+      const double asked = j.dimension == Dimension::angle ? options.angle_tolerance : options.length_tolerance;
+      // A joint can be no nearer its target than half a unit of its device (through the arm
+      // controller a SCARA joint's unit is 1.42 deg).
+      const auto& map = j.map(device_->protocol());
+      const double half_unit = map ? 0.5 / std::abs(map->device_per_unit()) : 0.0;
+      const double tol = std::max(asked, half_unit * 1.01);
+      if (previous && std::abs(s->positions[i] - previous->positions[i]) > asked / 4) resting = false;
       if (std::abs(s->positions[i] - *last_targets_[i]) <= tol) continue;
       late += fmt::format("{}{} at {} (target {})", late.empty() ? "" : "; ", j.name,
                           format_quantity(j.dimension, s->positions[i]), format_quantity(j.dimension, *last_targets_[i]));

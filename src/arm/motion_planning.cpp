@@ -88,6 +88,19 @@ Result<PlannedMotion> plan_joint_move(const ArmModel& model, const std::vector<d
   return m;
 }
 
+double tool_quantization(const ArmModel& model, Protocol protocol, const std::vector<double>& q) {
+  motion::JointVector chain(model.chain_joints());
+  for (int i = 0; i < model.chain_joints(); ++i) chain[i] = q[std::size_t(i)];
+  const motion::Jacobian j = model.kinematics->jacobian(chain);
+  double limit = 0;
+  for (int i = 0; i < model.chain_joints(); ++i) {
+    const auto& map = model.joints[std::size_t(i)].map(protocol);
+    if (!map) continue;
+    limit += 0.5 / std::abs(map->device_per_unit()) * j.block<3, 1>(0, i).norm();
+  }
+  return limit;
+}
+
 std::vector<motion::PathLimits> path_limits(const ArmModel& model) {
   std::vector<motion::PathLimits> out;
   for (int i = 0; i < model.chain_joints(); ++i) {

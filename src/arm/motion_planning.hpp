@@ -47,6 +47,11 @@ struct PathPlan {
 Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& from,
                            std::span<const motion::PathSegment> segments, const PathTiming& timing = {});
 
+// How far the tool point can be from where it is asked to be only because each chain joint
+// stands on a whole device unit: the tool displacement of half a unit on every chain joint
+// (through the Jacobian at `q`, SI, every joint). The quantization limit of a path's accuracy.
+double tool_quantization(const ArmModel& model, Protocol protocol, const std::vector<double>& q);
+
 // The chain joints' limits as the path check takes them.
 std::vector<motion::PathLimits> path_limits(const ArmModel& model);
 

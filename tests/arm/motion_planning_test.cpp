@@ -14,6 +14,7 @@
 #include "arm/rc_arm_device.hpp"
 #include "arm_files.hpp"
 #include "joint_bus/sim_fixture.hpp"
+#include "arm_controller/controller_rig.hpp"
 #include "robot_commands/sim_links.hpp"
 
 namespace armctl::arm {
@@ -236,6 +237,53 @@ TEST_F(ScaraMotion, StopMidLineComesToRestOnTheLine) {
   const Eigen::Vector3d end = true_tool();
   EXPECT_LT(to_line(end, start.position, seg.target.position), 0.003);
   EXPECT_GT((end - seg.target.position).norm(), 0.02);
+}
+
+}  // namespace
+}  // namespace armctl::arm
+
+namespace armctl::arm {
+namespace {
+
+// The SCARA through armctl's arm controller: the stream is MultiServoMoves of the
+// controller's 0..1000 units per joint (1.42 deg each on SHOULDER), which the controller
+// turns into synchronized joint moves from a moving start.
+TEST(ControllerMotion, LinThroughTheArmControllerStaysWithinItsResolution) {
+  arm_controller::testing::Rig rig;
+  const ArmModel model = testing::shipped("scara");
+  Arm arm{model, std::make_unique<RcArmDevice>(model, *rig.client)};
+  ASSERT_TRUE(arm.move_joints({0.15, 0.3, -0.8, 0.0, 0.0, 0.0, std::nullopt}));
+  ASSERT_TRUE(arm.wait());
+  auto true_tool = [&] {
+    std::vector<double> device;
+    for (const auto& j : model.joints) device.push_back(rig.clicks(j.joint_bus->id));
+    return arm.forward(arm.chain_of(model.from_device(Protocol::joint_bus, device))).position;
+  };
+  const auto from = arm.read().value().positions;
+  const motion::Pose start = arm.forward(arm.chain_of(from));
+  const auto seg = lin_to(start, {0, 0.1, 0}, 0.05);
+  auto plan = plan_path(model, from, std::span(&seg, 1));
+  ASSERT_TRUE(plan) << plan.error().message;
+  double worst = 0;
+  ExecutorOptions o;
+  o.on_point = [&](const MotionProgress&) {
+    worst = std::max(worst, to_line(true_tool(), start.position, seg.target.position));
+  };
+  auto r = execute_motion(arm, plan->motion, o);
+  ASSERT_TRUE(r) << r.error().message;
+  auto w = arm.wait();
+  ASSERT_TRUE(w) << w.error().message;
+  // Twice the quantization limit (half a controller unit on every joint, mid-path).
+  std::vector<double> middle = from;
+  const motion::JointVector& mid = plan->checked->joints[plan->checked->joints.size() / 2];
+  for (int i = 0; i < mid.size(); ++i) middle[std::size_t(i)] = mid[i];
+  const double limit = 2 * tool_quantization(model, Protocol::robot_commands, middle);
+  std::printf("through the arm controller: %zu points every %.1f ms, largest distance from the line %.2f mm, end "
+              "%.2f mm, twice the quantization limit %.2f mm\n",
+              r->points, std::chrono::duration<double, std::milli>(r->period).count(), worst * 1e3,
+              (true_tool() - seg.target.position).norm() * 1e3, limit * 1e3);
+  EXPECT_LT(worst, limit);
+  EXPECT_LT((true_tool() - seg.target.position).norm(), limit);
 }
 
 }  // namespace
