@@ -130,14 +130,16 @@ void JerkPlan::plan(const JerkTask& task, const JerkLimits& limits) {
     return;
   }
 
-  // Breakpoints of the family's shape in vp: 0 (the cruise's direction), where the first
-  // change turns round (v_stop) and where either change starts to need a plateau at amax.
+  // Breakpoints of the family's shape in vp: 0 (the cruise's direction), where either
+  // change vanishes and turns round (v_stop, vf: the durations have a square-root kink
+  // there, and short profiles sit close to it) and where either change starts to need a
+  // plateau at amax.
   double breaks[10];
   int n = 0;
   const double v_stop = v0 + a0 * std::abs(a0) / (2 * j);
   const double reach_first = (amax * amax - a0 * a0 / 2) / j;
   const double reach_last = amax * amax / j;
-  const double candidates[] = {0, v_stop, v0 + reach_first, v0 - reach_first, vf + reach_last, vf - reach_last};
+  const double candidates[] = {0,  v_stop, v0 + reach_first, v0 - reach_first, vf, vf + reach_last, vf - reach_last};
   breaks[n++] = -vmax;
   for (double c : candidates)
     if (c > -vmax && c < vmax) breaks[n++] = c;
@@ -191,14 +193,53 @@ void JerkPlan::plan(const JerkTask& task, const JerkLimits& limits) {
     else if (x.remaining == 0 && x.vp != 0)
       add(x.duration, x.duration, i, i);
   }
+  plan_releases();
   const Point& last = points_[point_count_ - 1];
   if (last.remaining == 0) add(last.duration, last.duration, point_count_ - 1, point_count_ - 1);
   // Exactly at rest after the first change and before the last: any cruise at vp = 0.
   for (int i = 0; i < point_count_; ++i)
-    if (points_[i].vp == 0 && points_[i].remaining == 0) add(points_[i].ramps, kInf, i, -1);
+    if (points_[i].vp == 0 && points_[i].remaining == 0) add(points_[i].ramps, kInf, i, kCruiseAtRest);
+  for (int i = 0; i < release_count_; ++i) add(releases_[i].duration, releases_[i].duration, i, kRelease);
 
   min_duration_ = kInf;
   for (int i = 0; i < interval_count_; ++i) min_duration_ = std::min(min_duration_, intervals_[i].lo);
+}
+
+JerkPlan::Release JerkPlan::release(double tau, double& remaining) const {
+  const double a0 = task_.acceleration, j = a0 > 0 ? -limits_.jerk : limits_.jerk;
+  const JerkSegment start{0, tau, 0, task_.velocity, a0, j};
+  const JerkState s = advance(start, tau);
+  const VelocityChange c = velocity_change(s.velocity, s.acceleration, task_.target_velocity, limits_);
+  remaining = (task_.target_position - task_.position) - s.position - c.displacement;
+  return Release{tau, tau + c.duration};
+}
+
+void JerkPlan::plan_releases() {
+  release_count_ = 0;
+  if (task_.acceleration == 0) return;
+  // The ends are members of the vp family (tau = 0: vp = vf; tau = |a0| / j: vp = v_stop);
+  // the roots between are profiles it lacks.
+  const double full = std::abs(task_.acceleration) / limits_.jerk;
+  double prev_tau = 0, prev_rem = 0;
+  release(0, prev_rem);
+  for (int k = 1; k <= kReleaseSamples; ++k) {
+    const double tau = full * k / kReleaseSamples;
+    double rem = 0;
+    release(tau, rem);
+    if (sign(prev_rem) * sign(rem) < 0 || (rem == 0 && k < kReleaseSamples)) {
+      const double root = rem == 0 ? tau
+                                   : bracketed_root(
+                                         [this](double t) {
+                                           double r = 0;
+                                           release(t, r);
+                                           return r;
+                                         },
+                                         prev_tau, prev_rem, tau, rem);
+      double ignored = 0;
+      releases_[release_count_++] = release(root, ignored);
+    }
+    prev_tau = tau, prev_rem = rem;
+  }
 }
 
 double JerkPlan::next_possible(double t) const {
@@ -216,17 +257,32 @@ void JerkPlan::build(double duration, JerkSegments& out) const {
   for (int i = 0; i < interval_count_ && !chosen; ++i)
     if (intervals_[i].lo <= duration && duration <= intervals_[i].hi) chosen = &intervals_[i];
   double vp = 0;
-  if (chosen && chosen->b >= 0)
-    vp = vp_for_duration(points_[chosen->a], points_[chosen->b], duration);
-  else if (chosen)
-    vp = points_[chosen->a].vp;
-  const VelocityChange first = velocity_change(task_.velocity, task_.acceleration, vp, limits_);
-  const VelocityChange last = velocity_change(vp, 0, task_.target_velocity, limits_);
-  const double cruise = std::max(0.0, duration - first.duration - last.duration);
-
-  const double durations[kProfileSegments] = {first.ramp_up, first.hold,    first.ramp_down, cruise,
-                                              last.ramp_up,  last.hold,     last.ramp_down};
-  const double jerks[kProfileSegments] = {first.jerk, 0, -first.jerk, 0, last.jerk, 0, -last.jerk};
+  double durations[kProfileSegments], jerks[kProfileSegments];
+  if (chosen && chosen->b == kRelease) {
+    // The release as the first segment, then the change to vf in the last three.
+    const double tau = releases_[chosen->a].tau, a0 = task_.acceleration;
+    const double j = a0 > 0 ? -limits_.jerk : limits_.jerk;
+    const JerkState s = advance(JerkSegment{0, tau, 0, task_.velocity, a0, j}, tau);
+    const VelocityChange last = velocity_change(s.velocity, s.acceleration, task_.target_velocity, limits_);
+    const double d[] = {tau, 0, 0, 0, last.ramp_up, last.hold, last.ramp_down};
+    const double jk[] = {j, 0, 0, 0, last.jerk, 0, -last.jerk};
+    std::copy(d, d + kProfileSegments, durations);
+    std::copy(jk, jk + kProfileSegments, jerks);
+    vp = s.velocity;
+  } else {
+    if (chosen && chosen->b >= 0)
+      vp = vp_for_duration(points_[chosen->a], points_[chosen->b], duration);
+    else if (chosen)
+      vp = points_[chosen->a].vp;
+    const VelocityChange first = velocity_change(task_.velocity, task_.acceleration, vp, limits_);
+    const VelocityChange last = velocity_change(vp, 0, task_.target_velocity, limits_);
+    const double cruise = std::max(0.0, duration - first.duration - last.duration);
+    const double d[] = {first.ramp_up, first.hold, first.ramp_down, cruise, last.ramp_up, last.hold, last.ramp_down};
+    const double jk[] = {first.jerk, 0, -first.jerk, 0, last.jerk, 0, -last.jerk};
+    std::copy(d, d + kProfileSegments, durations);
+    std::copy(jk, jk + kProfileSegments, jerks);
+  }
+  const bool released = chosen && chosen->b == kRelease;
   JerkSegment s;
   s.position = task_.position;
   s.velocity = task_.velocity;
@@ -238,8 +294,8 @@ void JerkPlan::build(double duration, JerkSegments& out) const {
     s.jerk = jerks[k];
     // Plateaus and the cruise hold what the ramp before them reached exactly.
     if ((k == 1 || k == 5) && durations[k] > 0) s.acceleration = sign(jerks[k - 1]) * limits_.acceleration;
-    if (k == 3) s.velocity = vp;
-    if (k == 3 || k == 4) s.acceleration = 0;
+    if (k == 3 && !released) s.velocity = vp, s.acceleration = 0;
+    if (k == 4 && !released) s.acceleration = 0;
     out[k] = s;
     const JerkState next = advance(s, s.duration);
     s.position = next.position;

@@ -4,7 +4,10 @@
 // velocity vp with a = 0, a cruise at vp for tc >= 0, a velocity change from vp to vf with
 // a = 0. Each velocity change is the fastest one the limits allow (jerk +-j, a plateau at
 // +-amax if the change is large enough, jerk back), so a profile is fixed by vp and the
-// duration it must take. Pure arithmetic: no I/O, no allocation, no exceptions.
+// duration it must take. Besides, when a0 != 0, "release" profiles that never pass a = 0
+// on the way: jerk toward a = 0 for tau < |a0| / j, then at once the fastest change to vf
+// (they have no cruise, so each is one duration). Pure arithmetic: no I/O, no allocation,
+// no exceptions.
 #pragma once
 
 #include <array>
@@ -40,7 +43,7 @@ class JerkPlan {
   // points between them, the roots of "no cruise needed".
   static constexpr int kMaxSamples = 40;
   static constexpr int kMaxPoints = 2 * kMaxSamples;
-  static constexpr int kMaxIntervals = kMaxPoints + 1;
+  static constexpr int kMaxIntervals = kMaxPoints + 16;  // + a cruise at rest, releases
 
   void plan(const JerkTask& task, const JerkLimits& limits);
   double min_duration() const { return min_duration_; }
@@ -55,8 +58,20 @@ class JerkPlan {
   };
   struct Interval {
     double lo, hi;
-    int a, b;  // points whose durations bracket the interval (b == -1: cruise at vp = 0)
+    // Points whose durations bracket the interval; b == kCruiseAtRest: a cruise at vp = 0
+    // after point a; b == kRelease: release profile a.
+    int a, b;
   };
+  static constexpr int kCruiseAtRest = -1, kRelease = -2;
+  static constexpr int kReleaseSamples = 8;
+  struct Release {
+    double tau, duration;
+  };
+  // Release for tau: what the fastest change to vf leaves to cover, and the duration.
+  Release release(double tau, double& remaining) const;
+  void plan_releases();
+  Release releases_[kReleaseSamples + 1]{};
+  int release_count_ = 0;
   Point evaluate(double vp) const;
   double root_of_remaining(const Point& x, const Point& y) const;
   double vp_for_duration(const Point& x, const Point& y, double duration) const;
