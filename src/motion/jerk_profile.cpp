@@ -15,7 +15,7 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // family's functions are smooth between breakpoints but not monotone; these catch the
 // roots of "no cruise needed" that lie between breakpoints and tighten the durations known
 // possible (docs/trajectories.md "Blocked intervals").
-constexpr int kSamplesBetween = 3;
+constexpr int kSamplesBetween = 1;
 
 // A root of f between x0 and x1, where f0 and f1 have opposite signs: regula falsi with the
 // Illinois modification, bisecting whenever the bracket fails to halve, to the last bits.
@@ -112,6 +112,61 @@ double JerkPlan::vp_for_duration(const Point& x, const Point& y, double duration
   return bracketed_root([&](double vp) { return f(evaluate(vp)); }, x.vp, fx, y.vp, fy);
 }
 
+int JerkPlan::add_hidden_crossings(Point* samples, int m) const {
+  // `remaining` may cross 0 and come back between two samples (a bump the samples miss):
+  // where |remaining| has a local minimum at a sample (or an end), search the two
+  // neighbouring gaps for a value of the other sign (golden section toward it) and keep it
+  // as a sample, so that its two roots get bracketed.
+  Point found[kMaxSamples];
+  int f = 0;
+  for (int i = 0; i < m && f < kMaxSamples - m; ++i) {
+    const double r = samples[i].remaining;
+    if (r == 0) continue;
+    const bool left_closer = i == 0 || std::abs(samples[i - 1].remaining) >= std::abs(r);
+    const bool right_closer = i == m - 1 || std::abs(samples[i + 1].remaining) >= std::abs(r);
+    if (!left_closer || !right_closer) continue;
+    const bool same_left = i == 0 || sign(samples[i - 1].remaining) == sign(r);
+    const bool same_right = i == m - 1 || sign(samples[i + 1].remaining) == sign(r);
+    if (!same_left || !same_right) continue;
+    // Inside, a parabola through the three samples must come at least halfway to 0.
+    if (i > 0 && i < m - 1) {
+      const double x0 = samples[i - 1].vp - samples[i].vp, x2 = samples[i + 1].vp - samples[i].vp;
+      const double y0 = samples[i - 1].remaining - r, y2 = samples[i + 1].remaining - r;
+      // y = b x + c x^2 through (x0, y0), (x2, y2); vertex value r - b^2 / (4c).
+      const double det = x0 * x2 * (x2 - x0);
+      const double c = (y2 * x0 - y0 * x2) / det, b = (y0 * x2 * x2 - y2 * x0 * x0) / det;
+      if (c != 0 && std::abs(r - b * b / (4 * c)) > 0.5 * std::abs(r) && sign(r - b * b / (4 * c)) == sign(r))
+        continue;
+    }
+    double lo = samples[std::max(0, i - 1)].vp, hi = samples[std::min(m - 1, i + 1)].vp;
+    // Maximize -sign(r) * remaining: golden section, stopping at the first crossing.
+    const double s = -sign(r);
+    const double g = 0.6180339887498949;
+    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+    Point p1 = evaluate(x1), p2 = evaluate(x2);
+    for (int it = 0; it < 24; ++it) {
+      if (s * p1.remaining > 0 || s * p2.remaining > 0) {
+        found[f++] = s * p1.remaining > 0 ? p1 : p2;
+        break;
+      }
+      if (s * p1.remaining > s * p2.remaining) {
+        hi = x2, x2 = x1, p2 = p1;
+        x1 = hi - g * (hi - lo), p1 = evaluate(x1);
+      } else {
+        lo = x1, x1 = x2, p1 = p2;
+        x2 = lo + g * (hi - lo), p2 = evaluate(x2);
+      }
+    }
+  }
+  // Merge the finds in (both lists sorted by vp).
+  for (int k = 0; k < f; ++k) {
+    int at = m++;
+    while (at > 0 && samples[at - 1].vp > found[k].vp) samples[at] = samples[at - 1], --at;
+    samples[at] = found[k];
+  }
+  return m;
+}
+
 void JerkPlan::plan(const JerkTask& task, const JerkLimits& limits) {
   task_ = task;
   limits_ = limits;
@@ -122,8 +177,9 @@ void JerkPlan::plan(const JerkTask& task, const JerkLimits& limits) {
 
   // At rest on the target: stays there for any duration.
   if (task.target_position == task.position && v0 == 0 && a0 == 0 && vf == 0) {
-    points_[0] = Point{0, 0, 0, 0};
-    point_count_ = 1;
+    samples_[0] = points_[0] = Point{0, 0, 0, 0};
+    sample_count_ = point_count_ = 1;
+    release_count_ = 0;
     intervals_[0] = Interval{0, kInf, 0, -1};
     interval_count_ = 1;
     min_duration_ = 0;
@@ -147,7 +203,7 @@ void JerkPlan::plan(const JerkTask& task, const JerkLimits& limits) {
   for (int i = 1; i < n; ++i)  // insertion sort: a handful of values
     for (int k = i; k > 0 && breaks[k] < breaks[k - 1]; --k) std::swap(breaks[k], breaks[k - 1]);
 
-  Point samples[kMaxSamples];
+  Point* samples = samples_;
   int m = 0;
   for (int i = 0; i < n; ++i) {
     if (i > 0 && breaks[i] == breaks[i - 1]) continue;
@@ -158,6 +214,25 @@ void JerkPlan::plan(const JerkTask& task, const JerkLimits& limits) {
     }
     samples[m++] = evaluate(breaks[i]);
   }
+  sample_count_ = add_hidden_crossings(samples, m);
+  plan_releases();
+  derive();
+}
+
+bool JerkPlan::refine(double vp) {
+  if (sample_count_ >= kMaxSamples) return false;
+  int at = sample_count_++;
+  while (at > 0 && samples_[at - 1].vp > vp) samples_[at] = samples_[at - 1], --at;
+  samples_[at] = evaluate(vp);
+  derive();
+  return true;
+}
+
+void JerkPlan::derive() {
+  const Point* samples = samples_;
+  const int m = sample_count_;
+  point_count_ = 0;
+  interval_count_ = 0;
 
   // Points: the samples with the roots of `remaining` (profiles with no cruise) between.
   for (int i = 0; i < m; ++i) {
@@ -193,7 +268,6 @@ void JerkPlan::plan(const JerkTask& task, const JerkLimits& limits) {
     else if (x.remaining == 0 && x.vp != 0)
       add(x.duration, x.duration, i, i);
   }
-  plan_releases();
   const Point& last = points_[point_count_ - 1];
   if (last.remaining == 0) add(last.duration, last.duration, point_count_ - 1, point_count_ - 1);
   // Exactly at rest after the first change and before the last: any cruise at vp = 0.
@@ -252,7 +326,7 @@ double JerkPlan::next_possible(double t) const {
   return next;
 }
 
-void JerkPlan::build(double duration, JerkSegments& out) const {
+bool JerkPlan::build(double duration, JerkSegments& out) {
   const Interval* chosen = nullptr;
   for (int i = 0; i < interval_count_ && !chosen; ++i)
     if (intervals_[i].lo <= duration && duration <= intervals_[i].hi) chosen = &intervals_[i];
@@ -277,6 +351,9 @@ void JerkPlan::build(double duration, JerkSegments& out) const {
     const VelocityChange first = velocity_change(task_.velocity, task_.acceleration, vp, limits_);
     const VelocityChange last = velocity_change(vp, 0, task_.target_velocity, limits_);
     const double cruise = std::max(0.0, duration - first.duration - last.duration);
+    // The samples missed a stretch where no cruise fits (remaining of the wrong sign):
+    // vp lies in it; sampled there, the next plan knows.
+    if (duration - first.duration - last.duration < -1e-12 * std::max(1.0, duration) && refine(vp)) return false;
     const double d[] = {first.ramp_up, first.hold, first.ramp_down, cruise, last.ramp_up, last.hold, last.ramp_down};
     const double jk[] = {first.jerk, 0, -first.jerk, 0, last.jerk, 0, -last.jerk};
     std::copy(d, d + kProfileSegments, durations);
@@ -303,6 +380,7 @@ void JerkPlan::build(double duration, JerkSegments& out) const {
     s.acceleration = next.acceleration;
     start += s.duration;
   }
+  return true;
 }
 
 }  // namespace armctl::motion

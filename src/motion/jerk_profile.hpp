@@ -41,7 +41,7 @@ class JerkPlan {
  public:
   // Samples of vp across [-vmax, vmax]: breakpoints where the family's shape changes,
   // points between them, the roots of "no cruise needed".
-  static constexpr int kMaxSamples = 40;
+  static constexpr int kMaxSamples = 64;
   static constexpr int kMaxPoints = 2 * kMaxSamples;
   static constexpr int kMaxIntervals = kMaxPoints + 16;  // + a cruise at rest, releases
 
@@ -49,8 +49,10 @@ class JerkPlan {
   double min_duration() const { return min_duration_; }
   // The smallest duration >= t this joint can take (t itself if it can).
   double next_possible(double t) const;
-  // The profile of exactly `duration` (a value next_possible returned unchanged).
-  void build(double duration, JerkSegments& out) const;
+  // The profile of exactly `duration` (a value next_possible returned unchanged). False
+  // if the plan found it had claimed a duration it cannot make: it has corrected itself
+  // (next_possible tells anew) and `out` is unchanged.
+  bool build(double duration, JerkSegments& out);
 
  private:
   struct Point {
@@ -63,7 +65,7 @@ class JerkPlan {
     int a, b;
   };
   static constexpr int kCruiseAtRest = -1, kRelease = -2;
-  static constexpr int kReleaseSamples = 8;
+  static constexpr int kReleaseSamples = 4;
   struct Release {
     double tau, duration;
   };
@@ -73,11 +75,16 @@ class JerkPlan {
   Release releases_[kReleaseSamples + 1]{};
   int release_count_ = 0;
   Point evaluate(double vp) const;
+  int add_hidden_crossings(Point* samples, int count) const;
+  void derive();  // points, intervals and min_duration from the samples and releases
+  bool refine(double vp);  // one more sample, then derive
   double root_of_remaining(const Point& x, const Point& y) const;
   double vp_for_duration(const Point& x, const Point& y, double duration) const;
 
   JerkTask task_{};
   JerkLimits limits_{};
+  Point samples_[kMaxSamples]{};
+  int sample_count_ = 0;
   Point points_[kMaxPoints]{};
   int point_count_ = 0;
   Interval intervals_[kMaxIntervals]{};
