@@ -83,11 +83,13 @@ VelocityChange velocity_change(double v0, double a0, double v1, const JerkLimits
 
 JerkPlan::Point JerkPlan::evaluate(double vp) const {
   const VelocityChange first = velocity_change(task_.velocity, task_.acceleration, vp, limits_);
-  const VelocityChange last = velocity_change(vp, 0, task_.target_velocity, limits_);
+  // The last change starts and ends at a = 0: symmetric, its mean velocity is the midpoint.
+  const double dv = std::abs(task_.target_velocity - vp), amax = limits_.acceleration, j = limits_.jerk;
+  const double last = dv * j > amax * amax ? dv / amax + amax / j : 2 * std::sqrt(dv / j);
   Point p;
   p.vp = vp;
-  p.ramps = first.duration + last.duration;
-  p.remaining = (task_.target_position - task_.position) - first.displacement - last.displacement;
+  p.ramps = first.duration + last;
+  p.remaining = (task_.target_position - task_.position) - first.displacement - (vp + task_.target_velocity) / 2 * last;
   if (vp != 0)
     p.duration = p.ramps + p.remaining / vp;
   else
@@ -128,23 +130,34 @@ int JerkPlan::add_hidden_crossings(Point* samples, int m) const {
     const bool same_left = i == 0 || sign(samples[i - 1].remaining) == sign(r);
     const bool same_right = i == m - 1 || sign(samples[i + 1].remaining) == sign(r);
     if (!same_left || !same_right) continue;
-    // Inside, a parabola through the three samples must come at least halfway to 0.
+    // Inside, a parabola through the three samples must come at least halfway to 0; its
+    // vertex is the first place looked at.
+    double vertex = samples[i].vp;
     if (i > 0 && i < m - 1) {
       const double x0 = samples[i - 1].vp - samples[i].vp, x2 = samples[i + 1].vp - samples[i].vp;
       const double y0 = samples[i - 1].remaining - r, y2 = samples[i + 1].remaining - r;
-      // y = b x + c x^2 through (x0, y0), (x2, y2); vertex value r - b^2 / (4c).
+      // y = b x + c x^2 through (x0, y0), (x2, y2); vertex at -b / (2c), value r - b^2 / (4c).
       const double det = x0 * x2 * (x2 - x0);
       const double c = (y2 * x0 - y0 * x2) / det, b = (y0 * x2 * x2 - y2 * x0 * x0) / det;
-      if (c != 0 && std::abs(r - b * b / (4 * c)) > 0.5 * std::abs(r) && sign(r - b * b / (4 * c)) == sign(r))
-        continue;
+      if (c == 0) continue;
+      const double low = r - b * b / (4 * c);
+      if (sign(low) == sign(r) && std::abs(low) > 0.5 * std::abs(r)) continue;
+      vertex = samples[i].vp - b / (2 * c);
     }
     double lo = samples[std::max(0, i - 1)].vp, hi = samples[std::min(m - 1, i + 1)].vp;
-    // Maximize -sign(r) * remaining: golden section, stopping at the first crossing.
-    const double s = -sign(r);
+    const double s = -sign(r);  // looking for s * remaining > 0
+    if (vertex > lo && vertex < hi) {
+      const Point p = evaluate(vertex);
+      if (s * p.remaining > 0) {
+        found[f++] = p;
+        continue;
+      }
+    }
+    // Else maximize s * remaining by golden section, stopping at the first crossing.
     const double g = 0.6180339887498949;
     double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
     Point p1 = evaluate(x1), p2 = evaluate(x2);
-    for (int it = 0; it < 24; ++it) {
+    for (int it = 0; it < 10; ++it) {
       if (s * p1.remaining > 0 || s * p2.remaining > 0) {
         found[f++] = s * p1.remaining > 0 ? p1 : p2;
         break;

@@ -72,7 +72,7 @@ class JerkPlan {
   // Release for tau: what the fastest change to vf leaves to cover, and the duration.
   Release release(double tau, double& remaining) const;
   void plan_releases();
-  Release releases_[kReleaseSamples + 1]{};
+  Release releases_[kReleaseSamples + 1];
   int release_count_ = 0;
   Point evaluate(double vp) const;
   int add_hidden_crossings(Point* samples, int count) const;
@@ -83,11 +83,12 @@ class JerkPlan {
 
   JerkTask task_{};
   JerkLimits limits_{};
-  Point samples_[kMaxSamples]{};
+  // Left uninitialized: plan() fills what it uses (a trajectory plans 7 of these per section).
+  Point samples_[kMaxSamples];
   int sample_count_ = 0;
-  Point points_[kMaxPoints]{};
+  Point points_[kMaxPoints];
   int point_count_ = 0;
-  Interval intervals_[kMaxIntervals]{};
+  Interval intervals_[kMaxIntervals];
   int interval_count_ = 0;
   double min_duration_ = 0;
 };
