@@ -18,9 +18,10 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kSamplesBetween = 1;
 
 // A root of f between x0 and x1, where f0 and f1 have opposite signs: regula falsi with the
-// Illinois modification, bisecting whenever the bracket fails to halve, to the last bits.
+// Illinois modification, bisecting whenever the bracket fails to halve, to the last bits
+// of x or until |f| <= f_tolerance (f's own rounding).
 template <typename F>
-double bracketed_root(F f, double x0, double f0, double x1, double f1) {
+double bracketed_root(F f, double x0, double f0, double x1, double f1, double f_tolerance) {
   double width = std::abs(x1 - x0);
   int side = 0;
   for (int i = 0; i < 200; ++i) {
@@ -31,7 +32,7 @@ double bracketed_root(F f, double x0, double f0, double x1, double f1) {
     if (slow) width = std::abs(x1 - x0);
     if (slow || !(x > std::min(x0, x1) && x < std::max(x0, x1))) x = 0.5 * (x0 + x1);
     const double fx = f(x);
-    if (fx == 0) return x;
+    if (std::abs(fx) <= f_tolerance) return x;
     if ((fx > 0) == (f1 > 0)) {
       x1 = x, f1 = fx;
       if (side == -1) f0 /= 2;
@@ -49,36 +50,12 @@ int sign(double x) { return (x > 0) - (x < 0); }
 
 }  // namespace
 
-VelocityChange velocity_change(double v0, double a0, double v1, const JerkLimits& limits) {
-  const double j = limits.jerk, amax = limits.acceleration;
-  // Bringing a to 0 at once ends at v_stop: above it the change starts with jerk +j, below
-  // it with -j. Mirrored so that it is always +j.
-  const double v_stop = v0 + a0 * std::abs(a0) / (2 * j);
-  const double s = v1 >= v_stop ? 1.0 : -1.0;
-  const double u0 = s * v0, b0 = s * a0, dv = s * v1 - u0;
-  // Peak acceleration ap of a triangle: dv = (2 ap^2 - b0^2) / (2j); a plateau at amax if
-  // that would exceed it.
-  double ap = std::sqrt(std::max(0.0, dv * j + b0 * b0 / 2));
-  double hold = 0;
-  if (ap > amax) {
-    ap = amax;
-    hold = std::max(0.0, (dv - (2 * amax * amax - b0 * b0) / (2 * j)) / amax);
-  }
-  VelocityChange c;
-  c.jerk = s * j;
-  c.ramp_up = std::max(0.0, (ap - b0) / j);
-  c.hold = hold;
-  c.ramp_down = ap / j;
-  c.duration = c.ramp_up + c.hold + c.ramp_down;
-  double p = 0, u = u0;
-  const double t1 = c.ramp_up, t3 = c.ramp_down;
-  p += t1 * (u + t1 * (b0 / 2 + t1 * j / 6));
-  u += t1 * (b0 + t1 * j / 2);
-  p += hold * (u + hold * ap / 2);
-  u += hold * ap;
-  p += t3 * (u + t3 * (ap / 2 - t3 * j / 6));
-  c.displacement = s * p;
-  return c;
+
+double JerkPlan::rounding() const {
+  // A distance this small is below what the displacements' arithmetic resolves.
+  const double scale = std::abs(task_.target_position - task_.position) + std::abs(task_.position) +
+                       limits_.velocity * (limits_.velocity / limits_.acceleration + limits_.acceleration / limits_.jerk);
+  return 4 * kEps * scale;
 }
 
 JerkPlan::Point JerkPlan::evaluate(double vp) const {
@@ -99,7 +76,7 @@ JerkPlan::Point JerkPlan::evaluate(double vp) const {
 
 double JerkPlan::root_of_remaining(const Point& x, const Point& y) const {
   return bracketed_root([this](double vp) { return evaluate(vp).remaining; }, x.vp, x.remaining, y.vp,
-                        y.remaining);
+                        y.remaining, rounding());
 }
 
 double JerkPlan::vp_for_duration(const Point& x, const Point& y, double duration) const {
@@ -111,7 +88,7 @@ double JerkPlan::vp_for_duration(const Point& x, const Point& y, double duration
   if (fx == 0) return x.vp;
   if (fy == 0) return y.vp;
   if (sign(fx) == sign(fy)) return std::abs(fx) < std::abs(fy) ? x.vp : y.vp;  // rounding at an end
-  return bracketed_root([&](double vp) { return f(evaluate(vp)); }, x.vp, fx, y.vp, fy);
+  return bracketed_root([&](double vp) { return f(evaluate(vp)); }, x.vp, fx, y.vp, fy, rounding());
 }
 
 int JerkPlan::add_hidden_crossings(Point* samples, int m) const {
@@ -321,7 +298,7 @@ void JerkPlan::plan_releases() {
                                            release(t, r);
                                            return r;
                                          },
-                                         prev_tau, prev_rem, tau, rem);
+                                         prev_tau, prev_rem, tau, rem, rounding());
       double ignored = 0;
       releases_[release_count_++] = release(root, ignored);
     }

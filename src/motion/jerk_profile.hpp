@@ -10,7 +10,9 @@
 // no exceptions.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace armctl::motion {
 
@@ -75,6 +77,7 @@ class JerkPlan {
   Release releases_[kReleaseSamples + 1];
   int release_count_ = 0;
   Point evaluate(double vp) const;
+  double rounding() const;
   int add_hidden_crossings(Point* samples, int count) const;
   void derive();  // points, intervals and min_duration from the samples and releases
   bool refine(double vp);  // one more sample, then derive
@@ -100,7 +103,39 @@ struct VelocityChange {
   double ramp_up = 0, hold = 0, ramp_down = 0;  // s
   double duration = 0, displacement = 0;
 };
-VelocityChange velocity_change(double v0, double a0, double v1, const JerkLimits& limits);
+
+// Inline: the plan evaluates it some thirty times per joint.
+inline VelocityChange velocity_change(double v0, double a0, double v1, const JerkLimits& limits) {
+  const double j = limits.jerk, amax = limits.acceleration;
+  // Bringing a to 0 at once ends at v_stop: above it the change starts with jerk +j, below
+  // it with -j. Mirrored so that it is always +j.
+  const double v_stop = v0 + a0 * std::abs(a0) / (2 * j);
+  const double s = v1 >= v_stop ? 1.0 : -1.0;
+  const double u0 = s * v0, b0 = s * a0, dv = s * v1 - u0;
+  // Peak acceleration ap of a triangle: dv = (2 ap^2 - b0^2) / (2j); a plateau at amax if
+  // that would exceed it.
+  double ap = std::sqrt(std::max(0.0, dv * j + b0 * b0 / 2));
+  double hold = 0;
+  if (ap > amax) {
+    ap = amax;
+    hold = std::max(0.0, (dv - (2 * amax * amax - b0 * b0) / (2 * j)) / amax);
+  }
+  VelocityChange c;
+  c.jerk = s * j;
+  c.ramp_up = std::max(0.0, (ap - b0) / j);
+  c.hold = hold;
+  c.ramp_down = ap / j;
+  c.duration = c.ramp_up + c.hold + c.ramp_down;
+  double p = 0, u = u0;
+  const double t1 = c.ramp_up, t3 = c.ramp_down;
+  p += t1 * (u + t1 * (b0 / 2 + t1 * j / 6));
+  u += t1 * (b0 + t1 * j / 2);
+  p += hold * (u + hold * ap / 2);
+  u += hold * ap;
+  p += t3 * (u + t3 * (ap / 2 - t3 * j / 6));
+  c.displacement = s * p;
+  return c;
+}
 
 // The state after `dt` of constant jerk from a segment's start state.
 struct JerkState {
