@@ -113,25 +113,34 @@ struct SectionTask {
   JointArray position{}, velocity{}, acceleration{}, target_position{}, target_velocity{};
 };
 
+// Plans every joint of a section and returns the smallest duration >= `at_least` that
+// every joint can make, with each joint's profile for it in `out`.
 double synchronize(const TrajectoryInput& in, const SectionTask& task, double at_least,
-                   std::array<JerkPlan, kMaxTrajectoryJoints>& plans) {
-  double t = at_least;
+                   std::array<JerkPlan, kMaxTrajectoryJoints>& plans, std::array<JerkSegments, kMaxTrajectoryJoints>& out) {
+  double t0 = at_least;
   for (int i = 0; i < in.joints; ++i) {
     plans[i].plan(JerkTask{task.position[i], task.velocity[i], task.acceleration[i], task.target_position[i],
                            task.target_velocity[i]},
                   limits_of(in, i));
-    t = std::max(t, plans[i].min_duration());
+    t0 = std::max(t0, plans[i].min_duration());
   }
-  // Move past every joint's blocked intervals; each joint's durations end in an unbounded
-  // interval, so this ends.
-  for (bool moved = true; moved;) {
-    moved = false;
-    for (int i = 0; i < in.joints; ++i) {
-      const double next = plans[i].next_possible(t);
-      if (next > t) t = next, moved = true;
+  for (;;) {
+    // Move past every joint's blocked intervals; each joint's durations end in an unbounded
+    // interval, so this ends.
+    double t = t0;
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (int i = 0; i < in.joints; ++i) {
+        const double next = plans[i].next_possible(t);
+        if (next > t) t = next, moved = true;
+      }
     }
+    // A plan that claimed too much corrects itself; then look again.
+    bool built = true;
+    for (int i = 0; i < in.joints; ++i) built = plans[i].build(t, out[i]) && built;
+    if (built) return t;
+    for (int i = 0; i < in.joints; ++i) t0 = std::max(at_least, std::max(t0, plans[i].min_duration()));
   }
-  return t;
 }
 
 SectionTask section_task(const TrajectoryInput& in, std::size_t k, const JointArray& start_velocity,
@@ -182,7 +191,7 @@ Status calculate_trajectory(const TrajectoryInput& in, Trajectory& out) {
   // Sections are independent once the waypoint velocities are chosen (acceleration 0 at
   // every waypoint), so each is synchronized on its own; a min_duration longer than their
   // sum stretches every section in proportion.
-  auto run = [&](double stretch, bool build) {
+  auto run = [&](double stretch) {
     double total = 0;
     JointArray start_velocity = in.velocity;
     JointArray before = count > 1 ? section_average(in, 0) : JointArray{};
@@ -195,11 +204,8 @@ Status calculate_trajectory(const TrajectoryInput& in, Trajectory& out) {
       const SectionTask task = section_task(in, k, start_velocity, end_velocity);
       Trajectory::Section& section = out.sections_[k];
       const double at_least = count == 1 ? in.min_duration : stretch * section.end;
-      const double t = synchronize(in, task, at_least, plans);
-      if (build) {
-        section.start = total;
-        for (int i = 0; i < in.joints; ++i) plans[i].build(t, section.joints[i]);
-      }
+      const double t = synchronize(in, task, at_least, plans, section.joints);
+      section.start = total;
       section.end = t;  // the first pass keeps each section's own minimum here
       total += t;
       start_velocity = end_velocity;
@@ -212,11 +218,11 @@ Status calculate_trajectory(const TrajectoryInput& in, Trajectory& out) {
   if (out.sections_.size() < count) out.sections_.resize(count);
   for (std::size_t k = 0; k < count; ++k) out.sections_[k].end = 0;
   if (count == 1) {
-    run(1, true);
+    run(1);
   } else {
-    const double fastest = run(1, false);
+    const double fastest = run(1);
     const double stretch = (in.min_duration > fastest && fastest > 0) ? in.min_duration / fastest : 1;
-    run(stretch, true);
+    run(stretch);
   }
   for (std::size_t k = 0; k < count; ++k) out.sections_[k].end += out.sections_[k].start;
   out.joints_ = in.joints;

@@ -26,9 +26,10 @@ class RandomCases {
  public:
   explicit RandomCases(std::uint64_t seed) : rng_(seed) {}
 
-  TrajectoryInput next() {
+  // `joints` 0: a random count 1..7.
+  TrajectoryInput next(int joints = 0) {
     TrajectoryInput in;
-    in.joints = std::uniform_int_distribution<int>(1, kMaxTrajectoryJoints)(rng_);
+    in.joints = joints > 0 ? joints : std::uniform_int_distribution<int>(1, kMaxTrajectoryJoints)(rng_);
     const bool from_rest = pick(8), to_rest = pick(8);
     for (int i = 0; i < in.joints; ++i) {
       const double vmax = log_uniform(0.05, 50), amax = log_uniform(0.1, 100), jmax = log_uniform(0.2, 1000);
