@@ -19,6 +19,10 @@ namespace armctl::motion {
 // Between two samples the tool point moves at most this far and turns at most this much.
 inline constexpr double kPathSampleLength = 1e-3;                         // m
 inline constexpr double kPathSampleAngle = 1.0 * 3.14159265358979323846 / 180;  // rad
+// ... and no joint moves more than this (rad, or m for a prismatic joint): the samples are
+// halved where a joint moves fast (near a singularity) until it holds.
+inline constexpr double kPathSampleJointAngle = 1.0 * 3.14159265358979323846 / 180;
+inline constexpr double kPathSampleJointLength = 1e-3;
 // The slowest the check lets a path go: a ds/dt below this (1 % of the programmed speed)
 // needed anywhere refuses the path.
 inline constexpr double kMinPathRate = 0.01;
