@@ -64,10 +64,10 @@ std::string lower(std::string_view text) {
 
 // Text for messages: control bytes shown as '?', long fields cut, so one bad byte in a file
 // cannot garble the terminal.
-std::string printable(std::string_view text) {
+std::string printable(std::string_view text, std::size_t longest = 60) {
   std::string out;
-  for (char c : text.substr(0, 60)) out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-  if (text.size() > 60) out += "...";
+  for (char c : text.substr(0, longest)) out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+  if (text.size() > longest) out += "...";
   return out;
 }
 
@@ -109,7 +109,7 @@ class Parser {
   }
   // An error from a value parser (parse_quantity's message names the key, the text and the units).
   Error fail_value(std::size_t line, std::size_t column, const Error& e) const {
-    return Error{ErrorKind::invalid_config, fmt::format("{}:{}:{}: {}", source_, line, column, printable(e.message))};
+    return Error{ErrorKind::invalid_config, fmt::format("{}:{}:{}: {}", source_, line, column, printable(e.message, 400))};
   }
 
   Result<double> quantity(std::size_t line, const Field& f, std::string_view key, std::string_view value,
