@@ -422,19 +422,47 @@ Result<CheckedPath> check_path(const CartesianPath& path, const Kinematics& kine
   return checked;
 }
 
-JointVector CheckedPath::joints_at(double at) const {
-  if (s.empty()) return JointVector();
-  if (at <= s.front()) return joints.front();
-  if (at >= s.back()) return joints.back();
-  // The first sample after `at`; its predecessor starts a step of positive length.
-  std::size_t b = std::size_t(std::upper_bound(s.begin(), s.end(), at) - s.begin());
-  std::size_t a = b - 1;
+namespace {
+
+// The step [a, a + 1] of the samples that holds `at` (clamped to the path), with t in [0, 1].
+struct Step {
+  std::size_t a = 0;
+  double t = 0;
+};
+Step step_at(const std::vector<double>& s, double at) {
+  if (s.size() < 2 || at <= s.front()) return {0, 0};
+  if (at >= s.back()) return {s.size() - 2, 1};
+  // The first sample after `at`: its predecessor starts a step of positive length (a rest's
+  // two samples share one s).
+  const std::size_t b = std::size_t(std::upper_bound(s.begin(), s.end(), at) - s.begin());
+  return {b - 1, (at - s[b - 1]) / (s[b] - s[b - 1])};
+}
+
+}  // namespace
+
+CheckedPath::Joints CheckedPath::joints_with_rates(double at) const {
+  if (s.empty()) return {};
+  if (s.size() == 1) return {joints[0], dq_ds[0], d2q_ds2[0]};
+  const auto [a, t] = step_at(s, at);
+  const std::size_t b = a + 1;
   const double h = s[b] - s[a];
-  if (h <= 0) return joints[b];
-  const double t = (at - s[a]) / h;
   const double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
   const double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
-  return h00 * joints[a] + h10 * h * dq_ds[a] + h01 * joints[b] + h11 * h * dq_ds[b];
+  const double d00 = 6 * t * t - 6 * t, d10 = 3 * t * t - 4 * t + 1, d01 = -d00, d11 = 3 * t * t - 2 * t;
+  Joints out;
+  out.position = h00 * joints[a] + h10 * h * dq_ds[a] + h01 * joints[b] + h11 * h * dq_ds[b];
+  out.dq_ds = (d00 * joints[a] + d01 * joints[b]) / h + d10 * dq_ds[a] + d11 * dq_ds[b];
+  out.d2q_ds2 = (1 - t) * d2q_ds2[a] + t * d2q_ds2[b];
+  return out;
+}
+
+JointVector CheckedPath::joints_at(double at) const { return joints_with_rates(at).position; }
+
+double CheckedPath::rate_limit_at(double at) const {
+  if (rate_limit.empty()) return 0;
+  if (rate_limit.size() == 1) return rate_limit[0];
+  const Step step = step_at(s, at);
+  return std::min(rate_limit[step.a], rate_limit[step.a + 1]);
 }
 
 JointVector CheckedPath::joints_at(double at, const JointVector& near) const {

@@ -70,6 +70,15 @@ struct CheckedPath {
   // The joints at s: cubic Hermite interpolation between the samples (the samples' spacing
   // bounds its error, docs/paths.md).
   JointVector joints_at(double s) const;
+  // The joints at s with dq/ds (the Hermite interpolation's derivative) and d2q/ds2
+  // (linear between the samples): what an executor timing s(t) needs for the joint
+  // velocity dq/ds s' and acceleration d2q/ds2 s'^2 + dq/ds s''.
+  struct Joints {
+    JointVector position, dq_ds, d2q_ds2;
+  };
+  Joints joints_with_rates(double s) const;
+  // The smaller rate_limit of the two samples around s (the path's own bound there).
+  double rate_limit_at(double s) const;
   // The joints at s by inverse kinematics, the solution nearest `near`; the interpolated
   // value if the kinematics the path was checked with is gone or finds none.
   JointVector joints_at(double s, const JointVector& near) const;

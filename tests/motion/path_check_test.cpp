@@ -103,6 +103,17 @@ void expect_follows(const CartesianPath& path, const TestArm& arm, const Checked
   EXPECT_LT(worst_rotation, 1e-9);
   EXPECT_LE(worst_step, kPathSampleLength + 1e-15);
   EXPECT_LE(worst_joint_step, kPathSampleJointAngle + 1e-15);
+  // The interpolation's derivative against the samples' (and a central difference of it).
+  double worst_rate = 0, scale = 0;
+  for (std::size_t i = 1; i + 1 < c.s.size(); ++i) {
+    if (c.s[i] == c.s[i - 1] || c.s[i] == c.s[i + 1]) continue;  // a rest: one-sided on each side
+    const auto j = c.joints_with_rates(c.s[i]);
+    EXPECT_LT((j.position - c.joints[i]).cwiseAbs().maxCoeff(), 1e-12);
+    worst_rate = std::max(worst_rate, (j.dq_ds - c.dq_ds[i]).cwiseAbs().maxCoeff());
+    scale = std::max(scale, c.dq_ds[i].cwiseAbs().maxCoeff());
+    EXPECT_LE(c.rate_limit_at(c.s[i]), c.rate_limit[i]);
+  }
+  EXPECT_LE(worst_rate, 1e-9 * std::max(1.0, scale));
   EXPECT_LT(worst_interpolation, 1e-5);  // cubic Hermite between samples at most 1 mm / 1 deg apart
   std::printf("interpolation error %.3g rad over %zu samples\n", worst_interpolation, c.s.size());
 }
