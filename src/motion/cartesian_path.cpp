@@ -348,15 +348,16 @@ PathRates CartesianPath::rates(double s) const {
   const Sample p = blend_point(a, b, s);
   out.velocity = p.velocity;
   out.acceleration = p.acceleration;
-  // The slerp blend has no short closed form for its rates: central differences, with a
-  // step of 1e-3 of the window (errors ~1e-6 of the rate; the weight is C2, so the window's
-  // edges need no care).
-  const double h = 1e-3 * a.blend;
-  const Eigen::Quaterniond q0 = blend_orientation(a, b, s - h), q1 = blend_orientation(a, b, s),
-                           q2 = blend_orientation(a, b, s + h);
-  const Eigen::Vector3d back = rotation_between(q0, q1) / h, ahead = rotation_between(q1, q2) / h;
-  out.angular_velocity = (back + ahead) / 2;
-  out.angular_acceleration = (ahead - back) / h;
+  // The slerp blend has no short closed form for its rates: central differences, with
+  // steps of 1e-5 of the window for the angular velocity and 1e-3 for its derivative
+  // (truncation and rounding both below 1e-7 of the rates; the weight is C2, so the
+  // window's edges need no care).
+  const double hv = 1e-5 * a.blend, ha = 1e-3 * a.blend;
+  out.angular_velocity =
+      rotation_between(blend_orientation(a, b, s - hv), blend_orientation(a, b, s + hv)) / (2 * hv);
+  const Eigen::Quaterniond q0 = blend_orientation(a, b, s - ha), q1 = blend_orientation(a, b, s),
+                           q2 = blend_orientation(a, b, s + ha);
+  out.angular_acceleration = (rotation_between(q1, q2) - rotation_between(q0, q1)) / (ha * ha);
   return out;
 }
 

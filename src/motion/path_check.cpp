@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -17,10 +18,9 @@ constexpr std::size_t kMaxSamples = 10'000'000;
 // Within this of a singular configuration (bend sine, wrist axes' sine, or metres from the
 // xArm's base axis) a slowed stretch is put down to the singularity.
 constexpr double kNearSingularity = 0.05;
-// A joint step that does not shrink below this as the step in s shrinks to kJumpWidth is a
-// jump (a change of configuration), not a fast joint.
-constexpr double kJumpStep = 1e-4;
-constexpr double kJumpWidth = 1e-10;
+// A joint step that stays above its step limit as the step in s is halved down to this
+// (times the path's duration) is a jump (a change of configuration), not a fast joint.
+constexpr double kJumpWidth = 1e-12;
 
 Error refuse(std::string message) { return Error{ErrorKind::invalid_argument, std::move(message)}; }
 
@@ -38,6 +38,26 @@ Pose inverse_of(const Pose& p) {
   return out;
 }
 
+// The xArm's rule (docs/paths.md): its 5 joints keep the approach in the vertical plane
+// through the base axis and the tool point, so each sample's orientation is turned about the
+// vertical until the approach's heading is where the arm points (or half a turn from it,
+// reaching back): the tool's pitch and roll stay as the path has them, only its yaw follows
+// the position. An approach within 1e-9 of vertical, or a point on the base axis, fits every
+// plane and is kept; the kinematics' nearest orientation absorbs what rounding leaves.
+Pose facing_the_position(Pose flange) {
+  const Eigen::Vector3d approach = flange.orientation * Eigen::Vector3d::UnitX();
+  const double level = std::hypot(approach.x(), approach.y());
+  const double radius = std::hypot(flange.position.x(), flange.position.y());
+  if (level < 1e-9 || radius < 1e-9) return flange;
+  const double pointing = std::atan2(flange.position.y(), flange.position.x());
+  const double heading = std::atan2(approach.y(), approach.x());
+  double turn = std::remainder(pointing - heading, 2 * std::numbers::pi);
+  if (turn > std::numbers::pi / 2) turn -= std::numbers::pi;  // reaching back: the nearer of the two
+  if (turn < -std::numbers::pi / 2) turn += std::numbers::pi;
+  flange.orientation = (Eigen::Quaterniond(Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ())) * flange.orientation).normalized();
+  return flange;
+}
+
 double rotation_angle(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   return 2 * std::asin(std::min(1.0, (b * a.conjugate()).vec().norm()));
 }
@@ -45,6 +65,12 @@ double rotation_angle(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) 
 std::string shown(const PathLimits& l, double si, int per_second = 0) {
   return fmt::format("{:.1f} {}{}", to_display(l.dimension, si) + 0.0, display_unit(l.dimension),
                      per_second ? "/s" : "");
+}
+
+// "-120.0..120.0 deg"
+std::string shown_range(const PathLimits& l) {
+  return fmt::format("{:.1f}..{:.1f} {}", to_display(l.dimension, l.lower) + 0.0, to_display(l.dimension, l.upper) + 0.0,
+                     display_unit(l.dimension));
 }
 
 std::string describe(const Configuration& c) {
@@ -83,6 +109,7 @@ class Checker {
   Result<Solved> solve(double s, const JointVector& near) const {
     IkRequest request;
     request.target = compose(path_.at(s), tool_inverse_);
+    if (nearest_) request.target = facing_the_position(request.target);
     request.nearest_orientation = nearest_;
     auto solutions = kin_.inverse(request, near);
     if (!solutions) return refuse(fmt::format("{}: {}", where(s), solutions.error().message));
@@ -95,26 +122,10 @@ class Checker {
       const PathLimits& l = limits_[j];
       const double v = q[Eigen::Index(j)];
       if (v < l.lower - 1e-9 || v > l.upper + 1e-9)
-        return refuse(fmt::format("{}: joint {} would be at {}, allowed {}..{}", where(s), l.name, shown(l, v),
-                                  shown(l, l.lower), shown(l, l.upper)));
+        return refuse(fmt::format("{}: joint {} would be at {}, allowed {}", where(s), l.name, shown(l, v),
+                                  shown_range(l)));
     }
     return Ok{};
-  }
-
-  // Largest ds/dt the velocity limits allow for the step from qa to qb over ds, and the joint.
-  std::pair<double, int> step_rate(const JointVector& qa, const JointVector& qb, double ds) const {
-    double rate = std::numeric_limits<double>::infinity();
-    int joint = 0;
-    for (std::size_t j = 0; j < limits_.size(); ++j) {
-      const double dq = std::abs(qb[Eigen::Index(j)] - qa[Eigen::Index(j)]);
-      if (dq == 0) continue;
-      const double r = limits_[j].velocity * ds / dq;
-      if (r < rate) {
-        rate = r;
-        joint = int(j);
-      }
-    }
-    return {rate, joint};
   }
 
   std::string singularity_note(const JointVector& q) const {
@@ -129,41 +140,63 @@ class Checker {
                        singularity_note(q));
   }
 
-  // The step a..b needs a rate below the floor: narrows it down by halves to the worst spot
-  // and says whether the joints jump there (a configuration change) or only move too fast.
-  Status refuse_step(double a, Solved qa, double b, Solved qb) const {
-    while (b - a > kJumpWidth * std::max(1.0, path_.duration())) {
-      const double m = (a + b) / 2;
-      if (m <= a || m >= b) break;
-      auto qm = solve(m, qa.joints);
-      if (!qm) return qm.error();
-      if (step_rate(qa.joints, qm->joints, m - a).first <= step_rate(qm->joints, qb.joints, b - m).first) {
-        b = m;
-        qb = *qm;
-      } else {
-        a = m;
-        qa = *qm;
-      }
-    }
-    const auto [rate, joint] = step_rate(qa.joints, qb.joints, b - a);
-    const PathLimits& l = limits_[std::size_t(joint)];
-    const double from = qa.joints[joint], to = qb.joints[joint];
-    if (std::abs(to - from) < kJumpStep) return refuse(too_fast(a, qa.joints, joint, l.velocity / rate));
-    // The continuous solution ended: at a joint limit (the kinematics keeps solutions inside
-    // the limits), or at a singularity the nearest solution now lies in another configuration.
+  // The step a..b could not be made small in the joints by making it small in s: the
+  // continuous solution ends there. Says whether at a joint limit (the kinematics keeps
+  // its solutions inside the limits) or at a change of configuration.
+  Error refuse_jump(double a, const Solved& qa, const Solved& qb) const {
     for (std::size_t j = 0; j < limits_.size(); ++j) {
       const PathLimits& lj = limits_[j];
       const double v = qa.joints[Eigen::Index(j)];
       if (std::min(std::abs(v - lj.lower), std::abs(v - lj.upper)) < 1e-3)
-        return refuse(fmt::format("{}: joint {} would leave its limits at {}, allowed {}..{}", where(a), lj.name,
-                                  shown(lj, v), shown(lj, lj.lower), shown(lj, lj.upper)));
+        return refuse(fmt::format("{}: joint {} would leave its limits at {}, allowed {}", where(a), lj.name,
+                                  shown(lj, v), shown_range(lj)));
     }
-    std::string change = same(qa.configuration, qb.configuration)
-                             ? ""
-                             : fmt::format(" ({} -> {})", describe(qa.configuration), describe(qb.configuration));
+    int joint = 0;
+    double worst = 0;
+    for (std::size_t j = 0; j < limits_.size(); ++j) {
+      const double d = std::abs(qb.joints[Eigen::Index(j)] - qa.joints[Eigen::Index(j)]) / step_limit(j);
+      if (d > worst) {
+        worst = d;
+        joint = int(j);
+      }
+    }
+    const PathLimits& l = limits_[std::size_t(joint)];
+    const std::string change = same(qa.configuration, qb.configuration)
+                                   ? ""
+                                   : fmt::format(" ({} -> {})", describe(qa.configuration), describe(qb.configuration));
     return refuse(fmt::format("{}: the joints would jump: joint {} from {} to {}, a change of configuration{}{}; the "
                               "arm cannot follow the path through there (move around it, or split the path with a PTP)",
-                              where(a), l.name, shown(l, from), shown(l, to), change, singularity_note(qa.joints)));
+                              where(a), l.name, shown(l, qa.joints[joint]), shown(l, qb.joints[joint]), change,
+                              singularity_note(qa.joints)));
+  }
+
+  // The pose at b cannot be reached, the one at a (solved as qa) can: narrows it down by
+  // halves to where the path leaves what the arm reaches, and refuses with the kinematics'
+  // reason there.
+  Error refuse_unreachable(double a, Solved qa, double b, Error at_b) const {
+    for (int i = 0; i < 40; ++i) {
+      const double m = (a + b) / 2;
+      if (m <= a || m >= b) break;
+      auto qm = solve(m, qa.joints);
+      if (qm) {
+        a = m;
+        qa = *qm;
+      } else {
+        b = m;
+        at_b = qm.error();
+      }
+    }
+    return at_b;
+  }
+
+  // The largest step of joint j between two samples: 1 deg, or 1 mm for a prismatic joint.
+  double step_limit(std::size_t j) const {
+    return limits_[j].dimension == Dimension::angle ? kPathSampleJointAngle : kPathSampleJointLength;
+  }
+  bool joints_far(const JointVector& a, const JointVector& b) const {
+    for (std::size_t j = 0; j < limits_.size(); ++j)
+      if (std::abs(b[Eigen::Index(j)] - a[Eigen::Index(j)]) > step_limit(j)) return true;
+    return false;
   }
 
   // Samples of the stretch [from, to] (between two rests): each segment's own step (1 mm
@@ -247,30 +280,42 @@ class Checker {
     Solved previous = *first;
     double previous_s = 0;
     double from = 0;
+    const double narrowest = kJumpWidth * std::max(1.0, path_.duration());
     for (double rest : path_.rests()) {
       auto s = grid(from, rest);
       if (!s) return s.error();
       const std::size_t stretch_first = out.s.size();
-      for (std::size_t i = 0; i < s->size(); ++i) {
-        const double si = (*s)[i];
-        Solved here = previous;
-        if (!(i == 0 && stretch_first == 0)) {
-          if (i == 0) {
-            here = previous;  // the rest again, starting the next stretch
-          } else {
-            auto q = solve(si, previous.joints);
-            if (!q) return q.error();
-            here = *q;
-            if (step_rate(previous.joints, here.joints, si - previous_s).first < kMinPathRate) {
-              if (auto ok = refuse_step(previous_s, previous, si, here); !ok) return ok.error();
-            }
-          }
-        }
-        if (auto ok = check_limits(si, here.joints); !ok) return ok.error();
+      auto accept = [&](double si, const Solved& here) -> Status {
+        if (auto ok = check_limits(si, here.joints); !ok) return ok;
+        if (out.s.size() >= kMaxSamples)
+          return refuse(fmt::format("the path needs more than {} samples to check; split it", kMaxSamples));
         out.s.push_back(si);
         out.joints.push_back(here.joints);
         previous = here;
         previous_s = si;
+        return Ok{};
+      };
+      // The stretch's first sample: the path's start, or the rest again (starting the next stretch).
+      if (auto ok = accept(from, previous); !ok) return ok.error();
+      for (std::size_t i = 1; i < s->size(); ++i) {
+        // Halve the step until no joint moves more than its step limit; a step that stays
+        // large as it shrinks to nothing is a jump.
+        std::vector<double> pending{(*s)[i]};
+        while (!pending.empty()) {
+          const double b = pending.back();
+          auto q = solve(b, previous.joints);
+          if (!q) return refuse_unreachable(previous_s, previous, b, q.error());
+          if (joints_far(previous.joints, q->joints)) {
+            const double m = (previous_s + b) / 2;
+            if (b - previous_s > narrowest && m > previous_s && m < b) {
+              pending.push_back(m);
+              continue;
+            }
+            return refuse_jump(previous_s, previous, *q);
+          }
+          if (auto ok = accept(b, *q); !ok) return ok.error();
+          pending.pop_back();
+        }
       }
       out.dq_ds.resize(out.s.size());
       out.d2q_ds2.resize(out.s.size());
@@ -295,10 +340,11 @@ class Checker {
       }
       out.rate_limit[i] = rate;
       out.max_rate = std::min(out.max_rate, rate);
-      if (rate < kMinPathRate) {
-        const int j = limiting[i];
-        return refuse(too_fast(out.s[i], out.joints[i], j, std::abs(out.dq_ds[i][j])));
-      }
+    }
+    if (out.max_rate < kMinPathRate) {  // refused where it is slowest
+      const std::size_t i = std::size_t(std::min_element(out.rate_limit.begin(), out.rate_limit.end()) - out.rate_limit.begin());
+      const int j = limiting[i];
+      return refuse(too_fast(out.s[i], out.joints[i], j, std::abs(out.dq_ds[i][j])));
     }
     // Stretches below full speed, each with its slowest point and the reason.
     for (std::size_t i = 0; i < out.s.size();) {
@@ -376,19 +422,47 @@ Result<CheckedPath> check_path(const CartesianPath& path, const Kinematics& kine
   return checked;
 }
 
-JointVector CheckedPath::joints_at(double at) const {
-  if (s.empty()) return JointVector();
-  if (at <= s.front()) return joints.front();
-  if (at >= s.back()) return joints.back();
-  // The first sample after `at`; its predecessor starts a step of positive length.
-  std::size_t b = std::size_t(std::upper_bound(s.begin(), s.end(), at) - s.begin());
-  std::size_t a = b - 1;
+namespace {
+
+// The step [a, a + 1] of the samples that holds `at` (clamped to the path), with t in [0, 1].
+struct Step {
+  std::size_t a = 0;
+  double t = 0;
+};
+Step step_at(const std::vector<double>& s, double at) {
+  if (s.size() < 2 || at <= s.front()) return {0, 0};
+  if (at >= s.back()) return {s.size() - 2, 1};
+  // The first sample after `at`: its predecessor starts a step of positive length (a rest's
+  // two samples share one s).
+  const std::size_t b = std::size_t(std::upper_bound(s.begin(), s.end(), at) - s.begin());
+  return {b - 1, (at - s[b - 1]) / (s[b] - s[b - 1])};
+}
+
+}  // namespace
+
+CheckedPath::Joints CheckedPath::joints_with_rates(double at) const {
+  if (s.empty()) return {};
+  if (s.size() == 1) return {joints[0], dq_ds[0], d2q_ds2[0]};
+  const auto [a, t] = step_at(s, at);
+  const std::size_t b = a + 1;
   const double h = s[b] - s[a];
-  if (h <= 0) return joints[b];
-  const double t = (at - s[a]) / h;
   const double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
   const double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
-  return h00 * joints[a] + h10 * h * dq_ds[a] + h01 * joints[b] + h11 * h * dq_ds[b];
+  const double d00 = 6 * t * t - 6 * t, d10 = 3 * t * t - 4 * t + 1, d01 = -d00, d11 = 3 * t * t - 2 * t;
+  Joints out;
+  out.position = h00 * joints[a] + h10 * h * dq_ds[a] + h01 * joints[b] + h11 * h * dq_ds[b];
+  out.dq_ds = (d00 * joints[a] + d01 * joints[b]) / h + d10 * dq_ds[a] + d11 * dq_ds[b];
+  out.d2q_ds2 = (1 - t) * d2q_ds2[a] + t * d2q_ds2[b];
+  return out;
+}
+
+JointVector CheckedPath::joints_at(double at) const { return joints_with_rates(at).position; }
+
+double CheckedPath::rate_limit_at(double at) const {
+  if (rate_limit.empty()) return 0;
+  if (rate_limit.size() == 1) return rate_limit[0];
+  const Step step = step_at(s, at);
+  return std::min(rate_limit[step.a], rate_limit[step.a + 1]);
 }
 
 JointVector CheckedPath::joints_at(double at, const JointVector& near) const {
@@ -396,6 +470,7 @@ JointVector CheckedPath::joints_at(double at, const JointVector& near) const {
   if (!solver || solver->kinematics == nullptr) return interpolated;
   IkRequest request;
   request.target = compose(solver->path.at(at), solver->tool_inverse);
+  if (solver->nearest) request.target = facing_the_position(request.target);
   request.nearest_orientation = solver->nearest;
   auto solutions = solver->kinematics->inverse(request, near.size() == interpolated.size() ? near : interpolated);
   if (!solutions) return interpolated;

@@ -19,6 +19,10 @@ namespace armctl::motion {
 // Between two samples the tool point moves at most this far and turns at most this much.
 inline constexpr double kPathSampleLength = 1e-3;                         // m
 inline constexpr double kPathSampleAngle = 1.0 * 3.14159265358979323846 / 180;  // rad
+// ... and no joint moves more than this (rad, or m for a prismatic joint): the samples are
+// halved where a joint moves fast (near a singularity) until it holds.
+inline constexpr double kPathSampleJointAngle = 1.0 * 3.14159265358979323846 / 180;
+inline constexpr double kPathSampleJointLength = 1e-3;
 // The slowest the check lets a path go: a ds/dt below this (1 % of the programmed speed)
 // needed anywhere refuses the path.
 inline constexpr double kMinPathRate = 0.01;
@@ -66,6 +70,15 @@ struct CheckedPath {
   // The joints at s: cubic Hermite interpolation between the samples (the samples' spacing
   // bounds its error, docs/paths.md).
   JointVector joints_at(double s) const;
+  // The joints at s with dq/ds (the Hermite interpolation's derivative) and d2q/ds2
+  // (linear between the samples): what an executor timing s(t) needs for the joint
+  // velocity dq/ds s' and acceleration d2q/ds2 s'^2 + dq/ds s''.
+  struct Joints {
+    JointVector position, dq_ds, d2q_ds2;
+  };
+  Joints joints_with_rates(double s) const;
+  // The smaller rate_limit of the two samples around s (the path's own bound there).
+  double rate_limit_at(double s) const;
   // The joints at s by inverse kinematics, the solution nearest `near`; the interpolated
   // value if the kinematics the path was checked with is gone or finds none.
   JointVector joints_at(double s, const JointVector& near) const;
