@@ -214,23 +214,15 @@ Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& fro
                        segments.size() == 1 ? "" : "s");
   m.duration = t;
   auto checked_ptr = plan.checked;
-  auto kinematics = model.kinematics;  // the check's IK points at it: keep it alive
   const std::vector<double> rest_of_arm = from;
-  m.sample = [runs, checked_ptr, kinematics, rest_of_arm, chain](double time, std::vector<double>& p,
+  m.sample = [runs, checked_ptr, rest_of_arm, chain](double time, std::vector<double>& p,
                                                                  std::vector<double>& v, std::vector<double>& a) {
     std::size_t k = 0;
     while (k + 1 < runs->size() && time >= (*runs)[k + 1].t0) ++k;
     const Run& run = (*runs)[k];
     const motion::TrajectoryState st = run.timing.at(time - run.t0);
     const double s = st.position[0], sd = st.velocity[0], sdd = st.acceleration[0];
-    // Derivatives along s from the interpolated joints, one-sided at the run's ends (the
-    // path turns there).
-    const double h = 1e-4;
-    const double lo = std::max(run.s0, s - h), hi = std::min(run.s1, s + h);
-    const motion::JointVector q = checked_ptr->joints_at(s, checked_ptr->joints_at(s));
-    const motion::JointVector ql = checked_ptr->joints_at(lo), qh = checked_ptr->joints_at(hi);
-    const motion::JointVector qm = checked_ptr->joints_at(0.5 * (lo + hi));
-    const double w = hi - lo;
+    const motion::CheckedPath::Joints q = checked_ptr->joints_with_rates(std::clamp(s, run.s0, run.s1));
     for (std::size_t j = 0; j < p.size(); ++j) {
       if (int(j) >= chain) {
         p[j] = rest_of_arm[j];
@@ -238,11 +230,9 @@ Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& fro
         continue;
       }
       const int i = int(j);
-      const double qs = w > 0 ? (qh[i] - ql[i]) / w : 0.0;
-      const double qss = w > 0 ? 4 * (qh[i] - 2 * qm[i] + ql[i]) / (w * w) : 0.0;
-      p[j] = q[i];
-      v[j] = qs * sd;
-      a[j] = qss * sd * sd + qs * sdd;
+      p[j] = q.position[i];
+      v[j] = q.dq_ds[i] * sd;
+      a[j] = q.d2q_ds2[i] * sd * sd + q.dq_ds[i] * sdd;
     }
   };
   return plan;
