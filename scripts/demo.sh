@@ -93,3 +93,14 @@ for p in "400 100 300" "300 -250 250" "500 200 350"; do
 done
 echo "== SCARA through the arm controller (Robot Commands: 0..1000 per joint, coarser)"
 tool_to "SCARA (arm controller)" scara "serial:$dir/scara" 400 100 300 roll=180deg pitch=0deg yaw=0deg
+
+# Part 4: motion planned on the host. Each arm's tool draws a square with blended corners
+# (a PTP to the first corner, then four LIN moves with fly-by zones), checked whole before
+# anything moves, streamed at the rate the link allows; the path error is measured from the
+# positions read back while the arm moves.
+paths=$(cd "$(dirname "$0")/../examples/paths" && pwd)
+echo "== xArm (emulated): a square with blended corners ($paths/xarm-square.path)"
+"$armctl" arm --arm xarm --device "serial:$dir/xarm" path "$paths/xarm-square.path" | grep -v '^servo'
+echo "== SCARA (joint bus): a square with blended corners ($paths/scara-square.path)"
+"$armctl" arm --arm scara --device "unix:$dir/bus.sock" path "$paths/scara-square.path" |
+  grep -Ev '^(Z|SHOULDER|UAE|UAJ|SKE|SKF|SKG) '

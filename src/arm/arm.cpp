@@ -155,23 +155,25 @@ motion::Rpy Arm::tool_rpy(const motion::Pose& pose, const motion::JointVector& c
   return std::abs(wrap(other.yaw - pointing)) < std::abs(wrap(rpy.yaw - pointing)) ? other : rpy;
 }
 
+motion::Rpy Arm::goal_rpy(const CartesianGoal& goal, const motion::Rpy& current) const {
+  motion::Rpy rpy{goal.roll.value_or(current.roll), goal.pitch.value_or(current.pitch),
+                  goal.yaw.value_or(current.yaw)};
+  // The 5-joint arm's yaw is where it points: left open, it follows the position.
+  if (model_.family == motion::KinematicFamily::xarm && !goal.yaw)
+    rpy.yaw = std::atan2(goal.position.y(), goal.position.x());
+  return rpy;
+}
+
 Result<std::vector<motion::IkSolution>> Arm::inverse(const CartesianGoal& goal, const JointState& now) const {
   for (int k = 0; k < 3; ++k)
     if (!std::isfinite(goal.position[k])) return refuse("the tool position is not a finite number");
   for (const auto& a : {goal.roll, goal.pitch, goal.yaw})
     if (a && !std::isfinite(*a)) return refuse("the tool orientation is not a finite number");
   const motion::JointVector near = chain_part(model_, now.positions);
-  const motion::Pose here = forward(near);
-  const motion::Rpy current = tool_rpy(here, near);
-  motion::Rpy rpy{goal.roll.value_or(current.roll), goal.pitch.value_or(current.pitch),
-                  goal.yaw.value_or(current.yaw)};
+  const motion::Rpy rpy = goal_rpy(goal, tool_rpy(forward(near), near));
   motion::IkRequest request;
   request.nearest_orientation = goal.nearest_orientation;
-  if (model_.family == motion::KinematicFamily::xarm && !goal.yaw) {
-    // The 5-joint arm's yaw is where it points: left open, it follows the position.
-    rpy.yaw = std::atan2(goal.position.y(), goal.position.x());
-    request.nearest_orientation = true;
-  }
+  if (model_.family == motion::KinematicFamily::xarm && !goal.yaw) request.nearest_orientation = true;
   auto solve = [&](const motion::Rpy& o) {
     motion::Pose tool_pose;
     tool_pose.position = goal.position;
@@ -238,8 +240,13 @@ Result<JointState> Arm::wait(const WaitOptions& options) {
     for (std::size_t i = 0; i < last_targets_.size(); ++i) {
       if (!last_targets_[i]) continue;
       const JointModel& j = model_.joints[i];
-      const double tol = j.dimension == Dimension::angle ? options.angle_tolerance : options.length_tolerance;
-      if (previous && std::abs(s->positions[i] - previous->positions[i]) > tol / 4) resting = false;
+      const double asked = j.dimension == Dimension::angle ? options.angle_tolerance : options.length_tolerance;
+      // A joint can be no nearer its target than half a unit of its device (through the arm
+      // controller a SCARA joint's unit is 1.42 deg).
+      const auto& map = j.map(device_->protocol());
+      const double half_unit = map ? 0.5 / std::abs(map->device_per_unit()) : 0.0;
+      const double tol = std::max(asked, half_unit * 1.01);
+      if (previous && std::abs(s->positions[i] - previous->positions[i]) > asked / 4) resting = false;
       if (std::abs(s->positions[i] - *last_targets_[i]) <= tol) continue;
       late += fmt::format("{}{} at {} (target {})", late.empty() ? "" : "; ", j.name,
                           format_quantity(j.dimension, s->positions[i]), format_quantity(j.dimension, *last_targets_[i]));

@@ -68,6 +68,9 @@ class Arm {
   // Roll, pitch and yaw of a tool pose as people read them on this arm: on the 5-joint
   // xArm the form whose yaw is where the arm points (roll = the wrist's roll).
   motion::Rpy tool_rpy(const motion::Pose& pose, const motion::JointVector& chain) const;
+  // The orientation `goal` asks for when the tool's is `current` (as tool_rpy gives it):
+  // components left empty keep the current ones; on the xArm an empty yaw follows the position.
+  motion::Rpy goal_rpy(const CartesianGoal& goal, const motion::Rpy& current) const;
   motion::JointVector chain_of(const std::vector<double>& positions) const;
 
   // Moves the joints that have a target (SI; the vector has one entry per joint).
@@ -83,6 +86,9 @@ class Arm {
   Result<JointState> wait(const WaitOptions& options = {});
   Status stop();
   Status set_torque(bool on);
+  // The motion executor's last point (SI, every joint): wait() then waits for the arm to
+  // arrive there, as after move_joints.
+  void expect_at(const std::vector<double>& positions) { last_targets_.assign(positions.begin(), positions.end()); }
 
   // The time a move from `from` to `to` takes at `speed` of the limits (rest to rest).
   Duration move_time(const std::vector<double>& from, const std::vector<std::optional<double>>& to,

@@ -110,7 +110,10 @@ Status BusArmDevice::stream(const std::vector<double>& targets, const std::vecto
   // the direction of motion, and the speed cap is the point's speed (rounded up to a whole
   // percent, plus one), so the setpoint runs at the point's speed through it; at the end of
   // a motion the velocity is zero and the last target is the point itself.
-  if (streamed_percent_.size() != numbers_.size()) streamed_percent_.assign(numbers_.size(), -1);
+  if (streamed_percent_.size() != numbers_.size()) {
+    streamed_percent_.assign(numbers_.size(), -1);
+    streamed_target_.assign(numbers_.size(), std::nullopt);
+  }
   for (std::size_t i = 0; i < targets.size() && i < numbers_.size(); ++i) {
     const double v = i < velocities.size() ? velocities[i] : 0.0;
     const double a = std::max(1.0, profiles_[i].max_accel_cps2);
@@ -124,7 +127,10 @@ Status BusArmDevice::stream(const std::vector<double>& targets, const std::vecto
       if (auto s = master_.set_speed(numbers_[i], static_cast<std::int16_t>(percent)); !s) return failed(s.error());
       streamed_percent_[i] = percent;
     }
+    // A joint the motion leaves where it is (a gripper during a path) costs no transaction.
+    if (v == 0 && streamed_target_[i] == c) continue;
     if (auto d = master_.drive_to(numbers_[i], static_cast<std::int16_t>(c)); !d) return failed(d.error());
+    streamed_target_[i] = c;
   }
   return Ok{};
 }

@@ -44,6 +44,7 @@ class BusArmDevice final : public ArmDevice {
   std::vector<motion::JointProfile> profiles_;
   Duration transaction_;  // one set_speed or drive_to on this bus
   std::vector<int> streamed_percent_;  // set_speed last sent while streaming (-1: not yet)
+  std::vector<std::optional<long>> streamed_target_;  // drive_to last sent while streaming
 };
 
 }  // namespace armctl::arm

@@ -29,11 +29,15 @@ class RateRamp {
     length_ = std::max(length_s, 1e-9);
     active_ = true;
   }
+  // The rate at `now`; the ramp ends once `now` is past it.
   double at(TimePoint now) {
+    const double r = value(now);
+    if (active_ && seconds(now - at_) >= length_) active_ = false;
+    return r;
+  }
+  double value(TimePoint t) const {
     if (!active_) return to_;
-    const double x = seconds(now - at_) / length_;
-    if (x >= 1) active_ = false;
-    return from_ + (to_ - from_) * smootherstep(x);
+    return from_ + (to_ - from_) * smootherstep(seconds(t - at_) / length_);
   }
   bool active() const { return active_; }
   double goal() const { return to_; }
@@ -94,7 +98,8 @@ class Execution {
     period_ = options_.period.value_or(device_.stream_period(false));
     if (period_ <= Duration{0}) period_ = std::chrono::milliseconds(1);
     read_time_ = device_.stream_period(true) - device_.stream_period(false);
-    const Duration read_every = options_.read_interval.value_or(device_.poll_interval());
+    // Reads take the link from the stream: at most one in four slots by default.
+    const Duration read_every = options_.read_interval.value_or(std::max(device_.poll_interval(), 4 * period_));
     latency_ = device_.stream_latency();
     report_.period = period_;
 
@@ -114,7 +119,16 @@ class Execution {
       MotionProgress progress{now - start, t_, motion_.duration, rate, paused, report_.points};
 
       if (t_ >= motion_.duration) return finish(start, true, false);
-      if (stopping && !ramp.active() && rate <= 0) return finish(start, false, true);
+      if (stopping && !ramp.active() && rate <= 0) {
+        // At rest on the path: the last point sent led a little; this one is where it stopped.
+        motion_.sample(t_, pos_, vel_, acc_);
+        std::fill(vel_.begin(), vel_.end(), 0.0);
+        std::vector<double> dq, dv;
+        to_device(model_, device_.protocol(), pos_, vel_, dq, dv);
+        if (auto s = device_.stream(dq, dv, period_); !s) return halted(s.error());
+        ++report_.points;
+        return finish(start, false, true);
+      }
 
       const MotionCommand cmd = options_.command ? options_.command(progress) : MotionCommand::none;
       if (cmd == MotionCommand::abort) {
@@ -136,7 +150,9 @@ class Execution {
       const bool read_now = now >= next_read;
       if (rate > 0 || ramp.active()) {
         const Duration in = period_ + (read_now ? read_time_ : Duration{0});
-        const double due = std::min(motion_.duration, t_ + rate * seconds(latency_ + in));
+        // Where nominal time will be when the device gets there (the ramp's rate then, too).
+        const double ahead = 0.5 * (rate + ramp.value(now + latency_ + in)) * seconds(latency_ + in);
+        const double due = std::min(motion_.duration, t_ + ahead);
         motion_.sample(due, pos_, vel_, acc_);
         for (double& v : vel_) v *= rate;
         std::vector<double> dq, dv;
@@ -229,6 +245,9 @@ class Execution {
   }
 
   Result<MotionReport> finish(TimePoint start, bool completed, bool stopped) {
+    // Where the last point sent leads (for a stop: where the ramp came to rest).
+    motion_.sample(std::min(motion_.duration, t_), pos_, vel_, acc_);
+    arm_.expect_at(pos_);
     report_.elapsed = clock_.now() - start;
     report_.t_reached = t_;
     report_.completed = completed;

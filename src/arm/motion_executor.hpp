@@ -47,7 +47,8 @@ struct MotionProgress {
 struct ExecutorOptions {
   double speed_override = 1.0;      // (0, 1]: the rate's ceiling
   std::optional<Duration> period;   // between points; empty: the device's floor
-  // Between read-backs; empty: the device's poll interval (HID boards: slowly).
+  // Between read-backs; empty: the device's poll interval (HID boards: slowly), and at
+  // least four stream periods (reads take the link from the stream).
   std::optional<Duration> read_interval;
   double following_error_angle = 0.087;   // rad (5 deg)
   double following_error_length = 0.005;  // m

@@ -233,3 +233,24 @@ TEST_F(BusStream, StopComesToRestOnThePath) {
 
 }  // namespace
 }  // namespace armctl::arm
+
+namespace armctl::arm {
+namespace {
+
+TEST_F(BusStream, FollowingErrorHaltsAndNamesTheJoint) {
+  const auto a = here();
+  auto b = a;
+  b[1] = a[1] + 30 * kDeg;  // SHOULDER
+  auto m = cosine_motion(a, b, 2.0);
+  // An obstacle holds SHOULDER within a few clicks of where it stands.
+  auto& hw = sim->joint(2).hardware();
+  const auto at = static_cast<std::int32_t>(hw.position_clicks());
+  hw.set_end_stops({at - 5, at + 5});
+  auto r = execute_motion(arm, m);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().kind, ErrorKind::device);
+  EXPECT_NE(r.error().message.find("following error on joint SHOULDER"), std::string::npos) << r.error().message;
+}
+
+}  // namespace
+}  // namespace armctl::arm

@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "apps/armctl/arm_motion.hpp"
 #include "apps/armctl/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
 #include "arm/arm_calibration.hpp"
@@ -35,6 +36,10 @@ struct ArmArgs {
   bool nearest = false;
   std::string onoff;
   std::string gripper;
+  bool linear = false;
+  std::string zone;
+  std::string speed_override;
+  std::string path_file;
 };
 
 [[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
@@ -235,7 +240,63 @@ void run_move_joints(const ArmArgs& a) {
   after_move(a, *s, std::nullopt);
 }
 
+double parse_override(const ArmArgs& a) {
+  if (a.speed_override.empty()) return 1.0;
+  std::string t = a.speed_override;
+  if (!t.empty() && t.back() == '%') t.pop_back();
+  double v = 0;
+  auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v) || v <= 0 || v > 100)
+    usage(fmt::format("--override '{}' is not allowed: a percentage of the programmed speeds, above 0 up to 100%",
+                      a.speed_override));
+  return v / 100;
+}
+
+MotionCliOptions motion_cli_options(const ArmArgs& a) { return MotionCliOptions{a.json, parse_override(a)}; }
+
+// move-to --linear: one LIN move, run by the motion layer (host-planned, streamed).
+void run_move_linear(const ArmArgs& a) {
+  if (!a.time.empty()) usage("--time is not allowed with --linear: give the tool's speed with --speed (e.g. 50mm/s)");
+  const arm::CartesianGoal goal = parse_goal(a);
+  motion::PathMove m;
+  m.kind = motion::MoveKind::lin;
+  m.position = goal.position;
+  m.roll = goal.roll;
+  m.pitch = goal.pitch;
+  m.yaw = goal.yaw;
+  if (!a.speed.empty()) m.speed = must(parse_quantity(a.speed, Dimension::length, "--speed", 1, "mm/s"));
+  if (m.speed && !(*m.speed > 0)) usage(fmt::format("--speed '{}' is not allowed: a speed above 0 (e.g. 50mm/s)", a.speed));
+  if (!a.zone.empty()) m.zone = must(parse_quantity(a.zone, Dimension::length, "--zone", 0, "mm"));
+  if (m.zone < 0) usage(fmt::format("--zone '{}' is not allowed: 0 or more (e.g. 5mm)", a.zone));
+  const MotionCliOptions options = motion_cli_options(a);
+  auto s = open_arm_session(a.arm, a.device);
+  run_path_moves(*s, {m}, options);
+  ArmArgs waited = a;
+  waited.wait = true;  // run_path_moves waited: print where the arm stands
+  after_move(waited, *s, goal);
+}
+
+void run_path(const ArmArgs& a) {
+  const motion::PathFile file = must(motion::read_path_file(a.path_file));
+  if (file.moves.empty()) usage(fmt::format("{} has no moves", a.path_file));
+  const MotionCliOptions options = motion_cli_options(a);
+  auto s = open_arm_session(a.arm, a.device);
+  run_path_moves(*s, file.moves, options);
+  ArmArgs waited = a;
+  waited.wait = true;
+  after_move(waited, *s, std::nullopt);
+}
+
+void run_stop(const ArmArgs& a) {
+  auto s = open_arm_session(a.arm, a.device);
+  must(s->arm->stop());
+  if (a.json) fmt::print("{}\n", json{{"stopped", true}}.dump());
+  else fmt::print("stopped\n");
+}
+
 void run_move_to(const ArmArgs& a) {
+  if (a.linear) return run_move_linear(a);
+  if (!a.zone.empty()) usage("--zone needs --linear (a fly-by zone belongs to a Cartesian move)");
   const arm::CartesianGoal goal = parse_goal(a);
   const arm::MoveOptions options = move_options(a);
   auto s = open_arm_session(a.arm, a.device);
@@ -357,10 +418,21 @@ void add_arm_command(CLI::App& app) {
     sub->add_option("--elbow", a->elbow, "left | right (scara), up | down (xarm)");
     sub->add_flag("--nearest-orientation", a->nearest, "5-joint xArm: the nearest orientation it can reach");
   };
-  auto* mt = cmd->add_subcommand("move-to", "Move the tool to a pose (PTP through IK)");
+  auto* mt = cmd->add_subcommand("move-to", "Move the tool to a pose (PTP through IK, or --linear along a line)");
   add_goal(mt);
   add_motion_options(mt);
+  mt->add_flag("--linear", a->linear,
+               "Along a straight line, planned on the host and streamed (--speed is then the tool's, e.g. 50mm/s)");
+  mt->add_option("--zone", a->zone, "With --linear: fly-by radius at the end (a single move ends at rest)");
+  mt->add_option("--override", a->speed_override, "With --linear: percent of the programmed speed (default 100%)");
   mt->callback([a] { run_move_to(*a); });
+
+  auto* path = cmd->add_subcommand("path", "Run a path file: PTP, LIN and CIRC moves with speeds and fly-by zones");
+  path->add_option("file", a->path_file, "Path file (docs/paths.md)")->required();
+  path->add_option("--override", a->speed_override, "Percent of the programmed speeds (default 100%)");
+  path->callback([a] { run_path(*a); });
+
+  cmd->add_subcommand("stop", "Stop every joint where it stands and hold it")->callback([a] { run_stop(*a); });
 
   auto* ik = cmd->add_subcommand("ik", "Print every IK solution for a pose; moves nothing");
   add_goal(ik);

@@ -190,4 +190,10 @@ void JointHardware::emit_edges(double theta0, double theta1, TimePoint t0, TimeP
   }
 }
 
+void JointHardware::set_end_stops(EndStops stops) {
+  p_.end_stops = stops;
+  stop_min_rad_ = stops.min_clicks / clicks_per_rad_;
+  stop_max_rad_ = stops.max_clicks / clicks_per_rad_;
+}
+
 }  // namespace armctl::joint_sim

@@ -102,6 +102,9 @@ class JointHardware {
 
   // Test hooks: put the joint in a state (e.g. spinning) without driving it there.
   void set_motor_velocity(double w_rad_s);
+  // An obstacle: the joint's travel becomes min..max clicks (as hard end stops), e.g. a
+  // joint held back where it stands (following-error tests).
+  void set_end_stops(EndStops stops);
 
  private:
   struct Coefficients {

@@ -1,0 +1,252 @@
+#include "apps/armctl/arm_motion.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "apps/armctl/serve_support.hpp"
+#include "arm/motion_executor.hpp"
+#include "arm/motion_planning.hpp"
+#include "core/quantity.hpp"
+
+namespace armctl::cli {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr double kDefaultPathSpeed = 0.05;               // m/s
+constexpr double kDefaultAngularSpeed = 45 * M_PI / 180;  // rad/s
+constexpr double kDefaultPtpSpeed = 0.25;                 // of the velocity limits
+
+// Where a move came from, for messages: "line 12" of a path file, or the command line.
+std::string where(const motion::PathMove& m) {
+  return m.line ? fmt::format("line {} ({})", m.line, motion::to_string(m.kind)) : std::string("the move");
+}
+
+[[noreturn]] void refuse_at(const motion::PathMove& m, const std::string& why) {
+  throw ArmctlError(ErrorKind::invalid_argument, fmt::format("{}: {}", where(m), why));
+}
+
+// One planned piece and the line it starts at.
+struct Piece {
+  std::size_t line = 0;
+  std::string label;
+  arm::PlannedMotion motion;
+  std::shared_ptr<const motion::CartesianPath> path;  // Cartesian pieces
+};
+
+class Planner {
+ public:
+  Planner(arm::Arm& arm, std::vector<double> start) : arm_(arm), model_(arm.model()), state_(std::move(start)) {}
+
+  std::vector<Piece> plan(const std::vector<motion::PathMove>& moves) {
+    for (std::size_t k = 0; k < moves.size();) {
+      if (moves[k].kind == motion::MoveKind::ptp) {
+        plan_ptp(moves[k]);
+        ++k;
+        continue;
+      }
+      std::size_t end = k;
+      while (end < moves.size() && moves[end].kind != motion::MoveKind::ptp) ++end;
+      plan_cartesian(moves, k, end);
+      k = end;
+    }
+    return std::move(pieces_);
+  }
+
+ private:
+  motion::JointVector chain() const { return arm_.chain_of(state_); }
+
+  void plan_ptp(const motion::PathMove& m) {
+    std::vector<double> target = state_;
+    if (!m.joints.empty()) {
+      if (m.joints.size() > state_.size())
+        refuse_at(m, fmt::format("{} joint values given; arm '{}' has {} joints", m.joints.size(), model_.name,
+                                 state_.size()));
+      for (std::size_t i = 0; i < m.joints.size(); ++i) {
+        if (m.joints[i].dimension != model_.joints[i].dimension)
+          refuse_at(m, fmt::format("joint {} takes {}, not {}", model_.joints[i].name,
+                                   model_.joints[i].dimension == Dimension::angle ? "an angle" : "a length",
+                                   m.joints[i].dimension == Dimension::angle ? "an angle" : "a length"));
+        target[i] = m.joints[i].value;
+      }
+    } else {
+      arm::CartesianGoal goal = goal_of(m);
+      goal.elbow = m.elbow;
+      arm::JointState now;
+      now.positions = state_;
+      auto solutions = arm_.inverse(goal, now);
+      if (!solutions) refuse_at(m, solutions.error().message);
+      const motion::JointVector& q = solutions->front().joints;
+      for (int i = 0; i < q.size(); ++i) target[std::size_t(i)] = q[i];
+    }
+    std::vector<std::optional<double>> check(target.begin(), target.end());
+    if (auto ok = arm_.check_targets(check); !ok) refuse_at(m, ok.error().message);
+    arm::JointMove move;
+    move.target = target;
+    move.speed = m.speed_fraction.value_or(kDefaultPtpSpeed);
+    auto planned = arm::plan_joint_move(model_, state_, move);
+    if (!planned) refuse_at(m, planned.error().message);
+    pieces_.push_back({m.line, where(m), std::move(planned).value(), nullptr});
+    state_ = target;
+  }
+
+  arm::CartesianGoal goal_of(const motion::PathMove& m) const {
+    arm::CartesianGoal g;
+    g.position = m.position;
+    g.roll = m.roll;
+    g.pitch = m.pitch;
+    g.yaw = m.yaw;
+    return g;
+  }
+
+  void plan_cartesian(const std::vector<motion::PathMove>& moves, std::size_t from, std::size_t to) {
+    const motion::JointVector q = chain();
+    motion::Rpy current = arm_.tool_rpy(arm_.forward(q), q);
+    std::vector<motion::PathSegment> segments;
+    for (std::size_t k = from; k < to; ++k) {
+      const motion::PathMove& m = moves[k];
+      motion::PathSegment seg;
+      seg.kind = m.kind == motion::MoveKind::circ ? motion::SegmentKind::circ : motion::SegmentKind::lin;
+      current = arm_.goal_rpy(goal_of(m), current);
+      seg.target.position = m.position;
+      seg.target.orientation = motion::from_rpy(current);
+      seg.via = m.via;
+      seg.speed = m.speed.value_or(kDefaultPathSpeed);
+      seg.angular_speed = m.angular_speed.value_or(kDefaultAngularSpeed);
+      seg.zone = m.zone;
+      segments.push_back(seg);
+    }
+    auto plan = arm::plan_path(model_, state_, segments);
+    if (!plan) {
+      // The path's errors count segments from 1 within this stretch: say which lines.
+      const std::string lines = moves[from].line
+                                    ? fmt::format("lines {}..{}: ", moves[from].line, moves[to - 1].line)
+                                    : std::string();
+      throw ArmctlError(plan.error().kind, lines + plan.error().message);
+    }
+    const motion::JointVector& end = plan->checked->joints.back();
+    for (int i = 0; i < end.size(); ++i) state_[std::size_t(i)] = end[i];
+    pieces_.push_back({moves[from].line, from + 1 == to ? where(moves[from])
+                                                         : fmt::format("{} .. {}", where(moves[from]), where(moves[to - 1])),
+                       std::move(plan->motion), plan->path});
+  }
+
+  arm::Arm& arm_;
+  const arm::ArmModel& model_;
+  std::vector<double> state_;
+  std::vector<Piece> pieces_;
+};
+
+// The largest distance of the tool point, as read back during the motion, from where the
+// plan had it at that instant (mm).
+double tool_following_error(const arm::Arm& arm, const arm::MotionReport& r) {
+  double worst = 0;
+  for (const auto& s : r.reads_log) {
+    const motion::Pose planned = arm.forward(arm.chain_of(s.planned));
+    const motion::Pose measured = arm.forward(arm.chain_of(s.measured));
+    worst = std::max(worst, (planned.position - measured.position).norm());
+  }
+  return worst * 1e3;
+}
+
+// The largest distance of the tool point, as read back during the motion, from the path
+// itself (mm): the path sampled every 0.5 mm of its length.
+double tool_path_error(const arm::Arm& arm, const arm::MotionReport& r, const motion::CartesianPath& path) {
+  std::vector<Eigen::Vector3d> points;
+  double length = 0;
+  for (const auto& seg : path.segments()) length += seg.length;
+  const int n = std::max(2, static_cast<int>(length / 0.0005));
+  for (int k = 0; k <= n; ++k) points.push_back(path.at(path.duration() * k / n).position);
+  double worst = 0;
+  for (const auto& s : r.reads_log) {
+    const Eigen::Vector3d p = arm.forward(arm.chain_of(s.measured)).position;
+    double nearest = 1e9;
+    for (const auto& q : points) nearest = std::min(nearest, (q - p).norm());
+    worst = std::max(worst, nearest);
+  }
+  return worst * 1e3;
+}
+
+}  // namespace
+
+void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& moves, const MotionCliOptions& options) {
+  arm::Arm& arm = *session.arm;
+  auto here = arm.read();
+  if (!here) throw ArmctlError(here.error());
+  std::vector<Piece> pieces = Planner(arm, here->positions).plan(moves);  // every check first
+
+  double total = 0;
+  for (const auto& p : pieces) total += p.motion.duration;
+  if (options.json)
+    fmt::print("{}\n", json{{"event", "planned"}, {"moves", moves.size()}, {"pieces", pieces.size()},
+                            {"duration_s", total / options.speed_override}}
+                           .dump());
+  else
+    fmt::print("planned {} move{} ({} piece{}), {:.1f} s\n", moves.size(), moves.size() == 1 ? "" : "s",
+               pieces.size(), pieces.size() == 1 ? "" : "s", total / options.speed_override);
+  std::fflush(stdout);
+
+  Interrupted interrupted;
+  StopOnSignals on_signals(interrupted);
+  const bool progress_line = !options.json && isatty(STDERR_FILENO);
+  double done_before = 0;
+  for (const Piece& piece : pieces) {
+    arm::ExecutorOptions eo;
+    eo.speed_override = options.speed_override;
+    eo.command = [&](const arm::MotionProgress&) {
+      return interrupted ? arm::MotionCommand::stop : arm::MotionCommand::none;
+    };
+    Duration last_shown{};
+    eo.on_point = [&](const arm::MotionProgress& p) {
+      if (total < 1.0 || p.elapsed - last_shown < std::chrono::milliseconds(250)) return;
+      last_shown = p.elapsed;
+      const double left = (total - done_before - p.t) / options.speed_override;
+      if (options.json)
+        fmt::print("{}\n", json{{"event", "progress"}, {"line", piece.line}, {"t", done_before + p.t},
+                                {"left_s", left}}
+                               .dump());
+      else if (progress_line)
+        fmt::print(stderr, "\r{}: {:3.0f} %, {:.1f} s left   ", piece.label, 100 * (done_before + p.t) / total, left);
+    };
+    auto report = arm::execute_motion(arm, piece.motion, eo);
+    if (progress_line) fmt::print(stderr, "\r\033[K");
+    if (!report) throw ArmctlError(ErrorKind(report.error().kind), fmt::format("{}: {}", piece.label, report.error().message));
+    const double following_mm = tool_following_error(arm, *report);
+    const std::optional<double> path_mm =
+        piece.path ? std::optional(tool_path_error(arm, *report, *piece.path)) : std::nullopt;
+    if (options.json) {
+      json event{{"event", report->completed ? "done" : "stopped"},
+                 {"line", piece.line},
+                 {"elapsed_s", std::chrono::duration<double>(report->elapsed).count()},
+                 {"points", report->points},
+                 {"reads", report->reads},
+                 {"period_ms", std::chrono::duration<double, std::milli>(report->period).count()},
+                 {"following_error_mm", following_mm}};
+      if (path_mm) event["path_error_mm"] = *path_mm;
+      fmt::print("{}\n", event.dump());
+    } else {
+      fmt::print("{}: {} in {:.2f} s, {} points every {:.1f} ms; read back {} times: tool within {:.2f} mm of the "
+                 "plan{}\n",
+                 piece.label, report->completed ? "done" : "stopped",
+                 std::chrono::duration<double>(report->elapsed).count(), report->points,
+                 std::chrono::duration<double, std::milli>(report->period).count(), report->reads, following_mm,
+                 path_mm ? fmt::format(", {:.2f} mm of the path", *path_mm) : std::string());
+    }
+    std::fflush(stdout);
+    if (!report->completed)
+      throw ArmctlError(ErrorKind::device, fmt::format("stopped by a signal at {} (the arm is at rest on the path)",
+                                                       piece.label));
+    done_before += piece.motion.duration;
+  }
+  // The last point is due when the motion ends: let the arm get there before reporting.
+  if (auto s = arm.wait(); !s) throw ArmctlError(s.error());
+}
+
+}  // namespace armctl::cli

@@ -1,0 +1,25 @@
+// Host-planned motions from the command line: `armctl arm move-to --linear` and
+// `armctl arm path FILE`. Every move is planned and checked, from where the previous one
+// ends, before the first byte goes out; then they run one after the other through the
+// motion executor: a progress line on motions longer than a second (or --json events),
+// Ctrl-C stops along the path. Docs: docs/motion.md.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "apps/armctl/arm_session.hpp"
+#include "motion/path_file.hpp"
+
+namespace armctl::cli {
+
+struct MotionCliOptions {
+  bool json = false;
+  double speed_override = 1.0;  // (0, 1]
+};
+
+// A path file's moves, or one move from the command line (line 0). Throws ArmctlError
+// naming the line and what was wrong (nothing has moved then).
+void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& moves, const MotionCliOptions& options);
+
+}  // namespace armctl::cli

@@ -1,0 +1,58 @@
+// Planning host-computed motions for the executor (arm/motion_executor.hpp), from where the
+// arm stands: a jerk-limited joint-space move (PTP, optionally through waypoints) and a
+// Cartesian path (LIN/CIRC with blended corners) timed along its length. Everything is
+// checked before the first byte goes out: the joint limits, and for paths the whole path
+// (motion/path_check.hpp). Pure planning: no I/O. Docs: docs/motion.md.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "arm/arm_model.hpp"
+#include "arm/motion_executor.hpp"
+#include "core/error.hpp"
+#include "motion/cartesian_path.hpp"
+#include "motion/path_check.hpp"
+#include "motion/trajectory.hpp"
+
+namespace armctl::arm {
+
+// A joint-space move: through `waypoints` (if any) to `target`, every joint (SI, one per
+// joint of the arm) at `speed` of its velocity limit, the acceleration and jerk limits of
+// the arm file; every joint starts and ends together, passing the waypoints without stopping.
+struct JointMove {
+  std::vector<std::vector<double>> waypoints;
+  std::vector<double> target;
+  double speed = 0.25;  // (0, 1]
+  double min_duration = 0;  // s
+};
+Result<PlannedMotion> plan_joint_move(const ArmModel& model, const std::vector<double>& from, const JointMove& move);
+
+// The timing of a Cartesian path along its length: how fast the tool may speed up and slow
+// down (the speed of each segment is in the segment).
+struct PathTiming {
+  double acceleration = 0.5;   // m/s^2 of the tool point
+  double angular_acceleration = 3.0;  // rad/s^2 of the tool
+};
+
+// What a Cartesian plan knows besides the motion: the path and its check (where it was
+// slowed and why), for progress lines and reports.
+struct PathPlan {
+  PlannedMotion motion;
+  std::shared_ptr<const motion::CartesianPath> path;
+  std::shared_ptr<const motion::CheckedPath> checked;
+};
+Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& from,
+                           std::span<const motion::PathSegment> segments, const PathTiming& timing = {});
+
+// How far the tool point can be from where it is asked to be only because each chain joint
+// stands on a whole device unit: the tool displacement of half a unit on every chain joint
+// (through the Jacobian at `q`, SI, every joint). The quantization limit of a path's accuracy.
+double tool_quantization(const ArmModel& model, Protocol protocol, const std::vector<double>& q);
+
+// The chain joints' limits as the path check takes them.
+std::vector<motion::PathLimits> path_limits(const ArmModel& model);
+
+}  // namespace armctl::arm

@@ -1,0 +1,290 @@
+// Host-planned motion on both simulated arms, on simulated time: jerk-limited joint moves
+// and Cartesian paths (LIN, blended corners), planned by arm::plan_* and streamed by the
+// executor. The tool's real position comes from the simulators' own joints after every
+// stream point, so these figures are what the arm did, not what was sent.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "arm/arm.hpp"
+#include "arm/bus_arm_device.hpp"
+#include "arm/motion_executor.hpp"
+#include "arm/motion_planning.hpp"
+#include "arm/rc_arm_device.hpp"
+#include "arm_files.hpp"
+#include "joint_bus/sim_fixture.hpp"
+#include "arm_controller/controller_rig.hpp"
+#include "robot_commands/sim_links.hpp"
+
+namespace armctl::arm {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+double to_line(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d d = b - a;
+  const double f = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return (p - (a + f * d)).norm();
+}
+
+motion::PathSegment lin_to(const motion::Pose& from, const Eigen::Vector3d& offset, double speed, double zone = 0) {
+  motion::PathSegment s;
+  s.target = from;
+  s.target.position += offset;
+  s.speed = speed;
+  s.zone = zone;
+  return s;
+}
+
+class XarmMotion : public ::testing::Test {
+ protected:
+  robot_commands::testing::EmulatedLink link{9600};
+  robot_commands::Client client{link};
+  Arm arm{testing::shipped("xarm"), std::make_unique<RcArmDevice>(testing::shipped("xarm"), client)};
+
+  void SetUp() override {
+    // A bent pose in front of the arm (the path tests start here).
+    ASSERT_TRUE(arm.move_joints({0.0, 0.5, 0.9, 0.6, 0.0, std::nullopt}));
+    ASSERT_TRUE(arm.wait());
+  }
+  std::vector<double> here() { return arm.read().value().positions; }
+  // The servos' real positions (the emulator's), SI.
+  std::vector<double> true_joints() {
+    std::vector<double> device;
+    for (const auto& j : arm.model().joints)
+      device.push_back(link.emulator().servos().commanded_position(std::uint8_t(j.robot_commands->id)));
+    return arm.model().from_device(Protocol::robot_commands, device);
+  }
+  Eigen::Vector3d true_tool() { return arm.forward(arm.chain_of(true_joints())).position; }
+};
+
+TEST_F(XarmMotion, JointMoveIsJerkLimitedAndEndsTogether) {
+  const auto from = here();
+  JointMove move;
+  move.target = from;
+  move.target[0] += 60 * kDeg;
+  move.target[2] -= 30 * kDeg;
+  move.speed = 0.5;
+  auto plan = plan_joint_move(arm.model(), from, move);
+  ASSERT_TRUE(plan) << plan.error().message;
+  // The plan never asks more than the limits (sampled finely; the generator's own tests
+  // check the analytic extrema).
+  std::vector<double> p(6), v(6), a(6);
+  for (double t = 0; t <= plan->duration; t += 0.002) {
+    plan->sample(t, p, v, a);
+    for (std::size_t i = 0; i < 6; ++i) {
+      const auto& l = arm.model().joints[i].limits;
+      EXPECT_LE(std::abs(v[i]), 0.5 * l.velocity * (1 + 1e-9)) << i << " at " << t;
+      EXPECT_LE(std::abs(a[i]), l.acceleration * (1 + 1e-9)) << i << " at " << t;
+    }
+  }
+  auto r = execute_motion(arm, *plan);
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_TRUE(arm.wait());
+  const auto end = here();
+  EXPECT_NEAR(end[0], move.target[0], 0.25 * kDeg);
+  EXPECT_NEAR(end[2], move.target[2], 0.25 * kDeg);
+}
+
+TEST_F(XarmMotion, RefusesAJointMoveOutsideTheLimits) {
+  JointMove move;
+  move.target = here();
+  move.target[0] = 130 * kDeg;
+  auto plan = plan_joint_move(arm.model(), here(), move);
+  ASSERT_FALSE(plan);
+  EXPECT_NE(plan.error().message.find("servo6"), std::string::npos) << plan.error().message;
+}
+
+TEST_F(XarmMotion, LinKeepsTheToolOnTheLine) {
+  const auto from = here();
+  const motion::Pose start = arm.forward(arm.chain_of(from));
+  const auto seg = lin_to(start, {0, 0.08, 0}, 0.04);
+  auto plan = plan_path(arm.model(), from, std::span(&seg, 1));
+  ASSERT_TRUE(plan) << plan.error().message;
+  double worst = 0;
+  ExecutorOptions o;
+  o.on_point = [&](const MotionProgress&) {
+    worst = std::max(worst, to_line(true_tool(), start.position, seg.target.position));
+  };
+  auto r = execute_motion(arm, plan->motion, o);
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_TRUE(arm.wait());
+  // Servo units of 0.24 deg at a reach of about 0.2 m: the stream stays within 2 mm.
+  EXPECT_LT(worst, 0.002);
+  EXPECT_LT((true_tool() - seg.target.position).norm(), 0.002);
+  // About 2 s of motion (80 mm at 40 mm/s plus the ramps).
+  EXPECT_GT(std::chrono::duration<double>(r->elapsed).count(), 2.0);
+  EXPECT_LT(std::chrono::duration<double>(r->elapsed).count(), 3.0);
+}
+
+TEST_F(XarmMotion, StopMidLineComesToRestOnTheLine) {
+  const auto from = here();
+  const motion::Pose start = arm.forward(arm.chain_of(from));
+  const auto seg = lin_to(start, {0, 0.08, 0}, 0.04);
+  auto plan = plan_path(arm.model(), from, std::span(&seg, 1));
+  ASSERT_TRUE(plan) << plan.error().message;
+  ExecutorOptions o;
+  o.command = [](const MotionProgress& p) { return p.t > 1.0 ? MotionCommand::stop : MotionCommand::none; };
+  auto r = execute_motion(arm, plan->motion, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->stopped);
+  auto w = arm.wait();
+  ASSERT_TRUE(w) << w.error().message;
+  const Eigen::Vector3d end = true_tool();
+  EXPECT_LT(to_line(end, start.position, seg.target.position), 0.002);
+  EXPECT_GT((end - seg.target.position).norm(), 0.02);  // well short of the end
+}
+
+TEST_F(XarmMotion, BlendedCornersDoNotStop) {
+  const auto from = here();
+  const motion::Pose start = arm.forward(arm.chain_of(from));
+  std::vector<motion::PathSegment> square;
+  motion::Pose corner = start;
+  for (Eigen::Vector3d step : {Eigen::Vector3d(0, 0.06, 0), Eigen::Vector3d(-0.05, 0, 0), Eigen::Vector3d(0, -0.06, 0)}) {
+    square.push_back(lin_to(corner, step, 0.04, 0.01));
+    corner = square.back().target;
+  }
+  square.back().zone = 0;
+  auto plan = plan_path(arm.model(), from, square);
+  ASSERT_TRUE(plan) << plan.error().message;
+  EXPECT_EQ(plan->path->rests().size(), 1u);  // only the end
+  // Along the plan, the tool never stops before the end and passes each inner corner
+  // within the zone (10 mm), but not through it (the corner is cut).
+  std::vector<double> p(6), v(6), a(6);
+  double closest[2] = {1, 1};
+  double slowest = 1;
+  const Eigen::Vector3d corners[2] = {square[0].target.position, square[1].target.position};
+  for (double t = 0.3; t < plan->motion.duration - 0.3; t += 0.005) {
+    plan->motion.sample(t, p, v, a);
+    const Eigen::Vector3d tool = arm.forward(arm.chain_of(p)).position;
+    std::vector<double> ahead(p);
+    for (std::size_t i = 0; i < 6; ++i) ahead[i] += v[i] * 1e-3;
+    const double speed = (arm.forward(arm.chain_of(ahead)).position - tool).norm() / 1e-3;
+    slowest = std::min(slowest, speed);
+    for (int c = 0; c < 2; ++c) closest[c] = std::min(closest[c], (tool - corners[c]).norm());
+  }
+  EXPECT_GT(slowest, 0.01);  // m/s: never at rest between the ends
+  for (double d : closest) {
+    EXPECT_LT(d, 0.01);
+    EXPECT_GT(d, 0.0005);
+  }
+  auto r = execute_motion(arm, plan->motion);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->completed);
+}
+
+TEST_F(XarmMotion, PathLeavingTheWorkspaceIsRefusedBeforeAnyByteIsSent) {
+  const auto from = here();
+  const motion::Pose start = arm.forward(arm.chain_of(from));
+  const auto seg = lin_to(start, {0.5, 0, 0}, 0.04);
+  const std::size_t before = link.sent.size();
+  auto plan = plan_path(arm.model(), from, std::span(&seg, 1));
+  ASSERT_FALSE(plan);
+  EXPECT_NE(plan.error().message.find("segment 1"), std::string::npos) << plan.error().message;
+  EXPECT_EQ(link.sent.size(), before);
+}
+
+class ScaraMotion : public ::testing::Test {
+ protected:
+  std::unique_ptr<joint_sim::SimArm> sim = test::make_arm(115200);
+  joint_bus::BusMaster master{sim->link()};
+  Arm arm{testing::shipped("scara"),
+          std::make_unique<BusArmDevice>(testing::shipped("scara"), master, sim->link(), "simulated SCARA")};
+
+  void SetUp() override {
+    ASSERT_TRUE(arm.move_joints({0.15, 0.3, -0.8, 0.0, 0.0, 0.0, std::nullopt}));
+    ASSERT_TRUE(arm.wait());
+  }
+  std::vector<double> here() { return arm.read().value().positions; }
+  Eigen::Vector3d true_tool() {
+    std::vector<double> device;
+    for (const auto& j : arm.model().joints) device.push_back(sim->joint(j.joint_bus->id).controller().position());
+    return arm.forward(arm.chain_of(arm.model().from_device(Protocol::joint_bus, device))).position;
+  }
+};
+
+TEST_F(ScaraMotion, LinKeepsTheToolOnTheLine) {
+  const auto from = here();
+  const motion::Pose start = arm.forward(arm.chain_of(from));
+  const auto seg = lin_to(start, {0, 0.1, 0}, 0.1);
+  auto plan = plan_path(arm.model(), from, std::span(&seg, 1));
+  ASSERT_TRUE(plan) << plan.error().message;
+  double worst = 0;
+  ExecutorOptions o;
+  o.on_point = [&](const MotionProgress&) {
+    worst = std::max(worst, to_line(true_tool(), start.position, seg.target.position));
+  };
+  auto r = execute_motion(arm, plan->motion, o);
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_TRUE(arm.wait());
+  EXPECT_LT(worst, 0.003);
+  EXPECT_LT((true_tool() - seg.target.position).norm(), 0.001);
+}
+
+TEST_F(ScaraMotion, StopMidLineComesToRestOnTheLine) {
+  const auto from = here();
+  const motion::Pose start = arm.forward(arm.chain_of(from));
+  const auto seg = lin_to(start, {0, 0.1, 0}, 0.1);
+  auto plan = plan_path(arm.model(), from, std::span(&seg, 1));
+  ASSERT_TRUE(plan) << plan.error().message;
+  ExecutorOptions o;
+  o.command = [](const MotionProgress& p) { return p.t > 0.5 ? MotionCommand::stop : MotionCommand::none; };
+  auto r = execute_motion(arm, plan->motion, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->stopped);
+  ASSERT_TRUE(arm.wait());
+  const Eigen::Vector3d end = true_tool();
+  EXPECT_LT(to_line(end, start.position, seg.target.position), 0.003);
+  EXPECT_GT((end - seg.target.position).norm(), 0.02);
+}
+
+}  // namespace
+}  // namespace armctl::arm
+
+namespace armctl::arm {
+namespace {
+
+// The SCARA through armctl's arm controller: the stream is MultiServoMoves of the
+// controller's 0..1000 units per joint (1.42 deg each on SHOULDER), which the controller
+// turns into synchronized joint moves from a moving start.
+TEST(ControllerMotion, LinThroughTheArmControllerStaysWithinItsResolution) {
+  arm_controller::testing::Rig rig;
+  const ArmModel model = testing::shipped("scara");
+  Arm arm{model, std::make_unique<RcArmDevice>(model, *rig.client)};
+  ASSERT_TRUE(arm.move_joints({0.15, 0.3, -0.8, 0.0, 0.0, 0.0, std::nullopt}));
+  ASSERT_TRUE(arm.wait());
+  auto true_tool = [&] {
+    std::vector<double> device;
+    for (const auto& j : model.joints) device.push_back(rig.clicks(j.joint_bus->id));
+    return arm.forward(arm.chain_of(model.from_device(Protocol::joint_bus, device))).position;
+  };
+  const auto from = arm.read().value().positions;
+  const motion::Pose start = arm.forward(arm.chain_of(from));
+  const auto seg = lin_to(start, {0, 0.1, 0}, 0.05);
+  auto plan = plan_path(model, from, std::span(&seg, 1));
+  ASSERT_TRUE(plan) << plan.error().message;
+  double worst = 0;
+  ExecutorOptions o;
+  o.on_point = [&](const MotionProgress&) {
+    worst = std::max(worst, to_line(true_tool(), start.position, seg.target.position));
+  };
+  auto r = execute_motion(arm, plan->motion, o);
+  ASSERT_TRUE(r) << r.error().message;
+  auto w = arm.wait();
+  ASSERT_TRUE(w) << w.error().message;
+  // Twice the quantization limit (half a controller unit on every joint, mid-path).
+  std::vector<double> middle = from;
+  const motion::JointVector& mid = plan->checked->joints[plan->checked->joints.size() / 2];
+  for (int i = 0; i < mid.size(); ++i) middle[std::size_t(i)] = mid[i];
+  const double limit = 2 * tool_quantization(model, Protocol::robot_commands, middle);
+  std::printf("through the arm controller: %zu points every %.1f ms, largest distance from the line %.2f mm, end "
+              "%.2f mm, twice the quantization limit %.2f mm\n",
+              r->points, std::chrono::duration<double, std::milli>(r->period).count(), worst * 1e3,
+              (true_tool() - seg.target.position).norm() * 1e3, limit * 1e3);
+  EXPECT_LT(worst, limit);
+  EXPECT_LT((true_tool() - seg.target.position).norm(), limit);
+}
+
+}  // namespace
+}  // namespace armctl::arm
