@@ -254,3 +254,36 @@ TEST_F(BusStream, FollowingErrorHaltsAndNamesTheJoint) {
 
 }  // namespace
 }  // namespace armctl::arm
+
+namespace armctl::arm {
+namespace {
+
+TEST_F(BusStream, PauseHoldsAndResumeFinishes) {
+  const auto a = here();
+  auto b = a;
+  b[1] = a[1] + 30 * kDeg;
+  auto m = cosine_motion(a, b, 2.0);
+  ExecutorOptions o;
+  Duration paused_at{};
+  std::vector<double> held;
+  o.command = [&](const MotionProgress& p) {
+    if (p.t > 0.7 && paused_at == Duration{0}) {
+      paused_at = p.elapsed;
+      return MotionCommand::pause;
+    }
+    if (p.paused && p.rate == 0 && held.empty()) held = here();
+    if (p.paused && p.elapsed > paused_at + std::chrono::seconds(2)) return MotionCommand::resume;
+    return MotionCommand::none;
+  };
+  auto r = execute_motion(arm, m, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->completed);
+  ASSERT_FALSE(held.empty());
+  EXPECT_GT(std::abs(held[1] - b[1]), 3 * kDeg);  // held short of the goal
+  EXPECT_GT(std::chrono::duration<double>(r->elapsed).count(), 3.5);
+  ASSERT_TRUE(arm.wait());
+  EXPECT_NEAR(here()[1], b[1], 0.1 * kDeg);
+}
+
+}  // namespace
+}  // namespace armctl::arm
