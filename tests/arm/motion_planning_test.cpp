@@ -126,9 +126,29 @@ TEST_F(XarmMotion, StopMidLineComesToRestOnTheLine) {
   ASSERT_TRUE(plan) << plan.error().message;
   ExecutorOptions o;
   o.command = [](const MotionProgress& p) { return p.t > 1.0 ? MotionCommand::stop : MotionCommand::none; };
+  // The joints' positions as planned at every point's instant: their second differences
+  // are the accelerations the stop asks for.
+  std::vector<std::pair<double, std::vector<double>>> planned;
+  o.on_point = [&](const MotionProgress& p) {
+    std::vector<double> q(6), v(6), acc(6);
+    plan->motion.sample(p.t, q, v, acc);
+    planned.push_back({std::chrono::duration<double>(p.elapsed).count(), q});
+  };
   auto r = execute_motion(arm, plan->motion, o);
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_TRUE(r->stopped);
+  double worst = 0;  // of |acceleration| / limit, over every joint and point
+  for (std::size_t k = 1; k + 1 < planned.size(); ++k) {
+    const double h0 = planned[k].first - planned[k - 1].first, h1 = planned[k + 1].first - planned[k].first;
+    if (h0 < 1e-3 || h1 < 1e-3) continue;  // the final point goes out at the instant of the last
+    for (std::size_t i = 0; i < 5; ++i) {
+      const double acc = 2 * ((planned[k + 1].second[i] - planned[k].second[i]) / h1 -
+                              (planned[k].second[i] - planned[k - 1].second[i]) / h0) / (h0 + h1);
+      worst = std::max(worst, std::abs(acc) / arm.model().joints[i].limits.acceleration);
+    }
+  }
+  RecordProperty("stop_acceleration_of_limit", std::to_string(worst));
+  EXPECT_LT(worst, 1.0);  // the stop ramp stays within the joints' acceleration limits
   auto w = arm.wait();
   ASSERT_TRUE(w) << w.error().message;
   const Eigen::Vector3d end = true_tool();
