@@ -10,6 +10,7 @@
 
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/controller_serve.hpp"
+#include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "core/error.hpp"
 #include "devices/joint_bus/sim_link_server.hpp"
@@ -75,7 +76,8 @@ void add_sim_command(CLI::App& app) {
   add_sim_xarm_command(*sim);
   CLI::App* scara = sim->add_subcommand("scara", "The simulated SCARA arm (7 joints on a joint bus) on a unix socket");
   scara->add_option("--listen", args->listen, "Unix socket path (default /tmp/armctl-scara.sock)");
-  scara->add_option("--baud", args->baud, "Joint bus baud (default: the config's, 9600)");
+  scara->add_option("--baud", args->baud, "Joint bus baud (default: the config's, 9600)")
+      ->check(whole_number_in(1, transport::kMaxStandardBaud));
   scara->add_option("--config", args->config, "Arm config file (default config/scara.json)");
   scara->add_flag("--robot-commands", args->robot_commands,
                   "Serve the whole arm as a Robot Commands device on a pty (arm controller inside; prints the pty path)");
