@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include "core/error.hpp"
+#include "core/printable.hpp"
 #include "devices/arm_controller/controller_runner.hpp"
 #include "devices/arm_controller/paced_link.hpp"
 
@@ -31,7 +32,7 @@ void serve_controller(transport::JointBusLink& bus, joint_bus::MasterOptions mas
   options.supply_millivolts = std::move(supply_millivolts);
   const std::string label = args.label;
   options.log = [label](const std::string& m) {
-    fmt::print(stderr, "{}: {}\n", label, m);
+    fmt::print(stderr, "{}: {}\n", label, printable(m));  // logs quote frames and files
     std::fflush(stderr);
   };
   const std::size_t joints = config.joints.size();

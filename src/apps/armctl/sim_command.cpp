@@ -13,6 +13,7 @@
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "core/error.hpp"
+#include "core/printable.hpp"
 #include "devices/joint_bus/sim_link_server.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
 #include "transport/serial_port.hpp"
@@ -55,7 +56,7 @@ void run_sim_scara(const SimArgs& args) {
   }
   joint_bus::SimLinkServer server(arm.link(), args.listen);
   server.set_tick([&arm] { arm.bus().sync(); });
-  server.set_log([](const std::string& line) { fmt::print("sim scara: {}\n", line); std::fflush(stdout); });
+  server.set_log([](const std::string& line) { fmt::print("sim scara: {}\n", printable(line)); std::fflush(stdout); });
 
   const StopOnSignals stop_on_signals(server);
 

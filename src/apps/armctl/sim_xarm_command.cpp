@@ -10,6 +10,7 @@
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "core/error.hpp"
+#include "core/printable.hpp"
 #include "devices/xarm_emulator/emulator_runner.hpp"
 #include "protocol/robot_commands/messages.hpp"
 #include "transport/serial_port.hpp"
@@ -40,7 +41,7 @@ void run_sim_xarm(const SimXarmArgs& args) {
   options.baud = args.baud;
 
   xarm::EmulatorRunner runner(
-      options, [](const std::string& m) { fmt::print(stderr, "sim xarm: {}\n", m); });
+      options, [](const std::string& m) { fmt::print(stderr, "sim xarm: {}\n", printable(m)); });
 
   const PtySymlink symlink(args.link, runner.device_path());
   const StopOnSignals stop_on_signals(runner);

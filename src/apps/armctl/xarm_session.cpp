@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include "core/printable.hpp"
 #include "devices/robot_commands/hid_link.hpp"
 
 namespace armctl::cli {
@@ -30,7 +31,7 @@ std::unique_ptr<XarmSession> open_xarm_session(const std::string& device, int se
   options.download_timeout = std::max<Duration>(options.reply_timeout, options.download_timeout);
   s->client = std::make_unique<robot_commands::Client>(s->connection->link(), options);
   if (hid) {
-    for (const auto& w : hid->warnings()) fmt::print(stderr, "armctl: warning: {}\n", w);
+    for (const auto& w : hid->warnings()) fmt::print(stderr, "armctl: warning: {}\n", printable(w));
     robot_commands::await_first_contact(*s->client).value();  // throws its error
   }
   return s;
