@@ -360,6 +360,33 @@ TEST_F(XarmCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
   EXPECT_FALSE(fs::exists(fs::path(state_) / "xarm-emulator" / "group-000.grp"));
 }
 
+// A board that cannot store (here: a file-size limit, which also works as root where a
+// read-only dir would not) refuses; the host says so instead of "saved", and nothing dies of
+// SIGXFSZ.
+TEST_F(XarmCli, ABoardThatCannotStoreSaysSoAndTheCommandFails) {
+  auto run = [&](const std::string& args) {  // through a shell: ulimit -f 0 for armctl only
+    const std::string cmd = "ulimit -f 0; ARMCTL_STATE_DIR='" + state_ + "' exec " + kArmctl + " xarm " + args + " 2>&1";
+    FILE* p = ::popen(cmd.c_str(), "r");
+    std::string out;
+    char buf[4096];
+    while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+    const int st = ::pclose(p);
+    return Outcome{WIFEXITED(st) ? WEXITSTATUS(st) : -1, out, ""};
+  };
+  Outcome r = run("offset save");
+  EXPECT_EQ(r.status, 1) << r.out;  // was killed by SIGXFSZ
+  EXPECT_TRUE(contains(r.out, "ServoOffsetWrite: the board refused it")) << r.out;
+  EXPECT_TRUE(contains(r.out, "could not be stored")) << r.out;
+  EXPECT_FALSE(contains(r.out, "offsets saved")) << r.out;
+
+  const std::string wave = write_file("wave.grp", kWave);
+  r = run("group download " + wave + " --group 3");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_TRUE(contains(r.out, "the board may have refused it")) << r.out;
+  EXPECT_TRUE(contains(r.out, "the board logged: GroupDownload: cannot store group 3")) << r.out;
+  EXPECT_FALSE(fs::exists(fs::path(state_) / "xarm-emulator" / "group-003.grp"));
+}
+
 // Terminal control sequences in a group file's name and fields reach the terminal escaped.
 TEST_F(XarmCli, ControlCharactersFromAGroupFileAreEscapedInMessages) {
   const std::string title = "\x1b]0;owned\x07";

@@ -1,4 +1,5 @@
 // armctl: drive, simulate and program robot arms. See README.md.
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -72,6 +73,10 @@ void name_missing_subcommands(CLI::App& app) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) must not kill armctl with SIGXFSZ in the middle of a save
+  // (the emulated board's state dir, an arm file): ignored, a write past the limit fails with
+  // EFBIG, and the board or command reports that like any other storage error.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"armctl: drive, simulate and program robot arms (xArm, SCARA joint bus)"};
   app.require_subcommand(1);
   armctl::cli::add_arm_command(app);

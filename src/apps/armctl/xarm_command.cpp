@@ -179,8 +179,12 @@ void run_offset_adjust(const XarmCli& o) {
 void run_offset_save(const XarmCli& o) {
   const auto ids = xarm_args::parse_servos(o.servos, o.servo_count);
   auto s = open(o);
-  check(s->client->save_offsets(ids));
-  done(o, fmt::format("offsets saved for {} servos", ids.size()));
+  s->check(s->client->save_offsets(ids));
+  // ServoOffsetWrite has no reply: only the embedded board can say whether it stored them.
+  if (s->confirm_accepted("ServoOffsetWrite")) return done(o, fmt::format("offsets saved for {} servos", ids.size()));
+  done(o, fmt::format("offset save sent for {} servos (not confirmed: Robot Commands has no reply to it; a board "
+                      "that cannot store them says so only in its own log)",
+                      ids.size()));
 }
 
 void run_mode(const XarmCli& o) {
@@ -220,15 +224,16 @@ void run_info_read(const XarmCli& o) {
 
 void run_info_write(const XarmCli& o) {
   auto s = open(o);
-  check(s->client->write_bus_servo_info(o.info));
-  done(o, fmt::format("bus servo info written (ID {})", o.info.servo));
+  s->check(s->client->write_bus_servo_info(o.info));
+  if (s->confirm_accepted("BusServoInfoWrite")) return done(o, fmt::format("bus servo info written (ID {})", o.info.servo));
+  done(o, fmt::format("bus servo info sent (ID {}; not confirmed: Robot Commands has no reply to it)", o.info.servo));
 }
 
 void run_group_download(const XarmCli& o) {
   const auto group = xarm_args::parse_group(o.group, false);
   const auto file = check(motion::read_action_group_file(o.file));
   auto s = open(o);
-  check(s->client->download_group(group, file.actions));
+  s->check(s->client->download_group(group, file.actions));
   done(o, fmt::format("group {}: {} actions downloaded", group, file.actions.size()));
 }
 
@@ -291,7 +296,7 @@ void run_group_stop(const XarmCli& o) {
 void run_group_erase(const XarmCli& o) {
   const auto group = xarm_args::parse_group(o.group, true);
   auto s = open(o);
-  check(s->client->erase_group(group));
+  s->check(s->client->erase_group(group));
   done(o, group == 255 ? std::string("all groups erased") : fmt::format("group {} erased", group));
 }
 

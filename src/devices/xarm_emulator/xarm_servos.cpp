@@ -198,7 +198,9 @@ bool XarmServos::save_settings() {
 
 void XarmServos::load_settings() {
   auto path = *options_.state_dir / kSettingsFile;
-  auto bytes = rc_board::read_whole_file(path);
+  // Exactly this long when valid: anything larger (or not a regular file) is refused unread.
+  constexpr std::size_t kSettingsFileBytes = sizeof kMagic + 1 + kServoCount * kPerServo + 4;
+  auto bytes = rc_board::read_whole_file(path, kSettingsFileBytes);
   if (!bytes) throw ArmctlError(bytes.error());
   if (!*bytes) return;  // nothing saved yet: factory settings
   const auto& b = **bytes;
