@@ -30,6 +30,7 @@ void serve_controller(transport::JointBusLink& bus, joint_bus::MasterOptions mas
   ac::DeviceOptions options;
   if (!args.state_dir.empty()) options.state_dir = args.state_dir;
   options.supply_millivolts = std::move(supply_millivolts);
+  options.link_losses = args.link_losses;
   const std::string label = args.label;
   options.log = [label](const std::string& m) {
     fmt::print(stderr, "{}: {}\n", label, printable(m));  // logs quote frames and files

@@ -30,7 +30,7 @@ struct SimArgs {
   // controller in this process) instead of the joint bus on a unix socket.
   bool robot_commands = false;
   std::string arm;  // controller's arm config (default config/scara-arm.json)
-  ControllerServeArgs serve{"pty", "", "", "sim scara"};
+  ControllerServeArgs serve{"pty", "", "", "sim scara", {}};
 };
 
 void run_sim_scara(const SimArgs& args) {
