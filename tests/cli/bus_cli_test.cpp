@@ -85,8 +85,9 @@ TEST(BusCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
       {"bus drive-to 3", "value"},
       {"bus", "a command is required; allowed: ping"},
       {"bus ping 1 ''", "VALUE '' is not allowed"},
-      {"bus wait --timeout nan", "--timeout must be above 0"},
-      {"bus wait --timeout 0", "--timeout must be above 0"},
+      {"bus wait --timeout nan", "--timeout: nan is outside 0..3600 s, 0 excluded"},
+      {"bus wait --timeout 0", "--timeout: 0 is outside 0..3600 s, 0 excluded"},
+      {"bus wait --timeout soon", "--timeout: 'soon' is not a number (allowed 0..3600 s, 0 excluded)"},
       {"sim scara --link /tmp/armctl-x --state-dir /tmp/armctl-y", "belong to --robot-commands"},
       // Numeric options name the option, the value and the range (not "Could not convert").
       {"bus --retries 99 ping", "--retries: 99 is outside 0..10"},

@@ -293,18 +293,7 @@ void add_bus_command(CLI::App& app) {
     }
     if (spec.name == "wait") {
       sub->add_option("--timeout", args->wait_timeout_s, "Give up after this many seconds (default 30)")
-          ->check(CLI::Validator(
-              [](std::string& text) -> std::string {
-                double v = 0;
-                try {
-                  v = std::stod(text);
-                } catch (const std::exception&) {
-                  return "--timeout '" + text + "' is not a number of seconds";
-                }
-                if (!std::isfinite(v) || v <= 0 || v > 3600) return "--timeout must be above 0 up to 3600 s, not " + text;
-                return "";
-              },
-              "SECONDS in (0, 3600]"));
+          ->check(number_in(0, 3600, "s", true));
     }
     const std::string name = spec.name;
     sub->callback([args, name] { run_bus(*args, name); });

@@ -28,10 +28,11 @@ CLI::Validator whole_number_in(long long min, long long max) {
       "INT in " + range);
 }
 
-CLI::Validator number_in(double min, double max, const std::string& unit) {
-  const std::string range = fmt::format("{}..{}{}{}", min, max, unit.empty() ? "" : " ", unit);
+CLI::Validator number_in(double min, double max, const std::string& unit, bool above_min) {
+  const std::string range = fmt::format("{}..{}{}{}{}", min, max, unit.empty() ? "" : " ", unit,
+                                        above_min ? fmt::format(", {} excluded", min) : std::string());
   return CLI::Validator(
-      [min, max, range](std::string& text) -> std::string {
+      [min, max, above_min, range](std::string& text) -> std::string {
         double v = 0;
         const char* first = text.data();
         const char* last = first + text.size();
@@ -39,7 +40,7 @@ CLI::Validator number_in(double min, double max, const std::string& unit) {
         const auto [end, ec] = std::from_chars(first, last, v);
         if (text.empty() || ec == std::errc::invalid_argument || end != last)
           return fmt::format("'{}' is not a number (allowed {})", printable(text), range);
-        if (ec == std::errc::result_out_of_range || !std::isfinite(v) || v < min || v > max)
+        if (ec == std::errc::result_out_of_range || !std::isfinite(v) || v < min || v > max || (above_min && v == min))
           return fmt::format("{} is outside {}", printable(text), range);
         return "";
       },

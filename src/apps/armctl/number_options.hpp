@@ -13,6 +13,7 @@ namespace armctl::cli {
 // A whole number within min..max (the range also shows in --help).
 CLI::Validator whole_number_in(long long min, long long max);
 // A finite number within min..max (no nan, no inf), `unit` is shown after it ("s", "ms").
-CLI::Validator number_in(double min, double max, const std::string& unit);
+// With `above_min`, min itself is refused too (a timeout of 0 s).
+CLI::Validator number_in(double min, double max, const std::string& unit, bool above_min = false);
 
 }  // namespace armctl::cli
