@@ -138,7 +138,7 @@ Status XarmServos::save_offsets(std::span<const ServoId> ids) {
   for (ServoId id : ids) at(id).saved_offset = at(id).offset;
   if (save_settings()) return Ok{};
   for (std::size_t i = 0; i < kServoCount; ++i) servos_[i].saved_offset = before[i];
-  return Error{ErrorKind::io, "the servo settings could not be stored in the state directory"};
+  return Error{ErrorKind::io, "the servo settings could not be stored in the state directory: " + last_save_error_};
 }
 
 void XarmServos::set_mode(ServoId servo, ServoMode mode, std::int16_t speed, TimePoint now) {
@@ -170,7 +170,7 @@ Status XarmServos::write_bus_servo_info(const BusServoLimits& limits) {
   if (save_settings()) return Ok{};
   s.limits = before;
   info_servo_ = info_before;
-  return Error{ErrorKind::io, "the servo settings could not be stored in the state directory"};
+  return Error{ErrorKind::io, "the servo settings could not be stored in the state directory: " + last_save_error_};
 }
 
 bool XarmServos::save_settings() {
