@@ -8,9 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -19,6 +17,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/printable.hpp"
+#include "core/regular_file.hpp"
 
 namespace armctl::json_reader {
 
@@ -33,38 +33,26 @@ inline constexpr int kMaxConfigDepth = 32;
 inline json parse_document(std::string_view text, const std::string& source) {
   if (text.size() > kMaxConfigBytes)
     throw ArmctlError(ErrorKind::invalid_config,
-                      fmt::format("{}: {} bytes is larger than a config file may be (1 MiB)", source, text.size()));
+                      fmt::format("{}: {} bytes is larger than a config file may be (1 MiB)", printable(source), text.size()));
   try {
     return json::parse(text, [&source](int depth, json::parse_event_t, json&) {
       if (depth > kMaxConfigDepth)
         throw ArmctlError(ErrorKind::invalid_config,
-                          fmt::format("{}: nested deeper than {} levels", source, kMaxConfigDepth));
+                          fmt::format("{}: nested deeper than {} levels", printable(source), kMaxConfigDepth));
       return true;
     });
   } catch (const json::exception& e) {
     // json::exception, not only parse_error: a number too large for a double ("1e400") is
     // an out_of_range from the parser (found by the config fuzzers), and must not escape.
-    throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: not valid JSON: {}", source, e.what()));
+    throw ArmctlError(ErrorKind::invalid_config,
+                      fmt::format("{}: not valid JSON: {}", printable(source), printable(e.what())));
   }
 }
 
 // The text of a config file: a regular file of at most kMaxConfigBytes, checked before it is
 // read (a directory, a FIFO, a huge or sparse file never is). `what` names it in errors.
 inline std::string read_config_file(const std::filesystem::path& path, std::string_view what) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const auto status = fs::status(path, ec);
-  if (ec || !fs::exists(status))
-    throw ArmctlError(ErrorKind::io, fmt::format("cannot open {} {}: no such file", what, path.string()));
-  if (!fs::is_regular_file(status))
-    throw ArmctlError(ErrorKind::io, fmt::format("{} {} is not a regular file", what, path.string()));
-  if (fs::file_size(path, ec) > kMaxConfigBytes)
-    throw ArmctlError(ErrorKind::invalid_config, fmt::format("{} {} is larger than 1 MiB", what, path.string()));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ArmctlError(ErrorKind::io, fmt::format("cannot open {} {}", what, path.string()));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return read_regular_file(path, what, kMaxConfigBytes).value();
 }
 
 // Reads one JSON object, refusing unknown keys; errors carry "<source>: <path>: ...".
@@ -76,7 +64,10 @@ class ObjectReader {
   }
 
   [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}: {}", source_, path, what));
+    // The path holds the file's own keys and `what` may quote its values: printable() keeps
+    // a key like "\x1b]0;owned\x07" from reaching the terminal as a control sequence.
+    throw ArmctlError(ErrorKind::invalid_config,
+                      fmt::format("{}: {}: {}", printable(source_), printable(path), printable(what)));
   }
   std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 

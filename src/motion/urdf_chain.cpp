@@ -10,6 +10,9 @@
 #include <fmt/format.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "core/printable.hpp"
+#include "core/regular_file.hpp"
+
 namespace armctl::motion {
 
 const char* to_string(ChainJointType type) {
@@ -240,12 +243,13 @@ Result<UrdfChain> read_urdf_chain(std::string_view urdf_xml, std::string_view ba
 
 Result<UrdfChain> read_urdf_chain_file(const std::string& path, std::string_view base_link,
                                        std::string_view tip_link) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{ErrorKind::io, fmt::format("{}: cannot open the URDF file", path)};
-  std::ostringstream text;
-  text << in.rdbuf();
-  auto chain = read_urdf_chain(text.str(), base_link, tip_link);
-  if (!chain) return Error{chain.error().kind, fmt::format("{}: {}", path, chain.error().message)};
+  // A directory or FIFO is refused at once; URDF files of these arms are a few kB (meshes are
+  // separate files), so 4 MiB is far above any real one.
+  constexpr std::uintmax_t kMaxUrdfBytes = 4 << 20;
+  auto text = read_regular_file(path, "URDF file", kMaxUrdfBytes);
+  if (!text) return text.error();
+  auto chain = read_urdf_chain(*text, base_link, tip_link);
+  if (!chain) return Error{chain.error().kind, fmt::format("{}: {}", printable(path), chain.error().message)};
   return chain;
 }
 

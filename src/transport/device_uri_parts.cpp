@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "core/printable.hpp"
 #include "transport/serial_port.hpp"
 
 namespace armctl::transport {
@@ -18,10 +19,10 @@ Status check_keys(const UriParts& parts, const std::vector<std::string_view>& al
     bool known = false;
     for (std::string_view a : allowed) known = known || a == key;
     if (known) continue;
-    if (allowed.empty()) return bad(fmt::format("unknown option '{}' ({} takes no options)", key, parts.kind));
+    if (allowed.empty()) return bad(fmt::format("unknown option '{}' ({} takes no options)", printable(key), printable(parts.kind)));
     std::string names;
     for (std::string_view a : allowed) names += fmt::format("{}{}", names.empty() ? "" : ", ", a);
-    return bad(fmt::format("unknown option '{}' (this device takes: {})", key, names));
+    return bad(fmt::format("unknown option '{}' (this device takes: {})", printable(key), names));
   }
   return Ok{};
 }
@@ -54,9 +55,9 @@ Result<UriParts> split_uri(std::string_view uri) {
     more = amp != std::string_view::npos;
     query = more ? query.substr(amp + 1) : std::string_view{};
     const auto eq = item.find('=');
-    if (eq == std::string_view::npos || eq == 0) return bad(fmt::format("option '{}' is not key=value", item));
+    if (eq == std::string_view::npos || eq == 0) return bad(fmt::format("option '{}' is not key=value", printable(item)));
     std::string key(item.substr(0, eq));
-    if (parts.options.contains(key)) return bad(fmt::format("option '{}' given twice", key));
+    if (parts.options.contains(key)) return bad(fmt::format("option '{}' given twice", printable(key)));
     parts.options[key] = std::string(item.substr(eq + 1));
   }
   return parts;
@@ -69,8 +70,13 @@ Status check_options(const UriParts& parts, std::initializer_list<std::string_vi
 Result<std::uint32_t> parse_baud(std::string_view text) {
   std::uint32_t baud = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), baud);
+  if (ec == std::errc::result_out_of_range && end == text.data() + text.size()) {
+    return bad(fmt::format("baud {} is outside 1..{} (standard rates: {})", printable(text), kMaxStandardBaud,
+                           standard_bauds_text()));
+  }
   if (text.empty() || ec != std::errc{} || end != text.data() + text.size()) {
-    return bad(fmt::format("baud '{}' is not a whole number", text));
+    return bad(fmt::format("baud '{}' is not a whole number (standard rates: {})", printable(text),
+                           standard_bauds_text()));
   }
   if (!baud_constant(baud)) {
     return bad(fmt::format("baud {} is not a standard rate ({})", baud, standard_bauds_text()));
@@ -80,7 +86,7 @@ Result<std::uint32_t> parse_baud(std::string_view text) {
 
 Result<SerialUri> parse_serial_uri(const UriParts& parts, std::uint32_t default_baud,
                                    std::initializer_list<std::string_view> extra) {
-  if (parts.kind != "serial") return bad(fmt::format("'{}' is not a serial port", parts.kind));
+  if (parts.kind != "serial") return bad(fmt::format("'{}' is not a serial port", printable(parts.kind)));
   if (parts.path.empty() || parts.path[0] != '/') {
     return bad("serial: needs an absolute device path such as /dev/ttyUSB0");
   }
@@ -103,7 +109,7 @@ Result<SerialUri> parse_serial_uri(const UriParts& parts, std::uint32_t default_
 }
 
 Error uri_error(std::string_view uri, const Error& why, std::string_view forms) {
-  return Error{why.kind, fmt::format("device \"{}\": {} (allowed: {})", uri, why.message, forms)};
+  return Error{why.kind, fmt::format("device \"{}\": {} (allowed: {})", printable(uri), printable(why.message), forms)};
 }
 
 }  // namespace armctl::transport

@@ -28,6 +28,7 @@ constexpr BaudEntry kBauds[] = {
     {1500000, B1500000}, {2000000, B2000000}, {2500000, B2500000}, {3000000, B3000000},
     {3500000, B3500000}, {4000000, B4000000},
 };
+static_assert(kBauds[std::size(kBauds) - 1].rate == kMaxStandardBaud, "kMaxStandardBaud is the last rate");
 
 }  // namespace
 

@@ -29,6 +29,8 @@ class SerialPort final : public FdStream {
   std::uint32_t baud_;
 };
 
+// The highest standard rate (the last of standard_bauds_text()).
+inline constexpr std::uint32_t kMaxStandardBaud = 4000000;
 // The termios speed constant for a standard rate, or nothing.
 std::optional<unsigned> baud_constant(std::uint32_t baud);
 // "50, 75, ..., 115200, ..., 4000000" for error messages.

@@ -9,6 +9,8 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 
@@ -83,15 +85,46 @@ TEST(BusCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
       {"bus drive-to 3", "value"},
       {"bus", "a command is required; allowed: ping"},
       {"bus ping 1 ''", "VALUE '' is not allowed"},
-      {"bus wait --timeout nan", "--timeout must be above 0"},
-      {"bus wait --timeout 0", "--timeout must be above 0"},
+      {"bus wait --timeout nan", "--timeout: nan is outside 0..3600 s, 0 excluded"},
+      {"bus wait --timeout 0", "--timeout: 0 is outside 0..3600 s, 0 excluded"},
+      {"bus wait --timeout soon", "--timeout: 'soon' is not a number (allowed 0..3600 s, 0 excluded)"},
       {"sim scara --link /tmp/armctl-x --state-dir /tmp/armctl-y", "belong to --robot-commands"},
+      // Numeric options name the option, the value and the range (not "Could not convert").
+      {"bus --retries 99 ping", "--retries: 99 is outside 0..10"},
+      {"bus --retries -1 ping", "--retries: -1 is outside 0..10"},
+      {"sim scara --baud 99999999999", "--baud: 99999999999 is outside 1..4000000"},
+      {"sim scara --baud fast", "--baud: 'fast' is not a whole number (allowed 1..4000000)"},
+      {"sim xarm --baud 99999999999", "--baud: 99999999999 is outside 1..4000000"},
+      {"sim xarm --battery -1", "--battery: -1 is outside 4500..12000"},
+      {"sim xarm --battery 4294967296", "--battery: 4294967296 is outside 4500..12000"},
+      {"bus --device 'sim?baud=99999999999' ping", "baud 99999999999 is outside 1..4000000"},
+      // Files the CLI reads: a directory is refused naming the path.
+      {"bus --device 'sim?config=/tmp' ping", "arm config /tmp is not a regular file (a directory)"},
+      {"sim scara --config /tmp", "arm config /tmp is not a regular file (a directory)"},
   };
   for (const auto& [args, want] : cases) {
     const CliRun r = armctl(args);
     EXPECT_NE(r.status, 0) << args;
     EXPECT_NE(r.out.find(want), std::string::npos) << args << "\n" << r.out;
   }
+}
+
+// A config key holding a terminal escape (JSON "\u001b") reaches stderr escaped.
+TEST(BusCli, AConfigKeyWithControlCharactersIsShownEscaped) {
+  const std::string path = "/tmp/armctl-escape-key-" + std::to_string(::getpid()) + ".json";
+  {
+    // The shipped config with one unknown key in front: the key is what gets reported.
+    std::ifstream in(std::string(ARMCTL_SOURCE_DIR) + "/config/scara.json");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_EQ(text.find('{'), 0u) << "config/scara.json does not start with '{'";
+    text.insert(1, "\"\\u001b]0;owned\\u0007\": 1, ");
+    std::ofstream(path) << text;
+  }
+  const CliRun r = armctl("bus --device 'sim?config=" + path + "' ping");
+  std::remove(path.c_str());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("\\x1b]0;owned\\x07"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
 }
 
 TEST(SimScaraCli, KeepsStateBetweenCommandsAndStopsCleanly) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <poll.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -312,6 +313,8 @@ TEST_F(XarmCli, WatchRunsUntilSigint) {
 TEST_F(XarmCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
   const std::string bad_group = write_file("bad.grp", "servos 2\n100 1=500 2=500\n100 1=500 2=abc\n");
   const std::string mixed = write_file("mixed.grp", "100 1=500 2=500\n100 1=500\n");
+  const std::string fifo = (dir_ / "fifo.grp").string();  // no writer: reading it blocked for ever
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"move 7=500", "servo 7 is out of range (allowed 1..6)"},
       {"positions 0", "servo 0 is out of range (allowed 1..6)"},
@@ -333,6 +336,20 @@ TEST_F(XarmCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
       {"mode 1 motor --speed 5000", "--speed 5000 is out of range (allowed -1000..1000)"},
       {"mode 1 turbo", "servo or motor"},
       {"frobnicate", "unknown command 'frobnicate'; allowed: move"},
+      // Numeric options name the option, the value and the range (not "Could not convert").
+      {"info write --id 300", "--id: 300 is outside 1..19"},
+      {"info write --id -1", "--id: -1 is outside 1..19"},
+      {"info write --id 1 --position-max 70000", "--position-max: 70000 is outside 0..1000"},
+      {"info write --id 1 --millivolts-min 99", "--millivolts-min: 99 is outside 4500..12000"},
+      {"info write --id 1 --led-warning 8", "--led-warning: 8 is outside 0..7"},
+      {"--timeout abc positions", "--timeout: 'abc' is not a whole number (allowed 1..60000)"},
+      {"--servos 99999999999999999999 positions", "--servos: 99999999999999999999 is outside 1..19"},
+      {"move 1=500 --time -5", "--time: -5 is outside 0..30000"},
+      {"group run 1 --times 70000", "--times: 70000 is outside 0..65535"},
+      {"watch --interval 5", "--interval: 5 is outside 10..60000"},
+      // A directory or a FIFO as a group file is refused at once, naming the path.
+      {"group download " + dir_.string(), "group file " + dir_.string() + " is not a regular file (a directory)"},
+      {"group download " + fifo, "group file " + fifo + " is not a regular file (a FIFO)"},
   };
   for (const auto& [args, want] : cases) {
     const Outcome r = xarm(args);
@@ -341,6 +358,55 @@ TEST_F(XarmCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
   }
   // Nothing was downloaded by the refused files.
   EXPECT_FALSE(fs::exists(fs::path(state_) / "xarm-emulator" / "group-000.grp"));
+}
+
+// A board that cannot store (here: a file-size limit, which also works as root where a
+// read-only dir would not) refuses; the host says so instead of "saved", and nothing dies of
+// SIGXFSZ.
+TEST_F(XarmCli, ABoardThatCannotStoreSaysSoAndTheCommandFails) {
+  auto run = [&](const std::string& args) {  // through a shell: ulimit -f 0 for armctl only
+    const std::string cmd = "ulimit -f 0; ARMCTL_STATE_DIR='" + state_ + "' exec " + kArmctl + " xarm " + args + " 2>&1";
+    FILE* p = ::popen(cmd.c_str(), "r");
+    std::string out;
+    char buf[4096];
+    while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+    const int st = ::pclose(p);
+    return Outcome{WIFEXITED(st) ? WEXITSTATUS(st) : -1, out, ""};
+  };
+  Outcome r = run("offset save");
+  EXPECT_EQ(r.status, 1) << r.out;  // was killed by SIGXFSZ
+  EXPECT_TRUE(contains(r.out, "ServoOffsetWrite: the board refused it")) << r.out;
+  EXPECT_TRUE(contains(r.out, "could not be stored")) << r.out;
+  EXPECT_FALSE(contains(r.out, "offsets saved")) << r.out;
+
+  const std::string wave = write_file("wave.grp", kWave);
+  r = run("group download " + wave + " --group 3");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_TRUE(contains(r.out, "the board may have refused it")) << r.out;
+  EXPECT_TRUE(contains(r.out, "the board logged: GroupDownload: cannot store group 3")) << r.out;
+  EXPECT_FALSE(fs::exists(fs::path(state_) / "xarm-emulator" / "group-003.grp"));
+}
+
+// Terminal control sequences in a group file's name and fields reach the terminal escaped.
+TEST_F(XarmCli, ControlCharactersFromAGroupFileAreEscapedInMessages) {
+  const std::string title = "\x1b]0;owned\x07";
+  const std::string field = write_file("field.grp", "servos 1\n100 1=5" + title + "00\n");
+  Outcome r = xarm("group download " + field);
+  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(contains(r.err, "'1=5\\x1b]0;owned\\x0700'")) << r.err;
+  EXPECT_FALSE(contains(r.out + r.err, "\x1b")) << r.err;
+
+  const std::string name = (dir_ / ("a" + title + ".grp")).string();  // no such file
+  r = Process({"xarm", "group", "download", name}, state_).finish();
+  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(contains(r.err, "a\\x1b]0;owned\\x07.grp: no such file")) << r.err;
+  EXPECT_FALSE(contains(r.out + r.err, "\x1b")) << r.err;
+
+  // An unexpected argument echoed back by the parser is escaped too.
+  r = Process({"xarm", "positions", "1", "--bogus" + title}, state_).finish();
+  EXPECT_NE(r.status, 0);
+  EXPECT_FALSE(contains(r.out + r.err, "\x1b")) << r.err;
+  EXPECT_TRUE(contains(r.err, "\\x1b]0;owned")) << r.err;
 }
 
 // ------------------------------------------------- `armctl controller` as a process

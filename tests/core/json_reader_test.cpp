@@ -32,5 +32,19 @@ TEST(ConfigDocument, LargeTextAndNonFilesAreRefused) {
   EXPECT_THROW((void)json_reader::read_config_file("/nonexistent/x.json", "arm config"), ArmctlError);
 }
 
+TEST(ConfigDocument, AKeyHoldingATerminalEscapeIsShownEscaped) {
+  // "\u001b" in JSON is a real ESC in the key: the message must not carry it to a terminal.
+  const auto doc = json_reader::parse_document("{\"\\u001b]0;owned\\u0007\": 1}", "arm.json");
+  try {
+    json_reader::ObjectReader reader("arm.json", doc, "");
+    reader.finish();
+    FAIL() << "unknown key accepted";
+  } catch (const ArmctlError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("arm.json: \\x1b]0;owned\\x07: unknown key"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\x1b'), std::string::npos) << message;
+  }
+}
+
 }  // namespace
 }  // namespace armctl

@@ -2,7 +2,13 @@
 // corrupt files, stray temporary files.
 #include "harness.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <fstream>
+#include <memory>
 
 #include "devices/rc_board/atomic_file.hpp"
 #include "devices/rc_board/group_file_format.hpp"
@@ -121,6 +127,79 @@ TEST(GroupStore, FailedSaveLeavesGroupUnchanged) {
   EXPECT_EQ(*store.find(5), sample(1));
   for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
     EXPECT_FALSE(rc_board::is_temporary_name(entry.path().filename().string()));
+}
+
+// A temporary file that cannot be removed (a read-only state dir; as root a non-empty
+// directory of that name stands in) is reported, and the store starts with its groups.
+TEST(GroupStore, AnUnremovableLeftoverTemporaryFileDoesNotStopTheStart) {
+  TempDir dir;
+  {
+    GroupStore store(dir.path());
+    ASSERT_TRUE(store.save(1, sample(1)).ok());
+  }
+  std::filesystem::create_directories(dir.path() / "group-001.grp.tmp-4242" / "x");
+  std::unique_ptr<GroupStore> store;
+  ASSERT_NO_THROW(store = std::make_unique<GroupStore>(dir.path()));
+  ASSERT_NE(store->find(1), nullptr);
+  ASSERT_EQ(store->problems().size(), 1u);
+  EXPECT_NE(store->problems()[0].find("could not remove unfinished save group-001.grp.tmp-4242"), std::string::npos)
+      << store->problems()[0];
+}
+
+// Odd entries among the state files are reported and skipped, none read unbounded: a
+// directory, a FIFO (reading it would block), a sparse 2 GB file, names outside 0..254.
+TEST(GroupStore, OddEntriesAreReportedAndSkippedUnread) {
+  TempDir dir;
+  {
+    GroupStore store(dir.path());
+    ASSERT_TRUE(store.save(7, sample(7)).ok());
+  }
+  std::filesystem::create_directories(dir.path() / "group-002.grp");
+  ASSERT_EQ(::mkfifo((dir.path() / "group-003.grp").c_str(), 0600), 0);
+  {
+    const int fd = ::open((dir.path() / "group-004.grp").c_str(), O_WRONLY | O_CREAT, 0600);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::ftruncate(fd, off_t{2} << 30), 0);  // holes only: no disk used
+    ::close(fd);
+  }
+  std::ofstream(dir.path() / "group-999.grp") << "x";
+  std::ofstream(dir.path() / "group-abc.grp") << "x";
+
+  const auto started = std::chrono::steady_clock::now();
+  GroupStore store(dir.path());
+  const auto took = std::chrono::steady_clock::now() - started;
+  EXPECT_LT(took, std::chrono::seconds(2)) << "a 2 GB file was read";  // 10 s before
+  ASSERT_NE(store.find(7), nullptr);
+  EXPECT_EQ(store.size(), 1u);
+  auto reported = [&](const std::string& part) {
+    for (const auto& p : store.problems())
+      if (p.find(part) != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(reported("group-002.grp is not a regular file (a directory)"));
+  EXPECT_TRUE(reported("group-003.grp is not a regular file (a FIFO)"));
+  EXPECT_TRUE(reported("group-004.grp is 2147483648 bytes"));
+  EXPECT_TRUE(reported("group-999.grp: not a group file name"));
+  EXPECT_TRUE(reported("group-abc.grp: not a group file name"));
+  EXPECT_EQ(store.problems().size(), 5u);
+  // Nothing was moved or deleted: the entries are the user's to look at.
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "group-004.grp"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "quarantine"));
+}
+
+TEST(Atomic, ReadWholeFileChecksTypeAndSizeFirst) {
+  TempDir dir;
+  std::ofstream(dir.path() / "small") << "12345";
+  auto small = rc_board::read_whole_file(dir.path() / "small", 5);
+  ASSERT_TRUE(small.ok()) << small.error().message;
+  EXPECT_EQ((*small)->size(), 5u);
+  auto large = rc_board::read_whole_file(dir.path() / "small", 4);
+  ASSERT_FALSE(large.ok());
+  EXPECT_NE(large.error().message.find("is 5 bytes"), std::string::npos) << large.error().message;
+  auto missing = rc_board::read_whole_file(dir.path() / "none", 4);
+  ASSERT_TRUE(missing.ok());
+  EXPECT_FALSE(missing->has_value());
+  EXPECT_FALSE(rc_board::read_whole_file(dir.path(), 4).ok());
 }
 
 TEST(Atomic, TemporaryNamesAreRecognised) {

@@ -12,6 +12,7 @@
 
 #include "apps/armctl/bus_report.hpp"
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/number_options.hpp"
 #include "core/error.hpp"
 #include "devices/device_registry/device_registry.hpp"
 #include "devices/joint_bus/arrival.hpp"
@@ -261,7 +262,7 @@ void add_bus_command(CLI::App& app) {
                   "serial:/dev/ttyAMA0?select=17,27,22,5,6,13,19[&baud=115200][&chip=gpiochip0][&dialect=legacy]");
   bus->add_flag("--json", args->json, "Print one JSON document instead of lines");
   bus->add_option("--retries", args->retries, "Extra attempts where repeating is safe (never a sent relative move)")
-      ->check(CLI::Range(0, 10));
+      ->check(whole_number_in(0, 10));
   bus->add_flag("--verify", args->verify, "Follow each drive command with get_target and report a mismatch");
 
   const std::vector<BusCommandSpec> specs = {
@@ -292,18 +293,7 @@ void add_bus_command(CLI::App& app) {
     }
     if (spec.name == "wait") {
       sub->add_option("--timeout", args->wait_timeout_s, "Give up after this many seconds (default 30)")
-          ->check(CLI::Validator(
-              [](std::string& text) -> std::string {
-                double v = 0;
-                try {
-                  v = std::stod(text);
-                } catch (const std::exception&) {
-                  return "--timeout '" + text + "' is not a number of seconds";
-                }
-                if (!std::isfinite(v) || v <= 0 || v > 3600) return "--timeout must be above 0 up to 3600 s, not " + text;
-                return "";
-              },
-              "SECONDS in (0, 3600]"));
+          ->check(number_in(0, 3600, "s", true));
     }
     const std::string name = spec.name;
     sub->callback([args, name] { run_bus(*args, name); });

@@ -1,12 +1,20 @@
 // armctl controller --upstream URI [--bus URI] [--arm CONFIG] [--link PATH] [--state-dir DIR]
 // The arm controller as a daemon: Robot Commands from a host on a pty or serial port,
 // seven joints on the joint bus (docs/arm-controller.md).
+#include <cstdio>
 #include <memory>
 #include <string>
+#include <thread>
+#include <utility>
+
+#include <fmt/core.h>
 
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/controller_serve.hpp"
+#include "core/printable.hpp"
 #include "devices/arm_controller/controller_config.hpp"
+#include "devices/arm_controller/paced_link.hpp"
+#include "devices/arm_controller/reconnecting_link.hpp"
 #include "devices/device_registry/device_registry.hpp"
 
 namespace armctl::cli {
@@ -23,8 +31,32 @@ void run_controller(const ControllerArgs& args) {
   auto config = args.arm.empty()
                     ? arm_controller::load_controller_config(arm_controller::default_controller_config_path())
                     : arm_controller::load_controller_config(args.arm);
-  auto connection = devices::open_joint_bus(args.bus).value();
-  serve_controller(connection->link(), connection->default_options(), std::move(config), args.serve);
+  std::shared_ptr<joint_bus::BusConnection> connection = devices::open_joint_bus(args.bus).value();
+  if (arm_controller::runs_on_simulated_time(connection->link())) {
+    serve_controller(connection->link(), connection->default_options(), std::move(config), args.serve);
+    return;
+  }
+  // A real link can close (`armctl sim scara` restarted under `--bus unix:...`, a USB-serial
+  // adapter pulled out): the controller then reconnects with back-off instead of exiting
+  // (docs/arm-controller.md "When the joint-bus link closes").
+  const joint_bus::MasterOptions master_options = connection->default_options();
+  auto open = [uri = args.bus, first = connection]() mutable -> std::shared_ptr<transport::JointBusLink> {
+    std::shared_ptr<joint_bus::BusConnection> c =
+        first ? std::exchange(first, nullptr) : std::shared_ptr<joint_bus::BusConnection>(devices::open_joint_bus(uri).value());
+    return std::shared_ptr<transport::JointBusLink>(c, &c->link());  // the link lives as long as its connection
+  };
+  connection.reset();
+  const SteadyClock clock;
+  const std::string label = args.serve.label;
+  arm_controller::ReconnectingLink link(
+      std::move(open), clock, [](TimePoint t) { std::this_thread::sleep_until(t); },
+      [label](const std::string& line) {
+        fmt::print(stderr, "{}: {}\n", label, printable(line));
+        std::fflush(stderr);
+      });
+  ControllerServeArgs serve = args.serve;
+  serve.link_losses = [&link] { return link.losses(); };
+  serve_controller(link, master_options, std::move(config), serve);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include "core/error.hpp"
+#include "core/printable.hpp"
 #include "devices/arm_controller/controller_runner.hpp"
 #include "devices/arm_controller/paced_link.hpp"
 
@@ -29,9 +30,10 @@ void serve_controller(transport::JointBusLink& bus, joint_bus::MasterOptions mas
   ac::DeviceOptions options;
   if (!args.state_dir.empty()) options.state_dir = args.state_dir;
   options.supply_millivolts = std::move(supply_millivolts);
+  options.link_losses = args.link_losses;
   const std::string label = args.label;
   options.log = [label](const std::string& m) {
-    fmt::print(stderr, "{}: {}\n", label, m);
+    fmt::print(stderr, "{}: {}\n", label, printable(m));  // logs quote frames and files
     std::fflush(stderr);
   };
   const std::size_t joints = config.joints.size();

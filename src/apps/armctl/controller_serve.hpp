@@ -18,6 +18,8 @@ struct ControllerServeArgs {
   std::string link;       // optional symlink to the pty
   std::string state_dir;  // empty: in memory
   std::string label = "controller";
+  // A bus link that can be lost and comes back (ReconnectingLink::losses); empty otherwise.
+  std::function<std::uint64_t()> link_losses;
 };
 
 // `link` may be a simulated bus: it is then paced to the wall clock.

@@ -11,6 +11,7 @@
 
 #include "apps/armctl/commands.hpp"
 #include "core/error.hpp"
+#include "core/printable.hpp"
 #include "devices/robot_commands/hid_link.hpp"
 #include "devices/robot_commands/hid_link_sysfs.hpp"
 #include "transport/hid_device.hpp"
@@ -112,22 +113,23 @@ void run_list(bool json) {
     return;
   }
   fmt::print("xArm boards (USB HID 0483:5750 \"LOBOT\"):\n");
-  if (!hid_problem.empty()) fmt::print("  (cannot enumerate: {})\n", hid_problem);
+  // Names, serial numbers and paths come from the devices and sysfs: outside text (printable).
+  if (!hid_problem.empty()) fmt::print("  (cannot enumerate: {})\n", printable(hid_problem));
   if (boards.empty()) fmt::print("  none found\n");
   for (const auto& u : unusable) {
-    fmt::print("  USB {} (0483:5750 \"{}\"{}) is plugged in but not usable: {}\n", u.usb_name,
-               u.product, u.serial.empty() ? "" : " serial " + u.serial, u.problem);
+    fmt::print("  USB {} (0483:5750 \"{}\"{}) is plugged in but not usable: {}\n", printable(u.usb_name),
+               printable(u.product), u.serial.empty() ? "" : " serial " + printable(u.serial), printable(u.problem));
   }
   for (const auto& b : boards) {
-    fmt::print("  {}  serial {}  {} {}  -> --device hid:{}\n", b.path,
-               b.serial_number.empty() ? "(none)" : b.serial_number, b.manufacturer, b.product,
-               b.serial_number.empty() ? b.path : b.serial_number);
+    fmt::print("  {}  serial {}  {} {}  -> --device hid:{}\n", printable(b.path),
+               b.serial_number.empty() ? "(none)" : printable(b.serial_number), printable(b.manufacturer), printable(b.product),
+               printable(b.serial_number.empty() ? b.path : b.serial_number));
   }
   fmt::print("Serial ports:\n");
   if (ports.empty()) fmt::print("  none found\n");
   for (const auto& p : ports) {
-    fmt::print("  {}{}{}\n", p.path, p.target.empty() ? "" : " -> " + p.target,
-               p.usb.empty() ? "" : "  (USB " + p.usb + ")");
+    fmt::print("  {}{}{}\n", printable(p.path), p.target.empty() ? "" : " -> " + printable(p.target),
+               p.usb.empty() ? "" : "  (USB " + printable(p.usb) + ")");
   }
 }
 

@@ -1,7 +1,11 @@
 // armctl: drive, simulate and program robot arms. See README.md.
+#include <csignal>
 #include <cstdio>
 #include <exception>
+#include <iostream>
+#include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -9,6 +13,7 @@
 
 #include "apps/armctl/commands.hpp"
 #include "core/error.hpp"
+#include "core/printable.hpp"
 
 namespace {
 
@@ -68,6 +73,10 @@ void name_missing_subcommands(CLI::App& app) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) must not kill armctl with SIGXFSZ in the middle of a save
+  // (the emulated board's state dir, an arm file): ignored, a write past the limit fails with
+  // EFBIG, and the board or command reports that like any other storage error.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"armctl: drive, simulate and program robot arms (xArm, SCARA joint bus)"};
   app.require_subcommand(1);
   armctl::cli::add_arm_command(app);
@@ -81,9 +90,14 @@ int main(int argc, char** argv) {
   name_missing_subcommands(app);
   // Messages go to stderr even when it is closed or full: a failed write of a message must
   // not turn an exit status 1 into an abort.
+  // printable(): a message may quote a file's text, a key, a device string or an argument;
+  // control characters in it are shown as \xNN, never sent to the terminal.
   auto report = [](const std::string& line) {
     try {
-      fmt::print(stderr, "{}\n", line);
+      std::size_t start = 0;  // line by line: a message of several lines keeps its shape
+      for (std::size_t end; (end = line.find('\n', start)) != std::string::npos; start = end + 1)
+        fmt::print(stderr, "{}\n", armctl::printable(std::string_view(line).substr(start, end - start)));
+      fmt::print(stderr, "{}\n", armctl::printable(std::string_view(line).substr(start)));
     } catch (const std::exception&) {
     }
   };
@@ -92,7 +106,14 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     try {
-      return app.exit(e);  // usage errors: message on stderr, exit status 2 (106 for CLI11 internals)
+      // Usage errors: message on stderr, exit status 2 (106 for CLI11 internals). CLI11 echoes
+      // the arguments it did not expect: they pass through report() like every message.
+      std::ostringstream message;
+      const int status = app.exit(e, std::cout, message);
+      std::string text = message.str();
+      if (!text.empty() && text.back() == '\n') text.pop_back();
+      if (!text.empty()) report(text);
+      return status;
     } catch (const std::exception&) {
       return 2;
     }

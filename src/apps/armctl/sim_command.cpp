@@ -10,8 +10,10 @@
 
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/controller_serve.hpp"
+#include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "core/error.hpp"
+#include "core/printable.hpp"
 #include "devices/joint_bus/sim_link_server.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
 #include "transport/serial_port.hpp"
@@ -28,7 +30,7 @@ struct SimArgs {
   // controller in this process) instead of the joint bus on a unix socket.
   bool robot_commands = false;
   std::string arm;  // controller's arm config (default config/scara-arm.json)
-  ControllerServeArgs serve{"pty", "", "", "sim scara"};
+  ControllerServeArgs serve{"pty", "", "", "sim scara", {}};
 };
 
 void run_sim_scara(const SimArgs& args) {
@@ -54,7 +56,7 @@ void run_sim_scara(const SimArgs& args) {
   }
   joint_bus::SimLinkServer server(arm.link(), args.listen);
   server.set_tick([&arm] { arm.bus().sync(); });
-  server.set_log([](const std::string& line) { fmt::print("sim scara: {}\n", line); std::fflush(stdout); });
+  server.set_log([](const std::string& line) { fmt::print("sim scara: {}\n", printable(line)); std::fflush(stdout); });
 
   const StopOnSignals stop_on_signals(server);
 
@@ -75,7 +77,8 @@ void add_sim_command(CLI::App& app) {
   add_sim_xarm_command(*sim);
   CLI::App* scara = sim->add_subcommand("scara", "The simulated SCARA arm (7 joints on a joint bus) on a unix socket");
   scara->add_option("--listen", args->listen, "Unix socket path (default /tmp/armctl-scara.sock)");
-  scara->add_option("--baud", args->baud, "Joint bus baud (default: the config's, 9600)");
+  scara->add_option("--baud", args->baud, "Joint bus baud (default: the config's, 9600)")
+      ->check(whole_number_in(1, transport::kMaxStandardBaud));
   scara->add_option("--config", args->config, "Arm config file (default config/scara.json)");
   scara->add_flag("--robot-commands", args->robot_commands,
                   "Serve the whole arm as a Robot Commands device on a pty (arm controller inside; prints the pty path)");

@@ -7,9 +7,12 @@
 #include <fmt/core.h>
 
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "core/error.hpp"
+#include "core/printable.hpp"
 #include "devices/xarm_emulator/emulator_runner.hpp"
+#include "protocol/robot_commands/messages.hpp"
 #include "transport/serial_port.hpp"
 
 namespace armctl::cli {
@@ -38,7 +41,7 @@ void run_sim_xarm(const SimXarmArgs& args) {
   options.baud = args.baud;
 
   xarm::EmulatorRunner runner(
-      options, [](const std::string& m) { fmt::print(stderr, "sim xarm: {}\n", m); });
+      options, [](const std::string& m) { fmt::print(stderr, "sim xarm: {}\n", printable(m)); });
 
   const PtySymlink symlink(args.link, runner.device_path());
   const StopOnSignals stop_on_signals(runner);
@@ -61,10 +64,12 @@ void add_xarm_options(CLI::App& xarm, const std::shared_ptr<SimXarmArgs>& args) 
   xarm.add_option("--link", args->link, "Also create this symlink to the pty (removed on exit)");
   xarm.add_option("--state-dir", args->state_dir,
                   "Keep action groups and saved servo settings here (default: in memory)");
-  xarm.add_option("--baud", args->baud, "Line rate for --wire-timing (default 9600)");
+  xarm.add_option("--baud", args->baud, "Line rate for --wire-timing (default 9600)")
+      ->check(whole_number_in(1, transport::kMaxStandardBaud));
   xarm.add_flag("--wire-timing", args->wire_timing,
                 "Bytes take as long as on a real 8N1 line at --baud");
-  xarm.add_option("--battery", args->battery, "Battery voltage in mV, 4500..12000 (default 7500)");
+  xarm.add_option("--battery", args->battery, "Battery voltage in mV, 4500..12000 (default 7500)")
+      ->check(whole_number_in(rc::kMillivoltsMin, rc::kMillivoltsMax));
 }
 
 constexpr const char* kXarmHelp =

@@ -8,6 +8,7 @@
 
 #include "apps/armctl/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
+#include "core/printable.hpp"
 
 namespace armctl::cli {
 
@@ -27,7 +28,7 @@ void add_stop_command(CLI::App& app) {
     auto s = open_arm_session(arm, a->device);
     const auto stopped = s->arm->stop();
     if (!stopped) throw ArmctlError(stopped.error());
-    fmt::print("stopped: {}\n", s->arm->device().description());
+    fmt::print("stopped: {}\n", printable(s->arm->device().description()));
   });
 }
 

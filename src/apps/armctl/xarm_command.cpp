@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/number_options.hpp"
 #include "apps/armctl/xarm_args.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/xarm_session.hpp"
@@ -178,8 +179,12 @@ void run_offset_adjust(const XarmCli& o) {
 void run_offset_save(const XarmCli& o) {
   const auto ids = xarm_args::parse_servos(o.servos, o.servo_count);
   auto s = open(o);
-  check(s->client->save_offsets(ids));
-  done(o, fmt::format("offsets saved for {} servos", ids.size()));
+  s->check(s->client->save_offsets(ids));
+  // ServoOffsetWrite has no reply: only the embedded board can say whether it stored them.
+  if (s->confirm_accepted("ServoOffsetWrite")) return done(o, fmt::format("offsets saved for {} servos", ids.size()));
+  done(o, fmt::format("offset save sent for {} servos (not confirmed: Robot Commands has no reply to it; a board "
+                      "that cannot store them says so only in its own log)",
+                      ids.size()));
 }
 
 void run_mode(const XarmCli& o) {
@@ -219,15 +224,16 @@ void run_info_read(const XarmCli& o) {
 
 void run_info_write(const XarmCli& o) {
   auto s = open(o);
-  check(s->client->write_bus_servo_info(o.info));
-  done(o, fmt::format("bus servo info written (ID {})", o.info.servo));
+  s->check(s->client->write_bus_servo_info(o.info));
+  if (s->confirm_accepted("BusServoInfoWrite")) return done(o, fmt::format("bus servo info written (ID {})", o.info.servo));
+  done(o, fmt::format("bus servo info sent (ID {}; not confirmed: Robot Commands has no reply to it)", o.info.servo));
 }
 
 void run_group_download(const XarmCli& o) {
   const auto group = xarm_args::parse_group(o.group, false);
   const auto file = check(motion::read_action_group_file(o.file));
   auto s = open(o);
-  check(s->client->download_group(group, file.actions));
+  s->check(s->client->download_group(group, file.actions));
   done(o, fmt::format("group {}: {} actions downloaded", group, file.actions.size()));
 }
 
@@ -290,7 +296,7 @@ void run_group_stop(const XarmCli& o) {
 void run_group_erase(const XarmCli& o) {
   const auto group = xarm_args::parse_group(o.group, true);
   auto s = open(o);
-  check(s->client->erase_group(group));
+  s->check(s->client->erase_group(group));
   done(o, group == 255 ? std::string("all groups erased") : fmt::format("group {} erased", group));
 }
 
@@ -390,24 +396,24 @@ void add_xarm_command(CLI::App& app) {
                 "serial:/dev/ttyUSB0[?baud=115200] | /dev/PATH");
   x->add_flag("--json", o->json, "Machine-readable output (one JSON object per line)");
   x->add_option("--servos", o->servo_count, "Servos on the board (6 = xArm, 7 = SCARA controller)")
-      ->check(CLI::Range(1, 19));
+      ->check(whole_number_in(1, rc::kMaxServosPerFrame));
   x->add_option("--timeout", o->timeout_ms,
                 "Reply timeout in ms (default 1500 on HID, 500 otherwise; docs/usb-hid.md)")
-      ->check(CLI::Range(1, 60000));
+      ->check(whole_number_in(1, 60000));
 
   auto* move = x->add_subcommand("move", "Move servos: 1=500 2=30deg 3=keep");
   move->add_option("targets", o->targets, "SERVO=POSITION (0..1000, -120deg..120deg, keep)")
       ->required();
-  move->add_option("--time", o->time_ms, "Move time in ms")->check(CLI::Range(0, int{rc::kMoveTimeMaxMs}));
+  move->add_option("--time", o->time_ms, "Move time in ms")->check(whole_number_in(0, rc::kMoveTimeMaxMs));
   move->add_flag("--wait", o->wait,
                  "Read the servos back until they arrive, print their positions; exit non-zero "
                  "naming every servo that did not arrive");
   move->add_option("--tolerance", o->tolerance,
                    "With --wait: how close counts as arrived, in servo units (default 10)")
-      ->check(CLI::Range(0, 1000));
+      ->check(whole_number_in(0, rc::kPositionMax));
   move->add_option("--wait-timeout", o->wait_timeout_ms,
                    "With --wait: how long after --time to wait for arrival, in ms (default 1000)")
-      ->check(CLI::Range(0, 60000));
+      ->check(whole_number_in(0, 60000));
   move->callback([o] { run_move(*o); });
 
   auto* positions = x->add_subcommand("positions", "Read servo positions");
@@ -444,14 +450,22 @@ void add_xarm_command(CLI::App& app) {
   info->require_subcommand(1);
   info->add_subcommand("read", "Read limits and readings")->callback([o] { run_info_read(*o); });
   auto* iw = info->add_subcommand("write", "Write ID, limits and LED settings");
-  iw->add_option("--id", o->info.servo, "Servo ID to give")->required();
-  iw->add_option("--position-min", o->info.position_min);
-  iw->add_option("--position-max", o->info.position_max);
-  iw->add_option("--millivolts-min", o->info.millivolts_min);
-  iw->add_option("--millivolts-max", o->info.millivolts_max);
-  iw->add_option("--temp-max", o->info.temp_max);
-  iw->add_option("--led-status", o->info.led_status, "0 enable, 1 disable");
-  iw->add_option("--led-warning", o->info.led_warning, "bits: 1 overheat, 2 overvoltage, 4 overposition");
+  // The SDK checks the ID against the board's servos (--servos) and min <= max; these checks
+  // keep a value from wrapping in its u8/u16 field first.
+  iw->add_option("--id", o->info.servo, "Servo ID to give")
+      ->required()
+      ->check(whole_number_in(1, rc::kMaxServosPerFrame));
+  iw->add_option("--position-min", o->info.position_min)->check(whole_number_in(rc::kPositionMin, rc::kPositionMax));
+  iw->add_option("--position-max", o->info.position_max)->check(whole_number_in(rc::kPositionMin, rc::kPositionMax));
+  iw->add_option("--millivolts-min", o->info.millivolts_min)
+      ->check(whole_number_in(rc::kMillivoltsMin, rc::kMillivoltsMax));
+  iw->add_option("--millivolts-max", o->info.millivolts_max)
+      ->check(whole_number_in(rc::kMillivoltsMin, rc::kMillivoltsMax));
+  iw->add_option("--temp-max", o->info.temp_max, "Temperature limit in C")
+      ->check(whole_number_in(rc::kTempMaxMin, rc::kTempMaxMax));
+  iw->add_option("--led-status", o->info.led_status, "0 enable, 1 disable")->check(whole_number_in(0, 1));
+  iw->add_option("--led-warning", o->info.led_warning, "bits: 1 overheat, 2 overvoltage, 4 overposition")
+      ->check(whole_number_in(0, 7));
   iw->callback([o] { run_info_write(*o); });
 
   auto* group = x->add_subcommand("group", "Action groups");
@@ -462,7 +476,7 @@ void add_xarm_command(CLI::App& app) {
   gd->callback([o] { run_group_download(*o); });
   auto* gr = group->add_subcommand("run", "Run a group");
   gr->add_option("group", o->group)->required();
-  gr->add_option("--times", o->times, "0 = until stopped")->check(CLI::Range(0, 65535));
+  gr->add_option("--times", o->times, "0 = until stopped")->check(whole_number_in(0, 65535));
   gr->add_flag("--wait", o->wait,
                "Print notifications until the run finishes or is stopped (or Ctrl-C)");
   gr->callback([o] { run_group_run(*o); });
@@ -478,10 +492,10 @@ void add_xarm_command(CLI::App& app) {
   auto* watch = x->add_subcommand("watch", "Live positions and notifications until Ctrl-C");
   watch->add_option("--interval", o->interval_ms,
                     "ms between reads (default 500 on HID, 200 otherwise; docs/usb-hid.md)")
-      ->check(CLI::Range(10, 60000));
+      ->check(whole_number_in(10, 60000));
   watch->add_option("--max-missed", o->max_missed,
                     "Stop after this many polls in a row without a usable reply")
-      ->check(CLI::Range(1, 1000));
+      ->check(whole_number_in(1, 1000));
   watch->callback([o] { run_watch(*o); });
 }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include "core/printable.hpp"
 #include "devices/robot_commands/hid_link.hpp"
 
 namespace armctl::cli {
@@ -13,6 +14,26 @@ XarmSession::~XarmSession() {
   if (connection && connection->embedded() && client) (void)client->battery_millivolts();
   client.reset();
   connection.reset();
+}
+
+bool XarmSession::confirm_accepted(const std::string& what) {
+  if (!connection->embedded()) return false;
+  // Answered only after every earlier frame was handled: the board's log is then complete.
+  if (auto battery = client->battery_millivolts(); !battery) check(battery.error());
+  const auto log = connection->take_board_log();
+  if (log.empty()) return true;
+  std::string why;
+  for (const auto& line : log) why += (why.empty() ? "" : "; ") + line;
+  throw ArmctlError(ErrorKind::device, fmt::format("{}: the board refused it: {}", what, why));
+}
+
+void XarmSession::check(Status status) {
+  if (status) return;
+  Error error = status.error();
+  if (connection->embedded()) {
+    for (const auto& line : connection->take_board_log()) error.message += "; the board logged: " + line;
+  }
+  throw ArmctlError(std::move(error));
 }
 
 std::unique_ptr<XarmSession> open_xarm_session(const std::string& device, int servo_count,
@@ -29,8 +50,12 @@ std::unique_ptr<XarmSession> open_xarm_session(const std::string& device, int se
   if (timeout_ms > 0) options.reply_timeout = std::chrono::milliseconds(timeout_ms);
   options.download_timeout = std::max<Duration>(options.reply_timeout, options.download_timeout);
   s->client = std::make_unique<robot_commands::Client>(s->connection->link(), options);
+  // What the embedded board found wrong in its state dir at start (a leftover temporary file it
+  // could not remove, a skipped odd entry): reported, not fatal.
+  for (const auto& line : s->connection->take_board_log())
+    fmt::print(stderr, "armctl: warning: embedded xArm: {}\n", printable(line));
   if (hid) {
-    for (const auto& w : hid->warnings()) fmt::print(stderr, "armctl: warning: {}\n", w);
+    for (const auto& w : hid->warnings()) fmt::print(stderr, "armctl: warning: {}\n", printable(w));
     robot_commands::await_first_contact(*s->client).value();  // throws its error
   }
   return s;

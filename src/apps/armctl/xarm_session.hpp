@@ -14,6 +14,15 @@ struct XarmSession {
   std::unique_ptr<devices::RcConnection> connection;
   std::unique_ptr<robot_commands::Client> client;
   ~XarmSession();
+
+  // Robot Commands cannot carry a refusal: a board ignores a frame it refuses (a save to a
+  // read-only state dir, say) and at most logs why. For a request without a reply, with the
+  // embedded board: waits until the board handled it (one battery read) and throws
+  // ArmctlError(device) with what the board logged, if it refused. True when the outcome is
+  // known (embedded board, accepted); false for a device that cannot confirm it.
+  bool confirm_accepted(const std::string& what);
+  // `status`, its error with what the embedded board logged added (e.g. why it sent no reply).
+  void check(Status status);
 };
 
 // Throws ArmctlError for a bad URI or a device that cannot be opened (the CLI prints it).

@@ -246,6 +246,17 @@ void ArmController::torque_off(std::span<const ServoId> servos) {
   }
 }
 
+void ArmController::link_lost() {
+  ops_.clear();
+  for (auto& j : joints_) {
+    j.model.forget();  // what the joint does now is unknown (a restarted arm starts afresh)
+    j.status.target.reset();
+    j.status.jogging = false;
+    j.status.answering = false;
+    j.status.last_fault = "joint bus link lost";
+  }
+}
+
 void ArmController::halt(TimePoint now) {
   advance_to(now);
   ops_.clear();

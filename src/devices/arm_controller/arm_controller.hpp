@@ -111,6 +111,12 @@ class ArmController final : public rc_board::ArmBackend {
   rc_board::BusServoInfoReply bus_servo_info() const override;
   Status write_bus_servo_info(const rc_board::BusServoLimits& limits) override;
 
+  // The bus link was lost (ReconnectingLink): every pending command is dropped and every
+  // joint counts as not answering (moves naming it are refused) until it answers a poll
+  // again. No target is kept for later: after the link comes back nothing moves until a
+  // new command.
+  void link_lost();
+
   // ---- bus work
   // One step: a command that is due, else (if the next due command or `limit` is closer
   // than a poll takes) waiting until then, else one position poll. Returns at or after

@@ -17,6 +17,7 @@ ControllerDevice::ControllerDevice(transport::JointBusLink& link, joint_bus::Mas
     for (const auto& p : groups_->problems()) options.log("state dir: " + p);
   board_ = std::make_unique<rc_board::Board>(*arm_, *groups_, arm_->clock(), std::move(output));
   if (options.log) board_->set_log(options.log);
+  link_losses_ = options.link_losses;
   arm_->start();
 }
 
@@ -24,6 +25,13 @@ void ControllerDevice::step(TimePoint limit) {
   board_->poll();
   if (auto wake = board_->next_wakeup()) limit = std::min(limit, *wake);
   arm_->service(limit);
+  // Checked between bus steps, never inside one: the loss is seen here, after the
+  // transaction that met it has failed like one to a dead joint.
+  if (link_losses_ && link_losses_() != losses_seen_) {
+    losses_seen_ = link_losses_();
+    board_->stop_playback("joint bus link lost");
+    arm_->link_lost();
+  }
   board_->poll();
 }
 

@@ -21,6 +21,10 @@ struct DeviceOptions {
   std::optional<std::filesystem::path> state_dir;
   std::function<std::uint16_t()> supply_millivolts;
   std::function<void(const std::string&)> log;
+  // How many times the bus link has been lost so far (ReconnectingLink::losses); empty for a
+  // link that cannot be lost. On each new loss pending commands and group playback end, so
+  // that nothing moves when the link comes back until a new command arrives.
+  std::function<std::uint64_t()> link_losses;
 };
 
 class ControllerDevice {
@@ -49,6 +53,8 @@ class ControllerDevice {
   std::unique_ptr<ArmController> arm_;
   std::unique_ptr<rc_board::GroupStore> groups_;
   std::unique_ptr<rc_board::Board> board_;
+  std::function<std::uint64_t()> link_losses_;
+  std::uint64_t losses_seen_ = 0;
 };
 
 }  // namespace armctl::arm_controller

@@ -176,7 +176,8 @@ Result<ControllerSettings> parse_settings(std::string_view text, std::string_vie
 Result<ControllerSettings> load_settings(const std::filesystem::path& state_dir,
                                          const ControllerSettings& defaults) {
   const auto path = settings_path(state_dir);
-  auto bytes = rc_board::read_whole_file(path);
+  // A few hundred bytes for seven joints; 64 KiB is far above any real one.
+  auto bytes = rc_board::read_whole_file(path, 64 * 1024);
   if (!bytes) return bytes.error();
   if (!bytes->has_value()) return defaults;
   const auto& data = **bytes;

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 #include <string_view>
 
 #include "core/error.hpp"
@@ -37,6 +38,11 @@ class RcConnection {
   // True for a board inside this process: it stops with the connection, so frames still
   // queued when a command ends are lost unless a request with a reply is sent first.
   virtual bool embedded() const = 0;
+  // What an embedded board logged since the last call: refused frames and storage errors
+  // (a read-only state dir). Robot Commands cannot carry a refusal (a board answers nothing),
+  // so this is how a host in the same process learns why. Empty for any other device, which
+  // keeps its log to itself.
+  virtual std::vector<std::string> take_board_log() { return {}; }
 };
 
 // Same errors as open_joint_bus.

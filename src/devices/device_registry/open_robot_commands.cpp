@@ -1,5 +1,7 @@
 // Robot Commands devices: the embedded emulated xArm here, everything else from the SDK.
 #include <cstdlib>
+#include <mutex>
+#include <utility>
 
 #include "core/error.hpp"
 #include "devices/device_registry/device_registry.hpp"
@@ -31,7 +33,10 @@ class EmbeddedXarm final : public RcConnection {
     // Servo positions are not stored: every connection starts with the servos at centre.
     xarm::EmulatorRunnerOptions options;
     options.emulator.state_dir = embedded_xarm_state_dir().value();
-    emulator_ = std::make_unique<xarm::EmulatorRunner>(options);
+    emulator_ = std::make_unique<xarm::EmulatorRunner>(options, [this](const std::string& line) {
+      const std::lock_guard lock(log_mutex_);  // the board runs on the runner's thread
+      log_.push_back(line);
+    });
     emulator_->start();
     link_ = std::make_unique<robot_commands::StreamLink>(
         transport::SerialPort::open(emulator_->device_path()),
@@ -43,8 +48,14 @@ class EmbeddedXarm final : public RcConnection {
   }
   robot_commands::RcLink& link() override { return *link_; }
   bool embedded() const override { return true; }
+  std::vector<std::string> take_board_log() override {
+    const std::lock_guard lock(log_mutex_);
+    return std::exchange(log_, {});
+  }
 
  private:
+  std::mutex log_mutex_;
+  std::vector<std::string> log_;
   std::unique_ptr<xarm::EmulatorRunner> emulator_;
   std::unique_ptr<robot_commands::RcLink> link_;
 };

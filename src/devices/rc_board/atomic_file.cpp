@@ -1,6 +1,7 @@
 #include "devices/rc_board/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -8,11 +9,13 @@
 
 #include <fmt/core.h>
 
+#include "core/printable.hpp"
+
 namespace armctl::rc_board {
 namespace {
 
 Error io_error(std::string_view what, const std::filesystem::path& path, int err) {
-  return Error{ErrorKind::io, fmt::format("{} {}: {}", what, path.string(), std::strerror(err))};
+  return Error{ErrorKind::io, fmt::format("{} {}: {}", what, printable(path.string()), std::strerror(err))};
 }
 
 // Closes a file descriptor on every path out of a function.
@@ -92,20 +95,32 @@ Status remove_file_durably(const std::filesystem::path& path) {
   return fsync_directory(parent_of(path));
 }
 
-Result<std::optional<std::vector<std::uint8_t>>> read_whole_file(
-    const std::filesystem::path& path) {
-  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+Result<std::optional<std::vector<std::uint8_t>>> read_whole_file(const std::filesystem::path& path,
+                                                                 std::uintmax_t max_bytes) {
+  Fd fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY));
   if (fd.get() < 0) {
     if (errno == ENOENT) return std::optional<std::vector<std::uint8_t>>{};
     return io_error("cannot open", path, errno);
   }
+  struct stat st {};
+  if (::fstat(fd.get(), &st) != 0) return io_error("cannot stat", path, errno);
+  if (!S_ISREG(st.st_mode))
+    return Error{ErrorKind::io, fmt::format("{} is not a regular file ({})", printable(path.string()),
+                                            S_ISDIR(st.st_mode) ? "a directory" : S_ISFIFO(st.st_mode) ? "a FIFO" : "a special file")};
+  if (static_cast<std::uintmax_t>(st.st_size) > max_bytes)
+    return Error{ErrorKind::io, fmt::format("{} is {} bytes, more than such a file can hold ({}): not read",
+                                            printable(path.string()), st.st_size, max_bytes)};
   std::vector<std::uint8_t> bytes;
+  bytes.reserve(static_cast<std::size_t>(st.st_size));
   std::uint8_t buffer[4096];
   for (;;) {
     ssize_t n = ::read(fd.get(), buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) return io_error("cannot read", path, errno);
     if (n == 0) break;
+    if (bytes.size() + static_cast<std::size_t>(n) > max_bytes)  // grew while being read
+      return Error{ErrorKind::io, fmt::format("{} grew beyond {} bytes while being read: not read",
+                                              printable(path.string()), max_bytes)};
     bytes.insert(bytes.end(), buffer, buffer + n);
   }
   return std::optional<std::vector<std::uint8_t>>{std::move(bytes)};

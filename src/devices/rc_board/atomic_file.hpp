@@ -24,8 +24,12 @@ Status write_file_atomically(const std::filesystem::path& path,
 // Removes `path` durably (unlink + fsync of the directory). Missing file: Ok.
 Status remove_file_durably(const std::filesystem::path& path);
 
-// Whole file, or nullopt if it does not exist; other failures are errors.
-Result<std::optional<std::vector<std::uint8_t>>> read_whole_file(const std::filesystem::path& path);
+// Whole file, or nullopt if it does not exist; other failures are errors. Only a regular
+// file of at most `max_bytes` is read: a directory, a FIFO (opened without waiting for a
+// writer) or a larger file (a sparse 2 GB one included) is an error at once, checked on the
+// opened descriptor before any byte is read.
+Result<std::optional<std::vector<std::uint8_t>>> read_whole_file(const std::filesystem::path& path,
+                                                                 std::uintmax_t max_bytes);
 
 // Temporary files are named "<final name>.tmp-<pid>".
 bool is_temporary_name(std::string_view file_name);

@@ -73,6 +73,14 @@ void Board::notify_stopped() {
   if (frame) send(*frame);
 }
 
+void Board::stop_playback(const std::string& why) {
+  const auto group = player_.group();
+  if (!group) return;
+  player_.stop();
+  if (log_) log_(fmt::format("group {} stopped: {}", *group, why));
+  notify_stopped();
+}
+
 void Board::reject(std::size_t BoardStats::*counter, std::string message) {
   ++(stats_.*counter);
   last_rejection_ = std::move(message);

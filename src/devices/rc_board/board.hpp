@@ -47,6 +47,10 @@ class Board {
   // When poll() must next run for playback to keep its timing (nothing while idle).
   std::optional<TimePoint> next_wakeup() const { return player_.next_event(); }
 
+  // Ends a running group without a GroupStop from the host (the arm lost its joints, say):
+  // the host is sent the "stopped" notification and `why` is logged. Nothing if idle.
+  void stop_playback(const std::string& why);
+
   // Rejected frames and storage problems are described here too (e.g. to stderr).
   void set_log(Log log) { log_ = std::move(log); }
 

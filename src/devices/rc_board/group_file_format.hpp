@@ -9,6 +9,7 @@
 // foreign file is never mistaken for a group.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -18,6 +19,10 @@
 #include "devices/rc_board/action_group.hpp"
 
 namespace armctl::rc_board {
+
+// The largest file encode_group_file() writes (1,020 actions of 255 servos): loaders read
+// no more than this, so a huge or sparse file in the state dir is refused unread.
+inline constexpr std::size_t kMaxGroupFileBytes = 8 + 4 + 1020 * (2 + 3 * 255) + 4;
 
 std::vector<std::uint8_t> encode_group_file(GroupNumber group, const ActionGroup& actions);
 // `expected_group`: the number the file name claims (a mismatch is corruption).

@@ -4,6 +4,7 @@
 
 #include <fmt/core.h>
 
+#include "core/printable.hpp"
 #include "devices/rc_board/atomic_file.hpp"
 #include "devices/rc_board/group_file_format.hpp"
 
@@ -42,37 +43,51 @@ fs::path GroupStore::file_name(GroupNumber group) {
 }
 
 void GroupStore::load_all() {
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(*dir_, ec)) {
-    if (!entry.is_regular_file()) continue;
-    std::string name = entry.path().filename().string();
+  std::error_code list_error;  // the listing's own error, apart from each entry's
+  for (const auto& entry : fs::directory_iterator(*dir_, list_error)) {
+    const std::string name = entry.path().filename().string();
     if (name.rfind("group-", 0) != 0) continue;  // other files share the state dir
     if (is_temporary_name(name)) {
-      // A save that never reached its rename: the group file itself is intact.
+      // A save that never reached its rename: the group file itself is intact. In a
+      // read-only dir it cannot be removed; that is no reason not to start.
+      std::error_code ec;
       fs::remove(entry.path(), ec);
-      problems_.push_back(fmt::format("removed unfinished save {}", name));
+      problems_.push_back(ec ? fmt::format("could not remove unfinished save {}: {}; ignored", printable(name),
+                                           ec.message())
+                             : fmt::format("removed unfinished save {}", printable(name)));
       continue;
     }
     auto group = group_of(name);
-    if (!group) continue;
-    auto bytes = read_whole_file(entry.path());
-    if (!bytes) throw ArmctlError(bytes.error());
+    if (!group) {
+      problems_.push_back(fmt::format("{}: not a group file name (group-000.grp .. group-254.grp); skipped",
+                                      printable(name)));
+      continue;
+    }
+    // Checked before a byte is read: a directory, a FIFO or a file larger than any group
+    // (a sparse 2 GB one) is reported and skipped, never read.
+    auto bytes = read_whole_file(entry.path(), kMaxGroupFileBytes);
+    if (!bytes) {
+      problems_.push_back(fmt::format("{}: {}; skipped", printable(name), bytes.error().message));
+      continue;
+    }
     if (!bytes.value()) continue;  // vanished meanwhile
     auto decoded = decode_group_file(**bytes, *group);
     if (decoded) {
       groups_[*group] = std::move(decoded).value();
       continue;
     }
+    std::error_code ec;
     fs::path quarantine = *dir_ / "quarantine";
     fs::create_directories(quarantine, ec);
     fs::path moved = quarantine / fmt::format("{}.{}", name, problems_.size());
-    fs::rename(entry.path(), moved, ec);
-    problems_.push_back(fmt::format("{}: {}; moved to {}", name, decoded.error().message,
-                                    ec ? std::string("(move failed)") : moved.string()));
+    if (!ec) fs::rename(entry.path(), moved, ec);
+    problems_.push_back(fmt::format("{}: {}; {}", name, decoded.error().message,
+                                    ec ? "not loaded (could not move it to quarantine: " + ec.message() + ")"
+                                       : "moved to " + moved.string()));
   }
-  if (ec)
+  if (list_error)
     throw ArmctlError(ErrorKind::io, fmt::format("cannot read state directory {}: {}",
-                                                 dir_->string(), ec.message()));
+                                                 printable(dir_->string()), list_error.message()));
 }
 
 const ActionGroup* GroupStore::find(GroupNumber group) const {

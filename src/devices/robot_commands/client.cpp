@@ -138,9 +138,13 @@ Result<rc::BoardMessage> Client::transact(const rc::Frame& frame, std::optional<
     if (!received) return received.error();
     const std::optional<rc::Frame>& incoming = *received;
     if (!incoming) {
+      // Robot Commands has no refusal: a board that refuses a request (a frame it finds
+      // invalid, a group it cannot store) answers nothing, which looks like this timeout.
       return Error{ErrorKind::timeout,
-                   fmt::format("no {} reply (CMD {}{}) from {} within {} ms", name, frame.cmd,
-                               sub ? fmt::format(" sub {}", *sub) : std::string(),
+                   fmt::format("no {} reply (CMD {}{}) from {} within {} ms: the board may have refused "
+                               "it (a board answers nothing to a request it refuses, e.g. one it "
+                               "could not store; see its log) or be unreachable",
+                               name, frame.cmd, sub ? fmt::format(" sub {}", *sub) : std::string(),
                                link_.describe(),
                                std::chrono::duration_cast<std::chrono::milliseconds>(timeout)
                                    .count())};

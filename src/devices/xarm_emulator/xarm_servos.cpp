@@ -138,7 +138,7 @@ Status XarmServos::save_offsets(std::span<const ServoId> ids) {
   for (ServoId id : ids) at(id).saved_offset = at(id).offset;
   if (save_settings()) return Ok{};
   for (std::size_t i = 0; i < kServoCount; ++i) servos_[i].saved_offset = before[i];
-  return Error{ErrorKind::io, "the servo settings could not be stored in the state directory"};
+  return Error{ErrorKind::io, "the servo settings could not be stored in the state directory: " + last_save_error_};
 }
 
 void XarmServos::set_mode(ServoId servo, ServoMode mode, std::int16_t speed, TimePoint now) {
@@ -170,7 +170,7 @@ Status XarmServos::write_bus_servo_info(const BusServoLimits& limits) {
   if (save_settings()) return Ok{};
   s.limits = before;
   info_servo_ = info_before;
-  return Error{ErrorKind::io, "the servo settings could not be stored in the state directory"};
+  return Error{ErrorKind::io, "the servo settings could not be stored in the state directory: " + last_save_error_};
 }
 
 bool XarmServos::save_settings() {
@@ -198,7 +198,9 @@ bool XarmServos::save_settings() {
 
 void XarmServos::load_settings() {
   auto path = *options_.state_dir / kSettingsFile;
-  auto bytes = rc_board::read_whole_file(path);
+  // Exactly this long when valid: anything larger (or not a regular file) is refused unread.
+  constexpr std::size_t kSettingsFileBytes = sizeof kMagic + 1 + kServoCount * kPerServo + 4;
+  auto bytes = rc_board::read_whole_file(path, kSettingsFileBytes);
   if (!bytes) throw ArmctlError(bytes.error());
   if (!*bytes) return;  // nothing saved yet: factory settings
   const auto& b = **bytes;

@@ -1,0 +1,50 @@
+#include "apps/armctl/number_options.hpp"
+
+#include <charconv>
+#include <cmath>
+
+#include <fmt/core.h>
+
+#include "core/printable.hpp"
+
+namespace armctl::cli {
+
+CLI::Validator whole_number_in(long long min, long long max) {
+  const std::string range = fmt::format("{}..{}", min, max);
+  return CLI::Validator(
+      [min, max, range](std::string& text) -> std::string {
+        long long v = 0;
+        const char* first = text.data();
+        const char* last = first + text.size();
+        if (text.size() > 1 && text[0] == '+' && text[1] != '-') ++first;  // "+5" is a number too
+        const auto [end, ec] = std::from_chars(first, last, v);
+        if (text.empty() || ec == std::errc::invalid_argument || end != last)
+          return fmt::format("'{}' is not a whole number (allowed {})", printable(text), range);
+        // A number too large for 64 bits is still a number outside the range.
+        if (ec == std::errc::result_out_of_range || v < min || v > max)
+          return fmt::format("{} is outside {}", printable(text), range);
+        return "";
+      },
+      "INT in " + range);
+}
+
+CLI::Validator number_in(double min, double max, const std::string& unit, bool above_min) {
+  const std::string range = fmt::format("{}..{}{}{}{}", min, max, unit.empty() ? "" : " ", unit,
+                                        above_min ? fmt::format(", {} excluded", min) : std::string());
+  return CLI::Validator(
+      [min, max, above_min, range](std::string& text) -> std::string {
+        double v = 0;
+        const char* first = text.data();
+        const char* last = first + text.size();
+        if (text.size() > 1 && text[0] == '+' && text[1] != '-') ++first;
+        const auto [end, ec] = std::from_chars(first, last, v);
+        if (text.empty() || ec == std::errc::invalid_argument || end != last)
+          return fmt::format("'{}' is not a number (allowed {})", printable(text), range);
+        if (ec == std::errc::result_out_of_range || !std::isfinite(v) || v < min || v > max || (above_min && v == min))
+          return fmt::format("{} is outside {}", printable(text), range);
+        return "";
+      },
+      "NUMBER in " + range);
+}
+
+}  // namespace armctl::cli

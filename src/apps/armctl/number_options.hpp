@@ -1,0 +1,19 @@
+// The one check for armctl's numeric options. CLI11 alone answers "-1" for an unsigned option
+// or 99999999999 for a 32-bit one with "Could not convert", naming no range; with these
+// checks, which run on the text before CLI11 converts it, every numeric option answers
+// "--baud: 99999999999 is outside 1..4000000" (CLI11 puts the option's name first).
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace armctl::cli {
+
+// A whole number within min..max (the range also shows in --help).
+CLI::Validator whole_number_in(long long min, long long max);
+// A finite number within min..max (no nan, no inf), `unit` is shown after it ("s", "ms").
+// With `above_min`, min itself is refused too (a timeout of 0 s).
+CLI::Validator number_in(double min, double max, const std::string& unit, bool above_min = false);
+
+}  // namespace armctl::cli
