@@ -13,6 +13,7 @@
 #include "apps/armctl/arm_motion.hpp"
 #include "apps/armctl/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/number_options.hpp"
 #include "arm/arm_calibration.hpp"
 #include "core/error.hpp"
 #include "core/quantity.hpp"
@@ -402,7 +403,7 @@ void add_arm_command(CLI::App& app) {
     sub->add_option("--speed", a->speed, "Percent of the joints' velocity limits (default 25%)");
     sub->add_flag("--wait", a->wait, "Wait until every joint arrives, then print where it stands");
     sub->add_option("--timeout", a->timeout_s, "With --wait: give up after this many seconds (default 20)")
-        ->check(CLI::Range(0.1, 600.0));
+        ->check(number_in(0.1, 600, "s"));
   };
 
   cmd->add_subcommand("joints", "Joint positions (deg or mm, and device units)")->callback([a] { run_joints(*a); });
