@@ -291,6 +291,41 @@ TEST(TrajectoryRandom, WithWaypoints) {
   }
 }
 
+TEST(TrajectoryRandom, ExtremeAllowedInputsStayFinite) {
+  // Limits anywhere in 1e-9..1e12 and positions up to 1e12 (all that validation lets in):
+  // accuracy is not asked of these, but nothing may come out NaN or infinite.
+  std::mt19937_64 rng(3);
+  auto log_uniform = [&](double lo, double hi) {
+    return std::exp(std::uniform_real_distribution<double>(std::log(lo), std::log(hi))(rng));
+  };
+  auto signed_value = [&](double magnitude) {
+    return std::uniform_int_distribution<int>(0, 1)(rng) ? magnitude : -magnitude;
+  };
+  Trajectory t;
+  for (int c = 0; c < 20000; ++c) {
+    TrajectoryInput in;
+    in.joints = std::uniform_int_distribution<int>(1, 7)(rng);
+    for (int i = 0; i < in.joints; ++i) {
+      const double vmax = log_uniform(1e-9, 1e12), amax = log_uniform(1e-9, 1e12), jmax = log_uniform(1e-9, 1e12);
+      in.max_velocity[i] = vmax, in.max_acceleration[i] = amax, in.max_jerk[i] = jmax;
+      in.position[i] = signed_value(log_uniform(1e-12, 1e12));
+      in.target_position[i] = signed_value(log_uniform(1e-12, 1e12));
+      in.velocity[i] = signed_value(vmax * std::uniform_real_distribution<double>(0, 1)(rng));
+      in.target_velocity[i] = signed_value(vmax * std::uniform_real_distribution<double>(0, 1)(rng));
+    }
+    const Status s = calculate_trajectory(in, t);
+    ASSERT_TRUE(s.ok()) << s.error().message;
+    ASSERT_TRUE(std::isfinite(t.duration())) << testing::describe(in);
+    for (double f : {0.0, 0.3, 0.7, 1.0}) {
+      const TrajectoryState st = t.at(f * t.duration());
+      for (int i = 0; i < in.joints; ++i)
+        ASSERT_TRUE(std::isfinite(st.position[i]) && std::isfinite(st.velocity[i]) &&
+                    std::isfinite(st.acceleration[i]))
+            << testing::describe(in);
+    }
+  }
+}
+
 TEST(TrajectoryRandom, HundredThousandCases) { testing::run_random_cases(20261201, 100000); }
 
 }  // namespace
