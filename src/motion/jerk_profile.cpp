@@ -93,59 +93,30 @@ double JerkPlan::vp_for_duration(const Point& x, const Point& y, double duration
 
 int JerkPlan::add_hidden_crossings(Point* samples, int m) const {
   // `remaining` may cross 0 and come back between two samples (a bump the samples miss):
-  // where |remaining| has a local minimum at a sample (or an end), search the two
-  // neighbouring gaps for a value of the other sign (golden section toward it) and keep it
-  // as a sample, so that its two roots get bracketed.
+  // where |remaining| has a local minimum at a sample and the parabola through it and its
+  // neighbours comes at least halfway to 0, look once at the parabola's vertex; a value of
+  // the other sign there becomes a sample, so that its two roots get bracketed. (A bump
+  // still missed costs at most optimality: a duration claimed wrongly is caught in build.)
   Point found[kMaxSamples];
   int f = 0;
-  for (int i = 0; i < m && f < kMaxSamples - m; ++i) {
+  for (int i = 1; i + 1 < m && f < kMaxSamples - m; ++i) {
     const double r = samples[i].remaining;
-    if (r == 0) continue;
-    const bool left_closer = i == 0 || std::abs(samples[i - 1].remaining) >= std::abs(r);
-    const bool right_closer = i == m - 1 || std::abs(samples[i + 1].remaining) >= std::abs(r);
-    if (!left_closer || !right_closer) continue;
-    const bool same_left = i == 0 || sign(samples[i - 1].remaining) == sign(r);
-    const bool same_right = i == m - 1 || sign(samples[i + 1].remaining) == sign(r);
-    if (!same_left || !same_right) continue;
-    // Inside, a parabola through the three samples must come at least halfway to 0; its
-    // vertex is the first place looked at.
-    double vertex = samples[i].vp;
-    if (i > 0 && i < m - 1) {
-      const double x0 = samples[i - 1].vp - samples[i].vp, x2 = samples[i + 1].vp - samples[i].vp;
-      const double y0 = samples[i - 1].remaining - r, y2 = samples[i + 1].remaining - r;
-      // y = b x + c x^2 through (x0, y0), (x2, y2); vertex at -b / (2c), value r - b^2 / (4c).
-      const double det = x0 * x2 * (x2 - x0);
-      const double c = (y2 * x0 - y0 * x2) / det, b = (y0 * x2 * x2 - y2 * x0 * x0) / det;
-      if (c == 0) continue;
-      const double low = r - b * b / (4 * c);
-      if (sign(low) == sign(r) && std::abs(low) > 0.5 * std::abs(r)) continue;
-      vertex = samples[i].vp - b / (2 * c);
-    }
-    double lo = samples[std::max(0, i - 1)].vp, hi = samples[std::min(m - 1, i + 1)].vp;
-    const double s = -sign(r);  // looking for s * remaining > 0
-    if (vertex > lo && vertex < hi) {
+    const double left = samples[i - 1].remaining, right = samples[i + 1].remaining;
+    if (r == 0 || sign(left) != sign(r) || sign(right) != sign(r)) continue;
+    if (std::abs(left) < std::abs(r) || std::abs(right) < std::abs(r)) continue;
+    // y = b x + c x^2 through the neighbours (x from sample i, y from r); vertex at
+    // -b / (2c), value r - b^2 / (4c).
+    const double x0 = samples[i - 1].vp - samples[i].vp, x2 = samples[i + 1].vp - samples[i].vp;
+    const double y0 = left - r, y2 = right - r;
+    const double det = x0 * x2 * (x2 - x0);
+    const double c = (y2 * x0 - y0 * x2) / det, b = (y0 * x2 * x2 - y2 * x0 * x0) / det;
+    if (c == 0) continue;
+    const double low = r - b * b / (4 * c);
+    if (sign(low) == sign(r) && std::abs(low) > 0.5 * std::abs(r)) continue;
+    const double vertex = samples[i].vp - b / (2 * c);
+    if (vertex > samples[i - 1].vp && vertex < samples[i + 1].vp) {
       const Point p = evaluate(vertex);
-      if (s * p.remaining > 0) {
-        found[f++] = p;
-        continue;
-      }
-    }
-    // Else maximize s * remaining by golden section, stopping at the first crossing.
-    const double g = 0.6180339887498949;
-    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-    Point p1 = evaluate(x1), p2 = evaluate(x2);
-    for (int it = 0; it < 10; ++it) {
-      if (s * p1.remaining > 0 || s * p2.remaining > 0) {
-        found[f++] = s * p1.remaining > 0 ? p1 : p2;
-        break;
-      }
-      if (s * p1.remaining > s * p2.remaining) {
-        hi = x2, x2 = x1, p2 = p1;
-        x1 = hi - g * (hi - lo), p1 = evaluate(x1);
-      } else {
-        lo = x1, x1 = x2, p1 = p2;
-        x2 = lo + g * (hi - lo), p2 = evaluate(x2);
-      }
+      if (sign(p.remaining) == -sign(r)) found[f++] = p;
     }
   }
   // Merge the finds in (both lists sorted by vp).
