@@ -113,6 +113,58 @@ struct SectionTask {
   JointArray position{}, velocity{}, acceleration{}, target_position{}, target_velocity{};
 };
 
+// Phase synchronization: when every joint's start velocity, start acceleration and target
+// velocity are the same multiples of its displacement (e.g. rest to rest), one profile of
+// a path parameter from 0 to 1, under the tightest of the joints' limits scaled by their
+// displacements, moves every joint along the straight line between start and target. Used
+// when that profile can take the time-synchronized duration `t` (always when the joints
+// share their limits' ratios, as on rest-to-rest moves with equal limits); `out` is then
+// overwritten with each joint's scaled copy. False (out untouched) otherwise.
+bool phase_synchronize(const TrajectoryInput& in, const SectionTask& task, double t,
+                       std::array<JerkSegments, kMaxTrajectoryJoints>& out) {
+  int ref = -1;
+  double widest = 0;
+  for (int i = 0; i < in.joints; ++i) {
+    const double d = std::abs(task.target_position[i] - task.position[i]);
+    if (d > widest) widest = d, ref = i;
+  }
+  if (ref < 0) return false;
+  const double dr = task.target_position[ref] - task.position[ref];
+  const double v0 = task.velocity[ref] / dr, a0 = task.acceleration[ref] / dr, vf = task.target_velocity[ref] / dr;
+  JerkLimits limits{kInf, kInf, kInf};
+  for (int i = 0; i < in.joints; ++i) {
+    const double d = task.target_position[i] - task.position[i];
+    // Collinear to the last bits: the scaled copy must start and end exactly on each joint's states.
+    const double tolerance = 4 * std::numeric_limits<double>::epsilon();
+    if (std::abs(task.velocity[i] - v0 * d) > tolerance * in.max_velocity[i] ||
+        std::abs(task.target_velocity[i] - vf * d) > tolerance * in.max_velocity[i] ||
+        std::abs(task.acceleration[i] - a0 * d) > tolerance * in.max_acceleration[i])
+      return false;
+    if (d == 0) continue;
+    limits.velocity = std::min(limits.velocity, in.max_velocity[i] / std::abs(d));
+    limits.acceleration = std::min(limits.acceleration, in.max_acceleration[i] / std::abs(d));
+    limits.jerk = std::min(limits.jerk, in.max_jerk[i] / std::abs(d));
+  }
+  // The path's start must keep its own velocity limit (a joint's validation does not imply it).
+  if (std::abs(v0) > limits.velocity || std::abs(vf) > limits.velocity || std::abs(a0) > limits.acceleration ||
+      std::abs(v0 + a0 * std::abs(a0) / (2 * limits.jerk)) > limits.velocity)
+    return false;
+  JerkPlan path;
+  path.plan(JerkTask{0, v0, a0, 1, vf}, limits);
+  JerkSegments s;
+  if (path.next_possible(t) != t || !path.build(t, s)) return false;
+  for (int i = 0; i < in.joints; ++i) {
+    const double d = task.target_position[i] - task.position[i];
+    for (int k = 0; k < kProfileSegments; ++k) {
+      JerkSegment g = s[k];
+      g.position = task.position[i] + d * g.position;
+      g.velocity *= d, g.acceleration *= d, g.jerk *= d;
+      out[i][k] = g;
+    }
+  }
+  return true;
+}
+
 // Plans every joint of a section and returns the smallest duration >= `at_least` that
 // every joint can make, with each joint's profile for it in `out`.
 double synchronize(const TrajectoryInput& in, const SectionTask& task, double at_least,
@@ -138,7 +190,10 @@ double synchronize(const TrajectoryInput& in, const SectionTask& task, double at
     // A plan that claimed too much corrects itself; then look again.
     bool built = true;
     for (int i = 0; i < in.joints; ++i) built = plans[i].build(t, out[i]) && built;
-    if (built) return t;
+    if (built) {
+      if (in.joints > 1) phase_synchronize(in, task, t, out);
+      return t;
+    }
     for (int i = 0; i < in.joints; ++i) t0 = std::max(at_least, std::max(t0, plans[i].min_duration()));
   }
 }

@@ -115,6 +115,7 @@ constexpr int kStarts = 30;
 
 // The shortest feasible profile over every structure, in normalized time.
 inline double brute_force_min_time(const Problem& pr, std::mt19937_64& rng) {
+  if (pr.d == 0 && pr.v0 == pr.vf && pr.a0 == 0) return 0;  // already there: no segment at all
   double best = INFINITY;
   const double scale = 1 + pr.vmax + std::abs(pr.d) / pr.vmax + std::abs(pr.v0) + std::abs(pr.vf);
   std::uniform_real_distribution<double> start(0, 1);

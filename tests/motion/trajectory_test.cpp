@@ -148,6 +148,33 @@ TEST(TrajectoryHandCases, TimeIsClampedAndStorageReused) {
   EXPECT_EQ(Trajectory{}.duration(), 0);
 }
 
+TEST(TrajectorySynchronization, RestToRestIsAStraightLine) {
+  // Three joints with equal limits, rest to rest: phase synchronized, every joint the same
+  // fraction of its way at every instant, in the slowest joint's minimum time.
+  TrajectoryInput in = one_joint(2, 1, 1);
+  in.joints = 3;
+  for (int i = 1; i < 3; ++i) in.max_velocity[i] = 2, in.max_acceleration[i] = 1, in.max_jerk[i] = 1;
+  in.position = {1, 2, 3};
+  in.target_position = {11, 0, 3.5};
+  Trajectory t;
+  ASSERT_TRUE(calculate_trajectory(in, t).ok());
+  EXPECT_EQ(testing::check_trajectory(in, t), "");
+  EXPECT_NEAR(t.duration(), 8.0, 1e-12);  // joint 0's 10 m, worked above
+  for (double f : {0.1, 0.25, 0.5, 0.8, 0.95}) {
+    const TrajectoryState s = t.at(f * t.duration());
+    const double share = (s.position[0] - 1) / 10;
+    EXPECT_NEAR((s.position[1] - 2) / -2, share, 1e-12);
+    EXPECT_NEAR((s.position[2] - 3) / 0.5, share, 1e-12);
+  }
+  // One joint already moving: not collinear, time synchronized instead (each joint its own
+  // profile shape), still arriving together.
+  in.velocity[2] = 0.3;
+  ASSERT_TRUE(calculate_trajectory(in, t).ok());
+  EXPECT_EQ(testing::check_trajectory(in, t), "");
+  const TrajectoryState s = t.at(0.25 * t.duration());
+  EXPECT_GT(std::abs((s.position[2] - 3) / 0.5 - (s.position[0] - 1) / 10), 1e-3);
+}
+
 // Validation: every refusal is invalid_argument, names what was wrong, and leaves `out`.
 std::string refusal(const TrajectoryInput& in) {
   Trajectory t;
