@@ -35,8 +35,8 @@ constexpr std::size_t kMaxUnknowns = 7;
 using Vec = std::array<double, kMaxUnknowns>;  // unknowns or residuals, the first n used
 
 struct Structure {
-  double s;          // sign of the first jerk
-  bool down_down;    // up-down-down-up, else up-down-up-down
+  double s;        // sign of the first jerk
+  bool down_down;  // up-down-down-up, else up-down-up-down
   bool plateau1, cruise, plateau5;
   double cruise_sign;
 };
@@ -140,8 +140,10 @@ inline double brute_force_min_time(const Problem& pr, std::mt19937_64& rng) {
                 const double h = 1e-7 * std::max(1.0, std::abs(x[c]));
                 auto xp = x, xm = x;
                 xp[c] += h, xm[c] -= h;
-                const auto rp = residuals(pr, st, durations(st, xp)), rm = residuals(pr, st, durations(st, xm));
-                for (std::size_t row = 0; row < n; ++row) jac[row][c] = (rp[row] - rm[row]) / (2 * h);
+                const auto rp = residuals(pr, st, durations(st, xp)),
+                           rm = residuals(pr, st, durations(st, xm));
+                for (std::size_t row = 0; row < n; ++row)
+                  jac[row][c] = (rp[row] - rm[row]) / (2 * h);
               }
               for (std::size_t row = 0; row < n; ++row) jac[row][n] = -r[row];
               bool singular = false;
@@ -208,11 +210,15 @@ struct Tally {  // differences from the brute force beyond 1e-6 s fail the test
     worst = std::max(worst, std::abs(mine - best));
     if (mine > best + 1e-6) {
       ++worse;
-      if (worse <= 3) ADD_FAILURE() << "slower than the optimum: " << mine << " s vs " << best << " s\n" << describe(in);
+      if (worse <= 3)
+        ADD_FAILURE() << "slower than the optimum: " << mine << " s vs " << best << " s\n"
+                      << describe(in);
     }
     if (mine < best - 1e-6) {
       ++better;
-      if (better <= 3) ADD_FAILURE() << "faster than the brute force found: " << mine << " s vs " << best << " s\n" << describe(in);
+      if (better <= 3)
+        ADD_FAILURE() << "faster than the brute force found: " << mine << " s vs " << best << " s\n"
+                      << describe(in);
     }
   }
 };
@@ -247,8 +253,10 @@ inline void check_two_joint_optimality(std::uint64_t seed, int count) {
       EXPECT_GE(mine, best1 - 1e-6) << describe(in);
     }
   }
-  std::printf("two joints: %d cases at the slower optimum, largest difference %.3g s; %d checked as a lower bound\n",
-              tally.cases, tally.worst, lower_bound_only);
+  std::printf(
+      "two joints: %d cases at the slower optimum, largest difference %.3g s; %d checked as a "
+      "lower bound\n",
+      tally.cases, tally.worst, lower_bound_only);
 }
 
 }  // namespace armctl::motion::testing

@@ -9,11 +9,17 @@
 namespace armctl::motion {
 namespace {
 
-TEST(TrajectoryLong, MillionCases) { testing::run_random_cases(1000003, 1000000); }
+TEST(TrajectoryLong, MillionCases) {
+  testing::run_random_cases(1000003, 1000000);
+}
 
-TEST(TrajectoryLong, OneJointOptimality) { testing::check_one_joint_optimality(17, 1200); }
+TEST(TrajectoryLong, OneJointOptimality) {
+  testing::check_one_joint_optimality(17, 1200);
+}
 
-TEST(TrajectoryLong, TwoJointOptimality) { testing::check_two_joint_optimality(18, 600); }
+TEST(TrajectoryLong, TwoJointOptimality) {
+  testing::check_two_joint_optimality(18, 600);
+}
 
 }  // namespace
 }  // namespace armctl::motion

@@ -7,9 +7,13 @@
 namespace armctl::motion {
 namespace {
 
-TEST(TrajectoryOptimality, OneJointMatchesTheBruteForce) { testing::check_one_joint_optimality(7, 60); }
+TEST(TrajectoryOptimality, OneJointMatchesTheBruteForce) {
+  testing::check_one_joint_optimality(7, 60);
+}
 
-TEST(TrajectoryOptimality, TwoJointsSynchronizeAtTheSlowerOptimum) { testing::check_two_joint_optimality(8, 30); }
+TEST(TrajectoryOptimality, TwoJointsSynchronizeAtTheSlowerOptimum) {
+  testing::check_two_joint_optimality(8, 30);
+}
 
 TEST(TrajectoryOptimality, ALongCruise) {
   // Found by the long run: 405 s at 0.067 m/s, where the brute force's Newton tolerance

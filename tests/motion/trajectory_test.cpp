@@ -153,7 +153,8 @@ TEST(TrajectorySynchronization, RestToRestIsAStraightLine) {
   // fraction of its way at every instant, in the slowest joint's minimum time.
   TrajectoryInput in = one_joint(2, 1, 1);
   in.joints = 3;
-  for (int i = 1; i < 3; ++i) in.max_velocity[i] = 2, in.max_acceleration[i] = 1, in.max_jerk[i] = 1;
+  for (int i = 1; i < 3; ++i)
+    in.max_velocity[i] = 2, in.max_acceleration[i] = 1, in.max_jerk[i] = 1;
   in.position = {1, 2, 3};
   in.target_position = {11, 0, 3.5};
   Trajectory t;
@@ -194,7 +195,8 @@ TEST(TrajectoryValidation, RefusesWhatIsNotAllowed) {
   const TrajectoryInput base = [] {
     TrajectoryInput in;
     in.joints = 3;
-    for (int i = 0; i < 3; ++i) in.max_velocity[i] = 2, in.max_acceleration[i] = 1, in.max_jerk[i] = 1;
+    for (int i = 0; i < 3; ++i)
+      in.max_velocity[i] = 2, in.max_acceleration[i] = 1, in.max_jerk[i] = 1;
     in.target_position = {1, 2, 3};
     return in;
   }();
@@ -230,7 +232,8 @@ TEST(TrajectoryValidation, RefusesWhatIsNotAllowed) {
   in = base, in.min_duration = NAN;
   EXPECT_THAT(refusal(in), HasSubstr("min_duration nan"));
   in = base, in.max_velocity[0] = 1e13;
-  EXPECT_THAT(refusal(in), HasSubstr("joint 0: max_velocity 10000000000000 (allowed: finite, 1e-09..1e+12)"));
+  EXPECT_THAT(refusal(in),
+              HasSubstr("joint 0: max_velocity 10000000000000 (allowed: finite, 1e-09..1e+12)"));
   const std::vector<JointArray> waypoints{{0.5, 1, 1}, {0.7, NAN, 2}};
   in = base, in.waypoints = waypoints;
   EXPECT_THAT(refusal(in), HasSubstr("waypoint 1: joint 1: position nan"));
@@ -279,7 +282,8 @@ TEST(TrajectoryWaypoints, PassedThroughWithoutStopping) {
 TEST(TrajectoryWaypoints, ManyWaypointsAndMinDuration) {
   TrajectoryInput in = one_joint(1, 2, 5);
   in.joints = 3;
-  for (int i = 1; i < 3; ++i) in.max_velocity[i] = 1.5, in.max_acceleration[i] = 1, in.max_jerk[i] = 3;
+  for (int i = 1; i < 3; ++i)
+    in.max_velocity[i] = 1.5, in.max_acceleration[i] = 1, in.max_jerk[i] = 3;
   std::vector<JointArray> waypoints;
   for (int k = 1; k <= 20; ++k) waypoints.push_back({0.3 * k, std::sin(k), k % 3 == 0 ? 1.0 : 0.0});
   in.waypoints = waypoints;
@@ -314,7 +318,8 @@ TEST(TrajectoryRandom, WithWaypoints) {
     in.waypoints = waypoints;
     const Status s = calculate_trajectory(in, t);
     const std::string why = s.ok() ? testing::check_trajectory(in, t) : s.error().message;
-    if (!why.empty()) ++failures, ADD_FAILURE() << "case " << c << ": " << why << "\n" << testing::describe(in);
+    if (!why.empty())
+      ++failures, ADD_FAILURE() << "case " << c << ": " << why << "\n" << testing::describe(in);
   }
 }
 
@@ -333,12 +338,14 @@ TEST(TrajectoryRandom, ExtremeAllowedInputsStayFinite) {
     TrajectoryInput in;
     in.joints = std::uniform_int_distribution<int>(1, 7)(rng);
     for (int i = 0; i < in.joints; ++i) {
-      const double vmax = log_uniform(1e-9, 1e12), amax = log_uniform(1e-9, 1e12), jmax = log_uniform(1e-9, 1e12);
+      const double vmax = log_uniform(1e-9, 1e12), amax = log_uniform(1e-9, 1e12),
+                   jmax = log_uniform(1e-9, 1e12);
       in.max_velocity[i] = vmax, in.max_acceleration[i] = amax, in.max_jerk[i] = jmax;
       in.position[i] = signed_value(log_uniform(1e-12, 1e12));
       in.target_position[i] = signed_value(log_uniform(1e-12, 1e12));
       in.velocity[i] = signed_value(vmax * std::uniform_real_distribution<double>(0, 1)(rng));
-      in.target_velocity[i] = signed_value(vmax * std::uniform_real_distribution<double>(0, 1)(rng));
+      in.target_velocity[i] =
+          signed_value(vmax * std::uniform_real_distribution<double>(0, 1)(rng));
     }
     const Status s = calculate_trajectory(in, t);
     ASSERT_TRUE(s.ok()) << s.error().message;
@@ -353,7 +360,9 @@ TEST(TrajectoryRandom, ExtremeAllowedInputsStayFinite) {
   }
 }
 
-TEST(TrajectoryRandom, HundredThousandCases) { testing::run_random_cases(20261201, 100000); }
+TEST(TrajectoryRandom, HundredThousandCases) {
+  testing::run_random_cases(20261201, 100000);
+}
 
 }  // namespace
 }  // namespace armctl::motion
