@@ -28,18 +28,24 @@ double thread_cpu_ns() {
 }
 
 void print(const std::string& name, double value, const char* unit, double limit) {
-  std::printf("BENCH %s %.3f %s limit %.3f ratio %.3f\n", name.c_str(), value, unit, limit, value / limit);
+  std::printf("BENCH %s %.3f %s limit %.3f ratio %.3f\n", name.c_str(), value, unit, limit,
+              value / limit);
 }
 
 std::vector<TrajectoryInput> random_cases(int joints, int count, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
-  auto log_uniform = [&](double lo, double hi) { return std::exp(uniform(std::log(lo), std::log(hi))); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
+  auto log_uniform = [&](double lo, double hi) {
+    return std::exp(uniform(std::log(lo), std::log(hi)));
+  };
   std::vector<TrajectoryInput> cases(count);
   for (auto& in : cases) {
     in.joints = joints;
     for (int i = 0; i < joints; ++i) {
-      const double vmax = log_uniform(0.05, 50), amax = log_uniform(0.1, 100), jmax = log_uniform(0.2, 1000);
+      const double vmax = log_uniform(0.05, 50), amax = log_uniform(0.1, 100),
+                   jmax = log_uniform(0.2, 1000);
       in.max_velocity[i] = vmax, in.max_acceleration[i] = amax, in.max_jerk[i] = jmax;
       in.position[i] = uniform(-5, 5);
       in.velocity[i] = uniform(-vmax, vmax);
@@ -67,10 +73,12 @@ void bench_joints(int joints) {
   for (int i = 0; i < n; ++i) {
     const auto a = std::chrono::steady_clock::now();
     benchmark::DoNotOptimize(calculate_trajectory(cases[i], traj));
-    each[i] = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - a).count();
+    each[i] =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - a).count();
   }
   std::nth_element(each.begin(), each.begin() + n * 99 / 100, each.end());
-  const std::string name = "trajectory_" + std::to_string(joints) + (joints == 1 ? "_joint" : "_joints");
+  const std::string name =
+      "trajectory_" + std::to_string(joints) + (joints == 1 ? "_joint" : "_joints");
   print(name + "_mean", mean_us, "us", 5.0);
   print(name + "_p99", each[n * 99 / 100], "us", 20.0);
 }

@@ -46,27 +46,31 @@ double bracketed_root(F f, double x0, double f0, double x1, double f1, double f_
   return std::abs(f0) < std::abs(f1) ? x0 : x1;
 }
 
-int sign(double x) { return (x > 0) - (x < 0); }
+int sign(double x) {
+  return (x > 0) - (x < 0);
+}
 
 }  // namespace
-
 
 double JerkPlan::rounding() const {
   // A distance this small is below what the displacements' arithmetic resolves.
   const double scale = std::abs(task_.target_position - task_.position) + std::abs(task_.position) +
-                       limits_.velocity * (limits_.velocity / limits_.acceleration + limits_.acceleration / limits_.jerk);
+                       limits_.velocity * (limits_.velocity / limits_.acceleration +
+                                           limits_.acceleration / limits_.jerk);
   return 4 * kEps * scale;
 }
 
 JerkPlan::Point JerkPlan::evaluate(double vp) const {
   const VelocityChange first = velocity_change(task_.velocity, task_.acceleration, vp, limits_);
   // The last change starts and ends at a = 0: symmetric, its mean velocity is the midpoint.
-  const double dv = std::abs(task_.target_velocity - vp), amax = limits_.acceleration, j = limits_.jerk;
+  const double dv = std::abs(task_.target_velocity - vp), amax = limits_.acceleration,
+               j = limits_.jerk;
   const double last = dv * j > amax * amax ? dv / amax + amax / j : 2 * std::sqrt(dv / j);
   Point p;
   p.vp = vp;
   p.ramps = first.duration + last;
-  p.remaining = (task_.target_position - task_.position) - first.displacement - (vp + task_.target_velocity) / 2 * last;
+  p.remaining = (task_.target_position - task_.position) - first.displacement -
+                (vp + task_.target_velocity) / 2 * last;
   if (vp != 0)
     p.duration = p.ramps + p.remaining / vp;
   else
@@ -75,8 +79,8 @@ JerkPlan::Point JerkPlan::evaluate(double vp) const {
 }
 
 double JerkPlan::root_of_remaining(const Point& x, const Point& y) const {
-  return bracketed_root([this](double vp) { return evaluate(vp).remaining; }, x.vp, x.remaining, y.vp,
-                        y.remaining, rounding());
+  return bracketed_root([this](double vp) { return evaluate(vp).remaining; }, x.vp, x.remaining,
+                        y.vp, y.remaining, rounding());
 }
 
 double JerkPlan::vp_for_duration(const Point& x, const Point& y, double duration) const {
@@ -93,59 +97,30 @@ double JerkPlan::vp_for_duration(const Point& x, const Point& y, double duration
 
 int JerkPlan::add_hidden_crossings(Point* samples, int m) const {
   // `remaining` may cross 0 and come back between two samples (a bump the samples miss):
-  // where |remaining| has a local minimum at a sample (or an end), search the two
-  // neighbouring gaps for a value of the other sign (golden section toward it) and keep it
-  // as a sample, so that its two roots get bracketed.
+  // where |remaining| has a local minimum at a sample and the parabola through it and its
+  // neighbours comes at least halfway to 0, look once at the parabola's vertex; a value of
+  // the other sign there becomes a sample, so that its two roots get bracketed. (A bump
+  // still missed costs at most optimality: a duration claimed wrongly is caught in build.)
   Point found[kMaxSamples];
   int f = 0;
-  for (int i = 0; i < m && f < kMaxSamples - m; ++i) {
+  for (int i = 1; i + 1 < m && f < kMaxSamples - m; ++i) {
     const double r = samples[i].remaining;
-    if (r == 0) continue;
-    const bool left_closer = i == 0 || std::abs(samples[i - 1].remaining) >= std::abs(r);
-    const bool right_closer = i == m - 1 || std::abs(samples[i + 1].remaining) >= std::abs(r);
-    if (!left_closer || !right_closer) continue;
-    const bool same_left = i == 0 || sign(samples[i - 1].remaining) == sign(r);
-    const bool same_right = i == m - 1 || sign(samples[i + 1].remaining) == sign(r);
-    if (!same_left || !same_right) continue;
-    // Inside, a parabola through the three samples must come at least halfway to 0; its
-    // vertex is the first place looked at.
-    double vertex = samples[i].vp;
-    if (i > 0 && i < m - 1) {
-      const double x0 = samples[i - 1].vp - samples[i].vp, x2 = samples[i + 1].vp - samples[i].vp;
-      const double y0 = samples[i - 1].remaining - r, y2 = samples[i + 1].remaining - r;
-      // y = b x + c x^2 through (x0, y0), (x2, y2); vertex at -b / (2c), value r - b^2 / (4c).
-      const double det = x0 * x2 * (x2 - x0);
-      const double c = (y2 * x0 - y0 * x2) / det, b = (y0 * x2 * x2 - y2 * x0 * x0) / det;
-      if (c == 0) continue;
-      const double low = r - b * b / (4 * c);
-      if (sign(low) == sign(r) && std::abs(low) > 0.5 * std::abs(r)) continue;
-      vertex = samples[i].vp - b / (2 * c);
-    }
-    double lo = samples[std::max(0, i - 1)].vp, hi = samples[std::min(m - 1, i + 1)].vp;
-    const double s = -sign(r);  // looking for s * remaining > 0
-    if (vertex > lo && vertex < hi) {
+    const double left = samples[i - 1].remaining, right = samples[i + 1].remaining;
+    if (r == 0 || sign(left) != sign(r) || sign(right) != sign(r)) continue;
+    if (std::abs(left) < std::abs(r) || std::abs(right) < std::abs(r)) continue;
+    // y = b x + c x^2 through the neighbours (x from sample i, y from r); vertex at
+    // -b / (2c), value r - b^2 / (4c).
+    const double x0 = samples[i - 1].vp - samples[i].vp, x2 = samples[i + 1].vp - samples[i].vp;
+    const double y0 = left - r, y2 = right - r;
+    const double det = x0 * x2 * (x2 - x0);
+    const double c = (y2 * x0 - y0 * x2) / det, b = (y0 * x2 * x2 - y2 * x0 * x0) / det;
+    if (c == 0) continue;
+    const double low = r - b * b / (4 * c);
+    if (sign(low) == sign(r) && std::abs(low) > 0.5 * std::abs(r)) continue;
+    const double vertex = samples[i].vp - b / (2 * c);
+    if (vertex > samples[i - 1].vp && vertex < samples[i + 1].vp) {
       const Point p = evaluate(vertex);
-      if (s * p.remaining > 0) {
-        found[f++] = p;
-        continue;
-      }
-    }
-    // Else maximize s * remaining by golden section, stopping at the first crossing.
-    const double g = 0.6180339887498949;
-    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-    Point p1 = evaluate(x1), p2 = evaluate(x2);
-    for (int it = 0; it < 10; ++it) {
-      if (s * p1.remaining > 0 || s * p2.remaining > 0) {
-        found[f++] = s * p1.remaining > 0 ? p1 : p2;
-        break;
-      }
-      if (s * p1.remaining > s * p2.remaining) {
-        hi = x2, x2 = x1, p2 = p1;
-        x1 = hi - g * (hi - lo), p1 = evaluate(x1);
-      } else {
-        lo = x1, x1 = x2, p1 = p2;
-        x2 = lo + g * (hi - lo), p2 = evaluate(x2);
-      }
+      if (sign(p.remaining) == -sign(r)) found[f++] = p;
     }
   }
   // Merge the finds in (both lists sorted by vp).
@@ -185,7 +160,8 @@ void JerkPlan::plan(const JerkTask& task, const JerkLimits& limits) {
   const double v_stop = v0 + a0 * std::abs(a0) / (2 * j);
   const double reach_first = (amax * amax - a0 * a0 / 2) / j;
   const double reach_last = amax * amax / j;
-  const double candidates[] = {0,  v_stop, v0 + reach_first, v0 - reach_first, vf, vf + reach_last, vf - reach_last};
+  const double candidates[] = {0,  v_stop,          v0 + reach_first, v0 - reach_first,
+                               vf, vf + reach_last, vf - reach_last};
   breaks[n++] = -vmax;
   for (double c : candidates)
     if (c > -vmax && c < vmax) breaks[n++] = c;
@@ -262,18 +238,22 @@ void JerkPlan::derive() {
   if (last.remaining == 0) add(last.duration, last.duration, point_count_ - 1, point_count_ - 1);
   // Exactly at rest after the first change and before the last: any cruise at vp = 0.
   for (int i = 0; i < point_count_; ++i)
-    if (points_[i].vp == 0 && points_[i].remaining == 0) add(points_[i].ramps, kInf, i, kCruiseAtRest);
-  for (int i = 0; i < release_count_; ++i) add(releases_[i].duration, releases_[i].duration, i, kRelease);
+    if (points_[i].vp == 0 && points_[i].remaining == 0)
+      add(points_[i].ramps, kInf, i, kCruiseAtRest);
+  for (int i = 0; i < release_count_; ++i)
+    add(releases_[i].duration, releases_[i].duration, i, kRelease);
 
   min_duration_ = kInf;
-  for (int i = 0; i < interval_count_; ++i) min_duration_ = std::min(min_duration_, intervals_[i].lo);
+  for (int i = 0; i < interval_count_; ++i)
+    min_duration_ = std::min(min_duration_, intervals_[i].lo);
 }
 
 JerkPlan::Release JerkPlan::release(double tau, double& remaining) const {
   const double a0 = task_.acceleration, j = a0 > 0 ? -limits_.jerk : limits_.jerk;
   const JerkSegment start{0, tau, 0, task_.velocity, a0, j};
   const JerkState s = advance(start, tau);
-  const VelocityChange c = velocity_change(s.velocity, s.acceleration, task_.target_velocity, limits_);
+  const VelocityChange c =
+      velocity_change(s.velocity, s.acceleration, task_.target_velocity, limits_);
   remaining = (task_.target_position - task_.position) - s.position - c.displacement;
   return Release{tau, tau + c.duration};
 }
@@ -327,7 +307,8 @@ bool JerkPlan::build(double duration, JerkSegments& out) {
     const double tau = releases_[chosen->a].tau, a0 = task_.acceleration;
     const double j = a0 > 0 ? -limits_.jerk : limits_.jerk;
     const JerkState s = advance(JerkSegment{0, tau, 0, task_.velocity, a0, j}, tau);
-    const VelocityChange last = velocity_change(s.velocity, s.acceleration, task_.target_velocity, limits_);
+    const VelocityChange last =
+        velocity_change(s.velocity, s.acceleration, task_.target_velocity, limits_);
     const double d[] = {tau, 0, 0, 0, last.ramp_up, last.hold, last.ramp_down};
     const double jk[] = {j, 0, 0, 0, last.jerk, 0, -last.jerk};
     std::copy(d, d + kProfileSegments, durations);
@@ -343,8 +324,10 @@ bool JerkPlan::build(double duration, JerkSegments& out) {
     const double cruise = std::max(0.0, duration - first.duration - last.duration);
     // The samples missed a stretch where no cruise fits (remaining of the wrong sign):
     // vp lies in it; sampled there, the next plan knows.
-    if (duration - first.duration - last.duration < -1e-12 * std::max(1.0, duration) && refine(vp)) return false;
-    const double d[] = {first.ramp_up, first.hold, first.ramp_down, cruise, last.ramp_up, last.hold, last.ramp_down};
+    if (duration - first.duration - last.duration < -1e-12 * std::max(1.0, duration) && refine(vp))
+      return false;
+    const double d[] = {first.ramp_up, first.hold, first.ramp_down, cruise,
+                        last.ramp_up,  last.hold,  last.ramp_down};
     const double jk[] = {first.jerk, 0, -first.jerk, 0, last.jerk, 0, -last.jerk};
     std::copy(d, d + kProfileSegments, durations);
     std::copy(jk, jk + kProfileSegments, jerks);
@@ -360,7 +343,8 @@ bool JerkPlan::build(double duration, JerkSegments& out) {
     s.duration = durations[k];
     s.jerk = jerks[k];
     // Plateaus and the cruise hold what the ramp before them reached exactly.
-    if ((k == 1 || k == 5) && durations[k] > 0) s.acceleration = sign(jerks[k - 1]) * limits_.acceleration;
+    if ((k == 1 || k == 5) && durations[k] > 0)
+      s.acceleration = sign(jerks[k - 1]) * limits_.acceleration;
     if (k == 3 && !released) s.velocity = vp, s.acceleration = 0;
     if (k == 4 && !released) s.acceleration = 0;
     out[k] = s;

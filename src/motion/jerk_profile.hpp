@@ -79,7 +79,7 @@ class JerkPlan {
   Point evaluate(double vp) const;
   double rounding() const;
   int add_hidden_crossings(Point* samples, int count) const;
-  void derive();  // points, intervals and min_duration from the samples and releases
+  void derive();           // points, intervals and min_duration from the samples and releases
   bool refine(double vp);  // one more sample, then derive
   double root_of_remaining(const Point& x, const Point& y) const;
   double vp_for_duration(const Point& x, const Point& y, double duration) const;
@@ -99,7 +99,7 @@ class JerkPlan {
 // The fastest velocity change from (v0, a0) to (v1, 0), as up to three segments: jerk
 // toward v1, a plateau at +-amax, jerk back to a = 0. Requires |a0| <= amax.
 struct VelocityChange {
-  double jerk = 0;            // signed jerk of the first segment (the last has -jerk)
+  double jerk = 0;  // signed jerk of the first segment (the last has -jerk)
   double ramp_up = 0, hold = 0, ramp_down = 0;  // s
   double duration = 0, displacement = 0;
 };

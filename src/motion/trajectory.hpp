@@ -23,8 +23,8 @@ using JointArray = std::array<double, kMaxTrajectoryJoints>;
 
 // Magnitudes refused beyond these (docs/trajectories.md "Validation"): inside them no
 // intermediate value can overflow.
-inline constexpr double kMaxTrajectoryMagnitude = 1e12;   // positions, velocities, limits
-inline constexpr double kMinTrajectoryLimit = 1e-9;       // velocity, acceleration, jerk limits
+inline constexpr double kMaxTrajectoryMagnitude = 1e12;  // positions, velocities, limits
+inline constexpr double kMinTrajectoryLimit = 1e-9;      // velocity, acceleration, jerk limits
 
 struct TrajectoryInput {
   int joints = 1;                                     // 1..7
@@ -48,10 +48,11 @@ struct TrajectoryExtrema {
 class Trajectory {
  public:
   int joints() const { return joints_; }
-  double duration() const;                 // exact, s
-  TrajectoryState at(double t) const;      // t clamped to [0, duration()]
+  double duration() const;                         // exact, s
+  TrajectoryState at(double t) const;              // t clamped to [0, duration()]
   int sections() const { return section_count_; }  // waypoints + 1
-  double section_end(int k) const;  // time the k-th waypoint (or the target, k = sections()-1) is reached
+  double section_end(
+      int k) const;  // time the k-th waypoint (or the target, k = sections()-1) is reached
   double section_start(int k) const;
   TrajectoryExtrema extrema() const;
   // The constant-jerk segments of one joint in one section (start times from the section's

@@ -29,10 +29,12 @@ class RandomCases {
   // `joints` 0: a random count 1..7.
   TrajectoryInput next(int joints = 0) {
     TrajectoryInput in;
-    in.joints = joints > 0 ? joints : std::uniform_int_distribution<int>(1, kMaxTrajectoryJoints)(rng_);
+    in.joints =
+        joints > 0 ? joints : std::uniform_int_distribution<int>(1, kMaxTrajectoryJoints)(rng_);
     const bool from_rest = pick(8), to_rest = pick(8);
     for (int i = 0; i < in.joints; ++i) {
-      const double vmax = log_uniform(0.05, 50), amax = log_uniform(0.1, 100), jmax = log_uniform(0.2, 1000);
+      const double vmax = log_uniform(0.05, 50), amax = log_uniform(0.1, 100),
+                   jmax = log_uniform(0.2, 1000);
       in.max_velocity[i] = vmax, in.max_acceleration[i] = amax, in.max_jerk[i] = jmax;
       in.position[i] = uniform(-5, 5);
       if (!from_rest) {
@@ -44,7 +46,8 @@ class RandomCases {
         in.acceleration[i] = std::clamp(in.acceleration[i], -a_allowed, a_allowed);
       }
       const double reach = std::max(0.1, vmax * vmax / amax + vmax * amax / jmax);
-      in.target_position[i] = pick(16) ? in.position[i] : in.position[i] + uniform(-3, 3) * std::min(reach, 10.0);
+      in.target_position[i] =
+          pick(16) ? in.position[i] : in.position[i] + uniform(-3, 3) * std::min(reach, 10.0);
       in.target_velocity[i] = to_rest || pick(4) ? 0 : uniform(-vmax, vmax);
     }
     return in;
@@ -52,7 +55,9 @@ class RandomCases {
 
  private:
   bool pick(int one_in) { return std::uniform_int_distribution<int>(0, one_in - 1)(rng_) == 0; }
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  double uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng_);
+  }
   double log_uniform(double lo, double hi) { return std::exp(uniform(std::log(lo), std::log(hi))); }
   std::mt19937_64 rng_;
 };
@@ -62,9 +67,11 @@ inline std::string describe(const TrajectoryInput& in) {
   for (int i = 0; i < in.joints; ++i) {
     char line[400];
     std::snprintf(line, sizeof line,
-                  "\n  joint %d: p0 %.17g v0 %.17g a0 %.17g -> p %.17g v %.17g; limits v %.17g a %.17g j %.17g", i,
-                  in.position[i], in.velocity[i], in.acceleration[i], in.target_position[i], in.target_velocity[i],
-                  in.max_velocity[i], in.max_acceleration[i], in.max_jerk[i]);
+                  "\n  joint %d: p0 %.17g v0 %.17g a0 %.17g -> p %.17g v %.17g; limits v %.17g a "
+                  "%.17g j %.17g",
+                  i, in.position[i], in.velocity[i], in.acceleration[i], in.target_position[i],
+                  in.target_velocity[i], in.max_velocity[i], in.max_acceleration[i],
+                  in.max_jerk[i]);
     s += line;
   }
   return s;
@@ -85,10 +92,13 @@ inline std::string check_trajectory(const TrajectoryInput& in, const Trajectory&
       double t = 0;
       for (std::size_t s = 0; s < segs.size(); ++s) {
         const JerkSegment& g = segs[s];
-        if (!(g.duration >= 0) || !std::isfinite(g.duration)) return "negative or non-finite segment";
-        if (std::abs(g.start - t) > 1e-12 * std::max(1.0, total)) return "segments not back to back";
+        if (!(g.duration >= 0) || !std::isfinite(g.duration))
+          return "negative or non-finite segment";
+        if (std::abs(g.start - t) > 1e-12 * std::max(1.0, total))
+          return "segments not back to back";
         t += g.duration;
-        if (g.duration > 0 && std::abs(g.jerk) > jmax * (1 + kLimitTolerance)) return "jerk above its limit";
+        if (g.duration > 0 && std::abs(g.jerk) > jmax * (1 + kLimitTolerance))
+          return "jerk above its limit";
         // The segment's analytic extrema: |a| at its ends, |v| at its ends or where a = 0.
         const JerkState end = advance(g, g.duration);
         double vpeak = std::max(std::abs(g.velocity), std::abs(end.velocity));
@@ -97,30 +107,34 @@ inline std::string check_trajectory(const TrajectoryInput& in, const Trajectory&
           if (tp > 0 && tp < g.duration) vpeak = std::max(vpeak, std::abs(advance(g, tp).velocity));
         }
         if (vpeak > vmax * (1 + kLimitTolerance)) {
-          std::snprintf(why, sizeof why, "section %d joint %d segment %zu: |v| %.17g above %.17g", k, i, s, vpeak,
-                        vmax);
+          std::snprintf(why, sizeof why, "section %d joint %d segment %zu: |v| %.17g above %.17g",
+                        k, i, s, vpeak, vmax);
           return why;
         }
         const double apeak = std::max(std::abs(g.acceleration), std::abs(end.acceleration));
         if (apeak > amax * (1 + kLimitTolerance)) {
-          std::snprintf(why, sizeof why, "section %d joint %d segment %zu: |a| %.17g above %.17g", k, i, s, apeak,
-                        amax);
+          std::snprintf(why, sizeof why, "section %d joint %d segment %zu: |a| %.17g above %.17g",
+                        k, i, s, apeak, amax);
           return why;
         }
         // Continuity: this segment's end is the next one's start.
         if (s + 1 < segs.size()) {
           const JerkSegment& n = segs[s + 1];
           const double scale = std::max({1.0, std::abs(end.position)});
-          if (std::abs(n.position - end.position) > 1e-12 * scale || std::abs(n.velocity - end.velocity) > 1e-9 * vmax ||
+          if (std::abs(n.position - end.position) > 1e-12 * scale ||
+              std::abs(n.velocity - end.velocity) > 1e-9 * vmax ||
               std::abs(n.acceleration - end.acceleration) > 1e-9 * amax) {
-            std::snprintf(why, sizeof why, "section %d joint %d: jump after segment %zu (p %.3g v %.3g a %.3g)", k, i,
-                          s, n.position - end.position, n.velocity - end.velocity, n.acceleration - end.acceleration);
+            std::snprintf(why, sizeof why,
+                          "section %d joint %d: jump after segment %zu (p %.3g v %.3g a %.3g)", k,
+                          i, s, n.position - end.position, n.velocity - end.velocity,
+                          n.acceleration - end.acceleration);
             return why;
           }
         }
       }
       if (std::abs(t - length) > 1e-9 * std::max(1.0, length)) {
-        std::snprintf(why, sizeof why, "section %d joint %d ends at %.17g, not at %.17g", k, i, t, length);
+        std::snprintf(why, sizeof why, "section %d joint %d ends at %.17g, not at %.17g", k, i, t,
+                      length);
         return why;
       }
     }
@@ -132,9 +146,10 @@ inline std::string check_trajectory(const TrajectoryInput& in, const Trajectory&
     if (std::abs(last.position[i] - in.target_position[i]) > kFinalTolerance ||
         std::abs(last.velocity[i] - in.target_velocity[i]) > kFinalTolerance ||
         std::abs(last.acceleration[i]) > kFinalTolerance) {
-      std::snprintf(why, sizeof why, "joint %d ends at p %.17g v %.17g a %.17g (error p %.3g v %.3g)", i,
-                    last.position[i], last.velocity[i], last.acceleration[i],
-                    last.position[i] - in.target_position[i], last.velocity[i] - in.target_velocity[i]);
+      std::snprintf(
+          why, sizeof why, "joint %d ends at p %.17g v %.17g a %.17g (error p %.3g v %.3g)", i,
+          last.position[i], last.velocity[i], last.acceleration[i],
+          last.position[i] - in.target_position[i], last.velocity[i] - in.target_velocity[i]);
       return why;
     }
   }
