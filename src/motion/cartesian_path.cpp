@@ -242,10 +242,11 @@ Result<CartesianPath> build_cartesian_path(const Pose& start, std::span<const Pa
 double CartesianPath::duration() const { return segments_.empty() ? 0 : segments_.back().end_s; }
 
 int CartesianPath::segment_at(double s) const {
-  const int n = static_cast<int>(segments_.size());
-  for (int i = 0; i < n; ++i)
-    if (s <= segments_[std::size_t(i)].end_s) return i;
-  return n - 1;
+  // The first segment ending at or after s (segments are in order of s).
+  const auto it = std::lower_bound(segments_.begin(), segments_.end(), s,
+                                   [](const BuiltSegment& g, double value) { return g.end_s < value; });
+  if (it == segments_.end()) return static_cast<int>(segments_.size()) - 1;
+  return static_cast<int>(it - segments_.begin());
 }
 
 double CartesianPath::segment_fraction(double s) const {

@@ -13,8 +13,9 @@ namespace armctl::motion {
 
 namespace {
 
-// A path this long in samples is refused rather than checked (some 10 km of tool travel).
-constexpr std::size_t kMaxSamples = 10'000'000;
+// A path this long in samples is refused rather than checked (some 1 km of tool travel;
+// the samples then take some 200 MB).
+constexpr std::size_t kMaxSamples = 1'000'000;
 // Within this of a singular configuration (bend sine, wrist axes' sine, or metres from the
 // xArm's base axis) a slowed stretch is put down to the singularity.
 constexpr double kNearSingularity = 0.05;

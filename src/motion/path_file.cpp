@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 
 #include "core/json_reader.hpp"
+#include "core/printable.hpp"
 
 namespace armctl::motion {
 
@@ -62,18 +63,17 @@ std::string lower(std::string_view text) {
   return out;
 }
 
-// Text for messages: control bytes shown as '?', long fields cut, so one bad byte in a file
-// cannot garble the terminal.
-std::string printable(std::string_view text, std::size_t longest = 60) {
-  std::string out;
-  for (char c : text.substr(0, longest)) out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+// Outside text quoted in a message: control bytes escaped (core/printable.hpp), so one bad
+// byte in a file cannot garble the terminal, and long fields cut.
+std::string quoted(std::string_view text, std::size_t longest = 60) {
+  std::string out = printable(text.substr(0, longest));
   if (text.size() > longest) out += "...";
   return out;
 }
 
 class Parser {
  public:
-  explicit Parser(std::string_view source) : source_(source) {}
+  explicit Parser(std::string_view source) : source_(printable(source)) {}
 
   Result<PathFile> parse(std::string_view text) {
     PathFile file;
@@ -105,11 +105,11 @@ class Parser {
  private:
   Error fail(std::size_t line, std::size_t column, std::string_view found, const std::string& expected) const {
     return Error{ErrorKind::invalid_config, fmt::format("{}:{}:{}: found '{}', expected {}", source_, line, column,
-                                                        printable(found), expected)};
+                                                        quoted(found), expected)};
   }
   // An error from a value parser (parse_quantity's message names the key, the text and the units).
   Error fail_value(std::size_t line, std::size_t column, const Error& e) const {
-    return Error{ErrorKind::invalid_config, fmt::format("{}:{}:{}: {}", source_, line, column, printable(e.message, 400))};
+    return Error{ErrorKind::invalid_config, fmt::format("{}:{}:{}: {}", source_, line, column, quoted(e.message, 400))};
   }
 
   Result<double> quantity(std::size_t line, const Field& f, std::string_view key, std::string_view value,
@@ -292,7 +292,7 @@ const char* to_string(MoveKind kind) {
 Result<PathFile> parse_path_file(std::string_view text, std::string_view source) {
   if (text.size() > json_reader::kMaxConfigBytes)
     return Error{ErrorKind::invalid_config,
-                 fmt::format("{}: {} bytes is larger than a path file may be (1 MiB)", source, text.size())};
+                 fmt::format("{}: {} bytes is larger than a path file may be (1 MiB)", printable(source), text.size())};
   return Parser(source).parse(text);
 }
 

@@ -152,7 +152,7 @@ TEST(PathFile, ErrorsNameFileLineColumnFoundAndExpected) {
   EXPECT_EQ(refused("lin x=1mm y=0mm z=0mm\nlin =1mm\n"),
             "t.path:2:5: found '=1mm', expected key=value; a lin takes x, y, z, roll, pitch, yaw, speed, angular_speed, "
             "zone");
-  EXPECT_THAT(refused("lin x=1mm\x01 y=0mm z=0mm\n"), HasSubstr("'1mm?'"));  // control bytes shown as '?'
+  EXPECT_THAT(refused("lin x=1mm\x01 y=0mm z=0mm\n"), HasSubstr("'1mm\\x01'"));  // control bytes escaped
 }
 
 TEST(PathFile, ReadsAFileAndRefusesWhatIsNotOne) {
