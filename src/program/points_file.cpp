@@ -11,6 +11,8 @@
 
 #include <fmt/core.h>
 
+#include "core/printable.hpp"
+
 #include "core/json_reader.hpp"
 #include "program/language_words.hpp"
 
@@ -24,11 +26,9 @@ std::string lower(std::string_view text) {
   return out;
 }
 
-std::string printable(std::string_view text, std::size_t longest = 60) {
-  std::string out;
-  for (char c : text.substr(0, longest)) out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-  if (text.size() > longest) out += "...";
-  return out;
+// Outside text for messages: control bytes escaped (core/printable.hpp), long text cut.
+std::string shown(std::string_view text, std::size_t longest = 60) {
+  return printable(text.substr(0, longest)) + (text.size() > longest ? "..." : "");
 }
 
 bool blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
@@ -38,7 +38,7 @@ constexpr std::string_view kPointKeys = "joints=..., or x, y, z with roll, pitch
 Error fail(std::string_view source, std::size_t line, std::size_t column, std::string_view found,
            const std::string& expected) {
   return Error{ErrorKind::invalid_config,
-               fmt::format("{}:{}:{}: found '{}', expected {}", source, line, column, printable(found), expected)};
+               fmt::format("{}:{}:{}: found '{}', expected {}", source, line, column, shown(found), expected)};
 }
 
 // The path file's parser reads a point's fields (they are a ptp's target): its message
@@ -190,7 +190,7 @@ std::string format_points_file(const PointsFile& file) {
 
 Status write_points_file(const std::filesystem::path& path, const PointsFile& file) {
   for (const Point& p : file.points)
-    if (auto why = bad_name(p.name)) return Error{ErrorKind::invalid_argument, fmt::format("point '{}': {}", printable(p.name), *why)};
+    if (auto why = bad_name(p.name)) return Error{ErrorKind::invalid_argument, fmt::format("point '{}': {}", shown(p.name), *why)};
   const std::string text = format_points_file(file);
   const std::filesystem::path temporary = path.string() + fmt::format(".tmp{}", ::getpid());
   {

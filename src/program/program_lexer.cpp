@@ -6,15 +6,15 @@
 
 #include <fmt/core.h>
 
+#include "core/printable.hpp"
+
 namespace armctl::program {
 
 namespace {
 
-std::string printable(std::string_view text, std::size_t longest = 40) {
-  std::string out;
-  for (char c : text.substr(0, longest)) out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-  if (text.size() > longest) out += "...";
-  return out;
+// Outside text for messages: control bytes escaped (core/printable.hpp), long text cut.
+std::string shown(std::string_view text, std::size_t longest = 40) {
+  return printable(text.substr(0, longest)) + (text.size() > longest ? "..." : "");
 }
 
 bool letter(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
@@ -26,8 +26,8 @@ std::string describe(const Token& t) {
   switch (t.kind) {
     case TokenKind::newline: return "the end of the line";
     case TokenKind::end_of_file: return "the end of the file";
-    case TokenKind::string: return fmt::format("the text \"{}\"", printable(t.text));
-    default: return fmt::format("'{}'", printable(t.text));
+    case TokenKind::string: return fmt::format("the text \"{}\"", shown(t.text));
+    default: return fmt::format("'{}'", shown(t.text));
   }
 }
 
@@ -37,7 +37,7 @@ Result<std::vector<Token>> lex_program(std::string_view text, std::string_view s
   auto place = [&](std::size_t at) { return Place{line, at - line_start + 1}; };
   auto fail = [&](std::size_t at, std::string_view found, std::string_view expected) {
     return Error{ErrorKind::invalid_config, fmt::format("{}:{}:{}: found '{}', expected {}", source, line,
-                                                        at - line_start + 1, printable(found), expected)};
+                                                        at - line_start + 1, shown(found), expected)};
   };
   while (i < text.size()) {
     const char c = text[i];

@@ -20,6 +20,7 @@
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/xarm_args.hpp"
 #include "core/error.hpp"
+#include "core/printable.hpp"
 #include "core/quantity.hpp"
 #include "program/group_compiler.hpp"
 #include "program/points_file.hpp"
@@ -180,7 +181,7 @@ void run_run(const ProgramArgs& a) {
     }
     if (e.kind == program::RunEventKind::print) {
       if (progress_line) fmt::print(stderr, "\r\033[K");
-      fmt::print("line {}: {}\n", piece.first_line, piece.text);
+      fmt::print("line {}: {}\n", piece.first_line, printable(piece.text));
       std::fflush(stdout);
     } else if (e.kind == program::RunEventKind::piece_done) {
       if (progress_line) fmt::print(stderr, "\r\033[K");
