@@ -50,11 +50,11 @@ def test_calls_and_return_values_on_the_emulated_xarm():
         arm.setPosition(1, 600, 300, wait=True)
         assert abs(arm.getPosition(1) - 600) <= 1
         arm.setPosition(2, -30.0, 300, wait=True)
-        assert arm.getPosition(2, degrees=True) == pytest.approx(-30.0, abs=0.3)
+        assert arm.getPosition(2, degrees=True) == pytest.approx(-30.0, abs=0.25)
         s1, s2 = xarm.Servo(1), xarm.Servo(2)
         assert arm.getPosition([s1, s2]) == [s1.position, s2.position]
         assert abs(s1.position - 600) <= 1
-        assert arm.getPosition(s2, True) == pytest.approx(-30.0, abs=0.3)
+        assert arm.getPosition(s2, True) == pytest.approx(-30.0, abs=0.25)
         assert arm.listServos() == [1, 2, 3, 4, 5, 6]
         assert arm.listServos(2) == [1, 2]
         arm.servoOff()

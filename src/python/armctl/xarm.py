@@ -15,7 +15,10 @@ right thing (docs/python.md "The xarm drop-in"):
   -120..120 degrees over 0..1000 (that package uses 0.25 degrees per unit, -125..125);
 - ``getBatteryVoltage()`` raises armctl.Error when the board does not answer instead of
   returning 0.0 after five seconds of retries;
-- ``getPosition([servo, ...])`` also returns the positions (that package returns None).
+- ``getPosition([servo, ...])`` also returns the positions (that package returns None);
+- ``setPosition(..., wait=True)`` returns when the servos are there (within one unit, as read
+  back after the duration, for at most one second more), not merely when the time is up;
+- a duration that is not an int 0..30000 ms is refused (that package sends its low 16 bits).
 
 Argument errors raise armctl.xarm.ArgumentError, which is both armctl.Error (kind
 'invalid_argument') and ValueError, as that package's checks raise ValueError.
@@ -31,6 +34,8 @@ __all__ = ["Controller", "Servo", "ArgumentError", "DEGREES_PER_UNIT"]
 DEGREES_PER_UNIT = 0.24
 _CENTRE = 500
 _ANGLE_LIMIT = _CENTRE * DEGREES_PER_UNIT  # 120 deg
+_SETTLED = 1  # units (0.24 deg): a servo this near its target has arrived
+_SETTLE_SECONDS = 1.0
 
 
 class ArgumentError(_armctl.Error, ValueError):
@@ -221,6 +226,19 @@ class Controller:
         self._client.move(targets, duration)
         if wait:
             _time.sleep(duration / 1000)
+            self._settle(targets)
+
+    def _settle(self, targets):
+        # The board's time is when its interpolation ends; a servo under load arrives a little
+        # later. Read until every servo is within _SETTLED units of its target (at most
+        # _SETTLE_SECONDS more): wait=True then means "there", not "the time is up".
+        deadline = _time.monotonic() + _SETTLE_SECONDS
+        wanted = dict(targets)
+        while True:
+            read = dict(self._client.read_positions(list(wanted)))
+            if all(abs(read[sid] - p) <= _SETTLED for sid, p in wanted.items()) or _time.monotonic() >= deadline:
+                return
+            _time.sleep(0.02)
 
     def getPosition(self, servos, degrees=False):
         """A servo's position in units (an int), or its angle in degrees with ``degrees=True``.
@@ -291,6 +309,15 @@ class Controller:
         self._client.write_servo_id(new_servo_id)
 
     def _present_servos(self):
+        # Every servo the board has: the arm controller's 7, else the xArm's 6 (each read of an
+        # absent servo costs a reply timeout, so the two usual sets are tried first).
         if self._present is None:
-            self._present = self.listServos(self._client.servo_count)
+            for count in (self._client.servo_count, 6):
+                try:
+                    self._present = [sid for sid, _ in self._client.read_positions(list(range(1, count + 1)))]
+                    break
+                except _armctl.Error:
+                    continue
+            else:
+                self._present = self.listServos(self._client.servo_count)
         return self._present
