@@ -538,7 +538,7 @@ void define_arm(py::module_& m) {
       .def("__repr__", [](const PyIkSolution& s) { return "IkSolution(joints=" + repr_array(s.joints) + ")"; });
 
   py::class_<PyJoint>(m, "Joint", "One joint of the arm model (arm file + URDF).")
-      .def_readonly("name", &PyJoint::name)
+      .def_readonly("name", &PyJoint::name, "as in the arm file (find it in any case)")
       .def_readonly("kind", &PyJoint::kind, "'revolute' (rad) or 'prismatic' (m)")
       .def_readonly("role", &PyJoint::role, "'chain' or 'gripper'")
       .def_readonly("lower", &PyJoint::lower, "position limit, rad or m")
@@ -569,15 +569,18 @@ void define_arm(py::module_& m) {
       });
 
   py::class_<PySegment>(m, "Segment", "A Cartesian path segment: made by armctl.Lin or armctl.Circ.")
-      .def_property_readonly("kind", [](const PySegment& s) { return std::string(motion::to_string(s.kind)); })
-      .def_property_readonly("position", [](const PySegment& s) { return to_array(Eigen::VectorXd(s.position)); })
-      .def_property_readonly("via", [](const PySegment& s) { return to_array(Eigen::VectorXd(s.via)); })
-      .def_readonly("roll", &PySegment::roll)
-      .def_readonly("pitch", &PySegment::pitch)
-      .def_readonly("yaw", &PySegment::yaw)
-      .def_readonly("speed", &PySegment::speed)
-      .def_readonly("angular_speed", &PySegment::angular_speed)
-      .def_readonly("zone", &PySegment::zone);
+      .def_property_readonly(
+          "kind", [](const PySegment& s) { return std::string(motion::to_string(s.kind)); }, "'LIN' or 'CIRC'")
+      .def_property_readonly(
+          "position", [](const PySegment& s) { return to_array(Eigen::VectorXd(s.position)); }, "its end point, m")
+      .def_property_readonly(
+          "via", [](const PySegment& s) { return to_array(Eigen::VectorXd(s.via)); }, "CIRC: a point on the arc, m")
+      .def_readonly("roll", &PySegment::roll, "rad at its end, or None: kept")
+      .def_readonly("pitch", &PySegment::pitch, "rad at its end, or None: kept")
+      .def_readonly("yaw", &PySegment::yaw, "rad at its end, or None: kept (xArm: follows the position)")
+      .def_readonly("speed", &PySegment::speed, "m/s of the tool point")
+      .def_readonly("angular_speed", &PySegment::angular_speed, "rad/s of the tool orientation, at most")
+      .def_readonly("zone", &PySegment::zone, "m: fly-by radius at its end; 0 = stop there");
 
   using namespace py::literals;
   m.def(

@@ -204,7 +204,9 @@ void define_robot_commands(py::module_& m) {
       .def("close", &PyRobotCommands::close, "Closes the board (an embedded one ends).")
       .def("__enter__", [](PyRobotCommands& c) -> PyRobotCommands& { return c; }, py::return_value_policy::reference)
       .def("__exit__", [](PyRobotCommands& c, py::object, py::object, py::object) { c.close(); })
-      .def_property_readonly("servo_count", [](PyRobotCommands& c) { return c.client().options().servo_count; })
+      .def_property_readonly(
+          "servo_count", [](PyRobotCommands& c) { return c.client().options().servo_count; },
+          "how many servos (IDs 1..n) this connection addresses")
       .def("move", &PyRobotCommands::move, "targets"_a, "time_ms"_a,
            "MultiServoMove: [(servo, position 0..1000 or None to keep), ...] over time_ms (0..30000).")
       .def("read_positions", &PyRobotCommands::read_positions, "servos"_a = py::none(),
