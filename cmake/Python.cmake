@@ -6,10 +6,6 @@
 set(ARMCTL_PYTHON AUTO CACHE STRING "Build the Python module (pybind11): ON, OFF or AUTO")
 set_property(CACHE ARMCTL_PYTHON PROPERTY STRINGS AUTO ON OFF)
 set(Python3_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "The Python the module is built for")
-# Where `make install` puts the package: Debian's python3 looks in
-# <prefix>/lib/python3/dist-packages for /usr/local (site.getsitepackages()).
-set(ARMCTL_PYTHON_INSTALL_DIR lib/python3/dist-packages CACHE STRING
-    "Install folder of the armctl Python package, under the prefix")
 
 if(ARMCTL_FUZZ)
   set(ARMCTL_PYTHON_ENABLED OFF)
@@ -35,4 +31,10 @@ armctl_resolve_part(ARMCTL_PYTHON ${_py_found}
 if(ARMCTL_PYTHON_ENABLED)
   # The static libraries go into a shared module.
   set(CMAKE_POSITION_INDEPENDENT_CODE ON)
+  # Where `make install` puts the package: Debian's python3 looks in
+  # /usr/local/lib/python3.N/dist-packages (where pip installs too); lib/python3/dist-packages
+  # is on its path only under /usr, the prefix of Debian's own packages.
+  set(ARMCTL_PYTHON_INSTALL_DIR
+      lib/python${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}/dist-packages CACHE STRING
+      "Install folder of the armctl Python package, under the prefix")
 endif()
