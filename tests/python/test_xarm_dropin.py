@@ -127,3 +127,22 @@ def test_scripts_run_on_the_scara_arm_controller(arm_controller):
     assert "Servos: [1, 2, 3, 4, 5, 6]" in out
     out = run_script("servo_off.py", arm_controller)
     assert "off: [1, 2, 3, 4, 5, 6, 7]" in out  # all seven, not just 1..6
+
+
+def test_com_ports_map_to_armctl_uris():
+    uri = xarm._device_uri
+    assert uri("USB", None) == "hid"
+    assert uri("USB497223563535", None) == "hid:497223563535"
+    assert uri("USB", "/dev/hidraw3") == "hid:/dev/hidraw3"
+    assert uri("/dev/ttyUSB0", None) == "/dev/ttyUSB0"
+    assert uri("serial:/dev/ttyAMA0?baud=115200", None) == "serial:/dev/ttyAMA0?baud=115200"
+    with pytest.raises(ValueError):
+        uri("", None)
+
+
+def test_a_missing_usb_board_is_an_error_not_a_hang():
+    started = time.monotonic()
+    with pytest.raises(armctl.Error) as e:
+        xarm.Controller("USB", usb_path="/dev/hidraw-none")
+    assert e.value.kind in ("io", "invalid_argument")
+    assert time.monotonic() - started < 5
