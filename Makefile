@@ -12,7 +12,8 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
   libhidapi-dev libgpiod-dev \
   gcc-avr avr-libc binutils-avr avrdude simavr libsimavr-dev libelf-dev \
   clang libclang-rt-14-dev ccache \
-  liburdfdom-dev liborocos-kdl-dev libkdl-parser-dev libeigen3-dev
+  liburdfdom-dev liborocos-kdl-dev libkdl-parser-dev libeigen3-dev \
+  pybind11-dev python3-dev python3-pytest python3-numpy
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 JOBS ?= 2
@@ -24,6 +25,9 @@ UDEV_RULES_DIR ?= /etc/udev/rules.d
 # The test and benchmark builds need the firmware and its HIL tests (avr-gcc, simavr): ON
 # makes a missing tool an error instead of a skipped part (cmake/Options.cmake).
 WITH_FIRMWARE := -DARMCTL_FIRMWARE=ON -DARMCTL_HIL=ON
+# The Python module (pybind11; docs/python.md): ON, so that a missing package fails the build.
+WITH_PYTHON := -DARMCTL_PYTHON=ON
+# The benchmarks build without it: the module makes every library position-independent code.
 FUZZ_BUILD := build/fuzz
 FUZZ_SECONDS ?= 60
 TEST_FUZZ_SECONDS ?= 10
@@ -43,7 +47,7 @@ deps:
 	fi
 
 $(BUILD)/build.ninja: | deps
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DARMCTL_SANITIZE=ON $(WITH_FIRMWARE)
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DARMCTL_SANITIZE=ON $(WITH_FIRMWARE) $(WITH_PYTHON)
 
 configure: deps $(BUILD)/build.ninja
 
@@ -58,7 +62,7 @@ demo: build
 	./scripts/demo.sh $(BUILD)/armctl
 
 bench: deps
-	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF $(WITH_FIRMWARE)
+	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF $(WITH_FIRMWARE) -DARMCTL_PYTHON=OFF
 	cmake --build $(BENCH_BUILD) -j $(JOBS)
 	./scripts/bench.sh $(BENCH_BUILD)
 
@@ -80,10 +84,11 @@ flash: deps
 # A Release build (no sanitizers, no tests, no firmware: the SDK and CLI need neither avr-gcc
 # nor simavr) installed into $(PREFIX): bin/armctl, the static libraries, their headers
 # (include/armctl/), the CMake package (lib/cmake/armctl: find_package(armctl)) and the
-# default configs (share/armctl); then the udev rule for the xArm's USB HID board.
+# default configs (share/armctl), the Python package (lib/python3.N/dist-packages/armctl, where
+# Debian's python3 finds it); then the udev rule for the xArm's USB HID board.
 install: deps
 	cmake -S . -B $(RELEASE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF \
-	  -DARMCTL_TESTS=OFF -DARMCTL_BENCH=OFF -DARMCTL_FIRMWARE=OFF -DARMCTL_HIL=OFF \
+	  -DARMCTL_TESTS=OFF -DARMCTL_BENCH=OFF -DARMCTL_FIRMWARE=OFF -DARMCTL_HIL=OFF $(WITH_PYTHON) \
 	  -DCMAKE_INSTALL_PREFIX=$(PREFIX)
 	cmake --build $(RELEASE_BUILD) -j $(JOBS)
 	$(SUDO) cmake --install $(RELEASE_BUILD)

@@ -257,6 +257,7 @@ Result<JointState> Arm::wait(const WaitOptions& options) {
     if (device_->clock().now() >= deadline)
       return Error{ErrorKind::timeout,
                    fmt::format("not arrived after {:.1f} s: {}", std::chrono::duration<double>(options.timeout).count(), late)};
+    if (options.interrupted && options.interrupted()) return Error{ErrorKind::device, "wait interrupted"};
     if (auto idled = device_->idle(options.poll.value_or(device_->poll_interval())); !idled) return idled.error();
   }
 }

@@ -8,6 +8,7 @@
 // thread-safe: one thread uses one Arm.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -49,6 +50,9 @@ struct WaitOptions {
   std::optional<Duration> poll;
   double angle_tolerance = 0.0087;  // rad (0.5 deg: two xArm servo units)
   double length_tolerance = 0.0005;  // m
+  // Asked between reads (a Ctrl-C flag, e.g. Python's KeyboardInterrupt): true ends the wait
+  // at once with an error (device, "wait interrupted"); the arm is left as it is.
+  std::function<bool()> interrupted;
 };
 
 class Arm {

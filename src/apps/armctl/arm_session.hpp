@@ -1,35 +1,15 @@
-// Opens what `armctl arm --arm A --device URI` names: the arm model (shipped xarm/scara or
-// an arm file) and a device for it. Without --device: the xArm on an emulated xArm board
-// embedded in this process, the SCARA on an embedded simulated arm on the joint bus.
-// For the SCARA, joint-bus URIs (sim..., unix:..., serial:...&select=...) drive the joints
-// directly; any Robot Commands URI (hid, serial:..., /dev/...) drives it through armctl's
-// arm controller.
+// The CLI's name for the arm session, which lives in armctl_session (src/session) so that
+// the CLI and the Python module open arms the same way.
 #pragma once
 
-#include <memory>
-#include <string>
-
 #include "apps/armctl/xarm_session.hpp"
-#include "arm/arm.hpp"
-#include "devices/joint_bus/bus_connection.hpp"
-#include "devices/joint_bus/bus_master.hpp"
+#include "session/arm_session.hpp"
 
 namespace armctl::cli {
 
-struct ArmSession {
-  // Destroyed in reverse: the arm first, then what it talks through.
-  std::unique_ptr<XarmSession> rc;
-  std::unique_ptr<joint_bus::BusConnection> bus;
-  std::unique_ptr<joint_bus::BusMaster> master;
-  std::unique_ptr<arm::Arm> arm;
-};
-
-// A URI that names a joint bus (sim..., unix:..., serial:...&select=...), not a Robot
-// Commands board.
-bool device_is_joint_bus(const std::string& device);
-
-// Throws ArmctlError naming what was wrong (arm file, URI, device).
-arm::ArmModel load_arm(const std::string& arm);
-std::unique_ptr<ArmSession> open_arm_session(const std::string& arm, const std::string& device);
+using session::ArmSession;
+using session::device_is_joint_bus;
+using session::load_arm;
+using session::open_arm_session;
 
 }  // namespace armctl::cli

@@ -1,4 +1,4 @@
-#include "apps/armctl/arm_session.hpp"
+#include "session/arm_session.hpp"
 
 #include <fmt/core.h>
 
@@ -7,7 +7,7 @@
 #include "devices/device_registry/device_registry.hpp"
 #include "transport/device_uri_parts.hpp"
 
-namespace armctl::cli {
+namespace armctl::session {
 
 // Read with the one URI parser, so the forms are those of docs/joint-bus-master.md.
 bool device_is_joint_bus(const std::string& device) {
@@ -43,4 +43,4 @@ std::unique_ptr<ArmSession> open_arm_session(const std::string& arm_name, const 
   return s;
 }
 
-}  // namespace armctl::cli
+}  // namespace armctl::session

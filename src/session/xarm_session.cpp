@@ -1,11 +1,11 @@
-#include "apps/armctl/xarm_session.hpp"
+#include "session/xarm_session.hpp"
 
 #include <fmt/core.h>
 
 #include "core/printable.hpp"
 #include "devices/robot_commands/hid_link.hpp"
 
-namespace armctl::cli {
+namespace armctl::session {
 
 XarmSession::~XarmSession() {
   // The embedded board ends with this command. Commands without a reply (move, offset save,
@@ -61,4 +61,4 @@ std::unique_ptr<XarmSession> open_xarm_session(const std::string& device, int se
   return s;
 }
 
-}  // namespace armctl::cli
+}  // namespace armctl::session

@@ -1,0 +1,708 @@
+// armctl.Arm: the Arm API (arm/arm.hpp) and host-planned motion (arm/motion_planning.hpp,
+// arm/motion_executor.hpp) for Python. SI units and the C++ names; every value is checked
+// by the C++ layers before anything moves. Device I/O runs with the GIL released; Ctrl-C
+// stops the arm, then raises KeyboardInterrupt (docs/python.md).
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "arm/motion_executor.hpp"
+#include "arm/motion_planning.hpp"
+#include "bindings.hpp"
+#include "motion/action_group_file.hpp"
+#include "python_support.hpp"
+#include "session/arm_session.hpp"
+
+namespace armctl::python {
+
+namespace {
+
+using Array = py::array_t<double>;
+
+Array to_array(const std::vector<double>& v) {
+  Array a(static_cast<py::ssize_t>(v.size()));
+  auto m = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < v.size(); ++i) m(static_cast<py::ssize_t>(i)) = v[i];
+  return a;
+}
+
+Array to_array(const Eigen::VectorXd& v) {
+  std::vector<double> out(v.data(), v.data() + v.size());
+  return to_array(out);
+}
+
+double seconds(Duration d) { return std::chrono::duration<double>(d).count(); }
+
+Duration duration_of(double s, const char* what) {
+  if (!std::isfinite(s) || s < 0 || s > 3600)
+    raise(ErrorKind::invalid_argument, fmt::format("{} {} s is not allowed: 0..3600 s", what, s));
+  return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(s));
+}
+
+// The Python-side value types (plain data, built here).
+struct PyJointState {
+  double time = 0;  // s on the device's clock
+  Array positions, device;
+};
+
+struct PyPose {
+  Array position;     // m
+  Array orientation;  // w, x, y, z
+  double roll = 0, pitch = 0, yaw = 0;  // rad, as Arm::tool_rpy gives them
+};
+
+struct PyIkSolution {
+  Array joints;
+  std::optional<std::string> elbow;
+  std::optional<bool> wrist_flipped, reaching_back;
+};
+
+struct PyJoint {
+  std::string name, kind, role;
+  double lower = 0, upper = 0, velocity = 0, acceleration = 0, jerk = 0;
+  std::optional<int> robot_commands_id, joint_bus_id;
+};
+
+struct PyReport {
+  double elapsed = 0, t_reached = 0, duration = 0, period = 0;
+  bool completed = false, stopped = false;
+  std::size_t points = 0, reads = 0;
+  double largest_following_error = 0;
+  std::optional<std::string> largest_following_joint;
+};
+
+// A LIN or CIRC segment of armctl.Arm.path, as Python writes it.
+struct PySegment {
+  motion::SegmentKind kind = motion::SegmentKind::lin;
+  Eigen::Vector3d position{0, 0, 0}, via{0, 0, 0};
+  std::optional<double> roll, pitch, yaw;
+  double speed = 0.05, angular_speed = M_PI / 4, zone = 0;
+};
+
+Eigen::Vector3d vec3(const std::vector<double>& v, const char* what) {
+  if (v.size() != 3)
+    raise(ErrorKind::invalid_argument, fmt::format("{} has {} values: give x, y, z in m", what, v.size()));
+  for (double x : v)
+    if (!std::isfinite(x)) raise(ErrorKind::invalid_argument, fmt::format("{} must be finite (x, y, z in m)", what));
+  return {v[0], v[1], v[2]};
+}
+
+std::optional<motion::Elbow> elbow_of(const std::optional<std::string>& e) {
+  if (!e) return std::nullopt;
+  for (auto v : {motion::Elbow::left, motion::Elbow::right, motion::Elbow::up, motion::Elbow::down})
+    if (*e == motion::to_string(v)) return v;
+  raise(ErrorKind::invalid_argument, fmt::format("elbow '{}' is not allowed: 'left', 'right' (SCARA), 'up', 'down' (xArm)", *e));
+}
+
+class PyArm {
+ public:
+  PyArm(const std::string& arm, const std::string& device) {
+    py::gil_scoped_release nogil;  // the embedded simulators start, HID boards answer
+    session_ = session::open_arm_session(arm, device);
+  }
+
+  void close() {
+    py::gil_scoped_release nogil;
+    session_.reset();
+  }
+
+  arm::Arm& arm() {
+    if (!session_) raise(ErrorKind::invalid_argument, "this Arm is closed");
+    return *session_->arm;
+  }
+  const arm::ArmModel& model() { return arm().model(); }
+
+  std::vector<PyJoint> joints() {
+    std::vector<PyJoint> out;
+    for (const auto& j : model().joints) {
+      PyJoint p;
+      p.name = j.name;
+      p.kind = j.dimension == Dimension::angle ? "revolute" : "prismatic";
+      p.role = j.role == arm::JointRole::chain ? "chain" : "gripper";
+      p.lower = j.limits.lower;
+      p.upper = j.limits.upper;
+      p.velocity = j.limits.velocity;
+      p.acceleration = j.limits.acceleration;
+      p.jerk = j.limits.jerk;
+      if (j.robot_commands) p.robot_commands_id = j.robot_commands->id;
+      if (j.joint_bus) p.joint_bus_id = j.joint_bus->id;
+      out.push_back(p);
+    }
+    return out;
+  }
+
+  std::vector<std::string> joint_names() {
+    std::vector<std::string> out;
+    for (const auto& j : model().joints) out.push_back(j.name);
+    return out;
+  }
+
+  PyJointState state_of(const arm::JointState& s) {
+    return {seconds(s.time.time_since_epoch()), to_array(s.positions), to_array(s.device)};
+  }
+
+  PyJointState read() {
+    arm::Arm& a = arm();
+    auto s = [&] {
+      py::gil_scoped_release nogil;
+      return a.read();
+    }();
+    return state_of(must(std::move(s)));
+  }
+
+  PyPose pose_of(const motion::Pose& p, const motion::JointVector& chain) {
+    PyPose out;
+    out.position = to_array(std::vector<double>{p.position.x(), p.position.y(), p.position.z()});
+    const auto& q = p.orientation;
+    out.orientation = to_array(std::vector<double>{q.w(), q.x(), q.y(), q.z()});
+    const motion::Rpy r = arm().tool_rpy(p, chain);
+    out.roll = r.roll;
+    out.pitch = r.pitch;
+    out.yaw = r.yaw;
+    return out;
+  }
+
+  PyPose pose() {
+    arm::Arm& a = arm();
+    auto s = [&] {
+      py::gil_scoped_release nogil;
+      return a.read();
+    }();
+    const auto q = a.chain_of(must(std::move(s)).positions);
+    return pose_of(a.forward(q), q);
+  }
+
+  // Chain joints (or every joint: the gripper is ignored).
+  motion::JointVector chain_from(const std::vector<double>& q) {
+    const int chain = model().chain_joints();
+    if (static_cast<int>(q.size()) != chain && static_cast<int>(q.size()) != model().joint_count())
+      raise(ErrorKind::invalid_argument, fmt::format("{} joint values given: arm '{}' takes {} (the chain) or {} (every joint)",
+                                                     q.size(), model().name, chain, model().joint_count()));
+    for (std::size_t i = 0; i < q.size(); ++i)
+      if (!std::isfinite(q[i])) raise(ErrorKind::invalid_argument, fmt::format("joint value {} is not finite", i));
+    motion::JointVector v(chain);
+    for (int i = 0; i < chain; ++i) v[i] = q[std::size_t(i)];
+    return v;
+  }
+
+  PyPose forward(const std::vector<double>& q) {
+    const auto chain = chain_from(q);
+    return pose_of(arm().forward(chain), chain);
+  }
+
+  arm::CartesianGoal goal_of(const std::vector<double>& position, std::optional<double> roll,
+                             std::optional<double> pitch, std::optional<double> yaw,
+                             const std::optional<std::string>& elbow, bool nearest) {
+    arm::CartesianGoal g;
+    g.position = vec3(position, "position");
+    g.roll = roll;
+    g.pitch = pitch;
+    g.yaw = yaw;
+    g.elbow = elbow_of(elbow);
+    g.nearest_orientation = nearest;
+    return g;
+  }
+
+  std::vector<PyIkSolution> inverse(const std::vector<double>& position, std::optional<double> roll,
+                                    std::optional<double> pitch, std::optional<double> yaw,
+                                    const std::optional<std::string>& elbow, bool nearest,
+                                    const std::optional<std::vector<double>>& near) {
+    const arm::CartesianGoal g = goal_of(position, roll, pitch, yaw, elbow, nearest);
+    arm::Arm& a = arm();
+    arm::JointState now;
+    if (near) {
+      if (static_cast<int>(near->size()) != model().joint_count())
+        raise(ErrorKind::invalid_argument,
+              fmt::format("near has {} values: arm '{}' has {} joints", near->size(), model().name, model().joint_count()));
+      now.positions = *near;
+    } else {
+      auto s = [&] {
+        py::gil_scoped_release nogil;
+        return a.read();
+      }();
+      now = must(std::move(s));
+    }
+    std::vector<PyIkSolution> out;
+    for (const auto& s : must(a.inverse(g, now))) {
+      PyIkSolution p;
+      p.joints = to_array(Eigen::VectorXd(s.joints));
+      if (s.configuration.elbow) p.elbow = motion::to_string(*s.configuration.elbow);
+      p.wrist_flipped = s.configuration.wrist_flipped;
+      p.reaching_back = s.configuration.reaching_back;
+      out.push_back(p);
+    }
+    return out;
+  }
+
+  // A joint given as its name (any case) or its index in the model's order.
+  int joint_index(const py::handle& key) {
+    if (py::isinstance<py::str>(key)) {
+      const auto name = key.cast<std::string>();
+      if (auto i = model().find_joint(name)) return *i;
+      raise(ErrorKind::invalid_argument,
+            fmt::format("arm {} has no joint '{}'; joints: {}", model().name, name, fmt::join(joint_names(), ", ")));
+    }
+    if (py::isinstance<py::int_>(key)) {
+      const long i = key.cast<long>();
+      if (i >= 0 && i < model().joint_count()) return static_cast<int>(i);
+      raise(ErrorKind::invalid_argument,
+            fmt::format("joint index {} is not allowed: 0..{}", i, model().joint_count() - 1));
+    }
+    raise(ErrorKind::invalid_argument, "a joint is named by its name (str) or its index (int)");
+  }
+
+  // Targets as Python gives them: a sequence with one entry per joint (None: keep), or a
+  // mapping {name or index: value}.
+  std::vector<std::optional<double>> targets_of(const py::object& targets) {
+    std::vector<std::optional<double>> out(std::size_t(model().joint_count()));
+    auto value = [](const py::handle& v) -> std::optional<double> {
+      if (v.is_none()) return std::nullopt;
+      return v.cast<double>();
+    };
+    if (py::isinstance<py::dict>(targets)) {
+      for (auto [k, v] : targets.cast<py::dict>()) out[std::size_t(joint_index(k))] = value(v);
+      return out;
+    }
+    if (py::isinstance<py::str>(targets) || !py::isinstance<py::sequence>(targets))
+      raise(ErrorKind::invalid_argument, "targets: a sequence with one value per joint (None keeps it) or a dict");
+    const auto seq = py::reinterpret_borrow<py::sequence>(targets);
+    if (seq.size() != out.size())
+      raise(ErrorKind::invalid_argument, fmt::format("{} targets given: arm '{}' has {} joints ({}); use None to keep one",
+                                                     seq.size(), model().name, out.size(), fmt::join(joint_names(), ", ")));
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = value(seq[i]);
+    return out;
+  }
+
+  static arm::MoveOptions move_options(std::optional<double> duration, double speed) {
+    arm::MoveOptions o;
+    if (duration) o.duration = duration_of(*duration, "duration");
+    o.speed = speed;
+    return o;
+  }
+
+  static arm::WaitOptions wait_options(double timeout, std::optional<double> poll, double angle_tolerance,
+                                       double length_tolerance) {
+    arm::WaitOptions w;
+    w.timeout = duration_of(timeout, "timeout");
+    if (poll) w.poll = duration_of(*poll, "poll");
+    if (!(angle_tolerance > 0) || !(length_tolerance > 0))
+      raise(ErrorKind::invalid_argument, "tolerances must be above 0 (rad, m)");
+    w.angle_tolerance = angle_tolerance;
+    w.length_tolerance = length_tolerance;
+    return w;
+  }
+
+  // Waits with the GIL released; Ctrl-C: Arm::stop, then KeyboardInterrupt.
+  PyJointState wait_with(arm::WaitOptions w) {
+    arm::Arm& a = arm();
+    InterruptWatch watch;
+    w.interrupted = [&] { return watch.check(); };
+    auto s = [&] {
+      py::gil_scoped_release nogil;
+      auto r = a.wait(w);
+      if (watch.tripped()) (void)a.stop();
+      return r;
+    }();
+    if (watch.tripped()) watch.rethrow();
+    return state_of(must(std::move(s)));
+  }
+
+  PyJointState wait(double timeout, std::optional<double> poll, double angle_tolerance, double length_tolerance) {
+    return wait_with(wait_options(timeout, poll, angle_tolerance, length_tolerance));
+  }
+
+  template <typename F>
+  void command(F&& f) {
+    arm::Arm& a = arm();
+    auto s = [&] {
+      py::gil_scoped_release nogil;
+      return f(a);
+    }();
+    must(s);
+  }
+
+  void after_move(bool wait_for_it, double timeout) {
+    if (wait_for_it) wait_with(wait_options(timeout, std::nullopt, 0.0087, 0.0005));
+  }
+
+  void move_joints(const py::object& targets, std::optional<double> duration, double speed, bool wait_for_it,
+                   double timeout) {
+    const auto t = targets_of(targets);
+    const auto o = move_options(duration, speed);
+    command([&](arm::Arm& a) { return a.move_joints(t, o); });
+    after_move(wait_for_it, timeout);
+  }
+
+  void move_to(const std::vector<double>& position, std::optional<double> roll, std::optional<double> pitch,
+               std::optional<double> yaw, const std::optional<std::string>& elbow, bool nearest,
+               std::optional<double> duration, double speed, bool wait_for_it, double timeout) {
+    const auto g = goal_of(position, roll, pitch, yaw, elbow, nearest);
+    const auto o = move_options(duration, speed);
+    command([&](arm::Arm& a) { return a.move_to(g, o); });
+    after_move(wait_for_it, timeout);
+  }
+
+  void gripper(double closed_fraction, std::optional<double> duration, double speed, bool wait_for_it,
+               double timeout) {
+    const auto o = move_options(duration, speed);
+    command([&](arm::Arm& a) { return a.gripper(closed_fraction, o); });
+    after_move(wait_for_it, timeout);
+  }
+
+  void stop() {
+    command([](arm::Arm& a) { return a.stop(); });
+  }
+  void set_torque(bool on) {
+    command([on](arm::Arm& a) { return a.set_torque(on); });
+  }
+
+  // Streams a planned motion through the executor; Ctrl-C: the executor's stop (the arm
+  // decelerates on the path), then KeyboardInterrupt.
+  PyReport execute(const arm::PlannedMotion& motion, double speed_override) {
+    if (!(speed_override > 0 && speed_override <= 1))
+      raise(ErrorKind::invalid_argument, fmt::format("speed_override {} is not allowed: above 0 up to 1", speed_override));
+    arm::Arm& a = arm();
+    InterruptWatch watch;
+    arm::ExecutorOptions eo;
+    eo.speed_override = speed_override;
+    eo.command = [&](const arm::MotionProgress&) {
+      return watch.check() ? arm::MotionCommand::stop : arm::MotionCommand::none;
+    };
+    auto r = [&] {
+      py::gil_scoped_release nogil;
+      auto report = arm::execute_motion(a, motion, eo);
+      // The last point is due when the motion ends: let the arm get there.
+      if (report && report->completed) {
+        arm::WaitOptions w;
+        w.interrupted = [&] { return watch.check(); };
+        if (auto s = a.wait(w); !s && !watch.tripped()) return Result<arm::MotionReport>(s.error());
+      }
+      if (watch.tripped()) (void)a.stop();
+      return report;
+    }();
+    if (watch.tripped()) watch.rethrow();
+    const auto& m = must(std::move(r));
+    PyReport p;
+    p.elapsed = seconds(m.elapsed);
+    p.t_reached = m.t_reached;
+    p.duration = motion.duration;
+    p.period = seconds(m.period);
+    p.completed = m.completed;
+    p.stopped = m.stopped;
+    p.points = m.points;
+    p.reads = m.reads;
+    p.largest_following_error = m.largest_following_error;
+    if (m.largest_following_joint >= 0)
+      p.largest_following_joint = model().joints[std::size_t(m.largest_following_joint)].name;
+    return p;
+  }
+
+  std::vector<double> here() {
+    arm::Arm& a = arm();
+    auto s = [&] {
+      py::gil_scoped_release nogil;
+      return a.read();
+    }();
+    return must(std::move(s)).positions;
+  }
+
+  PyReport joint_move(const py::object& target, const std::vector<py::object>& waypoints, double speed,
+                      double min_duration, double speed_override) {
+    const std::vector<double> from = here();
+    auto full = [&](const py::object& t) {
+      const auto targets = targets_of(t);
+      std::vector<double> q = from;
+      for (std::size_t i = 0; i < q.size(); ++i)
+        if (targets[i]) q[i] = *targets[i];
+      must(arm().check_targets(std::vector<std::optional<double>>(q.begin(), q.end())));
+      return q;
+    };
+    arm::JointMove move;
+    for (const auto& w : waypoints) move.waypoints.push_back(full(w));
+    move.target = full(target);
+    move.speed = speed;
+    move.min_duration = min_duration;
+    return execute(must(arm::plan_joint_move(model(), from, move)), speed_override);
+  }
+
+  PyReport path(const std::vector<PySegment>& segments, double speed_override, double acceleration,
+                double angular_acceleration) {
+    if (segments.empty()) raise(ErrorKind::invalid_argument, "path: give at least one segment (armctl.Lin, armctl.Circ)");
+    const std::vector<double> from = here();
+    arm::Arm& a = arm();
+    const motion::JointVector q = a.chain_of(from);
+    motion::Rpy current = a.tool_rpy(a.forward(q), q);
+    std::vector<motion::PathSegment> built;
+    for (const auto& s : segments) {
+      arm::CartesianGoal g;
+      g.position = s.position;
+      g.roll = s.roll;
+      g.pitch = s.pitch;
+      g.yaw = s.yaw;
+      current = a.goal_rpy(g, current);
+      motion::PathSegment seg;
+      seg.kind = s.kind;
+      seg.target.position = s.position;
+      seg.target.orientation = motion::from_rpy(current);
+      seg.via = s.via;
+      seg.speed = s.speed;
+      seg.angular_speed = s.angular_speed;
+      seg.zone = s.zone;
+      built.push_back(seg);
+    }
+    arm::PathTiming timing;
+    timing.acceleration = acceleration;
+    timing.angular_acceleration = angular_acceleration;
+    auto plan = must(arm::plan_path(model(), from, built, timing));
+    return execute(plan.motion, speed_override);
+  }
+
+  PyReport move_linear(const std::vector<double>& position, std::optional<double> roll, std::optional<double> pitch,
+                       std::optional<double> yaw, double speed, double angular_speed, double speed_override) {
+    PySegment s;
+    s.position = vec3(position, "position");
+    s.roll = roll;
+    s.pitch = pitch;
+    s.yaw = yaw;
+    s.speed = speed;
+    s.angular_speed = angular_speed;
+    return path({s}, speed_override, arm::PathTiming{}.acceleration, arm::PathTiming{}.angular_acceleration);
+  }
+
+  // ---- action groups (Robot Commands devices only)
+  robot_commands::Client& client() {
+    arm();
+    if (!session_->rc)
+      raise(ErrorKind::unsupported, fmt::format("action groups need a Robot Commands device; arm '{}' is on the joint bus "
+                                                "(open it with a Robot Commands URI to go through the arm controller)",
+                                                model().name));
+    return *session_->rc->client;
+  }
+
+  std::string description() { return arm().device().description(); }
+  std::string protocol() { return arm::to_string(arm().device().protocol()); }
+
+  std::unique_ptr<session::ArmSession> session_;
+};
+
+PySegment segment(motion::SegmentKind kind, const std::vector<double>& position, const std::vector<double>& via,
+                  std::optional<double> roll, std::optional<double> pitch, std::optional<double> yaw, double speed,
+                  double angular_speed, double zone) {
+  PySegment s;
+  s.kind = kind;
+  s.position = vec3(position, "position");
+  if (kind == motion::SegmentKind::circ) s.via = vec3(via, "via");
+  s.roll = roll;
+  s.pitch = pitch;
+  s.yaw = yaw;
+  s.speed = speed;
+  s.angular_speed = angular_speed;
+  s.zone = zone;
+  return s;
+}
+
+std::string repr_array(const Array& a) { return py::repr(a).cast<std::string>(); }
+
+}  // namespace
+
+void define_arm(py::module_& m) {
+  py::class_<PyJointState>(m, "JointState", "Every joint's position as read: SI and device units, and when.")
+      .def_readonly("time", &PyJointState::time, "s on the device's clock, when the positions were read")
+      .def_readonly("positions", &PyJointState::positions, "every joint, rad (revolute) or m (prismatic), the model's order")
+      .def_readonly("device", &PyJointState::device, "the same in device units, as read (servo units, clicks)")
+      .def("__repr__", [](const PyJointState& s) { return "JointState(positions=" + repr_array(s.positions) + ")"; });
+
+  py::class_<PyPose>(m, "Pose", "A tool pose in the base frame.")
+      .def_readonly("position", &PyPose::position, "x, y, z in m")
+      .def_readonly("orientation", &PyPose::orientation, "unit quaternion w, x, y, z")
+      .def_readonly("roll", &PyPose::roll, "rad, as people read them on this arm (Arm::tool_rpy)")
+      .def_readonly("pitch", &PyPose::pitch, "rad")
+      .def_readonly("yaw", &PyPose::yaw, "rad; on the xArm where the arm points")
+      .def("__repr__", [](const PyPose& p) {
+        return fmt::format("Pose(position={}, roll={:.4f}, pitch={:.4f}, yaw={:.4f})", repr_array(p.position), p.roll,
+                           p.pitch, p.yaw);
+      });
+
+  py::class_<PyIkSolution>(m, "IkSolution", "One inverse-kinematics solution.")
+      .def_readonly("joints", &PyIkSolution::joints, "chain joints, SI, base to tool")
+      .def_readonly("elbow", &PyIkSolution::elbow, "'left'/'right' (SCARA), 'up'/'down' (xArm), or None")
+      .def_readonly("wrist_flipped", &PyIkSolution::wrist_flipped, "SCARA: the wrist's second solution")
+      .def_readonly("reaching_back", &PyIkSolution::reaching_back, "xArm: base turned half a turn, arm over the top")
+      .def("__repr__", [](const PyIkSolution& s) { return "IkSolution(joints=" + repr_array(s.joints) + ")"; });
+
+  py::class_<PyJoint>(m, "Joint", "One joint of the arm model (arm file + URDF).")
+      .def_readonly("name", &PyJoint::name, "as in the arm file (find it in any case)")
+      .def_readonly("kind", &PyJoint::kind, "'revolute' (rad) or 'prismatic' (m)")
+      .def_readonly("role", &PyJoint::role, "'chain' or 'gripper'")
+      .def_readonly("lower", &PyJoint::lower, "position limit, rad or m")
+      .def_readonly("upper", &PyJoint::upper, "position limit, rad or m")
+      .def_readonly("velocity", &PyJoint::velocity, "limit, per s")
+      .def_readonly("acceleration", &PyJoint::acceleration, "limit, per s^2")
+      .def_readonly("jerk", &PyJoint::jerk, "limit, per s^3")
+      .def_readonly("robot_commands_id", &PyJoint::robot_commands_id, "servo ID on Robot Commands, or None")
+      .def_readonly("joint_bus_id", &PyJoint::joint_bus_id, "joint number on the joint bus, or None")
+      .def("__repr__", [](const PyJoint& j) {
+        return fmt::format("Joint('{}', {}, {}..{})", j.name, j.kind, j.lower, j.upper);
+      });
+
+  py::class_<PyReport>(m, "MotionReport", "How a streamed motion (joint_move, move_linear, path) went.")
+      .def_readonly("elapsed", &PyReport::elapsed, "s from the start, on the device's clock")
+      .def_readonly("t_reached", &PyReport::t_reached, "nominal s of the plan where it ended")
+      .def_readonly("duration", &PyReport::duration, "nominal s of the whole plan")
+      .def_readonly("completed", &PyReport::completed, "reached the end of the motion")
+      .def_readonly("stopped", &PyReport::stopped, "stopped on the path (never seen: Ctrl-C raises)")
+      .def_readonly("points", &PyReport::points, "stream points sent")
+      .def_readonly("reads", &PyReport::reads, "position read-backs")
+      .def_readonly("period", &PyReport::period, "s between stream points")
+      .def_readonly("largest_following_error", &PyReport::largest_following_error, "SI, over all joints and reads")
+      .def_readonly("largest_following_joint", &PyReport::largest_following_joint, "its joint, or None")
+      .def("__repr__", [](const PyReport& r) {
+        return fmt::format("MotionReport(completed={}, elapsed={:.3f}, points={})", r.completed ? "True" : "False",
+                           r.elapsed, r.points);
+      });
+
+  py::class_<PySegment>(m, "Segment", "A Cartesian path segment: made by armctl.Lin or armctl.Circ.")
+      .def_property_readonly(
+          "kind", [](const PySegment& s) { return std::string(motion::to_string(s.kind)); }, "'LIN' or 'CIRC'")
+      .def_property_readonly(
+          "position", [](const PySegment& s) { return to_array(Eigen::VectorXd(s.position)); }, "its end point, m")
+      .def_property_readonly(
+          "via", [](const PySegment& s) { return to_array(Eigen::VectorXd(s.via)); }, "CIRC: a point on the arc, m")
+      .def_readonly("roll", &PySegment::roll, "rad at its end, or None: kept")
+      .def_readonly("pitch", &PySegment::pitch, "rad at its end, or None: kept")
+      .def_readonly("yaw", &PySegment::yaw, "rad at its end, or None: kept (xArm: follows the position)")
+      .def_readonly("speed", &PySegment::speed, "m/s of the tool point")
+      .def_readonly("angular_speed", &PySegment::angular_speed, "rad/s of the tool orientation, at most")
+      .def_readonly("zone", &PySegment::zone, "m: fly-by radius at its end; 0 = stop there");
+
+  using namespace py::literals;
+  m.def(
+      "Lin",
+      [](const std::vector<double>& position, std::optional<double> roll, std::optional<double> pitch,
+         std::optional<double> yaw, double speed, double angular_speed, double zone) {
+        return segment(motion::SegmentKind::lin, position, {}, roll, pitch, yaw, speed, angular_speed, zone);
+      },
+      "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(), "yaw"_a = py::none(), "speed"_a = 0.05,
+      "angular_speed"_a = M_PI / 4, "zone"_a = 0.0,
+      "A straight line of the tool to `position` (x, y, z in m) at `speed` m/s (orientation turning at most\n"
+      "`angular_speed` rad/s); roll, pitch, yaw (rad) left out keep the tool's; `zone` (m) blends the corner at\n"
+      "its end (0: stop there).");
+  m.def(
+      "Circ",
+      [](const std::vector<double>& via, const std::vector<double>& position, std::optional<double> roll,
+         std::optional<double> pitch, std::optional<double> yaw, double speed, double angular_speed, double zone) {
+        return segment(motion::SegmentKind::circ, position, via, roll, pitch, yaw, speed, angular_speed, zone);
+      },
+      "via"_a, "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(), "yaw"_a = py::none(), "speed"_a = 0.05,
+      "angular_speed"_a = M_PI / 4, "zone"_a = 0.0,
+      "A circular arc of the tool through `via` to `position` (m); the rest as for Lin.");
+
+  py::class_<PyArm>(m, "Arm",
+                    "One arm in SI units over any device (the C++ armctl::arm::Arm).\n\n"
+                    "Arm(arm='xarm', device='') opens the shipped 'xarm' or 'scara' arm, or an arm file path, on\n"
+                    "the device URI: '' = the embedded simulator (an emulated xArm board, or the simulated SCARA on\n"
+                    "its joint bus), 'hid', 'serial:/dev/ttyUSB0', 'unix:/tmp/scara.sock', ... exactly as\n"
+                    "`armctl arm --device`. Joints in rad or m in the model's order; every value is checked\n"
+                    "before anything moves (armctl.Error, kind 'invalid_argument'). Ctrl-C during a move or a wait\n"
+                    "stops the arm, then raises KeyboardInterrupt. Use as a context manager to close it.")
+      .def(py::init<const std::string&, const std::string&>(), "arm"_a = "xarm", "device"_a = "")
+      .def("close", &PyArm::close, "Closes the device (an embedded simulator ends). Later calls raise armctl.Error.")
+      .def("__enter__", [](PyArm& a) -> PyArm& { return a; }, py::return_value_policy::reference)
+      .def("__exit__", [](PyArm& a, py::object, py::object, py::object) { a.close(); })
+      .def_property_readonly("name", [](PyArm& a) { return a.model().name; }, "the arm model's name")
+      .def_property_readonly("joints", &PyArm::joints, "every joint: name, kind, role, limits, device ids")
+      .def_property_readonly("joint_names", &PyArm::joint_names, "the joints' names, in the model's order")
+      .def_property_readonly("chain_joints", [](PyArm& a) { return a.model().chain_joints(); },
+                             "how many joints the kinematic chain has (the gripper follows them)")
+      .def_property_readonly("protocol", &PyArm::protocol, "'robot_commands' or 'joint_bus'")
+      .def_property_readonly("device_description", &PyArm::description, "what the arm is driven through")
+      .def("read", &PyArm::read, "Every joint's position now (JointState: SI and device units).")
+      .def("pose", &PyArm::pose, "The tool pose where the arm stands now.")
+      .def("forward", &PyArm::forward, "q"_a,
+           "Forward kinematics (nothing sent): the tool pose at chain joints `q` (or every joint, gripper ignored).")
+      .def("inverse", &PyArm::inverse, "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
+           "yaw"_a = py::none(), "elbow"_a = py::none(), "nearest_orientation"_a = false, "near"_a = py::none(),
+           "Every IK solution for the tool at `position` (m), nearest to `near` (every joint; default: read()) first.\n"
+           "roll, pitch, yaw (rad) left out keep the tool's (xArm: yaw follows the position); elbow keeps one\n"
+           "configuration; nearest_orientation lets the 5-joint xArm reach the position with the nearest orientation.\n"
+           "Unreachable: armctl.Error saying why (beyond reach by N mm, joint outside its limits). Nothing moves.")
+      .def("move_joints", &PyArm::move_joints, "targets"_a, "duration"_a = py::none(), "speed"_a = 0.25,
+           "wait"_a = false, "timeout"_a = 10.0,
+           "Moves the joints that have a target: a sequence with one value per joint (None keeps it) or a dict\n"
+           "{name or index: value}, SI. All arrive together after `duration` s, or with the slowest at `speed` (0..1]\n"
+           "of its velocity limit. wait=True: wait(timeout) afterwards.")
+      .def("move_to", &PyArm::move_to, "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
+           "yaw"_a = py::none(), "elbow"_a = py::none(), "nearest_orientation"_a = false, "duration"_a = py::none(),
+           "speed"_a = 0.25, "wait"_a = false, "timeout"_a = 10.0,
+           "PTP: moves the tool to `position` (m) through the IK solution nearest the current joints (as move_joints).")
+      .def("move_linear", &PyArm::move_linear, "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
+           "yaw"_a = py::none(), "speed"_a = 0.05, "angular_speed"_a = M_PI / 4, "speed_override"_a = 1.0,
+           "LIN: the tool along a straight line to `position` (m) at `speed` m/s, planned and checked on the host and\n"
+           "streamed; returns when it is there (MotionReport). Ctrl-C stops on the line, then KeyboardInterrupt.")
+      .def("path", &PyArm::path, "segments"_a, "speed_override"_a = 1.0, "acceleration"_a = 0.5,
+           "angular_acceleration"_a = 3.0,
+           "Runs a Cartesian path: a list of armctl.Lin / armctl.Circ, corners blended by their zones, timed with\n"
+           "the tool's `acceleration` (m/s^2) and `angular_acceleration` (rad/s^2). The whole path is checked first.\n"
+           "Ctrl-C stops on the path, then KeyboardInterrupt.")
+      .def("joint_move", &PyArm::joint_move, "target"_a, "waypoints"_a = std::vector<py::object>{}, "speed"_a = 0.25,
+           "min_duration"_a = 0.0, "speed_override"_a = 1.0,
+           "A jerk-limited joint move (plan_joint_move), streamed: through `waypoints` without stopping to `target`\n"
+           "(each as for move_joints), at `speed` of the velocity limits, taking at least `min_duration` s.")
+      .def("wait", &PyArm::wait, "timeout"_a = 10.0, "poll"_a = py::none(), "angle_tolerance"_a = 0.0087,
+           "length_tolerance"_a = 0.0005,
+           "Until every joint of the last move is within tolerance (rad, m) of its target and at rest; returns the\n"
+           "JointState. Not arrived in `timeout` s: armctl.Error (kind 'timeout') naming every late joint.")
+      .def("stop", &PyArm::stop, "Stops every joint where it is and holds it.")
+      .def("set_torque", &PyArm::set_torque, "on"_a, "off: the arm can be moved by hand; on: hold where it stands.")
+      .def("gripper", &PyArm::gripper, "closed_fraction"_a, "duration"_a = py::none(), "speed"_a = 0.25,
+           "wait"_a = false, "timeout"_a = 10.0, "The gripper: 0 = open, 1 = closed, anything between.")
+      .def(
+          "download_group",
+          [](PyArm& a, int group, const std::string& text) {
+            if (group < 0 || group > 254) raise(ErrorKind::invalid_argument, fmt::format("group {} is not allowed: 0..254", group));
+            const auto file = must(motion::parse_action_group(text, "<text>"));
+            auto& c = a.client();
+            must(released([&] { return c.download_group(static_cast<std::uint8_t>(group), file.actions); }));
+          },
+          "group"_a, "text"_a,
+          "Downloads an action group written in armctl's group-file format (docs/action-groups.md) to `group`.")
+      .def(
+          "run_group",
+          [](PyArm& a, int group, int times) {
+            if (group < 0 || group > 254 || times < 0 || times > 65535)
+              raise(ErrorKind::invalid_argument,
+                    fmt::format("group {} times {} is not allowed: group 0..254, times 0..65535 (0: forever)", group, times));
+            auto& c = a.client();
+            must(released([&] { return c.run_group(static_cast<std::uint8_t>(group), static_cast<std::uint16_t>(times)); }));
+          },
+          "group"_a, "times"_a = 1, "Runs an action group stored on the board `times` times (0: until stop_group).")
+      .def(
+          "stop_group",
+          [](PyArm& a) {
+            auto& c = a.client();
+            must(released([&] { return c.stop_group(); }));
+          },
+          "Stops the running action group.")
+      .def(
+          "erase_group",
+          [](PyArm& a, int group) {
+            if (group < 0 || group > 255) raise(ErrorKind::invalid_argument, fmt::format("group {} is not allowed: 0..255 (255: all)", group));
+            auto& c = a.client();
+            must(released([&] { return c.erase_group(static_cast<std::uint8_t>(group)); }));
+          },
+          "group"_a, "Erases an action group (255: all of them).")
+      .def(
+          "group_events",
+          [](PyArm& a, double timeout) { return group_events(a.client(), timeout); }, "timeout"_a = 0.0,
+          "The action-group notifications received so far (and within `timeout` s): a list of dicts\n"
+          "{'kind': 'started'|'stopped'|'finished', 'group': int|None, 'count': int|None}.");
+}
+
+}  // namespace armctl::python

@@ -1,0 +1,232 @@
+"""Type stubs of armctl's native module (src/python/*.cpp). Units are SI: rad, m, s."""
+
+from typing import Literal, Mapping, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+Vector = Sequence[float] | npt.NDArray[np.float64]
+JointKey = Union[str, int]
+# One value per joint (None keeps it), or {joint name or index: value}.
+Targets = Union[Sequence[Optional[float]], npt.NDArray[np.float64], Mapping[JointKey, Optional[float]]]
+ErrorKindName = Literal["invalid_argument", "invalid_config", "io", "timeout", "protocol", "device", "unsupported"]
+
+class Error(RuntimeError):
+    """Every failure armctl reports; ``kind`` is armctl's error kind, ``message`` the message."""
+
+    kind: ErrorKindName
+    message: str
+
+class JointState:
+    """Every joint's position as read."""
+
+    @property
+    def time(self) -> float:
+        """s on the device's clock, when the positions were read"""
+    @property
+    def positions(self) -> npt.NDArray[np.float64]:
+        """every joint, rad (revolute) or m (prismatic), in the model's order"""
+    @property
+    def device(self) -> npt.NDArray[np.float64]:
+        """the same in device units, as read (servo units, clicks)"""
+
+class Pose:
+    """A tool pose in the base frame."""
+
+    @property
+    def position(self) -> npt.NDArray[np.float64]:
+        """x, y, z in m"""
+    @property
+    def orientation(self) -> npt.NDArray[np.float64]:
+        """unit quaternion w, x, y, z"""
+    @property
+    def roll(self) -> float: ...
+    @property
+    def pitch(self) -> float: ...
+    @property
+    def yaw(self) -> float:
+        """rad; on the xArm, where the arm points"""
+
+class IkSolution:
+    """One inverse-kinematics solution."""
+
+    @property
+    def joints(self) -> npt.NDArray[np.float64]:
+        """chain joints, SI, base to tool"""
+    @property
+    def elbow(self) -> Optional[Literal["left", "right", "up", "down"]]: ...
+    @property
+    def wrist_flipped(self) -> Optional[bool]: ...
+    @property
+    def reaching_back(self) -> Optional[bool]: ...
+
+class Joint:
+    """One joint of the arm model."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def kind(self) -> Literal["revolute", "prismatic"]: ...
+    @property
+    def role(self) -> Literal["chain", "gripper"]: ...
+    @property
+    def lower(self) -> float: ...
+    @property
+    def upper(self) -> float: ...
+    @property
+    def velocity(self) -> float: ...
+    @property
+    def acceleration(self) -> float: ...
+    @property
+    def jerk(self) -> float: ...
+    @property
+    def robot_commands_id(self) -> Optional[int]: ...
+    @property
+    def joint_bus_id(self) -> Optional[int]: ...
+
+class MotionReport:
+    """How a streamed motion (joint_move, move_linear, path) went."""
+
+    @property
+    def elapsed(self) -> float: ...
+    @property
+    def t_reached(self) -> float: ...
+    @property
+    def duration(self) -> float: ...
+    @property
+    def completed(self) -> bool: ...
+    @property
+    def stopped(self) -> bool: ...
+    @property
+    def points(self) -> int: ...
+    @property
+    def reads(self) -> int: ...
+    @property
+    def period(self) -> float: ...
+    @property
+    def largest_following_error(self) -> float: ...
+    @property
+    def largest_following_joint(self) -> Optional[str]: ...
+
+class Segment:
+    """A Cartesian path segment, made by Lin or Circ."""
+
+    @property
+    def kind(self) -> Literal["LIN", "CIRC"]: ...
+    @property
+    def position(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def via(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def roll(self) -> Optional[float]: ...
+    @property
+    def pitch(self) -> Optional[float]: ...
+    @property
+    def yaw(self) -> Optional[float]: ...
+    @property
+    def speed(self) -> float: ...
+    @property
+    def angular_speed(self) -> float: ...
+    @property
+    def zone(self) -> float: ...
+
+def Lin(position: Vector, roll: Optional[float] = None, pitch: Optional[float] = None, yaw: Optional[float] = None,
+        speed: float = 0.05, angular_speed: float = 0.7853981633974483, zone: float = 0.0) -> Segment:
+    """A straight line of the tool to ``position`` (m) at ``speed`` m/s; ``zone`` (m) blends its end corner."""
+
+def Circ(via: Vector, position: Vector, roll: Optional[float] = None, pitch: Optional[float] = None,
+         yaw: Optional[float] = None, speed: float = 0.05, angular_speed: float = 0.7853981633974483,
+         zone: float = 0.0) -> Segment:
+    """A circular arc of the tool through ``via`` to ``position`` (m)."""
+
+class Arm:
+    """One arm in SI units over any device: Arm(arm='xarm', device='') ('' = the embedded simulator)."""
+
+    def __init__(self, arm: str = "xarm", device: str = "") -> None: ...
+    def close(self) -> None:
+        """Closes the device; later calls raise Error."""
+    def __enter__(self) -> "Arm": ...
+    def __exit__(self, *exc: object) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def joints(self) -> list[Joint]: ...
+    @property
+    def joint_names(self) -> list[str]: ...
+    @property
+    def chain_joints(self) -> int: ...
+    @property
+    def protocol(self) -> Literal["robot_commands", "joint_bus"]: ...
+    @property
+    def device_description(self) -> str: ...
+    def read(self) -> JointState:
+        """Every joint's position now."""
+    def pose(self) -> Pose:
+        """The tool pose where the arm stands now."""
+    def forward(self, q: Vector) -> Pose:
+        """The tool pose at chain joints ``q`` (or every joint); nothing is sent."""
+    def inverse(self, position: Vector, roll: Optional[float] = None, pitch: Optional[float] = None,
+                yaw: Optional[float] = None, elbow: Optional[str] = None, nearest_orientation: bool = False,
+                near: Optional[Vector] = None) -> list[IkSolution]:
+        """Every IK solution for the tool at ``position`` (m), nearest to ``near`` (default: read()) first."""
+    def move_joints(self, targets: Targets, duration: Optional[float] = None, speed: float = 0.25,
+                    wait: bool = False, timeout: float = 10.0) -> None:
+        """Moves the joints that have a target; all arrive together (after ``duration`` s, or at ``speed``)."""
+    def move_to(self, position: Vector, roll: Optional[float] = None, pitch: Optional[float] = None,
+                yaw: Optional[float] = None, elbow: Optional[str] = None, nearest_orientation: bool = False,
+                duration: Optional[float] = None, speed: float = 0.25, wait: bool = False,
+                timeout: float = 10.0) -> None:
+        """PTP: the tool to ``position`` (m) through the IK solution nearest the current joints."""
+    def move_linear(self, position: Vector, roll: Optional[float] = None, pitch: Optional[float] = None,
+                    yaw: Optional[float] = None, speed: float = 0.05, angular_speed: float = 0.7853981633974483,
+                    speed_override: float = 1.0) -> MotionReport:
+        """LIN: the tool along a straight line, streamed; returns when it is there."""
+    def path(self, segments: Sequence[Segment], speed_override: float = 1.0, acceleration: float = 0.5,
+             angular_acceleration: float = 3.0) -> MotionReport:
+        """Runs a Cartesian path of Lin and Circ segments, checked as a whole first."""
+    def joint_move(self, target: Targets, waypoints: Sequence[Targets] = ..., speed: float = 0.25,
+                   min_duration: float = 0.0, speed_override: float = 1.0) -> MotionReport:
+        """A jerk-limited joint move through ``waypoints`` to ``target``, streamed."""
+    def wait(self, timeout: float = 10.0, poll: Optional[float] = None, angle_tolerance: float = 0.0087,
+             length_tolerance: float = 0.0005) -> JointState:
+        """Until every joint of the last move is there and at rest; Error (timeout) names the late joints."""
+    def stop(self) -> None:
+        """Stops every joint where it is and holds it."""
+    def set_torque(self, on: bool) -> None:
+        """off: the arm can be moved by hand; on: hold where it stands."""
+    def gripper(self, closed_fraction: float, duration: Optional[float] = None, speed: float = 0.25,
+                wait: bool = False, timeout: float = 10.0) -> None:
+        """0 = open, 1 = closed."""
+    def download_group(self, group: int, text: str) -> None:
+        """Downloads an action group in armctl's group-file format (Robot Commands devices)."""
+    def run_group(self, group: int, times: int = 1) -> None:
+        """Runs a stored action group ``times`` times (0: until stop_group)."""
+    def stop_group(self) -> None: ...
+    def erase_group(self, group: int) -> None: ...
+    def group_events(self, timeout: float = 0.0) -> list[dict[str, Optional[Union[str, int]]]]:
+        """Action-group notifications: {'kind', 'group', 'count'}."""
+
+class RobotCommands:
+    """A Robot Commands board in device units: RobotCommands(device='sim', servo_count=6, timeout=0)."""
+
+    def __init__(self, device: str = "sim", servo_count: int = 6, timeout: float = 0.0) -> None: ...
+    def close(self) -> None: ...
+    def __enter__(self) -> "RobotCommands": ...
+    def __exit__(self, *exc: object) -> None: ...
+    @property
+    def servo_count(self) -> int: ...
+    def move(self, targets: Sequence[tuple[int, Optional[int]]], time_ms: int) -> None:
+        """[(servo, position 0..1000 or None), ...] over time_ms."""
+    def read_positions(self, servos: Optional[Sequence[int]] = None) -> list[tuple[int, int]]: ...
+    def servos_off(self, servos: Optional[Sequence[int]] = None) -> None: ...
+    def battery_millivolts(self) -> int: ...
+    def read_offsets(self, servos: Optional[Sequence[int]] = None) -> list[tuple[int, int]]: ...
+    def adjust_offset(self, servo: int, offset: int) -> None: ...
+    def save_offsets(self, servos: Optional[Sequence[int]] = None) -> None: ...
+    def write_servo_id(self, new_id: int) -> None: ...
+    def download_group(self, group: int, text: str) -> None: ...
+    def run_group(self, group: int, times: int = 1) -> None: ...
+    def stop_group(self) -> None: ...
+    def erase_group(self, group: int) -> None: ...
+    def set_group_speed(self, group: int, percent: int) -> None: ...
+    def group_events(self, timeout: float = 0.0) -> list[dict[str, Optional[Union[str, int]]]]: ...

@@ -1,0 +1,85 @@
+#include "python_support.hpp"
+
+namespace armctl::python {
+
+namespace {
+
+PyObject* error_type = nullptr;  // armctl.Error, owned by the module
+
+// The enumerator's name, as a program tests it (to_string gives words for people).
+const char* kind_name(ErrorKind kind) {
+  switch (kind) {
+    case ErrorKind::invalid_argument: return "invalid_argument";
+    case ErrorKind::invalid_config: return "invalid_config";
+    case ErrorKind::io: return "io";
+    case ErrorKind::timeout: return "timeout";
+    case ErrorKind::protocol: return "protocol";
+    case ErrorKind::device: return "device";
+    case ErrorKind::unsupported: return "unsupported";
+  }
+  return "device";
+}
+
+}  // namespace
+
+void define_error(py::module_& m) {
+  error_type = PyErr_NewExceptionWithDoc(
+      "armctl.Error",
+      "Every failure armctl reports: a refused value, a device that does not answer, a move that\n"
+      "did not arrive. A subclass of RuntimeError; str(e) is the message, e.kind armctl's error\n"
+      "kind: 'invalid_argument', 'invalid_config', 'io', 'timeout', 'protocol', 'device' or\n"
+      "'unsupported', e.message the message.",
+      PyExc_RuntimeError, nullptr);
+  if (!error_type) throw py::error_already_set();
+  m.add_object("Error", py::handle(error_type));
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const ArmctlError& e) {
+      try {
+        raise(e.error());
+      } catch (py::error_already_set& set) {
+        set.restore();
+      }
+    }
+  });
+}
+
+void raise(const Error& error) {
+  py::object e = py::reinterpret_borrow<py::object>(error_type)(error.message);
+  e.attr("kind") = kind_name(error.kind);
+  e.attr("message") = error.message;
+  PyErr_SetObject(error_type, e.ptr());
+  throw py::error_already_set();
+}
+
+void raise(ErrorKind kind, const std::string& message) { raise(Error{kind, message}); }
+
+InterruptWatch::~InterruptWatch() {
+  if (!pending_ && !type_ && !traceback_) return;
+  py::gil_scoped_acquire gil;
+  Py_XDECREF(type_);
+  Py_XDECREF(pending_);
+  Py_XDECREF(traceback_);
+}
+
+bool InterruptWatch::check() {
+  if (pending_) return true;
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() == 0) return false;
+  PyErr_Fetch(&type_, &pending_, &traceback_);
+  PyErr_NormalizeException(&type_, &pending_, &traceback_);
+  if (!pending_) {  // a handler that raised without a value: keep the type
+    pending_ = type_;
+    Py_XINCREF(pending_);
+  }
+  return true;
+}
+
+void InterruptWatch::rethrow() {
+  PyErr_Restore(type_, pending_, traceback_);
+  type_ = pending_ = traceback_ = nullptr;
+  throw py::error_already_set();
+}
+
+}  // namespace armctl::python
