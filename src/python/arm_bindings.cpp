@@ -15,6 +15,9 @@
 
 #include "arm/motion_executor.hpp"
 #include "arm/motion_planning.hpp"
+#include "program/program_load.hpp"
+#include "program/program_plan.hpp"
+#include "program/program_runner.hpp"
 #include "bindings.hpp"
 #include "motion/action_group_file.hpp"
 #include "python_support.hpp"
@@ -476,6 +479,50 @@ class PyArm {
     return path({s}, speed_override, arm::PathTiming{}.acceleration, arm::PathTiming{}.angular_acceleration);
   }
 
+  // ---- programs (docs/programs.md): the CLI's `program check` and `program run`
+  // Needs the GIL (errors are raised); here() releases it for its read.
+  program::ProgramPlan plan_program_file(const std::string& file, const std::string& points) {
+    const program::LoadedProgram l = must(program::load_program(file, points));
+    const std::vector<double> from = here();
+    return must(program::plan_program(arm(), from, l.flow, l.program.source));
+  }
+
+  py::dict check_program(const std::string& file, const std::string& points) {
+    const program::ProgramPlan p = plan_program_file(file, points);
+    py::dict out;
+    out["duration"] = p.duration;
+    out["moves"] = p.moves;
+    out["pieces"] = p.pieces.size();
+    return out;
+  }
+
+  py::dict run_program(const std::string& file, const std::string& points, double speed_override) {
+    if (!(speed_override > 0 && speed_override <= 1))
+      raise(ErrorKind::invalid_argument, fmt::format("speed_override {} is not allowed: above 0 up to 1", speed_override));
+    const program::ProgramPlan plan = plan_program_file(file, points);  // every check first
+    InterruptWatch watch;
+    std::vector<std::string> printed;
+    auto r = [&] {
+      py::gil_scoped_release nogil;
+      program::RunOptions o;
+      o.speed_override = speed_override;
+      o.command = [&] { return watch.check() ? arm::MotionCommand::stop : arm::MotionCommand::none; };
+      o.on_event = [&](const program::RunEvent& e) {
+        if (e.kind == program::RunEventKind::print && e.piece) printed.push_back(e.piece->text);
+      };
+      return program::run_plan(arm(), plan, o);
+    }();
+    if (watch.tripped()) watch.rethrow();
+    const program::RunReport& rep = must(std::move(r));
+    py::dict out;
+    out["completed"] = rep.completed;
+    out["pieces"] = rep.pieces;
+    out["elapsed"] = seconds(rep.elapsed);
+    out["largest_following_error"] = rep.largest_following_error;
+    out["printed"] = printed;
+    return out;
+  }
+
   // ---- action groups (Robot Commands devices only)
   robot_commands::Client& client() {
     arm();
@@ -646,6 +693,13 @@ void define_arm(py::module_& m) {
            "yaw"_a = py::none(), "speed"_a = 0.05, "angular_speed"_a = M_PI / 4, "speed_override"_a = 1.0,
            "LIN: the tool along a straight line to `position` (m) at `speed` m/s, planned and checked on the host and\n"
            "streamed; returns when it is there (MotionReport). Ctrl-C stops on the line, then KeyboardInterrupt.")
+      .def("check_program", &PyArm::check_program, "file"_a, "points"_a = "",
+           "Checks a robot program (docs/programs.md) before anything moves: every point resolves, every move is\n"
+           "reachable and inside the joint limits along its whole path. Returns {'duration': s, 'moves', 'pieces'};\n"
+           "armctl.Error names the file, line and why. `points`: the points file (default FILE.points if it exists).")
+      .def("run_program", &PyArm::run_program, "file"_a, "points"_a = "", "speed_override"_a = 1.0,
+           "Checks, then runs a robot program on the arm. Returns {'completed', 'pieces', 'elapsed', \n"
+           "'largest_following_error', 'printed'}. Ctrl-C stops on the path, then KeyboardInterrupt.")
       .def("path", &PyArm::path, "segments"_a, "speed_override"_a = 1.0, "acceleration"_a = 0.5,
            "angular_acceleration"_a = 3.0,
            "Runs a Cartesian path: a list of armctl.Lin / armctl.Circ, corners blended by their zones, timed with\n"

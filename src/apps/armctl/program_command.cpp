@@ -25,6 +25,7 @@
 #include "program/group_compiler.hpp"
 #include "program/points_file.hpp"
 #include "program/program_flow.hpp"
+#include "program/program_load.hpp"
 #include "program/program_parser.hpp"
 #include "program/program_plan.hpp"
 #include "program/program_runner.hpp"
@@ -56,28 +57,9 @@ T must(Result<T> r) {
   return std::move(r.value());
 }
 
-// The program, its points (--points, else FILE's name with .points if that exists, else
-// none) and its flow: everything that needs no arm.
-struct Loaded {
-  program::Program program;
-  program::PointsFile points;
-  program::Flow flow;
-};
+using Loaded = program::LoadedProgram;
 
-Loaded load(const ProgramArgs& a) {
-  Loaded l;
-  l.program = must(program::read_program_file(a.file));
-  std::filesystem::path points = a.points;
-  if (points.empty()) {
-    std::filesystem::path guess = a.file;
-    guess.replace_extension(".points");
-    std::error_code ec;
-    if (std::filesystem::exists(guess, ec)) points = guess;
-  }
-  if (!points.empty()) l.points = must(program::read_points_file(points));
-  l.flow = must(program::run_flow(l.program, l.points));
-  return l;
-}
+Loaded load(const ProgramArgs& a) { return must(program::load_program(a.file, a.points)); }
 
 double parse_override(const std::string& text) {
   if (text.empty()) return 1.0;

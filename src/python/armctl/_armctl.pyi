@@ -1,6 +1,6 @@
 """Type stubs of armctl's native module (src/python/*.cpp). Units are SI: rad, m, s."""
 
-from typing import Literal, Mapping, Optional, Sequence, Union
+from typing import Any, Dict, Literal, Mapping, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -184,6 +184,10 @@ class Arm:
     def path(self, segments: Sequence[Segment], speed_override: float = 1.0, acceleration: float = 0.5,
              angular_acceleration: float = 3.0) -> MotionReport:
         """Runs a Cartesian path of Lin and Circ segments, checked as a whole first."""
+    def check_program(self, file: str, points: str = "") -> Dict[str, Any]:
+        """Checks a robot program before anything moves: {'duration', 'moves', 'pieces'}."""
+    def run_program(self, file: str, points: str = "", speed_override: float = 1.0) -> Dict[str, Any]:
+        """Checks, then runs a robot program: {'completed', 'pieces', 'elapsed', 'largest_following_error', 'printed'}."""
     def joint_move(self, target: Targets, waypoints: Sequence[Targets] = ..., speed: float = 0.25,
                    min_duration: float = 0.0, speed_override: float = 1.0) -> MotionReport:
         """A jerk-limited joint move through ``waypoints`` to ``target``, streamed."""
