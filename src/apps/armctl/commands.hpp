@@ -15,5 +15,6 @@ void add_list_command(CLI::App& app);        // list_command.cpp: attached board
 void add_controller_command(CLI::App& app);  // controller_command.cpp: the arm controller
 void add_arm_command(CLI::App& app);         // arm_command.cpp: the Arm API in SI units
 void add_stop_command(CLI::App& app);        // stop_command.cpp: stop any device now
+void add_program_command(CLI::App& app);     // program_command.cpp: robot programs
 
 }  // namespace armctl::cli

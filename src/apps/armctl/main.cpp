@@ -72,6 +72,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   armctl::cli::add_arm_command(app);
   armctl::cli::add_stop_command(app);
+  armctl::cli::add_program_command(app);
   armctl::cli::add_bus_command(app);
   armctl::cli::add_sim_command(app);
   armctl::cli::add_xarm_command(app);

@@ -1,0 +1,274 @@
+// armctl program check|run|compile FILE: robot programs (docs/programs.md). Every command
+// first checks the whole program on the planner (every point resolves, every move
+// reachable and inside the joint limits along its whole path, from where the arm stands);
+// nothing moves unless all of it passes.
+#include <unistd.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "apps/armctl/arm_session.hpp"
+#include "apps/armctl/commands.hpp"
+#include "apps/armctl/serve_support.hpp"
+#include "apps/armctl/xarm_args.hpp"
+#include "core/error.hpp"
+#include "core/quantity.hpp"
+#include "program/group_compiler.hpp"
+#include "program/points_file.hpp"
+#include "program/program_flow.hpp"
+#include "program/program_parser.hpp"
+#include "program/program_plan.hpp"
+#include "program/program_runner.hpp"
+
+namespace armctl::cli {
+
+namespace {
+
+using nlohmann::json;
+
+struct ProgramArgs {
+  std::string file;
+  std::string arm = "xarm";
+  std::string device;
+  std::string points;
+  bool json = false;
+  std::string speed_override;
+  bool step = false;
+  bool dry_run = false;
+  std::string group;
+  std::string path_error;
+};
+
+[[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
+
+template <typename T>
+T must(Result<T> r) {
+  if (!r) throw ArmctlError(r.error());
+  return std::move(r.value());
+}
+
+// The program, its points (--points, else FILE's name with .points if that exists, else
+// none) and its flow: everything that needs no arm.
+struct Loaded {
+  program::Program program;
+  program::PointsFile points;
+  program::Flow flow;
+};
+
+Loaded load(const ProgramArgs& a) {
+  Loaded l;
+  l.program = must(program::read_program_file(a.file));
+  std::filesystem::path points = a.points;
+  if (points.empty()) {
+    std::filesystem::path guess = a.file;
+    guess.replace_extension(".points");
+    std::error_code ec;
+    if (std::filesystem::exists(guess, ec)) points = guess;
+  }
+  if (!points.empty()) l.points = must(program::read_points_file(points));
+  l.flow = must(program::run_flow(l.program, l.points));
+  return l;
+}
+
+double parse_override(const std::string& text) {
+  if (text.empty()) return 1.0;
+  std::string t = text;
+  if (t.back() == '%') t.pop_back();
+  double v = 0;
+  auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v) || v <= 0 || v > 100)
+    usage(fmt::format("--override '{}' is not allowed: a percentage of the programmed speeds, above 0 up to 100%", text));
+  return v / 100;
+}
+
+program::ProgramPlan plan(const Loaded& l, arm::Arm& arm, bool blend) {
+  const auto here = must(arm.read());
+  program::PlanOptions o;
+  o.blend = blend;
+  return must(program::plan_program(arm, here.positions, l.flow, l.program.source, o));
+}
+
+void print_check(const ProgramArgs& a, const Loaded& l, const program::ProgramPlan& p, const arm::Arm& arm) {
+  if (a.json) {
+    json pieces = json::array();
+    for (const auto& piece : p.pieces)
+      pieces.push_back({{"line", piece.first_line},
+                        {"last_line", piece.last_line},
+                        {"what", piece.label},
+                        {"seconds", piece.kind == program::PieceKind::motion ? piece.motion.duration : piece.seconds}});
+    fmt::print("{}\n", json{{"event", "checked"}, {"arm", arm.model().name}, {"moves", p.moves},
+                            {"pieces", pieces}, {"statements", l.flow.statements}, {"duration_s", p.duration}}
+                           .dump());
+    return;
+  }
+  for (const auto& piece : p.pieces) {
+    if (piece.kind == program::PieceKind::print) continue;
+    fmt::print("  {:<60} {:7.2f} s\n", piece.label,
+               piece.kind == program::PieceKind::motion ? piece.motion.duration : piece.seconds);
+  }
+  fmt::print("{}: OK on arm '{}': {} move{} in {} piece{}, {} statements run; estimated run time {:.1f} s at 100 %\n",
+             l.program.source, arm.model().name, p.moves, p.moves == 1 ? "" : "s", p.pieces.size(),
+             p.pieces.size() == 1 ? "" : "s", l.flow.statements, p.duration);
+}
+
+void run_check(const ProgramArgs& a) {
+  const Loaded l = load(a);
+  auto s = open_arm_session(a.arm, a.device);
+  const auto p = plan(l, *s->arm, true);
+  print_check(a, l, p, *s->arm);
+}
+
+void run_run(const ProgramArgs& a) {
+  if (a.dry_run && !a.device.empty())
+    usage("--dry-run runs on the embedded simulated arm: leave out --device (or drop --dry-run to run on it)");
+  const double speed_override = parse_override(a.speed_override);
+  const Loaded l = load(a);
+  auto s = open_arm_session(a.arm, a.device);
+  arm::Arm& arm = *s->arm;
+  const auto p = plan(l, arm, !a.step);  // refuses before anything moves
+  if (a.json)
+    fmt::print("{}\n", json{{"event", "planned"}, {"moves", p.moves}, {"pieces", p.pieces.size()},
+                            {"duration_s", p.duration}, {"dry_run", a.dry_run}}
+                           .dump());
+  else
+    fmt::print("{}planned {} move{} ({} piece{}), about {:.1f} s\n", a.dry_run ? "dry run on the simulated arm: " : "",
+               p.moves, p.moves == 1 ? "" : "s", p.pieces.size(), p.pieces.size() == 1 ? "" : "s", p.duration);
+  std::fflush(stdout);
+
+  Interrupted interrupted;
+  StopOnSignals on_signals(interrupted);
+  const bool progress_line = !a.json && isatty(STDERR_FILENO);
+  program::RunOptions o;
+  o.speed_override = speed_override;
+  o.command = [&] { return interrupted ? arm::MotionCommand::stop : arm::MotionCommand::none; };
+  if (a.step)
+    o.before_motion = [&](const program::PlannedPiece& piece) {
+      fmt::print(stderr, "{}: Enter to run it, q then Enter to stop: ", piece.label);
+      std::fflush(stderr);
+      std::string line;
+      if (!std::getline(std::cin, line) || line == "q") return false;
+      return true;
+    };
+  o.on_event = [&](const program::RunEvent& e) {
+    const auto& piece = *e.piece;
+    if (a.json) {
+      json j{{"line", piece.first_line}, {"what", piece.label}, {"left_s", e.left}};
+      switch (e.kind) {
+        case program::RunEventKind::piece_started: j["event"] = "line"; break;
+        case program::RunEventKind::progress: j["event"] = "progress"; break;
+        case program::RunEventKind::print: j["event"] = "print"; j["text"] = piece.text; break;
+        case program::RunEventKind::piece_done:
+          j["event"] = e.report && !e.report->completed ? "stopped" : "done";
+          if (e.report) {
+            j["elapsed_s"] = std::chrono::duration<double>(e.report->elapsed).count();
+            j["points"] = e.report->points;
+            j["following_error"] = e.report->largest_following_error;
+          }
+          break;
+      }
+      fmt::print("{}\n", j.dump());
+      std::fflush(stdout);
+      return;
+    }
+    if (e.kind == program::RunEventKind::print) {
+      if (progress_line) fmt::print(stderr, "\r\033[K");
+      fmt::print("line {}: {}\n", piece.first_line, piece.text);
+      std::fflush(stdout);
+    } else if (e.kind == program::RunEventKind::piece_done) {
+      if (progress_line) fmt::print(stderr, "\r\033[K");
+      if (e.report)
+        fmt::print("{}: {} in {:.2f} s\n", piece.label, e.report->completed ? "done" : "stopped",
+                   std::chrono::duration<double>(e.report->elapsed).count());
+      else
+        fmt::print("{}: done\n", piece.label);
+      std::fflush(stdout);
+    } else if (progress_line) {
+      fmt::print(stderr, "\r\033[K{}: {:.1f} s left", piece.label, e.left);
+    }
+  };
+  const auto report = must(program::run_plan(arm, p, o));
+  if (progress_line) fmt::print(stderr, "\r\033[K");
+  const double elapsed = std::chrono::duration<double>(report.elapsed).count();
+  if (a.json)
+    fmt::print("{}\n", json{{"event", report.completed ? "finished" : "stopped"}, {"elapsed_s", elapsed},
+                            {"pieces", report.pieces}}
+                           .dump());
+  else if (report.completed)
+    fmt::print("finished in {:.1f} s\n", elapsed);
+  std::fflush(stdout);
+  if (!report.completed)
+    throw ArmctlError(ErrorKind::device, fmt::format("stopped after {} of {} pieces{} (the arm is at rest)", report.pieces,
+                                                     p.pieces.size(), interrupted ? " by a signal" : ""));
+}
+
+void run_compile(const ProgramArgs& a) {
+  const auto group = xarm_args::parse_group(a.group, false);
+  program::CompileOptions co;
+  if (!a.path_error.empty()) {
+    co.path_error = must(parse_quantity(a.path_error, Dimension::length, "--path-error", 0, "mm"));
+    if (!(co.path_error >= 1e-4 && co.path_error <= 0.05))
+      usage(fmt::format("--path-error '{}' is not allowed: 0.1mm up to 50mm", a.path_error));
+  }
+  const Loaded l = load(a);
+  auto s = open_arm_session(a.arm, a.device);
+  if (!s->rc)
+    usage(fmt::format("arm '{}' on device '{}' is driven over the joint bus: action groups need a Robot Commands "
+                      "board (an xArm, or armctl's arm controller)",
+                      s->arm->model().name, a.device.empty() ? "sim" : a.device));
+  const auto p = plan(l, *s->arm, true);
+  const auto g = must(program::compile_to_group(*s->arm, p, co));
+  if (auto ok = s->rc->client->download_group(group, g.actions); !ok) throw ArmctlError(ok.error());
+  for (const auto& n : g.notes) fmt::print(stderr, "note: {}\n", n);
+  if (a.json)
+    fmt::print("{}\n", json{{"event", "compiled"}, {"group", group}, {"actions", g.actions.size()},
+                            {"duration_s", g.duration}, {"path_error_mm", co.path_error * 1e3},
+                            {"sampling_error_mm", g.sampling_error * 1e3}}
+                           .dump());
+  else
+    fmt::print("group {}: {} actions downloaded, {:.1f} s; sampled within {:.2f} mm of the plan (allowed {:.2f} mm), "
+               "replay with: armctl xarm group run {}\n",
+               group, g.actions.size(), g.duration, g.sampling_error * 1e3, co.path_error * 1e3, group);
+}
+
+}  // namespace
+
+void add_program_command(CLI::App& app) {
+  auto a = std::make_shared<ProgramArgs>();
+  auto* cmd = app.add_subcommand("program", "Robot programs: check, run or compile a program file (docs/programs.md)");
+  cmd->require_subcommand(1);
+  cmd->footer(
+      "A program moves to named points kept in a points file (--points, default: the program's\n"
+      "name with .points). Every command checks the whole program first, from where the arm\n"
+      "stands: nothing moves unless every move is reachable and inside the joint limits.");
+  auto common = [a](CLI::App* sub) {
+    sub->add_option("file", a->file, "Program file")->required();
+    sub->add_option("--arm", a->arm, "xarm | scara | an arm file (default xarm)");
+    sub->add_option("--device", a->device, "As for `armctl arm` (default: the embedded simulated arm)");
+    sub->add_option("--points", a->points, "Points file (default: FILE with .points, if it exists)");
+    sub->add_flag("--json", a->json, "Machine-readable output (one JSON object per line)");
+  };
+  auto* check = cmd->add_subcommand("check", "Check every move before anything moves; estimate the run time");
+  common(check);
+  check->callback([a] { run_check(*a); });
+  auto* run = cmd->add_subcommand("run", "Check, then run the program");
+  common(run);
+  run->add_option("--override", a->speed_override, "Percent of the programmed speeds (default 100%)");
+  run->add_flag("--step", a->step, "Wait for Enter before each move (moves are not blended)");
+  run->add_flag("--dry-run", a->dry_run, "Run on the embedded simulated arm and print what would happen");
+  run->callback([a] { run_run(*a); });
+  auto* compile = cmd->add_subcommand("compile", "Compile to a Robot Commands action group and download it");
+  common(compile);
+  compile->add_option("--group", a->group, "Group number 0..254")->required();
+  compile->add_option("--path-error", a->path_error, "Largest tool distance from the plan (default 1mm)");
+  compile->callback([a] { run_compile(*a); });
+}
+
+}  // namespace armctl::cli

@@ -1,0 +1,215 @@
+#include "program/points_file.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <set>
+
+#include <fmt/core.h>
+
+#include "core/json_reader.hpp"
+#include "program/language_words.hpp"
+
+namespace armctl::program {
+
+namespace {
+
+std::string lower(std::string_view text) {
+  std::string out(text);
+  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return out;
+}
+
+std::string printable(std::string_view text, std::size_t longest = 60) {
+  std::string out;
+  for (char c : text.substr(0, longest)) out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+  if (text.size() > longest) out += "...";
+  return out;
+}
+
+bool blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+constexpr std::string_view kPointKeys = "joints=..., or x, y, z with roll, pitch, yaw, elbow";
+
+Error fail(std::string_view source, std::size_t line, std::size_t column, std::string_view found,
+           const std::string& expected) {
+  return Error{ErrorKind::invalid_config,
+               fmt::format("{}:{}:{}: found '{}', expected {}", source, line, column, printable(found), expected)};
+}
+
+// The path file's parser reads a point's fields (they are a ptp's target): its message
+// has the column of the rewritten line ("ptp" in place of the name) and speaks of a ptp.
+Error from_path_error(const Error& e, std::string_view source, std::size_t shift) {
+  std::string m = e.message;
+  const std::string prefix = std::string(source) + ":";
+  if (m.rfind(prefix, 0) == 0) {
+    std::size_t line = 0, column = 0;
+    const char* p = m.data() + prefix.size();
+    const char* end = m.data() + m.size();
+    auto r1 = std::from_chars(p, end, line);
+    if (r1.ec == std::errc() && r1.ptr < end && *r1.ptr == ':') {
+      auto r2 = std::from_chars(r1.ptr + 1, end, column);
+      if (r2.ec == std::errc()) {
+        m = fmt::format("{}{}:{}{}", prefix, line, column + shift - 3, std::string_view(r2.ptr, std::size_t(end - r2.ptr)));
+      }
+    }
+  }
+  for (auto [from, to] : {std::pair<std::string_view, std::string_view>{"a ptp", "a point"}, {"the ptp's", "the point's"}}) {
+    for (auto at = m.find(from); at != std::string::npos; at = m.find(from, at + to.size())) m.replace(at, from.size(), to);
+  }
+  return Error{ErrorKind::invalid_config, m};
+}
+
+// Shortest digits that read back as the same double.
+std::string number(double v) { return fmt::format("{}", v == 0 ? 0.0 : v); }
+
+}  // namespace
+
+bool is_language_word(std::string_view word) {
+  const std::string w = lower(word);
+  return std::find(kLanguageWords.begin(), kLanguageWords.end(), w) != kLanguageWords.end();
+}
+
+std::optional<std::string> bad_name(std::string_view name) {
+  if (name.empty()) return "a name cannot be empty";
+  if (name.size() > kPointNameMaxLength) return fmt::format("a name has at most {} characters", kPointNameMaxLength);
+  const auto letter = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
+  if (!letter(name[0])) return "a name starts with a letter or '_'";
+  for (char c : name)
+    if (!letter(c) && !std::isdigit(static_cast<unsigned char>(c))) return "a name has only letters, digits and '_'";
+  if (is_language_word(name)) return fmt::format("'{}' is a word of the program language", lower(name));
+  return std::nullopt;
+}
+
+const Point* PointsFile::find(std::string_view name) const {
+  for (const Point& p : points)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+Result<PointsFile> parse_points_file(std::string_view text, std::string_view source) {
+  PointsFile file;
+  std::set<std::string, std::less<>> names;
+  std::size_t pos = 0, line_no = 0;
+  while (pos <= text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(pos, end - pos);
+    ++line_no;
+    if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    std::size_t i = 0;
+    while (i < line.size() && blank(line[i])) ++i;
+    if (i < line.size()) {
+      const std::size_t name_start = i;
+      while (i < line.size() && !blank(line[i])) ++i;
+      const std::string_view name = line.substr(name_start, i - name_start);
+      if (name.find('=') != std::string_view::npos)
+        return fail(source, line_no, name_start + 1, name, "a point's name first (e.g. 'pick x=200mm y=0mm z=40mm')");
+      if (auto why = bad_name(name)) return fail(source, line_no, name_start + 1, name, "a point name: " + *why);
+      if (names.contains(name)) return fail(source, line_no, name_start + 1, name, "each point name once");
+      if (file.points.size() == kPointsFileMaxPoints)
+        return fail(source, line_no, name_start + 1, name, fmt::format("at most {} points in a file", kPointsFileMaxPoints));
+      // Only the keys of a point (a ptp would also take speed).
+      bool any = false;
+      for (std::size_t k = i; k < line.size();) {
+        while (k < line.size() && blank(line[k])) ++k;
+        const std::size_t f = k;
+        while (k < line.size() && !blank(line[k])) ++k;
+        if (k == f) break;
+        any = true;
+        const std::string_view field = line.substr(f, k - f);
+        const std::string_view key = field.substr(0, field.find('='));
+        static constexpr std::string_view kKeys[] = {"joints", "x", "y", "z", "roll", "pitch", "yaw", "elbow"};
+        if (field.find('=') == std::string_view::npos || std::find(std::begin(kKeys), std::end(kKeys), key) == std::end(kKeys))
+          return fail(source, line_no, f + 1, field.find('=') == std::string_view::npos ? field : key,
+                      fmt::format("a point's key=value: {}", kPointKeys));
+      }
+      if (!any) return fail(source, line_no, i + 1, "", fmt::format("the point's position after its name: {}", kPointKeys));
+      std::string rewritten(line_no - 1, '\n');
+      rewritten += "ptp";
+      rewritten += line.substr(i);
+      auto parsed = motion::parse_path_file(rewritten, source);
+      if (!parsed) return from_path_error(parsed.error(), source, i);
+      const motion::PathMove& m = parsed->moves.front();
+      Point p;
+      p.name = std::string(name);
+      p.line = line_no;
+      p.joints = m.joints;
+      if (p.joints.empty()) {
+        p.position = m.position;
+        p.roll = m.roll;
+        p.pitch = m.pitch;
+        p.yaw = m.yaw;
+        p.elbow = m.elbow;
+      }
+      names.insert(p.name);
+      file.points.push_back(std::move(p));
+    }
+    if (end == text.size()) break;
+    pos = end + 1;
+  }
+  return file;
+}
+
+Result<PointsFile> read_points_file(const std::filesystem::path& path) {
+  auto text = catch_error([&]() -> Result<std::string> { return json_reader::read_config_file(path, "points file"); });
+  if (!text) return text.error();
+  return parse_points_file(*text, path.string());
+}
+
+std::string format_points_file(const PointsFile& file) {
+  std::string out = "# armctl points: NAME joints=... | NAME x= y= z= [roll= pitch= yaw= elbow=] (docs/programs.md)\n";
+  std::size_t width = 0;
+  for (const Point& p : file.points) width = std::max(width, p.name.size());
+  constexpr double kDeg = 180 / M_PI;
+  for (const Point& p : file.points) {
+    out += fmt::format("{:<{}}", p.name, width);
+    if (p.is_joints()) {
+      out += " joints=";
+      for (std::size_t i = 0; i < p.joints.size(); ++i) {
+        const auto& j = p.joints[i];
+        out += (i ? "," : "") +
+               (j.dimension == Dimension::angle ? number(j.value * kDeg) + "deg" : number(j.value * 1e3) + "mm");
+      }
+    } else {
+      out += fmt::format(" x={}mm y={}mm z={}mm", number(p.position.x() * 1e3), number(p.position.y() * 1e3),
+                         number(p.position.z() * 1e3));
+      if (p.roll) out += " roll=" + number(*p.roll * kDeg) + "deg";
+      if (p.pitch) out += " pitch=" + number(*p.pitch * kDeg) + "deg";
+      if (p.yaw) out += " yaw=" + number(*p.yaw * kDeg) + "deg";
+      if (p.elbow) out += std::string(" elbow=") + motion::to_string(*p.elbow);
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+Status write_points_file(const std::filesystem::path& path, const PointsFile& file) {
+  for (const Point& p : file.points)
+    if (auto why = bad_name(p.name)) return Error{ErrorKind::invalid_argument, fmt::format("point '{}': {}", printable(p.name), *why)};
+  const std::string text = format_points_file(file);
+  const std::filesystem::path temporary = path.string() + fmt::format(".tmp{}", ::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) {
+      std::error_code ec;
+      std::filesystem::remove(temporary, ec);
+      return Error{ErrorKind::io, fmt::format("cannot write the points file {}", temporary.string())};
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) {
+    std::filesystem::remove(temporary, ec);
+    return Error{ErrorKind::io, fmt::format("cannot write the points file {}: {}", path.string(), ec.message())};
+  }
+  return Ok{};
+}
+
+}  // namespace armctl::program
