@@ -17,6 +17,7 @@ cleanup() {
 trap cleanup EXIT
 
 # Part 3 (at the end): the Arm API in millimetres: both arms' tools to three points.
+# Part 4: host-planned paths. Part 5: a robot program (pick-and-place) on both arms.
 
 # Part 1: the SCARA arm at the joint-bus level: a simulated arm that keeps its state, driven
 # joint by joint with `armctl bus` (what the arm controller does underneath).
@@ -104,3 +105,17 @@ echo "== xArm (emulated): a square with blended corners ($paths/xarm-square.path
 echo "== SCARA (joint bus): a square with blended corners ($paths/scara-square.path)"
 "$armctl" arm --arm scara --device "unix:$dir/bus.sock" path "$paths/scara-square.path" |
   grep -Ev '^(Z|SHOULDER|UAE|UAJ|SKE|SKF|SKG) '
+
+# Part 5: a robot program (docs/programs.md). The same pick-and-place (a loop, subroutines
+# with parameters, the gripper, PRINT) on both arms, each with its own points file: checked
+# whole first (every move reachable and inside the joint limits, the run time estimated),
+# then run; and compiled to an action group the xArm board replays without a host.
+programs=$(cd "$(dirname "$0")/../examples/programs" && pwd)
+echo "== xArm (emulated): check and run $programs/xarm-pick-place.prog"
+"$armctl" program check "$programs/xarm-pick-place.prog" --arm xarm --device "serial:$dir/xarm" | tail -n 1
+"$armctl" program run "$programs/xarm-pick-place.prog" --arm xarm --device "serial:$dir/xarm"
+echo "== xArm (emulated): the same program as action group 5, replayed by the board alone"
+"$armctl" program compile "$programs/xarm-pick-place.prog" --arm xarm --device "serial:$dir/xarm" --group 5 2>/dev/null
+echo "== SCARA (joint bus): check and run $programs/scara-pick-place.prog"
+"$armctl" program check "$programs/scara-pick-place.prog" --arm scara --device "unix:$dir/bus.sock" | tail -n 1
+"$armctl" program run "$programs/scara-pick-place.prog" --arm scara --device "unix:$dir/bus.sock"

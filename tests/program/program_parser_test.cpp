@@ -1,0 +1,158 @@
+// The program parser (program/program_parser.hpp): every statement form, and for every
+// kind of mistake the exact message with file, line and column, what was found and what
+// was expected.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "program/program_parser.hpp"
+
+namespace armctl::program {
+namespace {
+
+Program parsed(std::string_view text) {
+  auto p = parse_program(text, "t.prog");
+  EXPECT_TRUE(p.ok()) << (p ? "" : p.error().message);
+  return p ? std::move(p).value() : Program{};
+}
+
+std::string error_of(std::string_view text) {
+  auto p = parse_program(text, "t.prog");
+  EXPECT_FALSE(p.ok()) << text;
+  if (p) return "";
+  EXPECT_EQ(p.error().kind, ErrorKind::invalid_config);
+  return p.error().message;
+}
+
+TEST(ProgramParser, Moves) {
+  const Program p = parsed(
+      "PTP home speed=50% accel=30%\n"
+      "lin pick + tool(z=-30mm) speed=40mm/s accel=500mm/s^2 zone=5mm angular_speed=30deg/s\n"
+      "Circ side, pose(x=200mm, y=0mm, z=50mm, pitch=90deg, elbow=up)\n"
+      "ptp joints(0deg, 30deg, -0.5rad)\n"
+      "lin pick + base(x=10mm, y=-1cm)\n");
+  ASSERT_EQ(p.main.size(), 5u);
+  EXPECT_EQ(p.main[0].move, MoveKind::ptp);
+  EXPECT_EQ(p.main[0].target.point, "home");
+  EXPECT_EQ(p.main[0].options.size(), 2u);
+  EXPECT_EQ(p.main[1].target.offset_frame, OffsetFrame::tool);
+  EXPECT_EQ(p.main[1].options.size(), 4u);
+  EXPECT_EQ(p.main[2].move, MoveKind::circ);
+  ASSERT_TRUE(p.main[2].via);
+  EXPECT_EQ(p.main[2].via->point, "side");
+  EXPECT_EQ(p.main[2].target.kind, TargetKind::pose);
+  EXPECT_EQ(p.main[2].target.pose.size(), 5u);
+  EXPECT_EQ(p.main[2].target.pose[4].word, "up");
+  EXPECT_EQ(p.main[3].target.kind, TargetKind::joints);
+  EXPECT_EQ(p.main[3].target.joints.size(), 3u);
+  EXPECT_NEAR(p.main[3].target.joints[1]->value.si, std::numbers::pi / 6, 1e-12);
+  EXPECT_EQ(p.main[4].target.offset_frame, OffsetFrame::base);
+  EXPECT_EQ(p.main[4].at.line, 5u);
+}
+
+TEST(ProgramParser, FlowAndSubroutines) {
+  const Program p = parsed(
+      "# a comment line\n"
+      "def pick(height, speed)   # trailing comment\n"
+      "  lin p + base(z=height) speed=speed\n"
+      "end\n"
+      "n = 0\n"
+      "loop 3 times\n"
+      "  call pick(40mm, 20mm/s)\n"
+      "  n = n + 1\n"
+      "end\n"
+      "while n < 5 and not n == 4\n"
+      "  n = (n + 1) * 2 - -1\n"
+      "end\n"
+      "if n >= 2 then\n"
+      "  print \"n is \", n\n"
+      "else\n"
+      "  wait 500ms\n"
+      "end\n"
+      "gripper close\n"
+      "gripper 40%\n"
+      "override 50%\n");
+  ASSERT_EQ(p.subroutines.size(), 1u);
+  EXPECT_EQ(p.subroutines[0].parameters, (std::vector<std::string>{"height", "speed"}));
+  ASSERT_EQ(p.main.size(), 7u);
+  EXPECT_EQ(p.main[1].kind, StatementKind::loop);
+  EXPECT_EQ(p.main[1].body.size(), 2u);
+  EXPECT_EQ(p.main[2].kind, StatementKind::while_);
+  EXPECT_EQ(p.main[3].kind, StatementKind::if_);
+  EXPECT_EQ(p.main[3].otherwise.size(), 1u);
+  EXPECT_EQ(p.main[3].body[0].print.size(), 2u);
+  EXPECT_EQ(p.main[4].gripper, GripperAction::close);
+  EXPECT_EQ(p.main[5].gripper, GripperAction::to);
+  EXPECT_EQ(p.main[6].kind, StatementKind::override_);
+}
+
+TEST(ProgramParser, EveryErrorSaysWhereWhatAndWhatWasExpected) {
+  EXPECT_EQ(error_of("jump home\n"),
+            "t.prog:1:1: found 'jump', expected a statement: PTP, LIN, CIRC, WAIT, GRIPPER, PRINT, IF, LOOP, WHILE, "
+            "CALL, OVERRIDE, DEF or NAME = value");
+  EXPECT_EQ(error_of("ptp\n"),
+            "t.prog:1:4: found the end of the line, expected the PTP's target: a point name, pose(x=.., y=.., z=..) or "
+            "joints(..)");
+  EXPECT_EQ(error_of("ptp home zone=5mm\n"),
+            "t.prog:1:10: found 'zone', expected an option of PTP: speed=N% and accel=N% (of the joints' limits)");
+  EXPECT_EQ(error_of("lin home speed=5mm/s speed=6mm/s\n"), "t.prog:1:22: found 'speed', expected each option once per move");
+  EXPECT_EQ(error_of("lin home speed 5mm/s\n"), "t.prog:1:16: found '5mm/s', expected '=' and a value after speed");
+  EXPECT_EQ(error_of("lin home speed=\n"),
+            "t.prog:1:16: found the end of the line, expected a value for speed (a number with its unit, a variable or '(')");
+  EXPECT_EQ(error_of("lin home + wrist(z=1mm)\n"),
+            "t.prog:1:12: found 'wrist', expected tool(...) or base(...) after '+': an offset in the tool's or the base's frame");
+  EXPECT_EQ(error_of("lin home + tool(q=1mm)\n"), "t.prog:1:17: found 'q', expected a field of tool: x, y, z");
+  EXPECT_EQ(error_of("ptp pose(x=1mm, y=2mm)\n"), "t.prog:1:5: found 'pose(...)', expected x, y and z in a pose (z is missing)");
+  EXPECT_EQ(error_of("ptp pose(x=1mm, y=2mm, z=3mm, elbow=sideways)\n"),
+            "t.prog:1:37: found 'sideways', expected elbow up or down (xArm), left or right (SCARA)");
+  EXPECT_EQ(error_of("ptp joints(1deg, 2deg\n"),
+            "t.prog:1:22: found the end of the line, expected ',' and another joint value, or ')'");
+  EXPECT_EQ(error_of("circ a b\n"),
+            "t.prog:1:8: found 'b', expected ',' and the CIRC's target after its via point (CIRC via, target)");
+  EXPECT_EQ(error_of("wait 2 s\n"), "t.prog:1:8: found 's', expected the end of the line after WAIT time");
+  EXPECT_EQ(error_of("wait 2sec\n"),
+            "t.prog:1:7: found 'sec', expected a unit after the number: mm, cm, m, deg, rad, s, ms, %, mm/s, m/s, deg/s, "
+            "rad/s, mm/s^2, m/s^2, deg/s^2, rad/s^2");
+  EXPECT_EQ(error_of("loop 3\nend\n"), "t.prog:1:7: found the end of the line, expected TIMES after the count (LOOP 3 TIMES)");
+  EXPECT_EQ(error_of("loop 3 times\n  wait 1s\n"),
+            "t.prog:3:1: found the end of the file, expected END to close the LOOP at line 1");
+  EXPECT_EQ(error_of("if 1 then\nelse\nelse\nend\n"),
+            "t.prog:3:1: found 'else', expected a statement: PTP, LIN, CIRC, WAIT, GRIPPER, PRINT, IF, LOOP, WHILE, "
+            "CALL, OVERRIDE, DEF or NAME = value");
+  EXPECT_EQ(error_of("end\n"),
+            "t.prog:1:1: found 'end', expected a statement: PTP, LIN, CIRC, WAIT, GRIPPER, PRINT, IF, LOOP, WHILE, "
+            "CALL, OVERRIDE, DEF or NAME = value");
+  EXPECT_EQ(error_of("def a()\nend\ndef a()\nend\n"), "t.prog:3:1: found 'a', expected each subroutine name once ('a' is defined at line 1)");
+  EXPECT_EQ(error_of("def a(x, x)\nend\n"), "t.prog:1:10: found 'x', expected each parameter name once");
+  EXPECT_EQ(error_of("loop 2 times\ndef a()\nend\nend\n"),
+            "t.prog:2:1: found 'def', expected a statement (a DEF belongs outside any other block: END to close the "
+            "LOOP at line 1 first)");
+  EXPECT_EQ(error_of("lin = 3\n"),
+            "t.prog:1:5: found '=', expected the LIN's target: a point name, pose(x=.., y=.., z=..) or joints(..)");
+  EXPECT_EQ(error_of("n = 3 +\n"),
+            "t.prog:1:8: found the end of the line, expected a value after '=' (a number with its unit, a variable or '(')");
+  EXPECT_EQ(error_of("n = (3\n"), "t.prog:1:7: found the end of the line, expected ')' to close the '('");
+  EXPECT_EQ(error_of("print \"open\n"), "t.prog:1:7: found '\"open', expected a closing '\"' on the same line");
+  EXPECT_EQ(error_of("n = 3 $ 4\n"),
+            "t.prog:1:7: found '$', expected a name, a number, a \"text\", an operator (+ - * / < <= > >= == !=) or ( ) , =");
+  EXPECT_EQ(error_of("n = 12abc\n"),
+            "t.prog:1:7: found 'abc', expected a unit after the number: mm, cm, m, deg, rad, s, ms, %, mm/s, m/s, deg/s, "
+            "rad/s, mm/s^2, m/s^2, deg/s^2, rad/s^2");
+  EXPECT_EQ(error_of("gripper\n"),
+            "t.prog:1:8: found the end of the line, expected OPEN, CLOSE or how far closed (e.g. GRIPPER 40%) after "
+            "GRIPPER (a number with its unit, a variable or '(')");
+  EXPECT_EQ(error_of("call pick\n"),
+            "t.prog:1:10: found the end of the line, expected '(' and the arguments after the subroutine's name (CALL "
+            "name() for none)");
+}
+
+TEST(ProgramParser, DeepNestingIsRefusedNotACrash) {
+  std::string deep = "n = " + std::string(200, '(') + "1" + std::string(200, ')') + "\n";
+  EXPECT_NE(error_of(deep).find("at most 64 nested parentheses"), std::string::npos);
+  std::string blocks;
+  for (int i = 0; i < 40; ++i) blocks += "if 1\n";
+  EXPECT_NE(error_of(blocks).find("at most 32 IF/LOOP/WHILE inside one another"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace armctl::program
