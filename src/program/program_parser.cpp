@@ -135,7 +135,10 @@ class Parser {
     s.at = t.at;
     if (t.kind != TokenKind::name) fail(t, kStatements);
     const std::string w = lower(t.text);
-    if (w == "ptp" || w == "lin" || w == "circ") return move(s, w);
+    if (w == "ptp" || w == "lin" || w == "circ") {
+      move(s, w);
+      return s;
+    }
     if (w == "wait") {
       next();
       s.kind = StatementKind::wait;
@@ -231,7 +234,7 @@ class Parser {
     return s;
   }
 
-  Statement& move(Statement& s, const std::string& w) {
+  void move(Statement& s, const std::string& w) {
     next();
     s.kind = StatementKind::move;
     s.move = w == "ptp" ? MoveKind::ptp : w == "lin" ? MoveKind::lin : MoveKind::circ;
@@ -257,7 +260,6 @@ class Parser {
       s.options.push_back(std::move(f));
     }
     end_of_statement(fmt::format("the {} (options: {})", to_string(s.move), allowed));
-    return s;
   }
 
   Target target(const std::string& what) {

@@ -10,7 +10,7 @@
 #include "arm/arm.hpp"
 #include "arm/bus_arm_device.hpp"
 #include "arm/rc_arm_device.hpp"
-#include "arm_files.hpp"
+#include "arm/arm_files.hpp"
 #include "joint_bus/sim_fixture.hpp"
 #include "program/group_compiler.hpp"
 #include "program/program_parser.hpp"
@@ -57,7 +57,7 @@ double to_polyline(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>&
 }
 
 class XarmProgram : public ::testing::Test {
- protected:
+ public:
   robot_commands::testing::EmulatedLink link{115200};
   robot_commands::Client client{link};
   arm::Arm arm{shipped("xarm"), std::make_unique<arm::RcArmDevice>(shipped("xarm"), client)};
@@ -74,7 +74,7 @@ class XarmProgram : public ::testing::Test {
 };
 
 class ScaraProgram : public ::testing::Test {
- protected:
+ public:
   std::unique_ptr<joint_sim::SimArm> sim = test::make_arm(115200);
   joint_bus::BusMaster master{sim->link()};
   arm::Arm arm{shipped("scara"),
