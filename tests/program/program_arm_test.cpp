@@ -45,14 +45,17 @@ Flow example_flow(const std::string& arm) {
   return std::move(flow).value();
 }
 
+// The distance from `p` to the segment a..b.
+double to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d d = b - a;
+  const double f = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p - (a + f * d)).norm();
+}
+
 // The nearest distance from `p` to the polyline through `path`.
 double to_polyline(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& path) {
   double best = 1e9;
-  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
-    const Eigen::Vector3d d = path[i + 1] - path[i];
-    const double f = d.squaredNorm() > 0 ? std::clamp((p - path[i]).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-    best = std::min(best, (p - (path[i] + f * d)).norm());
-  }
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) best = std::min(best, to_segment(p, path[i], path[i + 1]));
   return best;
 }
 
@@ -192,7 +195,9 @@ TEST_F(XarmProgram, WaitTakesItsTimeOnTheDeviceClock) {
   const double before = seconds();
   auto r = run_plan(arm, plan);
   ASSERT_TRUE(r) << r.error().message;
-  EXPECT_NEAR(seconds() - before, 1.75, 0.1);
+  // Never shorter; the run ends with a closed-loop wait (a few position reads) on top.
+  EXPECT_GE(seconds() - before, 1.75);
+  EXPECT_LT(seconds() - before, 2.1);
 }
 
 TEST_F(XarmProgram, OverrideSlowsTheMotionsAndStopComesToRest) {
@@ -256,21 +261,39 @@ TEST_F(XarmProgram, CompiledGroupReplaysOnTheBoardWithinThePathError) {
   }
   ASSERT_TRUE(client.download_group(3, group->actions));
   ASSERT_TRUE(client.run_group(3, 1));
-  // The board replays it alone: sample the servos every 5 ms of its time.
+  // The board replays it alone: sample the servos every 10 ms of its time (receive() lets
+  // the link deliver the run command and moves the board's time on).
   double worst = 0;
   const double quantization = arm::tool_quantization(arm.model(), arm::Protocol::robot_commands, plan.start);
   const double end = seconds() + group->duration + 0.5;
   int samples = 0;
   // Skip the first action (from wherever the servos are to the start).
   const double from = seconds() + co.first_move_seconds + 0.05;
+  // The replay moves forward along the plan: each sample is compared with the plan's path
+  // from where the previous one matched to 2 s further on (the program passes the same
+  // places several times; a global nearest point could be another pass).
+  std::size_t cursor = 0;
   while (seconds() < end) {
-    link.sim_clock().advance(std::chrono::milliseconds(5));
-    link.emulator().poll();
+    (void)link.receive(link.clock().now() + std::chrono::milliseconds(10));
     if (seconds() < from) continue;
-    worst = std::max(worst, to_polyline(true_tool(), planned));
+    const Eigen::Vector3d tool = true_tool();
+    double nearest = 1e9;
+    std::size_t best = cursor;
+    for (std::size_t j = cursor; j + 1 < planned.size() && j < cursor + 1000; ++j) {
+      const double d = to_segment(tool, planned[j], planned[j + 1]);
+      if (d < nearest) {
+        nearest = d;
+        best = j;
+      }
+    }
+    cursor = best;
+    worst = std::max(worst, nearest);
     ++samples;
   }
   EXPECT_GT(samples, 1000);
+  // It went all the way: the servos end where the plan does.
+  EXPECT_LT((true_tool() - planned.back()).norm(), co.path_error + quantization);
+  EXPECT_GT(cursor + 200, planned.size());  // its last 0.4 s are at rest at the end
   // Sampling error plus the servo units' quantization.
   EXPECT_LT(worst, co.path_error + quantization) << "quantization " << quantization * 1e3 << " mm";
   RecordProperty("replay_path_error_mm", std::to_string(worst * 1e3));
