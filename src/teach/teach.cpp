@@ -22,7 +22,9 @@ Status LimpArm::release() {
   released_ = true;
   // Both devices hold where the joints stand when control comes back (the xArm: a move to
   // the positions read; the joint bus: the loop takes the current count as its target).
-  return arm_.set_torque(true);
+  if (auto s = arm_.set_torque(true); !s) return s;
+  // Let the hold reach the joints before anyone is told that torque is on.
+  return arm_.device().idle(arm_.device().stream_latency() + arm_.device().stream_period(false));
 }
 
 program::Point point_at(const arm::ArmModel& model, const std::vector<double>& positions, std::string name) {
