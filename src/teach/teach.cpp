@@ -114,11 +114,13 @@ Result<motion::Recording> record_motion(arm::Arm& arm, const RecordOptions& opti
   const Duration period = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(1.0 / options.rate));
   const TimePoint start = arm.clock().now();
   TimePoint next = start;
+  TimePoint first_read = start;
   for (;;) {
     auto state = arm.read();
     if (!state) return state.error();
     motion::RecordingSample sample;
-    sample.time = std::chrono::duration<double>(state->time - start).count();
+    if (r.samples.empty()) first_read = state->time;  // time 0: the first position read
+    sample.time = std::chrono::duration<double>(state->time - first_read).count();
     if (!r.samples.empty() && !(sample.time > r.samples.back().time)) sample.time = r.samples.back().time + 1e-6;
     sample.positions = state->positions;
     r.samples.push_back(sample);
