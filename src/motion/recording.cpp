@@ -18,7 +18,7 @@ namespace {
 constexpr std::uintmax_t kRecordingMaxBytes = 64u << 20;
 constexpr std::size_t kJointNameMax = 64;
 constexpr double kMaxTime = 1e6;  // s: 11 days, far beyond any recording
-constexpr double kMaxValue = 1e6;  // in the file's unit (deg, mm, ...)
+constexpr double kMaxSi = 1e3;  // rad or m: far beyond any joint, and finite in every unit
 
 struct Token {
   std::string_view text;
@@ -177,7 +177,7 @@ class Parser {
         if (t.size() - 1 > n) return fail(line, t[n + 1].column, quoted(t[n + 1]), "the end of the line");
         for (std::size_t i = 0; i < n; ++i) {
           auto v = number(t[i + 1].text);
-          if (!v || std::abs(*v) > kMaxValue)
+          if (!v || std::abs(*v * to_si_[i]) > kMaxSi)
             return fail(line, t[i + 1].column, quoted(t[i + 1]),
                         fmt::format("a number (joint {} in {})", r_.joints[i].name, unit_name(i)));
           s.positions.push_back(*v * to_si_[i]);
