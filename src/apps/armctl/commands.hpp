@@ -2,6 +2,8 @@
 // thin: they parse and validate arguments, call the SDK or a device, and print.
 #pragma once
 
+#include <string>
+
 #include <CLI/CLI.hpp>
 
 namespace armctl::cli {
@@ -16,5 +18,16 @@ void add_controller_command(CLI::App& app);  // controller_command.cpp: the arm 
 void add_arm_command(CLI::App& app);         // arm_command.cpp: the Arm API in SI units
 void add_stop_command(CLI::App& app);        // stop_command.cpp: stop any device now
 void add_program_command(CLI::App& app);     // program_command.cpp: robot programs
+void add_teach_command(CLI::App& app);       // teach_command.cpp: points and motions taught by hand
+void add_replay_command(CLI::App& app);      // replay_command.cpp: recordings played back
+
+// Where `armctl xarm --device ...` options end up (they are parsed after the subcommand is set up).
+struct XarmDeviceOptions {
+  const std::string* device;
+  const int* servo_count;
+  const int* timeout_ms;
+};
+// group_rob_command.cpp: `xarm group import|export` (.rob files)
+void add_group_rob_commands(CLI::App& group, const XarmDeviceOptions& device);
 
 }  // namespace armctl::cli

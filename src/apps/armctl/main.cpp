@@ -82,6 +82,8 @@ int main(int argc, char** argv) {
   armctl::cli::add_arm_command(app);
   armctl::cli::add_stop_command(app);
   armctl::cli::add_program_command(app);
+  armctl::cli::add_teach_command(app);
+  armctl::cli::add_replay_command(app);
   armctl::cli::add_bus_command(app);
   armctl::cli::add_sim_command(app);
   armctl::cli::add_xarm_command(app);

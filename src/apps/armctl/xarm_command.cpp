@@ -488,6 +488,7 @@ void add_xarm_command(CLI::App& app) {
   gs->add_option("group", o->group, "0..254 | all")->required();
   gs->add_option("percent", o->percent, "1..1000")->required();
   gs->callback([o] { run_group_speed(*o); });
+  add_group_rob_commands(*group, {&o->device, &o->servo_count, &o->timeout_ms});
 
   auto* watch = x->add_subcommand("watch", "Live positions and notifications until Ctrl-C");
   watch->add_option("--interval", o->interval_ms,

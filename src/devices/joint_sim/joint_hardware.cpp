@@ -190,6 +190,14 @@ void JointHardware::emit_edges(double theta0, double theta1, TimePoint t0, TimeP
   }
 }
 
+void JointHardware::turn_by_hand(double clicks, EncoderEdgeSink* sink) {
+  const double theta1 = theta_ + clicks / clicks_per_rad_;
+  emit_edges(theta_, theta1, now_, now_, sink);
+  theta_ = theta1;
+  w_ = 0.0;
+  update_stuck();
+}
+
 void JointHardware::set_end_stops(EndStops stops) {
   p_.end_stops = stops;
   stop_min_rad_ = stops.min_clicks / clicks_per_rad_;

@@ -105,6 +105,9 @@ class JointHardware {
   // An obstacle: the joint's travel becomes min..max clicks (as hard end stops), e.g. a
   // joint held back where it stands (following-error tests).
   void set_end_stops(EndStops stops);
+  // A hand turning the joint (teach tests): it is `clicks` further on at once, at rest, the
+  // encoder edges sent to `sink` on the way. SimJoint::turn_by_hand checks that the loop is off.
+  void turn_by_hand(double clicks, EncoderEdgeSink* sink);
 
  private:
   struct Coefficients {

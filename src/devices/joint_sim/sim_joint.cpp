@@ -26,6 +26,12 @@ std::uint32_t SimJoint::micros(TimePoint t) {
       static_cast<std::uint64_t>(t.time_since_epoch().count() / 1000));
 }
 
+bool SimJoint::turn_by_hand(double clicks) {
+  if (controller_.loop_enabled()) return false;
+  hardware_.turn_by_hand(clicks, this);
+  return true;
+}
+
 void SimJoint::on_encoder_edge(bool a, bool b, TimePoint /*t*/) {
   controller_.on_encoder_edge(a, b);
 }

@@ -35,6 +35,9 @@ class SimJoint final : public BusEndpoint, private EncoderEdgeSink {
   joint_bus::JointController& controller() { return controller_; }
   const JointHardware& hardware() const { return hardware_; }
   JointHardware& hardware() { return hardware_; }
+  // A hand turning the joint by `clicks` (teach tests); refused (false) while the position
+  // loop is on: a joint under control would fight the hand.
+  bool turn_by_hand(double clicks);
 
  private:
   void on_encoder_edge(bool a, bool b, TimePoint t) override;

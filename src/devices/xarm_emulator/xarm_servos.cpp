@@ -107,6 +107,14 @@ void XarmServos::torque_off(std::span<const ServoId> ids) {
   }
 }
 
+bool XarmServos::move_by_hand(ServoId id, double position) {
+  Servo& s = at(id);
+  if (s.torque) return false;
+  s.position = s.from = s.target = position;
+  s.end = now_;
+  return true;
+}
+
 void XarmServos::halt(TimePoint now) {
   advance_to(now);
   for (Servo& s : servos_) {

@@ -74,6 +74,9 @@ class XarmServos final : public rc_board::ArmBackend {
   // An obstacle holds the servo where it is (moves to it are accepted but it does not
   // follow them): following-error tests.
   void set_blocked(ServoId servo, bool blocked) { at(servo).blocked = blocked; }
+  // A hand moving a limp servo (teach tests): it stands at `position` (servo units, the
+  // commanded frame). Refused (false) while its torque is on: a powered servo holds.
+  bool move_by_hand(ServoId servo, double position);
   // Last error from saving settings (empty if none).
   const std::string& last_save_error() const { return last_save_error_; }
 

@@ -1,0 +1,92 @@
+// armctl xarm group import FILE.rob [--out FILE] [--group N] and
+// armctl xarm group export GROUPFILE --out FILE.rob: the xArm maker's PC-software action
+// files to and from our group files (motion/rob_file.hpp, docs/teach.md ".rob files").
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include <fmt/core.h>
+
+#include "apps/armctl/commands.hpp"
+#include "apps/armctl/xarm_args.hpp"
+#include "apps/armctl/xarm_session.hpp"
+#include "core/error.hpp"
+#include "motion/action_group_file.hpp"
+#include "motion/rob_file.hpp"
+
+namespace armctl::cli {
+
+namespace {
+
+struct RobArgs {
+  std::string file;
+  std::string out;
+  std::string group;
+};
+
+template <typename T>
+T must(Result<T> r) {
+  if (!r) throw ArmctlError(r.error());
+  return std::move(r.value());
+}
+
+void write_file(const std::string& path, const void* data, std::size_t size) {
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out.write(static_cast<const char*>(data), std::streamsize(size));
+    out.flush();
+    if (!out) {
+      std::remove(temporary.c_str());
+      throw ArmctlError(ErrorKind::io, fmt::format("cannot write {}", path));
+    }
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    throw ArmctlError(ErrorKind::io, fmt::format("cannot write {}", path));
+  }
+}
+
+void run_import(const RobArgs& a, const XarmDeviceOptions& d) {
+  const auto group = must(motion::read_rob_file(a.file));
+  const std::string text = motion::format_action_group(group);
+  if (a.out.empty() && a.group.empty()) {
+    fmt::print("{}", text);
+    return;
+  }
+  if (!a.out.empty()) {
+    write_file(a.out, text.data(), text.size());
+    fmt::print("{}: {} actions written to {}\n", a.file, group.actions.size(), a.out);
+  }
+  if (!a.group.empty()) {
+    const auto number = xarm_args::parse_group(a.group, false);
+    auto s = open_xarm_session(*d.device, *d.servo_count, *d.timeout_ms);
+    if (auto st = s->client->download_group(number, group.actions); !st) throw ArmctlError(st.error());
+    fmt::print("group {}: {} actions downloaded\n", number, group.actions.size());
+  }
+}
+
+void run_export(const RobArgs& a) {
+  const auto group = must(motion::read_action_group_file(a.file));
+  const auto bytes = must(motion::format_rob_file(group));
+  write_file(a.out, bytes.data(), bytes.size());
+  fmt::print("{}: {} actions written to {} ({} bytes)\n", a.file, group.actions.size(), a.out, bytes.size());
+}
+
+}  // namespace
+
+void add_group_rob_commands(CLI::App& group, const XarmDeviceOptions& device) {
+  auto a = std::make_shared<RobArgs>();
+  auto* im = group.add_subcommand("import", "Convert a .rob action file of the maker's PC software (docs/teach.md)");
+  im->add_option("file", a->file, ".rob file")->required();
+  im->add_option("--out", a->out, "Group file to write (default: print it)");
+  im->add_option("--group", a->group, "Also download it as this group number 0..254");
+  im->callback([a, device] { run_import(*a, device); });
+  auto* ex = group.add_subcommand("export", "Convert a group file (servos 1..6, no keep) to a .rob action file");
+  ex->add_option("file", a->file, "Group file")->required();
+  ex->add_option("--out", a->out, ".rob file to write")->required();
+  ex->callback([a] { run_export(*a); });
+}
+
+}  // namespace armctl::cli

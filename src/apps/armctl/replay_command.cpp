@@ -1,0 +1,91 @@
+// armctl replay FILE [--arm A] [--device URI] [--speed N%]
+// Plays a recording (`armctl teach --record`) back through the motion layer: smoothed,
+// decimated into waypoints, one jerk-limited move through them within the arm's limits
+// (docs/teach.md "Replay"). Refuses a recording of another arm or outside the limits before
+// anything moves. Ctrl-C stops on the path with a controlled deceleration.
+#include <cstdlib>
+#include <string>
+
+#include <fmt/core.h>
+
+#include "apps/armctl/arm_session.hpp"
+#include "apps/armctl/commands.hpp"
+#include "apps/armctl/serve_support.hpp"
+#include "arm/motion_executor.hpp"
+#include "core/error.hpp"
+#include "motion/recording.hpp"
+#include "teach/replay.hpp"
+
+namespace armctl::cli {
+
+namespace {
+
+struct ReplayArgs {
+  std::string file;
+  std::string arm;
+  std::string device;
+  std::string speed = "100%";
+};
+
+[[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
+
+double parse_speed(const std::string& text) {
+  std::string digits = text;
+  if (!digits.empty() && digits.back() == '%') digits.pop_back();
+  char* end = nullptr;
+  const double v = std::strtod(digits.c_str(), &end);
+  if (digits.empty() || end != digits.c_str() + digits.size() || !(v > 0 && v <= 100))
+    usage(fmt::format("--speed '{}': a percentage of the velocity limits, above 0 up to 100%", text));
+  return v / 100;
+}
+
+void run_replay(const ReplayArgs& a) {
+  const double speed = parse_speed(a.speed);
+  auto recording = motion::read_recording(a.file);
+  if (!recording) throw ArmctlError(recording.error());
+  // The recording names its arm: the shipped model of that name unless --arm says otherwise.
+  auto s = open_arm_session(a.arm.empty() ? recording->arm : a.arm, a.device);
+  arm::Arm& arm = *s->arm;
+  auto here = arm.read();
+  if (!here) throw ArmctlError(here.error());
+  teach::ReplayOptions options;
+  options.speed = speed;
+  auto plan = teach::plan_replay(arm.model(), here->positions, *recording, options);
+  if (!plan) throw ArmctlError(Error{plan.error().kind, a.file + ": " + plan.error().message});
+  fmt::print("{}: {} samples over {:.2f} s -> {} waypoints; to the start {:.2f} s, replay {:.2f} s at {:g} %\n", a.file,
+             recording->samples.size(), plan->recorded_seconds, plan->waypoints.size(), plan->to_start.duration,
+             plan->motion.duration, speed * 100);
+  std::fflush(stdout);
+
+  Interrupted interrupted;
+  StopOnSignals on_signals(interrupted);
+  arm::ExecutorOptions eo;
+  eo.command = [&](const arm::MotionProgress&) { return interrupted ? arm::MotionCommand::stop : arm::MotionCommand::none; };
+  for (const arm::PlannedMotion* m : {&plan->to_start, &plan->motion}) {
+    auto report = arm::execute_motion(arm, *m, eo);
+    if (!report) throw ArmctlError(report.error());
+    if (report->stopped) {
+      fmt::print("stopped by a signal at {:.2f} of {:.2f} s ({})\n", report->t_reached, m->duration, m->what);
+      return;
+    }
+    fmt::print("{}: done in {:.2f} s, largest following error {}\n", m->what,
+               std::chrono::duration<double>(report->elapsed).count(),
+               report->largest_following_joint >= 0
+                   ? arm::format_joint_value(arm.model(), report->largest_following_joint, report->largest_following_error)
+                   : std::string("none measured"));
+  }
+}
+
+}  // namespace
+
+void add_replay_command(CLI::App& app) {
+  auto a = std::make_shared<ReplayArgs>();
+  auto* cmd = app.add_subcommand("replay", "Play a recording (armctl teach --record) back through the motion layer");
+  cmd->add_option("file", a->file, "Recording file")->required();
+  cmd->add_option("--arm", a->arm, "xarm | scara | an arm file (default: the arm the recording names)");
+  cmd->add_option("--device", a->device, "As for `armctl arm` (default: the embedded simulated arm)");
+  cmd->add_option("--speed", a->speed, "Percent of the velocity limits (default 100%)");
+  cmd->callback([a] { run_replay(*a); });
+}
+
+}  // namespace armctl::cli

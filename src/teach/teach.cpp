@@ -1,0 +1,140 @@
+#include "teach/teach.hpp"
+
+#include <cmath>
+
+#include <fmt/core.h>
+
+namespace armctl::teach {
+
+Result<std::unique_ptr<LimpArm>> LimpArm::make(arm::Arm& arm) {
+  std::unique_ptr<LimpArm> limp(new LimpArm(arm));
+  if (auto s = arm.set_torque(false); !s) {
+    // Some joints may have gone limp: the destructor puts them back under control.
+    return s.error();
+  }
+  return limp;
+}
+
+LimpArm::~LimpArm() { (void)release(); }
+
+Status LimpArm::release() {
+  if (released_) return Ok{};
+  released_ = true;
+  // Both devices hold where the joints stand when control comes back (the xArm: a move to
+  // the positions read; the joint bus: the loop takes the current count as its target).
+  if (auto s = arm_.set_torque(true); !s) return s;
+  // Let the hold reach the joints before anyone is told that torque is on.
+  return arm_.device().idle(arm_.device().stream_latency() + arm_.device().stream_period(false));
+}
+
+program::Point point_at(const arm::ArmModel& model, const std::vector<double>& positions, std::string name) {
+  program::Point p;
+  p.name = std::move(name);
+  for (std::size_t i = 0; i < positions.size() && i < model.joints.size(); ++i)
+    p.joints.push_back({positions[i], model.joints[i].dimension});
+  return p;
+}
+
+namespace {
+
+std::string trimmed(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t\r");
+  if (a == std::string::npos) return "";
+  const auto b = s.find_last_not_of(" \t\r");
+  return s.substr(a, b - a + 1);
+}
+
+std::string next_free_name(const program::PointsFile& file) {
+  for (std::size_t n = 1;; ++n) {
+    std::string name = fmt::format("p{}", n);
+    if (file.find(name) == nullptr) return name;
+  }
+}
+
+std::string describe(const arm::ArmModel& model, const std::vector<double>& q) {
+  std::string out;
+  for (std::size_t i = 0; i < q.size(); ++i)
+    out += fmt::format("{}{} {}", i ? ", " : "", model.joints[i].name, arm::format_joint_value(model, int(i), q[i]));
+  return out;
+}
+
+}  // namespace
+
+Result<std::size_t> teach_points(arm::Arm& arm, const std::filesystem::path& points_path, const TeachIo& io) {
+  program::PointsFile file;
+  std::error_code ec;
+  if (std::filesystem::exists(points_path, ec)) {
+    auto read = program::read_points_file(points_path);
+    if (!read) return read.error();
+    file = std::move(read).value();
+  }
+  auto limp = LimpArm::make(arm);
+  if (!limp) return limp.error();
+  io.say(fmt::format("torque off: move the arm by hand; Enter records a point (type a name first, or "
+                     "nothing for {}); end of input (Ctrl-D) or Ctrl-C ends",
+                     next_free_name(file)));
+  std::size_t recorded = 0;
+  while (auto line = io.next_line()) {
+    std::string name = trimmed(*line);
+    if (name.empty()) name = next_free_name(file);
+    if (auto why = program::bad_name(name)) {
+      io.say(fmt::format("not recorded: {}; type another name", *why));
+      continue;
+    }
+    auto state = arm.read();
+    if (!state) return state.error();
+    program::Point point = point_at(arm.model(), state->positions, name);
+    bool replaced = false;
+    for (auto& p : file.points)
+      if (p.name == name) {
+        p = point;
+        replaced = true;
+      }
+    if (!replaced) file.points.push_back(point);
+    if (auto s = program::write_points_file(points_path, file); !s) return s.error();
+    ++recorded;
+    io.say(fmt::format("{} {}: {}", replaced ? "replaced" : "recorded", name, describe(arm.model(), state->positions)));
+  }
+  if (auto s = (*limp)->release(); !s) return s.error();
+  io.say(fmt::format("torque on, holding; {} point{} recorded in {}", recorded, recorded == 1 ? "" : "s",
+                     points_path.string()));
+  return recorded;
+}
+
+Result<motion::Recording> record_motion(arm::Arm& arm, const RecordOptions& options) {
+  if (!(options.rate >= 1 && options.rate <= motion::kRecordingMaxRate))
+    return Error{ErrorKind::invalid_argument,
+                 fmt::format("rate {} Hz: allowed is 1..{:g} Hz", options.rate, motion::kRecordingMaxRate)};
+  motion::Recording r;
+  r.arm = arm.model().name;
+  r.rate = options.rate;
+  for (const auto& j : arm.model().joints) r.joints.push_back({j.name, j.dimension});
+  auto limp = LimpArm::make(arm);
+  if (!limp) return limp.error();
+  const Duration period = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(1.0 / options.rate));
+  const TimePoint start = arm.clock().now();
+  TimePoint next = start;
+  TimePoint first_read = start;
+  for (;;) {
+    auto state = arm.read();
+    if (!state) return state.error();
+    motion::RecordingSample sample;
+    if (r.samples.empty()) first_read = state->time;  // time 0: the first position read
+    sample.time = std::chrono::duration<double>(state->time - first_read).count();
+    if (!r.samples.empty() && !(sample.time > r.samples.back().time)) sample.time = r.samples.back().time + 1e-6;
+    sample.positions = state->positions;
+    r.samples.push_back(sample);
+    if (options.on_sample) options.on_sample(sample);
+    if (r.samples.size() >= motion::kRecordingMaxSamples) break;
+    if (options.done && options.done()) break;
+    next += period;
+    if (options.duration && next - start > *options.duration) break;
+    const TimePoint now = arm.clock().now();
+    if (next > now)
+      if (auto s = arm.device().idle(next - now); !s) return s.error();
+  }
+  if (auto s = (*limp)->release(); !s) return s.error();
+  return r;
+}
+
+}  // namespace armctl::teach

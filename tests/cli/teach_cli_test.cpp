@@ -1,0 +1,86 @@
+// armctl teach / replay / xarm group import|export end to end on the embedded simulated arms,
+// driven from a script on standard input (no terminal).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "run_armctl.hpp"
+
+namespace armctl::cli_test {
+namespace {
+
+std::string dir() { return ::testing::TempDir(); }
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(TeachCli, PointsFromAScript) {
+  const std::string points = dir() + "/cli.points";
+  std::remove(points.c_str());
+  auto r = run_armctl("teach --points " + points + " <<'EOF'\nhome\n\nlin\nhome\nEOF\n");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "recorded home:")) << r.out;
+  EXPECT_TRUE(contains(r.out, "recorded p1:")) << r.out;
+  EXPECT_TRUE(contains(r.out, "not recorded: 'lin'")) << r.out;
+  EXPECT_TRUE(contains(r.out, "replaced home:")) << r.out;
+  EXPECT_TRUE(contains(r.out, "torque on, holding; 3 points recorded")) << r.out;
+  const std::string text = slurp(points);
+  EXPECT_TRUE(contains(text, "home joints=0deg,0deg,0deg,0deg,0deg,0deg")) << text;
+  EXPECT_TRUE(contains(text, "p1   joints=")) << text;
+}
+
+TEST(TeachCli, RecordThenReplayOnBothArms) {
+  for (const std::string arm : {"xarm", "scara"}) {
+    const std::string rec = dir() + "/cli-" + arm + ".rec";
+    auto r = run_armctl("teach --arm " + arm + " --record 20Hz --out " + rec + " --duration 1s </dev/null");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_TRUE(contains(r.out, "samples over")) << r.out;
+    EXPECT_TRUE(contains(slurp(rec), "arm " + arm + "\nrate 20Hz\n")) << slurp(rec);
+    auto p = run_armctl("replay " + rec + " --speed 50%");
+    ASSERT_EQ(p.status, 0) << p.out;
+    EXPECT_TRUE(contains(p.out, "replay through")) << p.out;
+  }
+}
+
+TEST(TeachCli, RefusesBadArgumentsAndRecordings) {
+  EXPECT_TRUE(contains(run_armctl("teach").out, "teach needs either --points FILE"));
+  EXPECT_TRUE(contains(run_armctl("teach --record 0Hz --out x.rec").out, "allowed is 1..1000 Hz"));
+  EXPECT_TRUE(contains(run_armctl("teach --record 20Hz").out, "--record needs --out FILE"));
+  const std::string rec = dir() + "/cli-other.rec";
+  {
+    std::ofstream out(rec);
+    out << "arm scara\nrate 20Hz\njoints Z:mm\n0 10\n";
+  }
+  auto r = run_armctl("replay " + rec + " --arm xarm");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_TRUE(contains(r.out, "the recording is of arm 'scara', this arm is 'xarm'")) << r.out;
+  EXPECT_TRUE(contains(run_armctl("replay " + rec + " --speed 0%").out, "--speed '0%'"));
+}
+
+TEST(TeachCli, RobImportExport) {
+  const std::string grp = dir() + "/cli.grp", rob = dir() + "/cli.rob", back = dir() + "/cli-back.grp";
+  {
+    std::ofstream out(grp);
+    out << "servos 6\n1000 1=500 2=300 3=700 4=0 5=1000 6=258\n20 1=1 2=2 3=3 4=4 5=5 6=6\n";
+  }
+  auto e = run_armctl("xarm group export " + grp + " --out " + rob);
+  ASSERT_EQ(e.status, 0) << e.out;
+  EXPECT_EQ(slurp(rob).size(), 16u + 2 * 14);
+  auto i = run_armctl("xarm group import " + rob + " --out " + back);
+  ASSERT_EQ(i.status, 0) << i.out;
+  EXPECT_TRUE(contains(slurp(back), "1000 1=500 2=300 3=700 4=0 5=1000 6=258\n20 1=1 2=2 3=3 4=4 5=5 6=6\n")) << slurp(back);
+  auto d = run_armctl("xarm group import " + rob + " --group 2");
+  ASSERT_EQ(d.status, 0) << d.out;
+  EXPECT_TRUE(contains(d.out, "group 2: 2 actions downloaded")) << d.out;
+  auto bad = run_armctl("xarm group import " + grp);
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_TRUE(contains(bad.out, "offset 0: found bytes")) << bad.out;
+}
+
+}  // namespace
+}  // namespace armctl::cli_test
