@@ -6,6 +6,8 @@
 #include <fstream>
 #include <numbers>
 
+#include <unistd.h>
+
 #include <fmt/core.h>
 
 #include "arm/arm_calibration.hpp"
@@ -20,7 +22,9 @@ namespace fs = std::filesystem;
 class Calibration : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() / fmt::format("armctl-cal-{}", ::testing::UnitTest::GetInstance()->random_seed());
+    // One directory per test and process: CTest runs these tests side by side.
+    dir = fs::temp_directory_path() / fmt::format("armctl-cal-{}-{}", ::testing::UnitTest::GetInstance()->current_test_info()->name(),
+                                                  ::getpid());
     fs::create_directories(dir);
     for (const char* f : {"xarm.arm.json", "xarm.urdf", "scara.arm.json", "scara.urdf"})
       fs::copy_file(testing::config_path(f), dir / f, fs::copy_options::overwrite_existing);

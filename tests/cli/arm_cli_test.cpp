@@ -2,6 +2,8 @@
 // and mm, --json documents, exit status, and the messages for bad values (nothing moves).
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -18,7 +20,9 @@ class ArmCli : public ::testing::Test {
  protected:
   void SetUp() override {
     state = std::filesystem::temp_directory_path() /
-            ("armctl-arm-cli-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+            // One directory per test and process: CTest runs these tests side by side.
+            ("armctl-arm-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "-" +
+             std::to_string(::getpid()));
     std::filesystem::create_directories(state);
     ::setenv("ARMCTL_STATE_DIR", state.c_str(), 1);
   }
