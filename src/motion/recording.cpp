@@ -1,11 +1,12 @@
 #include "motion/recording.hpp"
 
-#include <unistd.h>
+#include "core/atomic_file.hpp"
+#include "core/regular_file.hpp"
+
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <iterator>
 #include <optional>
 
@@ -215,19 +216,9 @@ Result<Recording> parse_recording(std::string_view text, std::string_view source
 }
 
 Result<Recording> read_recording(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    return Error{ErrorKind::io, fmt::format("recording {} is not a regular file", path.string())};
-  const auto size = std::filesystem::file_size(path, ec);
-  if (ec) return Error{ErrorKind::io, fmt::format("cannot read recording {}: {}", path.string(), ec.message())};
-  if (size > kRecordingMaxBytes)
-    return Error{ErrorKind::invalid_config,
-                 fmt::format("recording {}: {} bytes; at most {} allowed", path.string(), size, kRecordingMaxBytes)};
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{ErrorKind::io, fmt::format("cannot open recording {}", path.string())};
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return Error{ErrorKind::io, fmt::format("cannot read recording {}", path.string())};
-  return parse_recording(text, path.string());
+  auto text = read_regular_file(path, "recording", kRecordingMaxBytes);
+  if (!text) return text.error();
+  return parse_recording(*text, path.string());
 }
 
 std::string format_recording(const Recording& r) {
@@ -248,24 +239,7 @@ std::string format_recording(const Recording& r) {
 
 Status write_recording(const std::filesystem::path& path, const Recording& recording) {
   const std::string text = format_recording(recording);
-  const std::filesystem::path temporary = path.string() + fmt::format(".tmp{}", ::getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      std::filesystem::remove(temporary, ec);
-      return Error{ErrorKind::io, fmt::format("cannot write the recording {}", temporary.string())};
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::filesystem::remove(temporary, ec);
-    return Error{ErrorKind::io, fmt::format("cannot write the recording {}: {}", path.string(), ec.message())};
-  }
-  return Ok{};
+  return write_file_atomically(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 
 Result<double> parse_rate(std::string_view text) {

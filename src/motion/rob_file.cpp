@@ -1,11 +1,12 @@
 #include "motion/rob_file.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <iterator>
 #include <string>
 
 #include <fmt/core.h>
+
+#include "core/regular_file.hpp"
 
 namespace armctl::motion {
 
@@ -85,19 +86,9 @@ Result<ActionGroupFile> parse_rob_file(const std::vector<std::uint8_t>& bytes, s
 }
 
 Result<ActionGroupFile> read_rob_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    return Error{ErrorKind::io, fmt::format("{} is not a regular file", path.string())};
-  const auto size = std::filesystem::file_size(path, ec);
-  if (ec) return Error{ErrorKind::io, fmt::format("cannot read {}: {}", path.string(), ec.message())};
-  if (size > kRobMaxBytes)
-    return Error{ErrorKind::invalid_config,
-                 fmt::format("{}: {} bytes; a .rob file of at most {} frames has at most {}", path.string(), size,
-                             kRobMaxFrames, kRobMaxBytes)};
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{ErrorKind::io, fmt::format("cannot open {}", path.string())};
-  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return Error{ErrorKind::io, fmt::format("cannot read {}", path.string())};
+  auto text = read_regular_file(path, ".rob file", kRobMaxBytes);
+  if (!text) return text.error();
+  const std::vector<std::uint8_t> bytes(text->begin(), text->end());
   return parse_rob_file(bytes, path.string());
 }
 

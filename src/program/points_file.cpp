@@ -1,12 +1,12 @@
 #include "program/points_file.hpp"
 
-#include <unistd.h>
+#include "core/atomic_file.hpp"
+
 
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <set>
 
 #include <fmt/core.h>
@@ -192,24 +192,7 @@ Status write_points_file(const std::filesystem::path& path, const PointsFile& fi
   for (const Point& p : file.points)
     if (auto why = bad_name(p.name)) return Error{ErrorKind::invalid_argument, fmt::format("point '{}': {}", shown(p.name), *why)};
   const std::string text = format_points_file(file);
-  const std::filesystem::path temporary = path.string() + fmt::format(".tmp{}", ::getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      std::filesystem::remove(temporary, ec);
-      return Error{ErrorKind::io, fmt::format("cannot write the points file {}", temporary.string())};
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::filesystem::remove(temporary, ec);
-    return Error{ErrorKind::io, fmt::format("cannot write the points file {}: {}", path.string(), ec.message())};
-  }
-  return Ok{};
+  return write_file_atomically(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 
 }  // namespace armctl::program

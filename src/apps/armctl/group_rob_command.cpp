@@ -2,11 +2,12 @@
 // armctl xarm group export GROUPFILE --out FILE.rob: the xArm maker's PC-software action
 // files to and from our group files (motion/rob_file.hpp, docs/teach.md ".rob files").
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <string>
 
 #include <fmt/core.h>
+
+#include "core/atomic_file.hpp"
 
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/xarm_args.hpp"
@@ -32,20 +33,8 @@ T must(Result<T> r) {
 }
 
 void write_file(const std::string& path, const void* data, std::size_t size) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out.write(static_cast<const char*>(data), std::streamsize(size));
-    out.flush();
-    if (!out) {
-      std::remove(temporary.c_str());
-      throw ArmctlError(ErrorKind::io, fmt::format("cannot write {}", path));
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    throw ArmctlError(ErrorKind::io, fmt::format("cannot write {}", path));
-  }
+  // Crash-safe: the old file or the new one, never a mix.
+  must(write_file_atomically(path, std::span(static_cast<const std::uint8_t*>(data), size)));
 }
 
 void run_import(const RobArgs& a, const XarmDeviceOptions& d) {

@@ -1,4 +1,4 @@
-#include "devices/rc_board/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -11,7 +11,7 @@
 
 #include "core/printable.hpp"
 
-namespace armctl::rc_board {
+namespace armctl {
 namespace {
 
 Error io_error(std::string_view what, const std::filesystem::path& path, int err) {
@@ -130,4 +130,4 @@ bool is_temporary_name(std::string_view file_name) {
   return file_name.find(".tmp-") != std::string_view::npos;
 }
 
-}  // namespace armctl::rc_board
+}  // namespace armctl
