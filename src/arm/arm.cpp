@@ -235,6 +235,7 @@ Result<JointState> Arm::wait(const WaitOptions& options) {
   for (;;) {
     auto s = read();
     if (!s) return s.error();
+    if (options.on_read) options.on_read(*s);
     std::string late;
     bool resting = previous.has_value();
     for (std::size_t i = 0; i < last_targets_.size(); ++i) {

@@ -53,6 +53,8 @@ struct WaitOptions {
   // Asked between reads (a Ctrl-C flag, e.g. Python's KeyboardInterrupt): true ends the wait
   // at once with an error (device, "wait interrupted"); the arm is left as it is.
   std::function<bool()> interrupted;
+  // After every read (a thread publishing live positions while the wait runs).
+  std::function<void(const JointState&)> on_read;
 };
 
 class Arm {

@@ -217,6 +217,7 @@ class Execution {
     auto s = arm_.read();
     if (!s) return s.error();
     ++report_.reads;
+    if (options_.on_read) options_.on_read(*s);
     // The device answers about halfway through the exchange.
     const double t_read = std::min(motion_.duration, t_now + rate * 0.5 * seconds(clock_.now() - before));
     motion_.sample(t_read, pos_, vel_, acc_);

@@ -56,6 +56,8 @@ struct ExecutorOptions {
   std::function<MotionCommand(const MotionProgress&)> command;
   // After every point (progress lines, test probes).
   std::function<void(const MotionProgress&)> on_point;
+  // After every read-back (live positions for a thread that publishes them).
+  std::function<void(const JointState&)> on_read;
 };
 
 struct FollowingSample {

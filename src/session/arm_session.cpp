@@ -6,6 +6,7 @@
 #include "arm/rc_arm_device.hpp"
 #include "devices/device_registry/device_registry.hpp"
 #include "transport/device_uri_parts.hpp"
+#include "transport/paced_link.hpp"
 
 namespace armctl::session {
 
@@ -23,15 +24,21 @@ arm::ArmModel load_arm(const std::string& arm) {
   return std::move(model.value());
 }
 
-std::unique_ptr<ArmSession> open_arm_session(const std::string& arm_name, const std::string& device) {
+std::unique_ptr<ArmSession> open_arm_session(const std::string& arm_name, const std::string& device,
+                                             const SessionOptions& options) {
   arm::ArmModel model = load_arm(arm_name);
   auto s = std::make_unique<ArmSession>();
   const bool bus = model.supports(arm::Protocol::joint_bus) &&
                    (device.empty() || device_is_joint_bus(device) || !model.supports(arm::Protocol::robot_commands));
   if (bus) {
     s->bus = devices::open_joint_bus(device.empty() ? "sim" : device).value();
-    s->master = std::make_unique<joint_bus::BusMaster>(s->bus->link(), s->bus->default_options());
-    auto dev = std::make_unique<arm::BusArmDevice>(model, *s->master, s->bus->link(), s->bus->description());
+    transport::JointBusLink* link = &s->bus->link();
+    if (options.wall_clock && transport::runs_on_simulated_time(*link)) {
+      s->paced = std::make_unique<transport::PacedLink>(*link);
+      link = s->paced.get();
+    }
+    s->master = std::make_unique<joint_bus::BusMaster>(*link, s->bus->default_options());
+    auto dev = std::make_unique<arm::BusArmDevice>(model, *s->master, *link, s->bus->description());
     s->arm = std::make_unique<arm::Arm>(std::move(model), std::move(dev));
   } else {
     int servos = 0;

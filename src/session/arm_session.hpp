@@ -21,6 +21,7 @@ struct ArmSession {
   // Destroyed in reverse: the arm first, then what it talks through.
   std::unique_ptr<XarmSession> rc;
   std::unique_ptr<joint_bus::BusConnection> bus;
+  std::unique_ptr<transport::JointBusLink> paced;  // the embedded sim in step with the wall clock
   std::unique_ptr<joint_bus::BusMaster> master;
   std::unique_ptr<arm::Arm> arm;
 };
@@ -31,6 +32,14 @@ bool device_is_joint_bus(const std::string& device);
 
 // Throws ArmctlError naming what was wrong (arm file, URI, device).
 arm::ArmModel load_arm(const std::string& arm);
-std::unique_ptr<ArmSession> open_arm_session(const std::string& arm, const std::string& device);
+
+struct SessionOptions {
+  // The embedded simulated joint bus runs on simulated time, as fast as the host goes (what
+  // the CLI and tests want). Servers that many clients watch live (the ROS node, the web
+  // dashboard) want it in step with the wall clock instead, like a real arm.
+  bool wall_clock = false;
+};
+std::unique_ptr<ArmSession> open_arm_session(const std::string& arm, const std::string& device,
+                                             const SessionOptions& options = {});
 
 }  // namespace armctl::session

@@ -6,7 +6,7 @@
 #include <thread>
 
 #include "devices/arm_controller/controller_runner.hpp"
-#include "devices/arm_controller/paced_link.hpp"
+#include "transport/paced_link.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
 #include "devices/robot_commands/client.hpp"
 #include "devices/robot_commands/stream_link.hpp"
@@ -19,8 +19,8 @@ using namespace std::chrono_literals;
 
 TEST(PtyEndToEnd, SdkDrivesTheSimulatedArmThroughTheController) {
   auto arm = joint_sim::SimArm::from_default_config();
-  ASSERT_TRUE(runs_on_simulated_time(arm->link()));
-  PacedLink paced(arm->link());
+  ASSERT_TRUE(transport::runs_on_simulated_time(arm->link()));
+  transport::PacedLink paced(arm->link());
   ControllerRunner runner(parse_upstream("pty"));
   ControllerDevice device(paced, {}, load_controller_config(default_controller_config_path()), {},
                           runner.make_output());

@@ -13,7 +13,7 @@
 #include "apps/armctl/controller_serve.hpp"
 #include "core/printable.hpp"
 #include "devices/arm_controller/controller_config.hpp"
-#include "devices/arm_controller/paced_link.hpp"
+#include "transport/paced_link.hpp"
 #include "devices/arm_controller/reconnecting_link.hpp"
 #include "devices/device_registry/device_registry.hpp"
 
@@ -32,7 +32,7 @@ void run_controller(const ControllerArgs& args) {
                     ? arm_controller::load_controller_config(arm_controller::default_controller_config_path())
                     : arm_controller::load_controller_config(args.arm);
   std::shared_ptr<joint_bus::BusConnection> connection = devices::open_joint_bus(args.bus).value();
-  if (arm_controller::runs_on_simulated_time(connection->link())) {
+  if (transport::runs_on_simulated_time(connection->link())) {
     serve_controller(connection->link(), connection->default_options(), std::move(config), args.serve);
     return;
   }

@@ -10,7 +10,7 @@
 #include "core/error.hpp"
 #include "core/printable.hpp"
 #include "devices/arm_controller/controller_runner.hpp"
-#include "devices/arm_controller/paced_link.hpp"
+#include "transport/paced_link.hpp"
 
 namespace armctl::cli {
 
@@ -22,9 +22,9 @@ void serve_controller(transport::JointBusLink& bus, joint_bus::MasterOptions mas
   if (!args.link.empty() && !upstream.pty)
     throw ArmctlError(ErrorKind::invalid_argument, "--link is only for --upstream pty");
 
-  std::optional<ac::PacedLink> paced;
+  std::optional<transport::PacedLink> paced;
   transport::JointBusLink* link = &bus;
-  if (ac::runs_on_simulated_time(bus)) link = &paced.emplace(bus);
+  if (transport::runs_on_simulated_time(bus)) link = &paced.emplace(bus);
 
   ac::ControllerRunner runner(upstream);
   ac::DeviceOptions options;

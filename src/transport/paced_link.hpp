@@ -9,11 +9,11 @@
 
 #include "transport/joint_bus_link.hpp"
 
-namespace armctl::arm_controller {
+namespace armctl::transport {
 
-class PacedLink final : public transport::JointBusLink {
+class PacedLink final : public JointBusLink {
  public:
-  explicit PacedLink(transport::JointBusLink& simulated);
+  explicit PacedLink(JointBusLink& simulated);
 
   int joint_count() const override { return inner_.joint_count(); }
   void set_select(int joint, bool high) override { inner_.set_select(joint, high); }
@@ -27,13 +27,13 @@ class PacedLink final : public transport::JointBusLink {
  private:
   void pace();
 
-  transport::JointBusLink& inner_;
+  JointBusLink& inner_;
   SteadyClock wall_;
   TimePoint sim_anchor_;
   TimePoint wall_anchor_;
 };
 
 // True if `link` runs on simulated time (its clock is a SimClock).
-bool runs_on_simulated_time(const transport::JointBusLink& link);
+bool runs_on_simulated_time(const JointBusLink& link);
 
-}  // namespace armctl::arm_controller
+}  // namespace armctl::transport

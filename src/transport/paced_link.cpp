@@ -1,15 +1,15 @@
-#include "devices/arm_controller/paced_link.hpp"
+#include "transport/paced_link.hpp"
 
 #include <thread>
 
-namespace armctl::arm_controller {
+namespace armctl::transport {
 
 namespace {
 // Behind by more than this: re-anchor rather than run a burst of simulated time.
 constexpr Duration kMaxLag = std::chrono::milliseconds(50);
 }  // namespace
 
-PacedLink::PacedLink(transport::JointBusLink& simulated)
+PacedLink::PacedLink(JointBusLink& simulated)
     : inner_(simulated), sim_anchor_(simulated.clock().now()), wall_anchor_(wall_.now()) {}
 
 void PacedLink::flush() {
@@ -34,8 +34,8 @@ void PacedLink::pace() {
   }
 }
 
-bool runs_on_simulated_time(const transport::JointBusLink& link) {
+bool runs_on_simulated_time(const JointBusLink& link) {
   return dynamic_cast<const SimClock*>(&link.clock()) != nullptr;
 }
 
-}  // namespace armctl::arm_controller
+}  // namespace armctl::transport
