@@ -61,11 +61,13 @@ double JerkPlan::rounding() const {
 }
 
 JerkPlan::Point JerkPlan::evaluate(double vp) const {
-  const VelocityChange first = velocity_change(task_.velocity, task_.acceleration, vp, limits_);
+  const VelocityChange first =
+      velocity_change(task_.velocity, task_.acceleration, vp, limits_, inv_jerk_, inv_acceleration_);
   // The last change starts and ends at a = 0: symmetric, its mean velocity is the midpoint.
   const double dv = std::abs(task_.target_velocity - vp), amax = limits_.acceleration,
                j = limits_.jerk;
-  const double last = dv * j > amax * amax ? dv / amax + amax / j : 2 * std::sqrt(dv / j);
+  const double last =
+      dv * j > amax * amax ? dv * inv_acceleration_ + amax * inv_jerk_ : 2 * std::sqrt(dv * inv_jerk_);
   Point p;
   p.vp = vp;
   p.ramps = first.duration + last;
@@ -135,6 +137,8 @@ int JerkPlan::add_hidden_crossings(Point* samples, int m) const {
 void JerkPlan::plan(const JerkTask& task, const JerkLimits& limits) {
   task_ = task;
   limits_ = limits;
+  inv_jerk_ = 1 / limits.jerk;
+  inv_acceleration_ = 1 / limits.acceleration;
   point_count_ = 0;
   interval_count_ = 0;
   const double vmax = limits.velocity, amax = limits.acceleration, j = limits.jerk;
@@ -253,7 +257,7 @@ JerkPlan::Release JerkPlan::release(double tau, double& remaining) const {
   const JerkSegment start{0, tau, 0, task_.velocity, a0, j};
   const JerkState s = advance(start, tau);
   const VelocityChange c =
-      velocity_change(s.velocity, s.acceleration, task_.target_velocity, limits_);
+      velocity_change(s.velocity, s.acceleration, task_.target_velocity, limits_, inv_jerk_, inv_acceleration_);
   remaining = (task_.target_position - task_.position) - s.position - c.displacement;
   return Release{tau, tau + c.duration};
 }
@@ -308,7 +312,7 @@ bool JerkPlan::build(double duration, JerkSegments& out) {
     const double j = a0 > 0 ? -limits_.jerk : limits_.jerk;
     const JerkState s = advance(JerkSegment{0, tau, 0, task_.velocity, a0, j}, tau);
     const VelocityChange last =
-        velocity_change(s.velocity, s.acceleration, task_.target_velocity, limits_);
+        velocity_change(s.velocity, s.acceleration, task_.target_velocity, limits_, inv_jerk_, inv_acceleration_);
     const double d[] = {tau, 0, 0, 0, last.ramp_up, last.hold, last.ramp_down};
     const double jk[] = {j, 0, 0, 0, last.jerk, 0, -last.jerk};
     std::copy(d, d + kProfileSegments, durations);
@@ -319,8 +323,8 @@ bool JerkPlan::build(double duration, JerkSegments& out) {
       vp = vp_for_duration(points_[chosen->a], points_[chosen->b], duration);
     else if (chosen)
       vp = points_[chosen->a].vp;
-    const VelocityChange first = velocity_change(task_.velocity, task_.acceleration, vp, limits_);
-    const VelocityChange last = velocity_change(vp, 0, task_.target_velocity, limits_);
+    const VelocityChange first = velocity_change(task_.velocity, task_.acceleration, vp, limits_, inv_jerk_, inv_acceleration_);
+    const VelocityChange last = velocity_change(vp, 0, task_.target_velocity, limits_, inv_jerk_, inv_acceleration_);
     const double cruise = std::max(0.0, duration - first.duration - last.duration);
     // The samples missed a stretch where no cruise fits (remaining of the wrong sign):
     // vp lies in it; sampled there, the next plan knows.
