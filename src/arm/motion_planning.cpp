@@ -238,4 +238,25 @@ Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& fro
   return plan;
 }
 
+std::vector<motion::PathSegment> path_segments(const Arm& arm, const std::vector<double>& from,
+                                               std::span<const CartesianMove> moves) {
+  const motion::JointVector q = arm.chain_of(from);
+  motion::Rpy current = arm.tool_rpy(arm.forward(q), q);
+  std::vector<motion::PathSegment> segments;
+  segments.reserve(moves.size());
+  for (const CartesianMove& m : moves) {
+    current = arm.goal_rpy(m.goal, current);
+    motion::PathSegment seg;
+    seg.kind = m.kind;
+    seg.target.position = m.goal.position;
+    seg.target.orientation = motion::from_rpy(current);
+    seg.via = m.via;
+    seg.speed = m.speed;
+    seg.angular_speed = m.angular_speed;
+    seg.zone = m.zone;
+    segments.push_back(seg);
+  }
+  return segments;
+}
+
 }  // namespace armctl::arm

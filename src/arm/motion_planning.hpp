@@ -5,11 +5,13 @@
 // (motion/path_check.hpp). Pure planning: no I/O. Docs: docs/motion.md.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <span>
 #include <vector>
 
+#include "arm/arm.hpp"
 #include "arm/arm_model.hpp"
 #include "arm/motion_executor.hpp"
 #include "core/error.hpp"
@@ -46,6 +48,26 @@ struct PathPlan {
 };
 Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& from,
                            std::span<const motion::PathSegment> segments, const PathTiming& timing = {});
+
+// The speeds of a Cartesian move that names none (the CLI, programs, Python, the dashboard).
+inline constexpr double kDefaultPathSpeed = 0.05;                 // m/s of the tool point
+inline constexpr double kDefaultAngularSpeed = 45 * M_PI / 180;    // rad/s of the tool
+
+// A LIN or CIRC target as people give it: orientation components left empty keep the ones
+// the tool has at the end of the move before (Arm::goal_rpy; on the xArm an empty yaw
+// follows the position).
+struct CartesianMove {
+  motion::SegmentKind kind = motion::SegmentKind::lin;
+  CartesianGoal goal;
+  Eigen::Vector3d via = Eigen::Vector3d::Zero();  // circ: a point on the arc (m)
+  double speed = kDefaultPathSpeed;
+  double angular_speed = kDefaultAngularSpeed;
+  double zone = 0;  // m
+};
+// The path segments of `moves` made one after the other from the joints `from` (SI, every
+// joint): each target's orientation filled in from the one before, the first from the tool's.
+std::vector<motion::PathSegment> path_segments(const Arm& arm, const std::vector<double>& from,
+                                               std::span<const CartesianMove> moves);
 
 // How far the tool point can be from where it is asked to be only because each chain joint
 // stands on a whole device unit: the tool displacement of half a unit on every chain joint

@@ -180,28 +180,24 @@ class Planner {
   }
 
   void cartesian(const std::vector<Action>& a, std::size_t from, std::size_t to) {
-    motion::JointVector q = chain(state_);
-    motion::Rpy current = arm_.tool_rpy(arm_.forward(q), q);
-    std::vector<motion::PathSegment> segments;
+    std::vector<arm::CartesianMove> targets;
     double acceleration = kDefaultPathAcceleration;
     for (std::size_t k = from; k < to; ++k) {
       const MoveAction& m = a[k].move;
       // Offsets and orientations left out are taken from where the previous move ends:
       // the planned end of the segment before, whose joints are known only after the check,
       // so the running orientation stands in (the position of a tool offset needs it).
-      const Goal g = goal_of(a[k], m.target, state_);
-      motion::PathSegment seg;
-      seg.kind = m.kind == MoveKind::circ ? motion::SegmentKind::circ : motion::SegmentKind::lin;
-      current = arm_.goal_rpy(g.goal, current);
-      seg.target.position = g.goal.position;
-      seg.target.orientation = motion::from_rpy(current);
-      if (m.via) seg.via = goal_of(a[k], *m.via, state_).goal.position;
-      seg.speed = m.speed.value_or(kDefaultPathSpeed) * m.override_fraction;
-      seg.angular_speed = m.angular_speed.value_or(kDefaultAngularSpeed) * m.override_fraction;
-      seg.zone = m.zone;
+      arm::CartesianMove t;
+      t.kind = m.kind == MoveKind::circ ? motion::SegmentKind::circ : motion::SegmentKind::lin;
+      t.goal = goal_of(a[k], m.target, state_).goal;
+      if (m.via) t.via = goal_of(a[k], *m.via, state_).goal.position;
+      t.speed = m.speed.value_or(arm::kDefaultPathSpeed) * m.override_fraction;
+      t.angular_speed = m.angular_speed.value_or(arm::kDefaultAngularSpeed) * m.override_fraction;
+      t.zone = m.zone;
       if (m.acceleration) acceleration = std::min(acceleration, *m.acceleration);
-      segments.push_back(seg);
+      targets.push_back(t);
     }
+    const std::vector<motion::PathSegment> segments = arm::path_segments(arm_, state_, targets);
     arm::PathTiming timing;
     timing.acceleration = acceleration;
     auto plan = arm::plan_path(model_, state_, segments, timing);

@@ -17,8 +17,7 @@
 
 namespace armctl::program {
 
-inline constexpr double kDefaultPathSpeed = 0.05;                 // m/s (LIN, CIRC)
-inline constexpr double kDefaultAngularSpeed = 45 * M_PI / 180;    // rad/s
+// LIN and CIRC without SPEED: arm::kDefaultPathSpeed and kDefaultAngularSpeed.
 inline constexpr double kDefaultPtpSpeed = 0.25;                   // of the joints' velocity limits
 inline constexpr double kDefaultPathAcceleration = 0.5;            // m/s^2
 inline constexpr double kGripperSpeed = 0.5;                       // of the gripper's velocity limit

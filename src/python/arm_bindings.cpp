@@ -82,12 +82,8 @@ struct PyReport {
 };
 
 // A LIN or CIRC segment of armctl.Arm.path, as Python writes it.
-struct PySegment {
-  motion::SegmentKind kind = motion::SegmentKind::lin;
-  Eigen::Vector3d position{0, 0, 0}, via{0, 0, 0};
-  std::optional<double> roll, pitch, yaw;
-  double speed = 0.05, angular_speed = M_PI / 4, zone = 0;
-};
+// armctl.Lin / armctl.Circ: the Arm API's Cartesian move.
+using PySegment = arm::CartesianMove;
 
 Eigen::Vector3d vec3(const std::vector<double>& v, const char* what) {
   if (v.size() != 3)
@@ -439,27 +435,7 @@ class PyArm {
                 double angular_acceleration) {
     if (segments.empty()) raise(ErrorKind::invalid_argument, "path: give at least one segment (armctl.Lin, armctl.Circ)");
     const std::vector<double> from = here();
-    arm::Arm& a = arm();
-    const motion::JointVector q = a.chain_of(from);
-    motion::Rpy current = a.tool_rpy(a.forward(q), q);
-    std::vector<motion::PathSegment> built;
-    for (const auto& s : segments) {
-      arm::CartesianGoal g;
-      g.position = s.position;
-      g.roll = s.roll;
-      g.pitch = s.pitch;
-      g.yaw = s.yaw;
-      current = a.goal_rpy(g, current);
-      motion::PathSegment seg;
-      seg.kind = s.kind;
-      seg.target.position = s.position;
-      seg.target.orientation = motion::from_rpy(current);
-      seg.via = s.via;
-      seg.speed = s.speed;
-      seg.angular_speed = s.angular_speed;
-      seg.zone = s.zone;
-      built.push_back(seg);
-    }
+    const std::vector<motion::PathSegment> built = arm::path_segments(arm(), from, segments);
     arm::PathTiming timing;
     timing.acceleration = acceleration;
     timing.angular_acceleration = angular_acceleration;
@@ -470,10 +446,10 @@ class PyArm {
   PyReport move_linear(const std::vector<double>& position, std::optional<double> roll, std::optional<double> pitch,
                        std::optional<double> yaw, double speed, double angular_speed, double speed_override) {
     PySegment s;
-    s.position = vec3(position, "position");
-    s.roll = roll;
-    s.pitch = pitch;
-    s.yaw = yaw;
+    s.goal.position = vec3(position, "position");
+    s.goal.roll = roll;
+    s.goal.pitch = pitch;
+    s.goal.yaw = yaw;
     s.speed = speed;
     s.angular_speed = angular_speed;
     return path({s}, speed_override, arm::PathTiming{}.acceleration, arm::PathTiming{}.angular_acceleration);
@@ -544,11 +520,11 @@ PySegment segment(motion::SegmentKind kind, const std::vector<double>& position,
                   double angular_speed, double zone) {
   PySegment s;
   s.kind = kind;
-  s.position = vec3(position, "position");
+  s.goal.position = vec3(position, "position");
   if (kind == motion::SegmentKind::circ) s.via = vec3(via, "via");
-  s.roll = roll;
-  s.pitch = pitch;
-  s.yaw = yaw;
+  s.goal.roll = roll;
+  s.goal.pitch = pitch;
+  s.goal.yaw = yaw;
   s.speed = speed;
   s.angular_speed = angular_speed;
   s.zone = zone;
@@ -619,12 +595,13 @@ void define_arm(py::module_& m) {
       .def_property_readonly(
           "kind", [](const PySegment& s) { return std::string(motion::to_string(s.kind)); }, "'LIN' or 'CIRC'")
       .def_property_readonly(
-          "position", [](const PySegment& s) { return to_array(Eigen::VectorXd(s.position)); }, "its end point, m")
+          "position", [](const PySegment& s) { return to_array(Eigen::VectorXd(s.goal.position)); }, "its end point, m")
       .def_property_readonly(
           "via", [](const PySegment& s) { return to_array(Eigen::VectorXd(s.via)); }, "CIRC: a point on the arc, m")
-      .def_readonly("roll", &PySegment::roll, "rad at its end, or None: kept")
-      .def_readonly("pitch", &PySegment::pitch, "rad at its end, or None: kept")
-      .def_readonly("yaw", &PySegment::yaw, "rad at its end, or None: kept (xArm: follows the position)")
+      .def_property_readonly("roll", [](const PySegment& s) { return s.goal.roll; }, "rad at its end, or None: kept")
+      .def_property_readonly("pitch", [](const PySegment& s) { return s.goal.pitch; }, "rad at its end, or None: kept")
+      .def_property_readonly(
+          "yaw", [](const PySegment& s) { return s.goal.yaw; }, "rad at its end, or None: kept (xArm: follows the position)")
       .def_readonly("speed", &PySegment::speed, "m/s of the tool point")
       .def_readonly("angular_speed", &PySegment::angular_speed, "rad/s of the tool orientation, at most")
       .def_readonly("zone", &PySegment::zone, "m: fly-by radius at its end; 0 = stop there");

@@ -20,8 +20,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr double kDefaultPathSpeed = 0.05;               // m/s
-constexpr double kDefaultAngularSpeed = 45 * M_PI / 180;  // rad/s
 constexpr double kDefaultPtpSpeed = 0.25;                 // of the velocity limits
 
 // Where a move came from, for messages: "line 12" of a path file, or the command line.
@@ -61,7 +59,6 @@ class Planner {
   }
 
  private:
-  motion::JointVector chain() const { return arm_.chain_of(state_); }
 
   void plan_ptp(const motion::PathMove& m) {
     std::vector<double> target = state_;
@@ -107,22 +104,19 @@ class Planner {
   }
 
   void plan_cartesian(const std::vector<motion::PathMove>& moves, std::size_t from, std::size_t to) {
-    const motion::JointVector q = chain();
-    motion::Rpy current = arm_.tool_rpy(arm_.forward(q), q);
-    std::vector<motion::PathSegment> segments;
+    std::vector<arm::CartesianMove> targets;
     for (std::size_t k = from; k < to; ++k) {
       const motion::PathMove& m = moves[k];
-      motion::PathSegment seg;
-      seg.kind = m.kind == motion::MoveKind::circ ? motion::SegmentKind::circ : motion::SegmentKind::lin;
-      current = arm_.goal_rpy(goal_of(m), current);
-      seg.target.position = m.position;
-      seg.target.orientation = motion::from_rpy(current);
-      seg.via = m.via;
-      seg.speed = m.speed.value_or(kDefaultPathSpeed);
-      seg.angular_speed = m.angular_speed.value_or(kDefaultAngularSpeed);
-      seg.zone = m.zone;
-      segments.push_back(seg);
+      arm::CartesianMove t;
+      t.kind = m.kind == motion::MoveKind::circ ? motion::SegmentKind::circ : motion::SegmentKind::lin;
+      t.goal = goal_of(m);
+      t.via = m.via;
+      t.speed = m.speed.value_or(arm::kDefaultPathSpeed);
+      t.angular_speed = m.angular_speed.value_or(arm::kDefaultAngularSpeed);
+      t.zone = m.zone;
+      targets.push_back(t);
     }
+    const std::vector<motion::PathSegment> segments = arm::path_segments(arm_, state_, targets);
     auto plan = arm::plan_path(model_, state_, segments);
     if (!plan) {
       // The path's errors count segments from 1 within this stretch: say which lines.
