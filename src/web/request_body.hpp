@@ -74,7 +74,7 @@ ControlRequest parse_control_request(const json& body);
 struct JointsRequest {
   std::vector<std::optional<double>> targets;
   double speed = 0.25;              // of the velocity limits, (0, 1]
-  std::optional<double> duration;   // s
+  std::optional<double> duration;   // s, (0, 600]: at least this long
 };
 inline constexpr double kMaxMoveSeconds = 600;
 JointsRequest parse_joints_request(const arm::ArmModel& model, const json& body);

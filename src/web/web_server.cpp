@@ -135,6 +135,8 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
   http.new_task_queue = [] { return new httplib::ThreadPool(16); };
   http.set_payload_max_length(kMaxBodyBytes);
   http.set_keep_alive_max_count(1000);
+  // An idle keep-alive connection holds a thread, and stop() waits for it: not for long.
+  http.set_keep_alive_timeout(2);
   http.set_pre_routing_handler([this](const httplib::Request& r, httplib::Response& res) {
     State& st = *state_;
     RequestFacts facts{r.method,         header(r, "Host"),          header(r, "Origin"),
@@ -219,6 +221,13 @@ void WebServer::stop() {
   while (thread_.joinable() && !http_->is_running() && !listen_ended_) std::this_thread::sleep_for(1ms);
   http_->stop();
   if (thread_.joinable()) thread_.join();
+  // Jobs started here use the server's state (a program's progress): they end before it goes.
+  session::ArmWorker& worker = state_->worker;
+  if (worker.busy()) worker.command(arm::MotionCommand::stop);
+  auto snapshot = worker.snapshot();
+  const auto deadline = std::chrono::steady_clock::now() + 30s;
+  while (worker.busy() && std::chrono::steady_clock::now() < deadline)
+    snapshot = worker.wait_for_update(snapshot.sequence, 100ms);
 }
 
 std::string WebServer::url() const {
