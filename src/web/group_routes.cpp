@@ -35,7 +35,8 @@ void add_group_routes(WebServer::State& s) {
     require_board(s);
     s.lease.require(c.client);
     const auto n = parse_group_number(c.params[0]);
-    BodyReader r(c.body());
+    const json body = c.body();
+    BodyReader r(body);
     const json& frames = r.require("frames", "an array of frames");
     r.finish();
     const GroupFrames g = frames_to_group(s.worker.model(), frames);

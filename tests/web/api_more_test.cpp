@@ -67,8 +67,7 @@ json frames_at(const arm::ArmModel& model, std::initializer_list<double> values)
   json frames = json::array();
   for (double v : values) {
     json positions = json::object();
-    for (const auto& j : model.joints)
-      if (j.role != arm::JointRole::gripper) positions[j.name] = v;
+    for (const auto& j : model.joints) positions[j.name] = j.role == arm::JointRole::gripper ? 0.0 : v;
     frames.push_back({{"time_ms", 400}, {"positions", positions}});
   }
   return frames;
