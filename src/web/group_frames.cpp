@@ -7,6 +7,7 @@
 
 #include "core/printable.hpp"
 #include "core/quantity.hpp"
+#include "web/display_value.hpp"
 #include "motion/rob_file.hpp"
 #include "protocol/robot_commands/messages.hpp"
 #include "web/api_error.hpp"
@@ -122,7 +123,7 @@ json group_to_frames(const arm::ArmModel& model, const motion::ActionGroupFile& 
     const std::vector<double> q = model.from_device(kRc, device);
     json positions = json::object();
     for (std::size_t i = 0; i < q.size(); ++i)
-      if (given[i]) positions[model.joints[i].name] = to_display(model.joints[i].dimension, q[i]);
+      if (given[i]) positions[model.joints[i].name] = display_value(model.joints[i].dimension, q[i]);
     frames.push_back({{"time_ms", action.time_ms}, {"positions", std::move(positions)}});
   }
   return frames;

@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include "core/quantity.hpp"
+#include "web/display_value.hpp"
 #include "web/api_error.hpp"
 #include "web/group_frames.hpp"
 #include "web/request_body.hpp"
@@ -91,7 +92,7 @@ void add_group_routes(WebServer::State& s) {
     json positions = json::object();
     for (std::size_t i = 0; i < model.joints.size(); ++i)
       if (model.joints[i].robot_commands)
-        positions[model.joints[i].name] = to_display(model.joints[i].dimension, snapshot.positions[i]);
+        positions[model.joints[i].name] = display_value(model.joints[i].dimension, snapshot.positions[i]);
     c.reply({{"time_ms", 1000}, {"positions", std::move(positions)}});
   });
 }

@@ -4,6 +4,7 @@
 
 #include "core/printable.hpp"
 #include "core/quantity.hpp"
+#include "web/display_value.hpp"
 #include "teach/teach.hpp"
 #include "web/api_error.hpp"
 #include "web/request_body.hpp"
@@ -20,7 +21,7 @@ json point_json(const arm::Arm& arm, const program::Point& p) {
     json joints = json::object();
     std::vector<double> positions(model.joints.size(), 0.0);
     for (std::size_t i = 0; i < p.joints.size() && i < model.joints.size(); ++i) {
-      joints[model.joints[i].name] = to_display(p.joints[i].dimension, p.joints[i].value);
+      joints[model.joints[i].name] = display_value(p.joints[i].dimension, p.joints[i].value);
       positions[i] = p.joints[i].value;
     }
     out["joints"] = std::move(joints);
@@ -29,9 +30,9 @@ json point_json(const arm::Arm& arm, const program::Point& p) {
                       ? tool_json(arm, arm.forward(arm.chain_of(positions)), positions)
                       : json(nullptr);
   } else {
-    json tool{{"x", p.position.x() * 1e3}, {"y", p.position.y() * 1e3}, {"z", p.position.z() * 1e3}};
+    json tool{{"x", tidy(p.position.x() * 1e3)}, {"y", tidy(p.position.y() * 1e3)}, {"z", tidy(p.position.z() * 1e3)}};
     for (auto [key, value] : {std::pair{"roll", p.roll}, std::pair{"pitch", p.pitch}, std::pair{"yaw", p.yaw}})
-      tool[key] = value ? json(*value * 180 / M_PI) : json(nullptr);
+      tool[key] = value ? json(display_value(Dimension::angle, *value)) : json(nullptr);
     out["joints"] = nullptr;
     out["tool"] = std::move(tool);
   }

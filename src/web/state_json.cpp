@@ -6,13 +6,14 @@
 #include <fmt/core.h>
 
 #include "core/quantity.hpp"
+#include "web/display_value.hpp"
 
 namespace armctl::web {
 
 namespace {
 
-double deg(double rad) { return to_display(Dimension::angle, rad); }
-double mm(double m) { return to_display(Dimension::length, m); }
+double deg(double rad) { return display_value(Dimension::angle, rad); }
+double mm(double m) { return display_value(Dimension::length, m); }
 
 // A number JSON can carry (NaN and infinities become null).
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
@@ -35,8 +36,8 @@ json model_json(const arm::ArmModel& model, const DeviceInfo& device) {
     json joint{{"name", j.name},
                {"kind", j.dimension == Dimension::angle ? "revolute" : "prismatic"},
                {"unit", display_unit(j.dimension)},
-               {"min", to_display(j.dimension, j.limits.lower)},
-               {"max", to_display(j.dimension, j.limits.upper)},
+               {"min", display_value(j.dimension, j.limits.lower)},
+               {"max", display_value(j.dimension, j.limits.upper)},
                {"gripper", j.role == arm::JointRole::gripper},
                {"raw_unit", device.protocol == arm::Protocol::robot_commands ? "servo units" : "counts"}};
     if (const auto& map = j.map(device.protocol)) {
@@ -78,9 +79,9 @@ json state_json(const arm::Arm& arm, const session::ArmSnapshot& s,
   for (std::size_t i = 0; i < model.joints.size(); ++i) {
     const auto& j = model.joints[i];
     json joint{{"name", j.name}};
-    joint["position"] = i < s.positions.size() ? number(to_display(j.dimension, s.positions[i])) : json(nullptr);
+    joint["position"] = i < s.positions.size() ? number(display_value(j.dimension, s.positions[i])) : json(nullptr);
     joint["raw"] = i < s.device.size() ? number(s.device[i]) : json(nullptr);
-    joint["velocity"] = i < s.velocities.size() ? number(to_display(j.dimension, s.velocities[i])) : json(nullptr);
+    joint["velocity"] = i < s.velocities.size() ? number(display_value(j.dimension, s.velocities[i])) : json(nullptr);
     joints.push_back(std::move(joint));
   }
   json out{{"sequence", s.sequence},

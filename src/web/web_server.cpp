@@ -137,18 +137,7 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
   http.set_keep_alive_max_count(1000);
   // An idle keep-alive connection holds a thread, and stop() waits for it: not for long.
   http.set_keep_alive_timeout(2);
-  http.set_pre_routing_handler([this](const httplib::Request& r, httplib::Response& res) {
-    State& st = *state_;
-    RequestFacts facts{r.method,         header(r, "Host"),          header(r, "Origin"),
-                       header(r, "Content-Type"), has_body(r), header(r, "Authorization"),
-                       parameter(r, "token")};
-    if (auto refusal = check_request(st.policy, facts)) {
-      reply_error(res, refusal->status, refusal->message);
-      return httplib::Server::HandlerResponse::Handled;
-    }
-    return httplib::Server::HandlerResponse::Unhandled;
-  });
-  auto dispatch = [this](const httplib::Request& r, httplib::Response& res) {
+  dispatch_ = [this](const httplib::Request& r, httplib::Response& res) {
     State& st = *state_;
     std::string client;
     try {
@@ -170,6 +159,24 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
     }
     reply_error(res, 404, fmt::format("no such path: {}", printable(r.path.substr(0, 200))));
   };
+  http.set_pre_routing_handler([this](const httplib::Request& r, httplib::Response& res) {
+    State& st = *state_;
+    RequestFacts facts{r.method,         header(r, "Host"),          header(r, "Origin"),
+                       header(r, "Content-Type"), has_body(r), header(r, "Authorization"),
+                       parameter(r, "token")};
+    if (auto refusal = check_request(st.policy, facts)) {
+      reply_error(res, refusal->status, refusal->message);
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    // A request without Content-Length or chunked body has no body (HTTP/1.1), but httplib
+    // would wait for one until its read timeout (`curl -X POST .../stop`): answer it now.
+    if (r.method != "GET" && r.method != "HEAD" && !has_body(r) && !header(r, "Content-Length")) {
+      dispatch_(r, res);
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
+  auto dispatch = [this](const httplib::Request& r, httplib::Response& res) { dispatch_(r, res); };
   http.Get(".*", dispatch);
   http.Post(".*", dispatch);
   http.Put(".*", dispatch);

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -15,6 +16,8 @@
 
 namespace httplib {
 class Server;
+struct Request;
+struct Response;
 }
 
 namespace armctl::web {
@@ -54,6 +57,7 @@ class WebServer {
  private:
   std::unique_ptr<State> state_;
   std::unique_ptr<httplib::Server> http_;
+  std::function<void(const httplib::Request&, httplib::Response&)> dispatch_;  // routes, then files
   std::thread thread_;
   int port_ = 0;
   std::atomic<bool> listen_ended_{false};

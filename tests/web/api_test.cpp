@@ -1,5 +1,10 @@
 // The HTTP API on loopback (docs/http-api.md): model, URDF, state, events, static files,
 // routing errors, the security checks and the control lease.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <condition_variable>
 #include <fstream>
@@ -297,6 +302,46 @@ TEST(WebApi, EventsIdleKeepAliveAndWhileMoving) {
   bool saw_motion = false;
   for (const auto& e : during) saw_motion = saw_motion || e.state["motion"].is_object();
   EXPECT_TRUE(saw_motion);
+}
+
+}  // namespace
+}  // namespace armctl::web::testing
+
+namespace armctl::web::testing {
+namespace {
+
+// What a raw HTTP request gets back (the status line and what follows), read until the
+// server closes or has sent `until`.
+std::string raw_request(int port, const std::string& request, const std::string& until) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(std::uint16_t(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  EXPECT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  EXPECT_EQ(::send(fd, request.data(), request.size(), 0), ssize_t(request.size()));
+  std::string got;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
+    if (n <= 0) break;
+    got.append(buffer, std::size_t(n));
+    if (got.find(until) != std::string::npos) break;
+  }
+  ::close(fd);
+  return got;
+}
+
+TEST(WebApi, StopWithoutAnyBodyAnswersAtOnce) {
+  ApiServer api;
+  api.first_positions();
+  const std::string host = "Host: 127.0.0.1:" + std::to_string(api.port()) + "\r\n";
+  const auto began = std::chrono::steady_clock::now();
+  // curl -X POST: no Content-Length, no body. HTTP/1.1 says there is none: no waiting for one.
+  const std::string got = raw_request(api.port(), "POST /api/v1/stop HTTP/1.1\r\n" + host + "\r\n", "\"stopped\":true");
+  EXPECT_EQ(got.rfind("HTTP/1.1 200", 0), 0u) << got;
+  EXPECT_NE(got.find("\"stopped\":true"), std::string::npos) << got;
+  EXPECT_LT(std::chrono::steady_clock::now() - began, 2s);
 }
 
 }  // namespace
