@@ -1,5 +1,7 @@
 #include "web/web_server.hpp"
 
+#include <sys/socket.h>
+
 #include <future>
 
 #include <fmt/core.h>
@@ -134,6 +136,12 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
   httplib::Server& http = *http_;
   http.new_task_queue = [] { return new httplib::ThreadPool(16); };
   http.set_payload_max_length(kMaxBodyBytes);
+  // SO_REUSEADDR only: httplib's default SO_REUSEPORT would let a second server bind the same
+  // port and share the requests (two arms behind one URL).
+  http.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   http.set_keep_alive_max_count(1000);
   // An idle keep-alive connection holds a thread, and stop() waits for it: not for long.
   http.set_keep_alive_timeout(2);

@@ -185,6 +185,22 @@ TEST(WebApi, NoTokenNoNonLoopbackListen) {
   EXPECT_THROW(WebServer(worker, o), ArmctlError);
 }
 
+TEST(WebApi, APortInUseIsRefused) {
+  ApiServer api;
+  auto session = session::open_arm_session("xarm", "");
+  session::ArmWorker worker(std::move(session));
+  ServerOptions o;
+  o.port = api.port();
+  WebServer second(worker, o);
+  try {
+    second.start();
+    ADD_FAILURE() << "a second server listens on port " << o.port;
+  } catch (const ArmctlError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot listen on 127.0.0.1:" + std::to_string(o.port)), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(WebApi, ControlLease) {
   ApiServer api;
   api.first_positions();
