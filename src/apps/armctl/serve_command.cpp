@@ -71,7 +71,10 @@ void run_serve(const ServeArgs& a) {
     usage("--token: 8..256 characters without spaces or any of & # ? % (it goes into a URL)");
   options.points_file = a.points;
 
-  auto session = open_arm_session(a.arm, a.device);
+  // The embedded simulated bus in step with the wall clock, like a real arm: people watch it.
+  session::SessionOptions session_options;
+  session_options.wall_clock = true;
+  auto session = open_arm_session(a.arm, a.device, session_options);
   const arm::ArmModel& model = session->arm->model();
   options.urdf = read_regular_file(model.urdf, "the arm's URDF", 1 << 20).value();
   options.device = web::describe_device(*session, a.device);
