@@ -13,7 +13,8 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
   gcc-avr avr-libc binutils-avr avrdude simavr libsimavr-dev libelf-dev \
   clang libclang-rt-14-dev ccache \
   liburdfdom-dev liborocos-kdl-dev libkdl-parser-dev libeigen3-dev \
-  pybind11-dev python3-dev python3-pytest python3-numpy
+  pybind11-dev python3-dev python3-pytest python3-numpy \
+  libcpp-httplib-dev
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 JOBS ?= 2

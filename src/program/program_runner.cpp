@@ -56,11 +56,15 @@ Result<RunReport> run_plan(arm::Arm& arm, const ProgramPlan& plan, const RunOpti
     }
     if (options.before_motion && !options.before_motion(piece)) break;
     event({RunEventKind::piece_started, &piece, done, left_after(done), nullptr});
-    arm::ExecutorOptions eo;
+    arm::ExecutorOptions eo = options.executor;
     eo.speed_override = options.speed_override;
-    eo.command = [&](const arm::MotionProgress&) { return command(); };
+    eo.command = [&](const arm::MotionProgress& p) {
+      const arm::MotionCommand c = command();
+      return c == arm::MotionCommand::none && options.executor.command ? options.executor.command(p) : c;
+    };
     Duration last_shown{};
     eo.on_point = [&](const arm::MotionProgress& p) {
+      if (options.executor.on_point) options.executor.on_point(p);
       if (p.elapsed - last_shown < std::chrono::milliseconds(250)) return;
       last_shown = p.elapsed;
       event({RunEventKind::progress, &piece, done + p.t, left_after(done + p.t), nullptr});
@@ -76,7 +80,7 @@ Result<RunReport> run_plan(arm::Arm& arm, const ProgramPlan& plan, const RunOpti
   report.completed = report.pieces == plan.pieces.size();
   if (report.completed) {
     // The last point is due when the motion ends: let the arm get there.
-    if (auto s = arm.wait(); !s) return s.error();
+    if (auto s = arm.wait(options.wait); !s) return s.error();
   }
   report.elapsed = arm.clock().now() - began;
   return report;

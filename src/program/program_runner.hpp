@@ -31,6 +31,11 @@ struct RunOptions {
   // Before each motion piece (--step): false stops the run there.
   std::function<bool(const PlannedPiece&)> before_motion;
   std::function<void(const RunEvent&)> on_event;
+  // The base of every motion's executor options and of the final wait (an arm worker's
+  // JobContext wires its pause/stop commands and position publishing here): run_plan sets
+  // the override and adds `command` and its progress events on top.
+  arm::ExecutorOptions executor;
+  arm::WaitOptions wait;
 };
 
 struct RunReport {

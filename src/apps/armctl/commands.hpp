@@ -20,6 +20,7 @@ void add_stop_command(CLI::App& app);        // stop_command.cpp: stop any devic
 void add_program_command(CLI::App& app);     // program_command.cpp: robot programs
 void add_teach_command(CLI::App& app);       // teach_command.cpp: points and motions taught by hand
 void add_replay_command(CLI::App& app);      // replay_command.cpp: recordings played back
+void add_serve_command(CLI::App& app);       // serve_command.cpp: the web dashboard and its HTTP API
 
 // Where `armctl xarm --device ...` options end up (they are parsed after the subcommand is set up).
 struct XarmDeviceOptions {

@@ -1,0 +1,93 @@
+// The arm's own endpoints: model, URDF, state and its event stream, control, STOP and the
+// moves (joints, tool, jog, gripper, torque).
+#include <fmt/core.h>
+
+#include "web/api_error.hpp"
+#include "web/request_body.hpp"
+#include "web/server_state.hpp"
+
+namespace armctl::web {
+
+namespace {
+
+using namespace std::chrono_literals;
+
+void add_event_stream(WebServer::State& s) {
+  s.router.add("GET", "/api/v1/events", [&s](Call& c) {
+    auto last = std::make_shared<std::uint64_t>(0);
+    const std::string client = c.client;
+    c.response.set_header("Cache-Control", "no-cache");
+    c.response.set_header("X-Accel-Buffering", "no");
+    // One "state" event per published snapshot; without news, one every idle interval.
+    c.response.set_chunked_content_provider(
+        "text/event-stream", [&s, last, client](std::size_t, httplib::DataSink& sink) {
+          if (s.stopping) return false;
+          const auto snapshot = s.worker.wait_for_update(*last, s.options.idle_event_interval);
+          if (s.stopping) return false;
+          *last = snapshot.sequence;
+          const std::string event =
+              "event: state\ndata: " + s.state_for(client, snapshot).dump(-1, ' ', false, json::error_handler_t::replace) +
+              "\n\n";
+          return sink.write(event.data(), event.size());
+        });
+  });
+}
+
+}  // namespace
+
+void add_arm_routes(WebServer::State& s) {
+  s.router.add("GET", "/api/v1/model", [&s](Call& c) { c.reply(s.model); });
+  s.router.add("GET", "/api/v1/urdf", [&s](Call& c) {
+    c.response.set_header("Cache-Control", "no-cache");
+    c.response.set_content(s.options.urdf, "application/xml");
+  });
+  s.router.add("GET", "/api/v1/state", [&s](Call& c) { c.reply(s.state_for(c.client, s.worker.snapshot())); });
+  add_event_stream(s);
+
+  s.router.add("POST", "/api/v1/control", [&s](Call& c) {
+    const ControlRequest r = parse_control_request(c.body());
+    if (r.take) s.lease.take(c.client);
+    else s.lease.release(c.client);
+    const ControlView v = s.lease.view(c.client);
+    c.reply({{"control", {{"you", v.you}, {"holder", v.holder}, {"since", v.since}}}});
+  });
+
+  // From anyone, always, whatever the body: a STOP must never be refused for its form. The
+  // worker tells the running job, drops queued ones and halts the arm (Arm::stop: on a
+  // Robot Commands board that also stops a running action group).
+  s.router.add("POST", "/api/v1/stop", [&s](Call& c) {
+    s.worker.command(arm::MotionCommand::stop);
+    c.reply({{"stopped", true}});
+  });
+
+  s.router.add("POST", "/api/v1/joints", [&s](Call& c) {
+    s.lease.require(c.client);
+    const JointsRequest r = parse_joints_request(s.worker.model(), c.body());
+    if (auto ok = s.arm().check_targets(r.targets); !ok) fail(ok.error());
+    c.reply(s.start_motion("joints move", joint_move_job(r)));
+  });
+  s.router.add("POST", "/api/v1/tool", [&s](Call& c) {
+    s.lease.require(c.client);
+    const ToolRequest r = parse_tool_request(c.body());
+    c.reply(s.start_motion(r.linear ? "linear tool move" : "tool move", tool_move_job(r)));
+  });
+  s.router.add("POST", "/api/v1/jog", [&s](Call& c) {
+    s.lease.require(c.client);
+    const JogRequest r = parse_jog_request(c.body());
+    c.reply(s.start_motion("jog", jog_job(r)));
+  });
+  s.router.add("POST", "/api/v1/gripper", [&s](Call& c) {
+    s.lease.require(c.client);
+    const double closed = parse_gripper_request(c.body());
+    if (!s.worker.model().gripper)
+      throw ApiError(409, fmt::format("arm {} has no gripper", s.worker.model().name));
+    c.reply(s.start_motion("gripper", gripper_job(closed)));
+  });
+  s.router.add("POST", "/api/v1/torque", [&s](Call& c) {
+    s.lease.require(c.client);
+    const bool on = parse_torque_request(c.body());
+    c.reply(s.start_motion(on ? "torque on" : "torque off", torque_job(on)));
+  });
+}
+
+}  // namespace armctl::web

@@ -1,0 +1,42 @@
+// A program sent by the page (its text and its points file's text): parsed, its flow run,
+// every move planned on the arm from where it stands, with every error placed at its line
+// and column for the editor. The parser's and planner's errors start "program:LINE:COLUMN:"
+// (or "points:..." for the points file); this splits them apart. Pure code on the Arm
+// API's const calls.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "arm/arm.hpp"
+#include "program/program_plan.hpp"
+#include "web/request_body.hpp"
+
+namespace armctl::web {
+
+inline constexpr const char* kProgramSource = "program";
+inline constexpr const char* kPointsSource = "points";
+
+struct PlacedError {
+  std::string file;  // "program" or "points"
+  std::size_t line = 0, column = 0;  // 0: not known
+  std::string message;  // without the place
+};
+
+// "program:12:5: found ..." -> {program, 12, 5, "found ..."}; other texts keep line 0.
+PlacedError place_error(const std::string& message);
+
+struct CheckedProgram {
+  std::vector<PlacedError> errors;  // empty: ok
+  std::optional<program::ProgramPlan> plan;
+};
+
+// Parse, flow, and (with `arm` and `start`) plan.
+CheckedProgram check_program(const ProgramRequest& request, const arm::Arm* arm, const std::vector<double>& start);
+
+nlohmann::json errors_json(const std::vector<PlacedError>& errors);
+
+}  // namespace armctl::web

@@ -1,0 +1,112 @@
+// Programs from the page's editor (docs/programs.md): check (errors at their line), run
+// (on the worker, progress in state.program), pause, resume, stop.
+#include <fmt/core.h>
+
+#include "program/program_runner.hpp"
+#include "web/api_error.hpp"
+#include "web/program_check.hpp"
+#include "web/request_body.hpp"
+#include "web/server_state.hpp"
+
+namespace armctl::web {
+
+namespace {
+
+// The program run as a worker job: planned from a fresh read (accepted or refused with
+// placed errors), then run with the job's context so that pause, resume and stop reach it.
+MotionJob program_job(WebServer::State& s, ProgramRequest request) {
+  return [&s, request](arm::Arm& arm, session::JobContext& ctx, const Accept& accept) -> Status {
+    auto here = arm.read();
+    if (!here) return here.error();
+    CheckedProgram checked = check_program(request, &arm, here->positions);
+    if (!checked.plan) {
+      const PlacedError& e = checked.errors.front();
+      return Error{ErrorKind::invalid_argument,
+                   e.line ? fmt::format("{}:{}:{}: {}", e.file, e.line, e.column, e.message) : e.message};
+    }
+    const program::ProgramPlan& plan = *checked.plan;
+    s.program.started();
+    s.program.at(plan.pieces.empty() ? 0 : plan.pieces.front().first_line, 0, plan.duration / request.speed);
+    accept(json{{"started", true}, {"duration_s", plan.duration / request.speed}});
+    program::RunOptions o;
+    o.speed_override = request.speed;
+    o.executor = ctx.executor_options();
+    o.wait = ctx.wait_options();
+    // Waits and the gaps between pieces see only stop (pause and resume are the
+    // executor's: they hold a motion on its path).
+    o.command = [&ctx] { return ctx.stopping() ? arm::MotionCommand::stop : arm::MotionCommand::none; };
+    o.on_event = [&s](const program::RunEvent& e) {
+      if (e.kind == program::RunEventKind::print) s.program.print(e.piece->text);
+      s.program.at(e.piece->first_line, 0, e.left);
+    };
+    auto report = program::run_plan(arm, plan, o);
+    s.program.ended();
+    if (!report) return report.error();
+    return Ok{};
+  };
+}
+
+void require_running(WebServer::State& s) {
+  auto v = s.program.view();
+  if (!v || v->state == ProgramState::idle) throw ApiError(409, "no program is running");
+}
+
+}  // namespace
+
+void add_program_routes(WebServer::State& s) {
+  s.router.add("POST", "/api/v1/program/check", [&s](Call& c) {
+    const ProgramRequest r = parse_program_request(c.body(), false);
+    const auto snapshot = s.worker.snapshot();
+    if (snapshot.positions.size() != s.worker.model().joints.size())
+      throw ApiError(500, fmt::format("no positions read from the arm yet{}",
+                                      snapshot.link_error.empty() ? "" : ": " + snapshot.link_error));
+    // Planned from the last positions the worker published (a check moves nothing).
+    const CheckedProgram checked = check_program(r, &s.arm(), snapshot.positions);
+    json out{{"ok", checked.errors.empty()}, {"errors", errors_json(checked.errors)}};
+    out["duration_s"] = checked.plan ? json(checked.plan->duration) : json(nullptr);
+    c.reply(out);
+  });
+  s.router.add("POST", "/api/v1/program/run", [&s](Call& c) {
+    s.lease.require(c.client);
+    const ProgramRequest r = parse_program_request(c.body(), true);
+    // The text's own errors before the arm is asked anything.
+    const CheckedProgram text = check_program(r, nullptr, {});
+    if (!text.errors.empty()) {
+      const auto& e = text.errors.front();
+      c.reply({{"error", e.line ? fmt::format("{}:{}:{}: {}", e.file, e.line, e.column, e.message) : e.message},
+               {"errors", errors_json(text.errors)}},
+              400);
+      return;
+    }
+    try {
+      c.reply(s.start_motion("program", program_job(s, r)), 202);
+    } catch (const ApiError& e) {
+      if (e.status() != 400) throw;
+      c.reply({{"error", e.what()}, {"errors", errors_json({place_error(e.what())})}}, 400);
+    }
+  });
+  s.router.add("POST", "/api/v1/program/pause", [&s](Call& c) {
+    s.lease.require(c.client);
+    parse_empty_request(c.body());
+    require_running(s);
+    s.worker.command(arm::MotionCommand::pause);
+    s.program.paused(true);
+    c.reply({{"paused", true}});
+  });
+  s.router.add("POST", "/api/v1/program/resume", [&s](Call& c) {
+    s.lease.require(c.client);
+    parse_empty_request(c.body());
+    require_running(s);
+    s.worker.command(arm::MotionCommand::resume);
+    s.program.paused(false);
+    c.reply({{"paused", false}});
+  });
+  s.router.add("POST", "/api/v1/program/stop", [&s](Call& c) {
+    s.lease.require(c.client);
+    parse_empty_request(c.body());
+    s.worker.command(arm::MotionCommand::stop);
+    c.reply({{"stopped", true}});
+  });
+}
+
+}  // namespace armctl::web

@@ -1,0 +1,55 @@
+// What the server's handlers share (private to src/web): the worker, the lease, the
+// program run, the points, and the one way jobs are started.
+#pragma once
+
+#include <atomic>
+#include <mutex>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "program/points_file.hpp"
+#include "session/arm_worker.hpp"
+#include "web/control_lease.hpp"
+#include "web/motion_jobs.hpp"
+#include "web/program_run.hpp"
+#include "web/router.hpp"
+#include "web/security.hpp"
+#include "web/web_server.hpp"
+
+namespace armctl::web {
+
+struct WebServer::State {
+  State(session::ArmWorker& w, ServerOptions o) : worker(w), options(std::move(o)) {}
+
+  session::ArmWorker& worker;
+  ServerOptions options;
+  SecurityPolicy policy;
+  json model;
+  ControlLease lease;
+  ProgramRun program;
+  std::atomic<bool> stopping{false};
+  Router router;
+
+  std::mutex points_mutex;
+  program::PointsFile points;
+
+  // The arm, for its calls that read only the model (check_targets, forward, tool_rpy):
+  // the model never changes once the arm exists, so these are safe off the worker thread.
+  const arm::Arm& arm() { return *worker.session().arm; }
+
+  // Queues a motion job and waits until it has accepted (planned, checked, started) or
+  // refused: its answer, or an ApiError (400 a bad value, 409 busy, 500 the device).
+  json start_motion(const std::string& what, MotionJob job);
+  // Runs a short job to its end and gives its status (ApiError on failure).
+  void run_to_end(const std::string& what, session::ArmWorker::Job job);
+
+  json state_for(const std::string& client, const session::ArmSnapshot& snapshot);
+};
+
+void add_arm_routes(WebServer::State& s);
+void add_point_routes(WebServer::State& s);
+void add_group_routes(WebServer::State& s);
+void add_program_routes(WebServer::State& s);
+
+}  // namespace armctl::web

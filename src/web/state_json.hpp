@@ -1,0 +1,40 @@
+// The JSON of GET /api/v1/model and /api/v1/state (and each SSE event): built from the
+// arm model and the worker's snapshot only, never from the device. Units as people read
+// them: deg or mm (velocities per s), the tool in mm and deg.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "arm/arm.hpp"
+#include "session/arm_worker.hpp"
+#include "web/control_lease.hpp"
+#include "web/program_run.hpp"
+
+namespace armctl::web {
+
+using json = nlohmann::json;
+
+// What the server knows of its device from the start.
+struct DeviceInfo {
+  std::string device;       // the URI as given ("" = the embedded simulator)
+  std::string description;  // the device's own description
+  arm::Protocol protocol = arm::Protocol::robot_commands;
+  bool groups_supported = false;  // a Robot Commands board (action groups)
+};
+
+// Of an open session (before it is handed to the worker): `uri` as the user gave it.
+DeviceInfo describe_device(session::ArmSession& session, const std::string& uri);
+
+json model_json(const arm::ArmModel& model, const DeviceInfo& device);
+
+// `arm` for its model-only calls (tool_rpy); nothing is read from the device.
+json state_json(const arm::Arm& arm, const session::ArmSnapshot& snapshot,
+                const ControlView& control, const std::optional<ProgramView>& program);
+
+// The tool pose as {"x","y","z" (mm), "roll","pitch","yaw" (deg)}.
+json tool_json(const arm::Arm& arm, const motion::Pose& pose, const std::vector<double>& positions);
+
+}  // namespace armctl::web

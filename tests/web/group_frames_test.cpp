@@ -1,0 +1,183 @@
+// Frames as the API carries them <-> group actions (web/group_frames.hpp), base64 for .rob
+// files, the control lease, and where a program's error is placed.
+#include "web/group_frames.hpp"
+
+#include <gtest/gtest.h>
+
+#include "motion/rob_file.hpp"
+#include "web/api_error.hpp"
+#include "web/base64.hpp"
+#include "web/control_lease.hpp"
+#include "web/program_check.hpp"
+#include "web/static_assets.hpp"
+
+namespace armctl::web {
+namespace {
+
+using json = nlohmann::json;
+
+const arm::ArmModel& xarm() {
+  static const arm::ArmModel m = arm::load_arm_model(arm::arm_file_path("xarm")).value();
+  return m;
+}
+
+template <typename F>
+std::pair<int, std::string> refusal(F f) {
+  try {
+    f();
+  } catch (const ApiError& e) {
+    return {e.status(), e.what()};
+  }
+  ADD_FAILURE() << "not refused";
+  return {0, ""};
+}
+
+json frame(int time_ms, double value) {
+  json positions = json::object();
+  for (const auto& j : xarm().joints) positions[j.name] = j.role == arm::JointRole::gripper ? 0.0 : value;
+  return {{"time_ms", time_ms}, {"positions", positions}};
+}
+
+TEST(GroupFrames, RoundTripThroughServoUnits) {
+  const json frames = json::array({frame(1000, 0.0), frame(500, 20.0)});
+  const GroupFrames g = frames_to_group(xarm(), frames);
+  ASSERT_EQ(g.group.actions.size(), 2u);
+  EXPECT_EQ(g.group.actions[0].time_ms, 1000);
+  EXPECT_EQ(g.group.actions[0].targets.size(), xarm().joints.size());
+  const json back = group_to_frames(xarm(), g.group);
+  ASSERT_EQ(back.size(), 2u);
+  for (const auto& j : xarm().joints) {
+    if (j.role == arm::JointRole::gripper) continue;
+    // A servo unit is 0.24 deg: the value comes back to within half of one.
+    EXPECT_NEAR(back[1]["positions"][j.name].get<double>(), 20.0, 0.13) << j.name;
+  }
+}
+
+TEST(GroupFrames, EveryFrameIsCheckedBeforeAnythingIsReturned) {
+  json frames = json::array({frame(1000, 0.0), frame(40000, 0.0)});
+  auto [status, message] = refusal([&] { frames_to_group(xarm(), frames); });
+  EXPECT_EQ(status, 400);
+  EXPECT_NE(message.find("frames[1].time_ms: 40000 is not allowed; a whole number 0..30000"), std::string::npos)
+      << message;
+  frames = json::array({frame(1000, 0.0), frame(1000, 500.0)});
+  EXPECT_NE(refusal([&] { frames_to_group(xarm(), frames); }).second.find("outside the servo's 0..1000"),
+            std::string::npos);
+  json other = frame(1000, 0.0);
+  other["positions"].erase(xarm().joints[0].name);
+  frames = json::array({frame(1000, 0.0), other});
+  EXPECT_NE(refusal([&] { frames_to_group(xarm(), frames); }).second.find("same joints"), std::string::npos);
+  EXPECT_EQ(refusal([&] { frames_to_group(xarm(), json::array()); }).first, 400);
+  EXPECT_NE(refusal([&] { frames_to_group(xarm(), json::array({{{"time_ms", 1}, {"positions", {{"nope", 1}}}}})); })
+                .second.find("frames[0].positions.nope: arm xarm has no such joint"),
+            std::string::npos);
+}
+
+TEST(GroupFrames, GroupNumbersRunsAndSpeeds) {
+  EXPECT_EQ(parse_group_number("0"), 0);
+  EXPECT_EQ(parse_group_number("254"), 254);
+  EXPECT_EQ(refusal([] { parse_group_number("255"); }).first, 400);
+  EXPECT_EQ(refusal([] { parse_group_number("speedy"); }).first, 400);
+  EXPECT_EQ(parse_group_run({{"count", 3}}), 3);
+  EXPECT_EQ(parse_group_run({{"continuous", true}}), 0);
+  EXPECT_EQ(refusal([] { parse_group_run({{"count", 3}, {"continuous", true}}); }).first, 400);
+  EXPECT_EQ(refusal([] { parse_group_run({{"count", 0}}); }).first, 400);
+  EXPECT_EQ(parse_group_speed({{"percent", 150}}), 150);
+  EXPECT_NE(refusal([] { parse_group_speed({{"percent", 0}}); }).second.find("percent: 0 is not allowed; a whole "
+                                                                             "number 1..1000"),
+            std::string::npos);
+}
+
+TEST(GroupFrames, ImportAndExportOfGroupAndRobFiles) {
+  const json frames = json::array({frame(1000, 0.0), frame(500, 20.0)});
+  const json text = export_group(xarm(), {{"format", "group"}, {"frames", frames}});
+  const auto from_text = parse_group_import({{"format", "group"}, {"content", text["content"]}});
+  EXPECT_EQ(from_text, frames_to_group(xarm(), frames).group);
+  const json rob = export_group(xarm(), {{"format", "rob"}, {"frames", frames}});
+  const auto bytes = base64_decode(rob["content"].get<std::string>());
+  ASSERT_TRUE(bytes);
+  EXPECT_EQ(bytes->size(), motion::kRobHeaderBytes + 2 * motion::kRobFrameBytes);
+  const auto from_rob = parse_group_import({{"format", "rob"}, {"content", rob["content"]}});
+  EXPECT_EQ(group_to_frames(xarm(), from_rob), group_to_frames(xarm(), from_text));
+  EXPECT_NE(refusal([] { parse_group_import({{"format", "rob"}, {"content", "***"}}); }).second.find("not base64"),
+            std::string::npos);
+  EXPECT_EQ(refusal([] { parse_group_import({{"format", "group"}, {"content", "1000 1=2000"}}); }).first, 400);
+}
+
+TEST(Base64, RoundTripsAndRefusesBadText) {
+  for (std::size_t n = 0; n < 8; ++n) {
+    std::vector<std::uint8_t> bytes;
+    for (std::size_t i = 0; i < n; ++i) bytes.push_back(std::uint8_t(i * 77 + 3));
+    EXPECT_EQ(base64_decode(base64_encode(bytes)), bytes) << n;
+  }
+  EXPECT_EQ(base64_encode({'M', 'a'}), "TWE=");
+  EXPECT_FALSE(base64_decode("TWE"));
+  EXPECT_FALSE(base64_decode("TW=E"));
+  EXPECT_FALSE(base64_decode("TWE=TWE="));
+}
+
+TEST(ControlLease, OneHolderAtATime) {
+  ControlLease lease;
+  EXPECT_NE(refusal([&] { lease.require("a"); }).second.find("no client has control"), std::string::npos);
+  lease.take("a");
+  EXPECT_TRUE(lease.view("a").you);
+  EXPECT_FALSE(lease.view("b").you);
+  EXPECT_TRUE(lease.view("b").holder);
+  lease.take("b");
+  EXPECT_FALSE(lease.view("a").you);
+  auto [status, message] = refusal([&] { lease.require("a"); });
+  EXPECT_EQ(status, 409);
+  EXPECT_NE(message.find("another client has control (since 20"), std::string::npos) << message;
+  lease.release("a");  // not the holder: nothing changes
+  EXPECT_TRUE(lease.view("b").you);
+  lease.release("b");
+  EXPECT_FALSE(lease.view("b").holder);
+  EXPECT_EQ(refusal([&] { lease.take(""); }).first, 400);
+  EXPECT_EQ(check_client_id("page-1a2b", true), "page-1a2b");
+  EXPECT_EQ(check_client_id("", false), "");
+  EXPECT_EQ(refusal([] { check_client_id("a b", true); }).first, 400);
+}
+
+TEST(ProgramCheck, ErrorsArePlacedAtTheirLine) {
+  const PlacedError e = place_error("program:12:5: found 'x', expected a move");
+  EXPECT_EQ(e.file, "program");
+  EXPECT_EQ(e.line, 12u);
+  EXPECT_EQ(e.column, 5u);
+  EXPECT_EQ(e.message, "found 'x', expected a move");
+  const PlacedError l = place_error("program:3: (LIN pick): no IK solution");
+  EXPECT_EQ(l.line, 3u);
+  EXPECT_EQ(l.column, 0u);
+  EXPECT_EQ(l.message, "(LIN pick): no IK solution");
+  EXPECT_EQ(place_error("points:2:1: found '1', expected a name").file, "points");
+  EXPECT_EQ(place_error("the device is gone").line, 0u);
+  ProgramRequest unknown_point;
+  unknown_point.source = "wait 1s\nptp home\n";
+  CheckedProgram c = check_program(unknown_point, nullptr, {});
+  ASSERT_EQ(c.errors.size(), 1u);
+  EXPECT_EQ(c.errors[0].line, 2u) << c.errors[0].message;  // no points file: 'home' is no point
+  EXPECT_EQ(c.errors[0].column, 5u) << c.errors[0].message;
+  ProgramRequest bad_points;
+  bad_points.source = "ptp home\n";
+  bad_points.points = "home joints=0deg\n9bad x=1mm\n";
+  c = check_program(bad_points, nullptr, {});
+  ASSERT_EQ(c.errors.size(), 1u);
+  EXPECT_EQ(c.errors[0].file, "points");
+  EXPECT_EQ(c.errors[0].line, 2u) << c.errors[0].message;
+  ProgramRequest good = bad_points;
+  good.points = "home joints=0deg\n";
+  EXPECT_TRUE(check_program(good, nullptr, {}).errors.empty());
+}
+
+TEST(StaticAssets, TheIndexIsEmbeddedWithItsType) {
+  const StaticAsset* index = find_asset("/");
+  ASSERT_NE(index, nullptr);
+  EXPECT_STREQ(index->path, "/index.html");
+  EXPECT_NE(index->data().find("<html"), std::string_view::npos);
+  EXPECT_EQ(find_asset("/nope.js"), nullptr);
+  EXPECT_STREQ(content_type_for("/a/b.js"), "text/javascript; charset=utf-8");
+  EXPECT_STREQ(content_type_for("/x.CSS"), "text/css; charset=utf-8");
+  EXPECT_STREQ(content_type_for("/x.png"), "image/png");
+  EXPECT_STREQ(content_type_for("/dir.v2/file"), "application/octet-stream");
+}
+
+}  // namespace
+}  // namespace armctl::web
