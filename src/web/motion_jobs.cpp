@@ -13,7 +13,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr double kAngularSpeed = 45 * M_PI / 180;  // rad/s of the tool on a linear move (as the CLI's)
 
 // Runs a planned motion on the worker: through the executor with the job's context (stop
 // slows down on the path, pause holds on it, positions are published), then waits until
@@ -56,15 +55,11 @@ Status tool_move(arm::Arm& arm, session::JobContext& ctx, const Accept& accept, 
     for (int i = 0; i < q.size(); ++i) target[std::size_t(i)] = q[i];
     return joint_move(arm, ctx, accept, here.positions, target, speed, 0);
   }
-  const motion::JointVector q = arm.chain_of(here.positions);
-  const motion::Rpy rpy = arm.goal_rpy(goal, arm.tool_rpy(arm.forward(q), q));
-  motion::PathSegment segment;
-  segment.kind = motion::SegmentKind::lin;
-  segment.target.position = goal.position;
-  segment.target.orientation = motion::from_rpy(rpy);
-  segment.speed = speed * kMaxLinearSpeed;
-  segment.angular_speed = kAngularSpeed;
-  std::vector<motion::PathSegment> segments{segment};
+  arm::CartesianMove line;
+  line.goal = goal;
+  line.speed = speed * kMaxLinearSpeed;
+  const std::vector<arm::CartesianMove> moves{line};
+  const std::vector<motion::PathSegment> segments = arm::path_segments(arm, here.positions, moves);
   auto plan = arm::plan_path(arm.model(), here.positions, segments);
   if (!plan) return plan.error();
   accept(moving(plan->motion));
