@@ -1,0 +1,207 @@
+// The dashboard on the embedded emulated xArm, in headless chromium: every scenario of the
+// issue that needs an xArm (action groups) or applies to both arms.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import {
+  startServer, launchBrowser, openDashboard, apiClient, waitFor, waitForPosition, screenshot, artifacts,
+} from './harness.mjs';
+
+let server;
+let browser;
+let page;
+let problems;
+let script; // another client, as a script or a second page would be
+
+const slider = (name) => page.getByRole('slider', { name: `${name} (deg)`, exact: true });
+const sliderValue = async (name) => Number(await slider(name).inputValue());
+const viewValue = (name) => page.evaluate((n) => window.armctlView.jointValues()[n], name);
+const tab = (name) => page.getByRole('tab', { name });
+
+before(async () => {
+  server = await startServer({ arm: 'xarm' });
+  browser = await launchBrowser();
+  ({ page, problems } = await openDashboard(browser, server));
+  script = apiClient(server);
+});
+
+after(async () => {
+  await browser?.close();
+  const exit = await server?.stop();
+  assert.deepEqual(problems ?? [], [], 'no console errors during the whole run');
+  // A server that crashed (a sanitizer report) on shutdown fails the run too.
+  assert.ok(!exit || exit.code === 0 || exit.signal === 'SIGTERM', `armctl serve ended with ${JSON.stringify(exit)}: ${server?.output}`);
+});
+
+test('the page loads with no console errors and shows the model, the state and control', async () => {
+  const model = await script.get('/api/v1/model');
+  for (const joint of model.joints) await slider(joint.name).waitFor();
+  await waitFor(async () => (await page.getByRole('status', { name: 'Control' }).textContent()).includes('You have control'), 'the page to take control');
+  await waitFor(async () => (await page.getByRole('status', { name: 'Link state' }).textContent()) === 'ok', 'link ok');
+  const battery = await page.getByRole('status', { name: 'Battery' }).textContent();
+  assert.match(battery, /^\d+(\.\d+)? V$|^n\/a$/);
+  assert.ok(await page.getByRole('button', { name: 'STOP (Esc)' }).isVisible());
+  assert.deepEqual(Object.keys(await page.evaluate(() => window.armctlView.jointValues())).sort(),
+    model.joints.map((j) => j.name).sort(), 'the 3D view has every joint of the model');
+  await screenshot(page, 'xarm-move');
+  assert.deepEqual(problems, []);
+});
+
+test('moving a slider moves the simulated arm, and the 3D view follows', async () => {
+  await slider('servo6').fill('30');
+  await waitForPosition(script, 'servo6', 30, 0.6);
+  await waitFor(async () => Math.abs((await viewValue('servo6')) - 30) < 0.6, 'the 3D view at servo6 = 30 deg');
+});
+
+test('live positions and the 3D view follow a move started elsewhere (>= 20 updates/s while moving)', async () => {
+  await script.post('/api/v1/control', { take: true });
+  await waitFor(async () => (await page.getByRole('status', { name: 'Control' }).textContent()).includes('another client has control'), 'watch mode');
+  const before = await page.evaluate(() => window.armctlLive.events);
+  const started = Date.now();
+  await script.post('/api/v1/joints', { positions: { servo5: -25, servo4: 20 }, duration: 1.5 });
+  await waitForPosition(script, 'servo5', -25, 0.6);
+  const elapsed = (Date.now() - started) / 1000;
+  const rate = ((await page.evaluate(() => window.armctlLive.events)) - before) / elapsed;
+  console.log(`BROWSER live events while moving: ${rate.toFixed(1)}/s`);
+  assert.ok(rate >= 20, `the page got ${rate.toFixed(1)} state events per second while moving; at least 20 wanted`);
+  await waitFor(async () => Math.abs((await sliderValue('servo5')) + 25) < 0.6, 'the servo5 slider at -25');
+  await waitFor(async () => Math.abs((await viewValue('servo5')) + 25) < 0.6 && Math.abs((await viewValue('servo4')) - 20) < 0.6,
+    'the 3D view at servo5 = -25, servo4 = 20');
+  // Watching: a move from the page is refused with the server's message, and nothing moves.
+  await screenshot(page, 'xarm-watch-mode');
+  await page.getByRole('button', { name: 'Take control' }).click();
+  await waitFor(async () => (await page.getByRole('status', { name: 'Control' }).textContent()).includes('You have control'), 'control back');
+  const refused = await script.call('POST', '/api/v1/joints', { positions: { servo6: 0 } });
+  assert.equal(refused.status, 409);
+  assert.match(refused.json.error, /control/);
+});
+
+test('a refused request shows the server\'s message', async () => {
+  await page.getByRole('textbox', { name: 'Point name' }).fill('2bad name');
+  await page.getByRole('button', { name: 'Record point' }).click();
+  const shown = page.getByRole('alert').first();
+  await shown.waitFor();
+  const direct = await script.call('POST', '/api/v1/points', { name: '2bad name' });
+  assert.ok(direct.status >= 400, 'the server refuses the name');
+  assert.ok((await shown.textContent()).includes(direct.json.error.slice(0, 40)), `the page shows "${direct.json.error}"`);
+  await page.getByRole('button', { name: 'Dismiss error' }).first().click();
+});
+
+test('group editor round trip: read frames, download, run, read back positions', async () => {
+  await tab('Action groups').click();
+  await page.getByRole('button', { name: 'Clear table' }).click();
+  await page.getByRole('spinbutton', { name: 'Frame time (ms)' }).fill('400');
+  const poses = [{ servo6: -20, servo5: 10, servo4: 15 }, { servo6: 25, servo5: -15, servo4: 30 }];
+  for (const pose of poses) {
+    await page.evaluate(async (positions) => {
+      // The page's own move (as its sliders send it), so that control stays with the page.
+      const { api } = await import('/assets/app/api.js');
+      await api.post('/api/v1/joints', { positions, duration: 0.4 });
+    }, pose);
+    for (const [name, value] of Object.entries(pose)) await waitForPosition(script, name, value, 0.6);
+    await page.getByRole('button', { name: 'Read current positions' }).click();
+  }
+  await waitFor(async () => (await page.getByRole('status', { name: 'Group editor status' }).textContent()).startsWith('2 frames'), 'two frames');
+  for (const [i, pose] of poses.entries()) {
+    for (const [name, value] of Object.entries(pose)) {
+      const cell = Number(await page.getByRole('spinbutton', { name: `frame ${i + 1} ${name} (deg)` }).inputValue());
+      assert.ok(Math.abs(cell - value) < 0.6, `frame ${i + 1} ${name} = ${cell}, read from the arm at ${value}`);
+    }
+  }
+  await page.getByRole('spinbutton', { name: 'Group number' }).fill('7');
+  await page.getByRole('button', { name: 'Download', exact: true }).click();
+  await waitFor(async () => (await page.getByRole('status', { name: 'Group editor status' }).textContent()).startsWith('Downloaded 2 frames'), 'the download');
+  await screenshot(page, 'xarm-groups');
+  // Away from the last frame, then run the group once: the arm ends at the last frame.
+  await page.evaluate(async () => {
+    const { api } = await import('/assets/app/api.js');
+    await api.post('/api/v1/joints', { positions: { servo6: 0, servo5: 0, servo4: 0 }, duration: 0.4 });
+  });
+  await waitForPosition(script, 'servo6', 0, 0.6);
+  await page.getByRole('spinbutton', { name: 'Run count' }).fill('1');
+  await page.getByRole('button', { name: 'Run', exact: true }).click();
+  for (const [name, value] of Object.entries(poses[1])) await waitForPosition(script, name, value, 1);
+
+  // Export as a group file, then import it back: the same frames.
+  const downloadDone = page.waitForEvent('download');
+  await page.getByRole('combobox', { name: 'Export format' }).selectOption('group');
+  await page.getByRole('button', { name: 'Export' }).click();
+  const file = path.join(artifacts, 'exported.group');
+  fs.mkdirSync(artifacts, { recursive: true });
+  await (await downloadDone).saveAs(file);
+  await page.getByRole('button', { name: 'Clear table' }).click();
+  await page.getByLabel('Import group file').setInputFiles(file);
+  await waitFor(async () => (await page.getByRole('status', { name: 'Group editor status' }).textContent()).startsWith('Imported 2 frames'), 'the import');
+  const cell = Number(await page.getByRole('spinbutton', { name: 'frame 2 servo6 (deg)' }).inputValue());
+  assert.ok(Math.abs(cell - poses[1].servo6) < 0.6, `imported frame 2 servo6 = ${cell}`);
+});
+
+test('a program with an error shows it at its line', async () => {
+  await tab('Program').click();
+  const source = 'ptp joints(0deg, 0deg, 0deg, 0deg, 0deg) speed=40%\nwait 0.1s\nlin nowhere speed=20mm/s\n';
+  const check = await script.post('/api/v1/program/check', { source });
+  assert.equal(check.ok, false);
+  const line = check.errors[0].line;
+  assert.equal(line, 3, 'the server places the unknown point on line 3');
+  await page.getByRole('textbox', { name: 'Program source' }).fill(source);
+  await page.getByRole('button', { name: 'Check' }).click();
+  await page.locator(`.gutter .line.error[data-line="${line}"]`).waitFor();
+  assert.equal(await page.locator('.gutter .line.error').count(), new Set(check.errors.map((e) => e.line)).size);
+  const listed = await page.getByRole('list', { name: 'Program errors' }).textContent();
+  assert.ok(listed.includes(`line ${line}, column ${check.errors[0].column}`) && listed.includes(check.errors[0].message), listed);
+  await screenshot(page, 'xarm-program-error');
+});
+
+test('a program run shows progress: current line, time left, output', async () => {
+  const source = [
+    'ptp joints(0deg, 0deg, 0deg, 0deg, 0deg) speed=30%',
+    'ptp joints(40deg, 20deg, 30deg, 20deg, 0deg) speed=30%',
+    'print "halfway"',
+    'ptp joints(-40deg, 10deg, 20deg, 10deg, 0deg) speed=30%',
+    'ptp joints(0deg, 0deg, 0deg, 0deg, 0deg) speed=30%',
+  ].join('\n');
+  await page.getByRole('textbox', { name: 'Program source' }).fill(source);
+  await page.getByRole('button', { name: 'Run', exact: true }).click();
+  const progress = page.getByRole('status', { name: 'Program progress' });
+  const first = await waitFor(async () => (await progress.textContent()).match(/^running: line (\d+).*; ([\d.]+) s left/), 'the run to show its line and time left');
+  await page.locator('.gutter .line.current').waitFor();
+  await screenshot(page, 'xarm-program-run');
+  const later = await waitFor(async () => {
+    const m = (await progress.textContent()).match(/^running: line (\d+).*; ([\d.]+) s left/);
+    return m && Number(m[2]) < Number(first[2]) && m;
+  }, 'the time left to go down');
+  assert.ok(Number(later[1]) >= 1);
+  await waitFor(async () => (await page.getByLabel('Program output').textContent()).includes('halfway'), 'the print');
+  await waitFor(async () => (await progress.textContent()) === 'idle', 'the end of the run', 60000);
+  assert.equal(await page.locator('.gutter .line.current').count(), 0);
+});
+
+async function stopsAMove(how) {
+  await tab('Move').click();
+  await page.getByRole('slider', { name: 'Joint speed' }).fill('0.05');
+  await slider('servo6').fill('-100');
+  const start = await script.position('servo6');
+  await waitFor(async () => Math.abs((await script.position('servo6')) - start) > 2, 'the move to start');
+  await how();
+  const stopped = await waitFor(async () => {
+    const s = await script.state();
+    return s.motion === null && s;
+  }, 'the motion to end');
+  const at = stopped.joints.find((j) => j.name === 'servo6').position;
+  assert.ok(at > -90, `servo6 stopped at ${at}, well short of -100`);
+  // Still there ten published snapshots later: halted, not slowed.
+  await waitFor(async () => (await script.state()).sequence >= stopped.sequence + 10, 'ten more snapshots');
+  assert.ok(Math.abs((await script.position('servo6')) - at) < 0.5, 'the arm stays where it stopped');
+}
+
+test('STOP halts a move (the button)', async () => {
+  await stopsAMove(() => page.getByRole('button', { name: 'STOP (Esc)' }).click());
+});
+
+test('STOP halts a move (the Esc key, from anywhere on the page)', async () => {
+  await stopsAMove(async () => {
+    await page.getByRole('spinbutton', { name: 'Jog step (mm)' }).focus();
+    await page.keyboard.press('Escape');
+  });
+});
