@@ -5,7 +5,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import {
-  startServer, launchBrowser, openDashboard, apiClient, waitFor, waitForPosition, screenshot, artifacts,
+  startServer, launchBrowser, openDashboard, apiClient, waitFor, waitForPosition, screenshot, artifacts, expectRefused,
 } from './harness.mjs';
 
 let server;
@@ -57,12 +57,12 @@ test('moving a slider moves the simulated arm, and the 3D view follows', async (
 test('live positions and the 3D view follow a move started elsewhere (>= 20 updates/s while moving)', async () => {
   await script.post('/api/v1/control', { take: true });
   await waitFor(async () => (await page.getByRole('status', { name: 'Control' }).textContent()).includes('another client has control'), 'watch mode');
-  const before = await page.evaluate(() => window.armctlLive.events);
+  const eventsBefore = await page.evaluate(() => window.armctlLive.events);
   const started = Date.now();
   await script.post('/api/v1/joints', { positions: { servo5: -25, servo4: 20 }, duration: 1.5 });
   await waitForPosition(script, 'servo5', -25, 0.6);
   const elapsed = (Date.now() - started) / 1000;
-  const rate = ((await page.evaluate(() => window.armctlLive.events)) - before) / elapsed;
+  const rate = ((await page.evaluate(() => window.armctlLive.events)) - eventsBefore) / elapsed;
   console.log(`BROWSER live events while moving: ${rate.toFixed(1)}/s`);
   assert.ok(rate >= 20, `the page got ${rate.toFixed(1)} state events per second while moving; at least 20 wanted`);
   await waitFor(async () => Math.abs((await sliderValue('servo5')) + 25) < 0.6, 'the servo5 slider at -25');
@@ -77,14 +77,18 @@ test('live positions and the 3D view follow a move started elsewhere (>= 20 upda
   assert.match(refused.json.error, /control/);
 });
 
-test('a refused request shows the server\'s message', async () => {
+test('a refused request shows the server\'s message, and nothing is recorded', async () => {
+  const answered = page.waitForResponse((r) => r.url().endsWith('/api/v1/points') && r.request().method() === 'POST');
   await page.getByRole('textbox', { name: 'Point name' }).fill('2bad name');
   await page.getByRole('button', { name: 'Record point' }).click();
+  const response = await answered;
+  assert.equal(response.status(), 400);
+  const { error } = await response.json();
+  assert.ok(error.length > 10, `the server says why: "${error}"`);
   const shown = page.getByRole('alert').first();
-  await shown.waitFor();
-  const direct = await script.call('POST', '/api/v1/points', { name: '2bad name' });
-  assert.ok(direct.status >= 400, 'the server refuses the name');
-  assert.ok((await shown.textContent()).includes(direct.json.error.slice(0, 40)), `the page shows "${direct.json.error}"`);
+  await waitFor(async () => (await shown.textContent()).includes(error), `the page to show "${error}"`);
+  expectRefused(problems, 400);
+  assert.ok(!(await script.get('/api/v1/points')).points.some((p) => p.name === '2bad name'));
   await page.getByRole('button', { name: 'Dismiss error' }).first().click();
 });
 
