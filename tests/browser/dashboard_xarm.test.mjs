@@ -44,7 +44,7 @@ test('the page loads with no console errors and shows the model, the state and c
   assert.ok(await page.getByRole('button', { name: 'STOP (Esc)' }).isVisible());
   assert.deepEqual(Object.keys(await page.evaluate(() => window.armctlView.jointValues())).sort(),
     model.joints.map((j) => j.name).sort(), 'the 3D view has every joint of the model');
-  await screenshot(page, 'xarm-move');
+  await screenshot(page, 'xarm-load');
   assert.deepEqual(problems, []);
 });
 
@@ -75,6 +75,7 @@ test('live positions and the 3D view follow a move started elsewhere (>= 20 upda
   const refused = await script.call('POST', '/api/v1/joints', { positions: { servo6: 0 } });
   assert.equal(refused.status, 409);
   assert.match(refused.json.error, /control/);
+  await screenshot(page, 'xarm-move'); // the README's picture: the arm posed, in control
 });
 
 test('a refused request shows the server\'s message, and nothing is recorded', async () => {
