@@ -146,3 +146,12 @@ export function expectRefused(problems, status) {
   if (i < 0) throw new Error(`no refused request (${status}) in the console: ${JSON.stringify(problems)}`);
   problems.splice(i, 1);
 }
+
+// Waits until the arm is idle: no job, no motion, every joint at rest. The server refuses a
+// move while another runs (409 busy), so a test that starts one waits for this first.
+export async function waitIdle(client) {
+  return waitFor(async () => {
+    const s = await client.state();
+    return s.job === '' && s.motion === null && s.joints.every((j) => Math.abs(j.velocity) < 1e-6) && s;
+  }, 'the arm at rest with no job');
+}

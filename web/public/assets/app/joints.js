@@ -56,7 +56,7 @@ export function initJoints(model) {
     });
 
     root.append(el('div', { class: 'joint' },
-      el('label', { for: id, class: 'name' }, joint.name, el('span', { class: 'muted' }, ` ${joint.kind}`)),
+      el('label', { for: id, class: 'name' }, joint.name, el('span', { class: 'muted' }, ` ${joint.gripper ? 'gripper' : joint.kind}`)),
       slider, target,
       el('div', { class: 'values' }, readout, ' ', el('span', { class: 'muted' }, joint.unit), ' ', raw),
       el('div', { class: 'limits muted' },

@@ -69,12 +69,18 @@ export function initProgram(model) {
     source.setSelectionRange(offset, offset);
     source.scrollTop = Math.max(0, (line - 3) * lineHeight());
   }
+  // An error's place as a user reads it: the points file's own lines are not the program's,
+  // and a column of 0 means only the line is known (the planner's errors).
+  const place = (e) => `${e.file === 'points' ? 'points file ' : ''}line ${e.line}${e.column > 0 ? `, column ${e.column}` : ''}`;
   function showErrors(errors) {
     errorLines = new Map();
-    for (const e of errors) if (!errorLines.has(e.line)) errorLines.set(e.line, e.message);
+    for (const e of errors) if (e.file !== 'points' && !errorLines.has(e.line)) errorLines.set(e.line, e.message);
     errorList.replaceChildren(...errors.map((e) => el('li', { class: 'error' },
-      el('button', { type: 'button', class: 'link', onclick: () => goToLine(e.line, e.column) },
-        `line ${e.line}, column ${e.column}`), `: ${e.message}`)));
+      e.file === 'points'
+        ? el('span', {}, place(e))
+        : el('button', { type: 'button', class: 'link', onclick: () => goToLine(e.line, e.column) }, place(e)),
+      `: ${e.message}`)));
+    if (errors.some((e) => e.file === 'points')) points.closest('details').open = true;
     renderGutter();
   }
   source.addEventListener('input', () => { if (errorLines.size) { errorLines = new Map(); errorList.replaceChildren(); result.textContent = 'changed since the check'; } renderGutter(); });
