@@ -19,8 +19,10 @@ before(async () => {
 
 after(async () => {
   await browser?.close();
-  await local?.stop();
-  await remote?.stop();
+  for (const server of [local, remote]) {
+    const exit = await server?.stop();
+    assert.ok(!exit || exit.code === 0 || exit.signal === 'SIGTERM', `armctl serve ended with ${JSON.stringify(exit)}: ${server?.output}`);
+  }
 });
 
 // A raw request (node's fetch would not let a test set Host).
