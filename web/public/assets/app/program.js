@@ -75,7 +75,7 @@ export function initProgram(model) {
   function showErrors(errors) {
     errorLines = new Map();
     for (const e of errors) if (e.file !== 'points' && !errorLines.has(e.line)) errorLines.set(e.line, e.message);
-    errorList.replaceChildren(...errors.map((e) => el('li', { class: 'error' },
+    errorList.replaceChildren(...errors.map((e) => el('li', {},
       e.file === 'points'
         ? el('span', {}, place(e))
         : el('button', { type: 'button', class: 'link', onclick: () => goToLine(e.line, e.column) }, place(e)),

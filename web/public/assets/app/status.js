@@ -43,8 +43,10 @@ function renderControl(control) {
     setWatching(false);
     return;
   }
+  const since = control.since && !Number.isNaN(Date.parse(control.since))
+    ? new Date(control.since).toLocaleTimeString() : control.since;
   const text = control.holder
-    ? `Watching: another client has control${control.since ? ` since ${control.since}` : ''}`
+    ? `Watching: another client has control${since ? ` since ${since}` : ''}`
     : 'Nobody has control';
   box.replaceChildren(el('span', { class: 'warn' }, text),
     el('button', { type: 'button', onclick: takeControl }, 'Take control'));
