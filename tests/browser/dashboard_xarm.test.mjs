@@ -96,6 +96,63 @@ test('a refused request shows the server\'s message, and nothing is recorded', a
   await page.getByRole('button', { name: 'Dismiss error' }).first().click();
 });
 
+test('jog, gripper, torque and points from the Move view', async () => {
+  await waitIdle(script);
+  // Jog the tool up 10 mm (a straight line): the pose read back has z 10 mm higher.
+  const z0 = (await script.state()).tool.z;
+  await page.getByRole('spinbutton', { name: 'Jog step (mm)' }).fill('10');
+  await page.getByRole('button', { name: 'jog z plus' }).click();
+  await waitFor(async () => {
+    const s = await script.state();
+    return s.motion === null && s.job === '' && Math.abs(s.tool.z - (z0 + 10)) < 1;
+  }, `the tool at z = ${z0 + 10} mm`);
+  await waitFor(async () => Math.abs(Number(await page.getByRole('status', { name: 'tool z (mm)' }).textContent()) - (z0 + 10)) < 1,
+    'the page showing the new z');
+
+  // Close the gripper: its joint leaves where it was.
+  const model = await script.get('/api/v1/model');
+  const gripper = model.joints.find((j) => j.gripper);
+  if (gripper) {
+    await page.getByRole('button', { name: 'Open gripper' }).click();
+    await waitIdle(script);
+    const g0 = await script.position(gripper.name);
+    await page.getByRole('button', { name: 'Close gripper' }).click();
+    await waitFor(async () => Math.abs((await script.position(gripper.name)) - g0) > 5, `${gripper.name} to close`);
+    await waitIdle(script);
+    await page.getByRole('button', { name: 'Open gripper' }).click();
+    await waitFor(async () => Math.abs((await script.position(gripper.name)) - g0) < 1, `${gripper.name} open again`);
+  }
+
+  // Torque off and on again: accepted, and the page says so.
+  await waitIdle(script);
+  await page.getByRole('button', { name: 'Torque off' }).click();
+  await waitFor(async () => (await page.getByRole('status', { name: 'Torque' }).textContent()).startsWith('torque off'), 'torque off');
+  await page.getByRole('button', { name: 'Torque on' }).click();
+  await waitFor(async () => (await page.getByRole('status', { name: 'Torque' }).textContent()) === 'torque on', 'torque on');
+
+  // Record the current pose as "pick": listed on the page, and the server has its joints.
+  await waitIdle(script);
+  const here = (await script.state()).joints;
+  await page.getByRole('textbox', { name: 'Point name' }).fill('pick');
+  await page.getByRole('button', { name: 'Record point' }).click();
+  await page.getByRole('button', { name: 'Go to point pick' }).waitFor();
+  const pick = (await script.get('/api/v1/points')).points.find((p) => p.name === 'pick');
+  assert.ok(pick, 'the server has the point');
+  for (const j of here) assert.ok(Math.abs(pick.joints[j.name] - j.position) < 0.6, `pick ${j.name} = ${pick.joints[j.name]}, the arm at ${j.position}`);
+  // Away, then "Go": the arm returns to the point.
+  await page.evaluate(async () => {
+    const { api } = await import('/assets/app/api.js');
+    await api.post('/api/v1/joints', { positions: { servo6: -10 }, duration: 0.4 });
+  });
+  await waitForPosition(script, 'servo6', -10, 0.6);
+  await waitIdle(script);
+  await page.getByRole('button', { name: 'Go to point pick' }).click();
+  await waitForPosition(script, 'servo6', pick.joints.servo6, 0.6);
+  await page.getByRole('button', { name: 'Delete point pick' }).click();
+  await page.getByRole('button', { name: 'Go to point pick' }).waitFor({ state: 'detached' });
+  assert.ok(!(await script.get('/api/v1/points')).points.some((p) => p.name === 'pick'));
+});
+
 test('group editor round trip: read frames, download, run, read back positions', async () => {
   await tab('Action groups').click();
   await page.getByRole('button', { name: 'Clear table' }).click();
@@ -180,6 +237,12 @@ test('a program run shows progress: current line, time left, output', async () =
   const first = await waitFor(async () => (await progress.textContent()).match(/^running: line (\d+).*; ([\d.]+) s left/), 'the run to show its line and time left');
   await page.locator('.gutter .line.current').waitFor();
   await screenshot(page, 'xarm-program-run');
+  // Pause holds the run (the state says so, the button offers Resume), Resume goes on.
+  await page.getByRole('button', { name: 'Pause' }).click();
+  await waitFor(async () => (await progress.textContent()).startsWith('paused:'), 'the run paused');
+  await waitFor(async () => (await script.state()).joints.every((j) => Math.abs(j.velocity) < 1e-6), 'the arm held');
+  await page.getByRole('button', { name: 'Resume' }).click();
+  await waitFor(async () => (await progress.textContent()).startsWith('running:'), 'the run resumed');
   const later = await waitFor(async () => {
     const m = (await progress.textContent()).match(/^running: line (\d+).*; ([\d.]+) s left/);
     return m && Number(m[2]) < Number(first[2]) && m;
