@@ -199,18 +199,60 @@ test('group editor round trip: read frames, download, run, read back positions',
   await page.getByRole('button', { name: 'Run', exact: true }).click();
   for (const [name, value] of Object.entries(poses[1])) await waitForPosition(script, name, value, 1);
 
-  // Export as a group file, then import it back: the same frames.
-  const downloadDone = page.waitForEvent('download');
-  await page.getByRole('combobox', { name: 'Export format' }).selectOption('group');
-  await page.getByRole('button', { name: 'Export' }).click();
-  const file = path.join(artifacts, 'exported.group');
+  // Export as each file format, then import it back: the same frames.
   fs.mkdirSync(artifacts, { recursive: true });
-  await (await downloadDone).saveAs(file);
-  await page.getByRole('button', { name: 'Clear table' }).click();
-  await page.getByLabel('Import group file').setInputFiles(file);
-  await waitFor(async () => (await page.getByRole('status', { name: 'Group editor status' }).textContent()).startsWith('Imported 2 frames'), 'the import');
-  const cell = Number(await page.getByRole('spinbutton', { name: 'frame 2 servo6 (deg)' }).inputValue());
-  assert.ok(Math.abs(cell - poses[1].servo6) < 0.6, `imported frame 2 servo6 = ${cell}`);
+  for (const format of ['group', 'rob']) {
+    const downloadDone = page.waitForEvent('download');
+    await page.getByRole('combobox', { name: 'Export format' }).selectOption(format);
+    await page.getByRole('button', { name: 'Export' }).click();
+    const file = path.join(artifacts, `exported.${format}`);
+    await (await downloadDone).saveAs(file);
+    assert.ok(fs.statSync(file).size > 0, `${file} is not empty`);
+    await page.getByRole('button', { name: 'Clear table' }).click();
+    await page.getByLabel('Import group file').setInputFiles(file);
+    await waitFor(async () => (await page.getByRole('status', { name: 'Group editor status' }).textContent()).startsWith('Imported 2 frames'), `the ${format} import`);
+    for (const [name, value] of Object.entries(poses[1])) {
+      const cell = Number(await page.getByRole('spinbutton', { name: `frame 2 ${name} (deg)` }).inputValue());
+      assert.ok(Math.abs(cell - value) < 0.6, `${format}: imported frame 2 ${name} = ${cell}, exported ${value}`);
+    }
+  }
+});
+
+test('group speed, a continuous run, stop group, erase', async () => {
+  await waitIdle(script);
+  await clickAnswered(page.getByRole('button', { name: 'Set speed' }), '/api/v1/groups/speed');
+  await page.getByRole('checkbox', { name: 'Run continuously' }).check();
+  const start = await script.position('servo6');
+  await clickAnswered(page.getByRole('button', { name: 'Run', exact: true }), '/run');
+  // Continuous: the arm goes on between the two frames; still moving after a full pass.
+  await waitFor(async () => Math.abs((await script.position('servo6')) - start) > 10, 'the run to move servo6');
+  await waitFor(async () => Math.abs((await script.position('servo6')) - start) < 5, 'the run to come back (a second pass)');
+  await clickAnswered(page.getByRole('button', { name: 'Stop group' }), '/api/v1/groups/stop');
+  const stopped = await waitIdle(script);
+  const events = await page.evaluate(() => window.armctlLive.events);
+  await page.waitForFunction((n) => window.armctlLive.events >= n + 3, events);
+  assert.ok(Math.abs((await script.position('servo6')) - stopped.joints.find((j) => j.name === 'servo6').position) < 0.2, 'the group stopped');
+  await page.getByRole('checkbox', { name: 'Run continuously' }).uncheck();
+  // Erased: running it again moves nothing (and a refusal, if the server reports one, is
+  // shown with its message).
+  await waitIdle(script);
+  await pageMove({ servo6: 0 });
+  await waitForPosition(script, 'servo6', 0, 0.6);
+  await waitIdle(script);
+  await clickAnswered(page.getByRole('button', { name: 'Erase' }), '/api/v1/groups/7');
+  await waitFor(async () => (await page.getByRole('status', { name: 'Group editor status' }).textContent()).startsWith('Group 7 erased'), 'the erase');
+  const answered = page.waitForResponse((r) => r.url().endsWith('/api/v1/groups/7/run'));
+  await page.getByRole('button', { name: 'Run', exact: true }).click();
+  const run = await answered;
+  if (!run.ok()) {
+    const { error } = await run.json();
+    await waitFor(async () => (await page.getByRole('alert').first().textContent()).includes(error), `the page to show "${error}"`);
+    expectRefused(problems, run.status());
+    await page.getByRole('button', { name: 'Dismiss error' }).first().click();
+  }
+  const eventsAfterRun = await page.evaluate(() => window.armctlLive.events);
+  await page.waitForFunction((n) => window.armctlLive.events >= n + 3, eventsAfterRun);
+  assert.ok(Math.abs(await script.position('servo6')) < 0.6, 'an erased group moves nothing');
 });
 
 test('a program with an error shows it at its line', async () => {
