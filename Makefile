@@ -35,12 +35,15 @@ FUZZ_BUILD := build/fuzz
 FUZZ_SECONDS ?= 60
 TEST_FUZZ_SECONDS ?= 10
 
-.PHONY: all deps web-deps configure build test demo bench fuzz firmware flash install clean format
+.PHONY: all deps deb-deps web-deps configure build test demo bench fuzz firmware flash install clean format
 
 all: build
 
-# Install only what is missing, so repeated runs cost nothing and need no network.
-deps:
+# Install only what is missing, so repeated runs cost nothing and need no network: the Debian
+# packages, then the dashboard's npm packages (armctl embeds them, so every build needs them).
+deps: deb-deps web/node_modules
+
+deb-deps:
 	@missing=$$(for p in $(DEB_PACKAGES); do \
 	    dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
 	if [ -n "$$missing" ]; then \
@@ -61,17 +64,17 @@ deps:
 # The dashboard's npm packages, pinned in web/package-lock.json: three and urdf-loader (the
 # page's 3D view, embedded into armctl), playwright-core (the browser tests). Installed again
 # only when the lock file is newer than web/node_modules; before CMake configures, which
-# embeds web/vendor.txt's files and finds playwright-core for the tests.
+# embeds web/vendor.txt's files (cmake/WebAssets.cmake) and finds playwright-core for the tests.
 web-deps: web/node_modules
 
-web/node_modules: web/package-lock.json | deps
+web/node_modules: web/package-lock.json | deb-deps
 	cd web && npm ci --no-audit --no-fund
 	touch $@
 
-$(BUILD)/build.ninja: | deps web/node_modules
+$(BUILD)/build.ninja: | deps
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DARMCTL_SANITIZE=ON $(WITH_FIRMWARE) $(WITH_PYTHON) $(WITH_BROWSER)
 
-configure: deps web/node_modules $(BUILD)/build.ninja
+configure: deps $(BUILD)/build.ninja
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
