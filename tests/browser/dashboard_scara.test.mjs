@@ -4,7 +4,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  startServer, launchBrowser, openDashboard, apiClient, waitFor, waitForPosition, screenshot, expectRefused,
+  startServer, launchBrowser, openDashboard, apiClient, waitFor, waitForPosition, waitIdle, screenshot, expectRefused,
 } from './harness.mjs';
 
 let server;
@@ -51,8 +51,11 @@ test('the Z slider (mm) and the shoulder slider (deg) move the arm; the 3D view 
   const shoulder = model.joints.find((j) => j.kind === 'revolute');
   const zTarget = Math.round((z.min + (z.max - z.min) * 0.3) * 10) / 10;
   const shoulderTarget = Math.round(shoulder.max * 0.25);
+  // The server refuses a move while another runs: each starts from rest.
+  await waitIdle(script);
   await page.getByRole('slider', { name: `${z.name} (mm)`, exact: true }).fill(String(zTarget));
   await waitForPosition(script, z.name, zTarget, 0.6);
+  await waitIdle(script);
   await page.getByRole('slider', { name: `${shoulder.name} (deg)`, exact: true }).fill(String(shoulderTarget));
   await waitForPosition(script, shoulder.name, shoulderTarget, 0.6);
   await waitFor(async () => Math.abs((await viewValue(z.name)) - zTarget) < 0.6
@@ -63,6 +66,7 @@ test('the Z slider (mm) and the shoulder slider (deg) move the arm; the 3D view 
 test('a value outside a joint\'s limits is refused with the server\'s message, nothing moves', async () => {
   const model = await script.get('/api/v1/model');
   const joint = model.joints[1];
+  await waitIdle(script);
   const was = await script.position(joint.name);
   const answered = page.waitForResponse((r) => r.url().endsWith('/api/v1/joints'));
   const target = page.getByRole('spinbutton', { name: `${joint.name} target (${joint.unit})` });
