@@ -29,16 +29,21 @@ WITH_FIRMWARE := -DARMCTL_FIRMWARE=ON -DARMCTL_HIL=ON
 # The Python module (pybind11; docs/python.md): ON, so that a missing package fails the build.
 WITH_PYTHON := -DARMCTL_PYTHON=ON
 # The benchmarks build without it: the module makes every library position-independent code.
+# The dashboard's browser tests (tests/browser): ON, so that a missing node or chromium fails.
+WITH_BROWSER := -DARMCTL_BROWSER_TESTS=ON
 FUZZ_BUILD := build/fuzz
 FUZZ_SECONDS ?= 60
 TEST_FUZZ_SECONDS ?= 10
 
-.PHONY: all deps configure build test demo bench fuzz firmware flash install clean format
+.PHONY: all deps deb-deps web-deps configure build test demo bench fuzz firmware flash install clean format
 
 all: build
 
-# Install only what is missing, so repeated runs cost nothing and need no network.
-deps:
+# Install only what is missing, so repeated runs cost nothing and need no network: the Debian
+# packages, then the dashboard's npm packages (armctl embeds them, so every build needs them).
+deps: deb-deps web/node_modules
+
+deb-deps:
 	@missing=$$(for p in $(DEB_PACKAGES); do \
 	    dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
 	if [ -n "$$missing" ]; then \
@@ -46,9 +51,28 @@ deps:
 	  $(SUDO) apt-get update && \
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y --no-install-recommends $$missing; \
 	fi
+	@# The dashboard (web/) and its browser tests: node + npm and chromium, from Debian when the
+	@# commands are missing (a machine may have another node that brings its own npm).
+	@missing=$$(command -v node >/dev/null || echo nodejs; command -v npm >/dev/null || echo npm; \
+	  command -v chromium >/dev/null || echo chromium); \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing Debian packages: $$missing"; \
+	  $(SUDO) apt-get update && \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y --no-install-recommends $$missing; \
+	fi
+
+# The dashboard's npm packages, pinned in web/package-lock.json: three and urdf-loader (the
+# page's 3D view, embedded into armctl), playwright-core (the browser tests). Installed again
+# only when the lock file is newer than web/node_modules; before CMake configures, which
+# embeds web/vendor.txt's files (cmake/WebAssets.cmake) and finds playwright-core for the tests.
+web-deps: web/node_modules
+
+web/node_modules: web/package-lock.json | deb-deps
+	cd web && npm ci --no-audit --no-fund
+	touch $@
 
 $(BUILD)/build.ninja: | deps
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DARMCTL_SANITIZE=ON $(WITH_FIRMWARE) $(WITH_PYTHON)
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DARMCTL_SANITIZE=ON $(WITH_FIRMWARE) $(WITH_PYTHON) $(WITH_BROWSER)
 
 configure: deps $(BUILD)/build.ninja
 

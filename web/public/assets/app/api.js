@@ -1,0 +1,73 @@
+// The one way the page talks to armctl serve: the JSON HTTP API of docs/http-api.md.
+// Every request carries this page's client id (control is per client) and, when the page
+// was opened with ?token=T (a non-loopback listen), the token as a bearer header.
+
+const params = new URLSearchParams(location.search);
+export const token = params.get('token') || '';
+
+// crypto.randomUUID needs a secure context; a dashboard on a LAN address is not one.
+function randomClientId() {
+  const bytes = new Uint8Array(16);
+  crypto.getRandomValues(bytes);
+  return Array.from(bytes, (b) => b.toString(16).padStart(2, '0')).join('');
+}
+export const clientId = randomClientId();
+
+// A refused request: the server's message, its status and what was asked.
+export class ApiError extends Error {
+  constructor(status, message, method, path) {
+    super(message);
+    this.status = status;
+    this.method = method;
+    this.path = path;
+  }
+}
+
+const listeners = new Set();
+// fn(error) for every refused or failed request (the page shows them all in one place).
+export function onApiError(fn) { listeners.add(fn); }
+
+function headers(hasBody) {
+  const h = { 'X-Armctl-Client': clientId };
+  if (hasBody) h['Content-Type'] = 'application/json';
+  if (token) h.Authorization = `Bearer ${token}`;
+  return h;
+}
+
+async function request(method, path, body, { quiet = false } = {}) {
+  let response;
+  try {
+    response = await fetch(path, {
+      method,
+      headers: headers(body !== undefined),
+      body: body === undefined ? undefined : JSON.stringify(body),
+      cache: 'no-store',
+    });
+  } catch (e) {
+    const error = new ApiError(0, `armctl serve cannot be reached (${e.message})`, method, path);
+    if (!quiet) listeners.forEach((fn) => fn(error));
+    throw error;
+  }
+  const type = response.headers.get('Content-Type') || '';
+  const payload = type.includes('json') ? await response.json().catch(() => null) : await response.text();
+  if (!response.ok) {
+    const message = payload && typeof payload === 'object' && payload.error
+      ? payload.error : `${response.status} ${response.statusText}`;
+    const error = new ApiError(response.status, message, method, path);
+    if (!quiet) listeners.forEach((fn) => fn(error));
+    throw error;
+  }
+  return payload;
+}
+
+export const api = {
+  get: (path, options) => request('GET', path, undefined, options),
+  post: (path, body = {}, options) => request('POST', path, body, options),
+  put: (path, body, options) => request('PUT', path, body, options),
+  del: (path, options) => request('DELETE', path, undefined, options),
+};
+
+// The event stream's URL: EventSource cannot send headers, so the token rides in the query.
+export function eventsUrl() {
+  return token ? `/api/v1/events?token=${encodeURIComponent(token)}` : '/api/v1/events';
+}

@@ -1,0 +1,114 @@
+// The 3D view: the arm's URDF (GET /api/v1/urdf, its <visual> cylinders and boxes) drawn
+// with three.js, each joint set from the live positions. It draws only when something
+// changed (a new position, the user turning the view): four agents may share two cores.
+// window.armctlView.jointValues() reads the model's joint values back (deg / mm), so the
+// browser tests check what the view shows, not what the page was told.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import URDFLoader from 'urdf-loader';
+import { api } from './api.js';
+import { $ } from './dom.js';
+import { onState } from './live.js';
+
+const DEG = Math.PI / 180;
+
+// deg -> rad for revolute joints, mm -> m for prismatic: the URDF's SI units.
+function toUrdf(joint, value) { return joint.kind === 'prismatic' ? value / 1000 : value * DEG; }
+function fromUrdf(joint, value) { return joint.kind === 'prismatic' ? value * 1000 : value / DEG; }
+
+function webglAvailable() {
+  try {
+    const canvas = document.createElement('canvas');
+    return Boolean(canvas.getContext('webgl2') || canvas.getContext('webgl'));
+  } catch { return false; }
+}
+
+export async function initView3d(model) {
+  const host = $('#view3d');
+  const note = $('#view3d-note');
+  const modelJoints = new Map(model.joints.map((j) => [j.name, j]));
+  const view = { ready: false, updates: 0, jointValues: () => ({}) };
+  window.armctlView = view;
+
+  const urdf = await api.get('/api/v1/urdf');
+  const robot = new URDFLoader().parse(urdf);
+  robot.rotation.x = -Math.PI / 2; // URDF is z-up, three.js y-up
+
+  view.jointValues = () => {
+    const values = {};
+    for (const [name, joint] of Object.entries(robot.joints)) {
+      const mj = modelJoints.get(name);
+      if (mj && joint.jointType !== 'fixed') values[name] = fromUrdf(mj, joint.angle);
+    }
+    return values;
+  };
+
+  if (!webglAvailable()) {
+    note.textContent = 'The 3D view needs WebGL, which this browser does not offer; the joint values still follow.';
+    onState((state) => applyState(state));
+    view.ready = true;
+    return;
+  }
+
+  const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+  host.append(renderer.domElement);
+  renderer.domElement.setAttribute('aria-label', `3D view of the ${model.arm}`);
+  renderer.domElement.setAttribute('role', 'img');
+
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0xf4f6f8);
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x8090a0, 2.2));
+  const sun = new THREE.DirectionalLight(0xffffff, 1.8);
+  sun.position.set(1, 2, 1.5);
+  scene.add(sun);
+  const grid = new THREE.GridHelper(1.2, 24, 0x8899aa, 0xd0d7de);
+  scene.add(grid);
+  scene.add(robot);
+
+  // Frame the arm: its size at zero decides the camera distance.
+  const box = new THREE.Box3().setFromObject(robot);
+  const size = box.getSize(new THREE.Vector3()).length() || 0.5;
+  const centre = box.getCenter(new THREE.Vector3());
+  const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 20);
+  camera.position.set(centre.x + size * 1.1, centre.y + size * 0.7, centre.z + size * 1.3);
+  const controls = new OrbitControls(camera, renderer.domElement);
+  controls.target.copy(centre);
+  controls.update();
+
+  let pending = false;
+  const render = () => {
+    pending = false;
+    renderer.render(scene, camera);
+    view.updates += 1;
+  };
+  const requestRender = () => {
+    if (pending) return;
+    pending = true;
+    requestAnimationFrame(render);
+  };
+  controls.addEventListener('change', requestRender);
+
+  const resize = () => {
+    const width = host.clientWidth || 400;
+    const height = host.clientHeight || 300;
+    renderer.setSize(width, height, false);
+    camera.aspect = width / height;
+    camera.updateProjectionMatrix();
+    requestRender();
+  };
+  new ResizeObserver(resize).observe(host);
+  resize();
+
+  function applyState(state) {
+    let changed = false;
+    for (const j of state.joints || []) {
+      const mj = modelJoints.get(j.name);
+      if (mj && robot.joints[j.name]) changed = robot.setJointValue(j.name, toUrdf(mj, j.position)) || changed;
+    }
+    return changed;
+  }
+  onState((state) => { if (applyState(state)) requestRender(); });
+  render();
+  view.ready = true;
+}
