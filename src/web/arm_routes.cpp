@@ -86,7 +86,9 @@ void add_arm_routes(WebServer::State& s) {
   s.router.add("POST", "/api/v1/torque", [&s](Call& c) {
     s.lease.require(c.client);
     const bool on = parse_torque_request(c.body());
-    c.reply(s.start_motion(on ? "torque on" : "torque off", torque_job(on)));
+    // Done at once: answered when the worker is free again.
+    s.run_to_end(on ? "torque on" : "torque off", [on](arm::Arm& arm, session::JobContext&) { return arm.set_torque(on); });
+    c.reply({{"torque", on}});
   });
 }
 

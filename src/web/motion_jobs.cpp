@@ -126,12 +126,4 @@ MotionJob gripper_job(double closed) {
   };
 }
 
-MotionJob torque_job(bool on) {
-  return [on](arm::Arm& arm, session::JobContext&, const Accept& accept) -> Status {
-    if (auto s = arm.set_torque(on); !s) return s.error();
-    accept(json{{"torque", on}});
-    return Ok{};
-  };
-}
-
 }  // namespace armctl::web

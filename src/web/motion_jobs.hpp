@@ -1,4 +1,4 @@
-// The arm-worker jobs behind the API's moves (joints, tool, jog, gripper, torque). Each
+// The arm-worker jobs behind the API's moves (joints, tool, jog, gripper). Each
 // plans from where the arm stands when it runs (a fresh read), checks everything before
 // anything moves (Arm::check_targets, IK, the motion layer's planners), says whether it
 // was accepted through `accept` (the HTTP answer), then runs through the motion executor
@@ -23,6 +23,5 @@ MotionJob joint_move_job(JointsRequest request);
 MotionJob tool_move_job(ToolRequest request);
 MotionJob jog_job(JogRequest request);
 MotionJob gripper_job(double closed_fraction);
-MotionJob torque_job(bool on);
 
 }  // namespace armctl::web

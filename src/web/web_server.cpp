@@ -96,7 +96,13 @@ json WebServer::State::start_motion(const std::string& what, MotionJob job) {
     acceptance->changed.wait_for(lock, 5ms);
   }
   Result<json> answer = *acceptance->answer;
-  if (!answer) fail(answer.error());
+  lock.unlock();
+  if (!answer) {
+    // Refused before it moved: the job is ending. Answer once the worker is free again, so
+    // that the next request does not find it busy with this one.
+    finished.wait_for(30s);
+    fail(answer.error());
+  }
   return *answer;
 }
 
@@ -172,6 +178,8 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
     RequestFacts facts{r.method,         header(r, "Host"),          header(r, "Origin"),
                        header(r, "Content-Type"), has_body(r), header(r, "Authorization"),
                        parameter(r, "token")};
+    // A STOP is never refused for its form (its body is not read): any type will do.
+    if (r.path == "/api/v1/stop") facts.has_body = false;
     if (auto refusal = check_request(st.policy, facts)) {
       reply_error(res, refusal->status, refusal->message);
       return httplib::Server::HandlerResponse::Handled;

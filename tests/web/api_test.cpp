@@ -72,7 +72,8 @@ TEST(WebApi, UrdfAndState) {
   ASSERT_EQ(u.status, 200);
   EXPECT_EQ(u.content_type, "application/xml");
   EXPECT_EQ(u.text, file_text(api.worker().model().urdf.string()));
-  api.first_positions();
+  // The battery is read after the first positions: wait for both.
+  ASSERT_TRUE(api.wait_until([](const session::ArmSnapshot& s) { return !s.positions.empty() && s.status.battery_volts; }));
   const Reply s = api.get("/api/v1/state", "page");
   ASSERT_EQ(s.status, 200) << s.text;
   EXPECT_GT(s.body["sequence"].get<std::uint64_t>(), 0u);
@@ -358,6 +359,9 @@ TEST(WebApi, StopWithoutAnyBodyAnswersAtOnce) {
   EXPECT_EQ(got.rfind("HTTP/1.1 200", 0), 0u) << got;
   EXPECT_NE(got.find("\"stopped\":true"), std::string::npos) << got;
   EXPECT_LT(std::chrono::steady_clock::now() - began, 2s);
+  // Nor is a STOP refused for its body's type; the Host and Origin checks still hold.
+  EXPECT_EQ(api.send("POST", "/api/v1/stop", "stop!", "", {}, "text/plain").status, 200);
+  EXPECT_EQ(api.send("POST", "/api/v1/stop", "{}", "", {{"Origin", "http://evil.example"}}).status, 403);
 }
 
 }  // namespace
