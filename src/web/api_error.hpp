@@ -28,8 +28,10 @@ inline int status_of(const Error& e) {
     case ErrorKind::invalid_config: return 400;
     case ErrorKind::unsupported: return 409;
     default:
-      // The worker's refusals: a job runs ("busy: ..."), a stop dropped this one.
-      return e.message.rfind("busy", 0) == 0 || e.message.find("stopped before it started") != std::string::npos
+      // The worker's refusals: a job runs ("busy: ..."), a stop dropped this one; the board's:
+      // a group that did not start (empty or erased).
+      return e.message.rfind("busy", 0) == 0 || e.message.find("stopped before it started") != std::string::npos ||
+                     e.message.find("did not start") != std::string::npos
                  ? 409
                  : 500;
   }

@@ -71,13 +71,12 @@ json WebServer::State::start_motion(const std::string& what, MotionJob job) {
   auto acceptance = std::make_shared<Acceptance>();
   auto finished = worker.run(what, [acceptance, job](arm::Arm& arm, session::JobContext& ctx) -> Status {
     Accept accept = [&](Result<json> a) { acceptance->set(std::move(a)); };
-    Status s = job(arm, ctx, accept);
-    if (!s) acceptance->set(s.error());
-    else acceptance->set(json{{"done", true}});
-    return s;
+    return job(arm, ctx, accept);
   });
   // The job runs on the worker; it may also never run (busy, dropped by a stop): then its
-  // result says why.
+  // result says why. A job that ends without accepting (refused, or done at once) answers
+  // through `finished`, which the worker sets once it is idle again: the client's next
+  // request then finds it free.
   const auto deadline = std::chrono::steady_clock::now() + 30s;
   std::unique_lock lock(acceptance->mutex);
   while (!acceptance->answer) {

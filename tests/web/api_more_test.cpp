@@ -100,6 +100,10 @@ TEST(WebGroups, DownloadRunAndReadBack) {
   EXPECT_EQ(api.post("/api/v1/groups/3/run", {{"continuous", true}}, "page").status, 200);
   EXPECT_EQ(api.post("/api/v1/groups/stop", json::object(), "page").status, 200);
   EXPECT_EQ(api.send("DELETE", "/api/v1/groups/3", "", "page").status, 200);
+  // Erased: the board ignores a run of it, and the page is told so.
+  r = api.post("/api/v1/groups/3/run", {{"count", 1}}, "page");
+  EXPECT_EQ(r.status, 409) << r.text;
+  EXPECT_NE(r.text.find("group 3 did not start"), std::string::npos) << r.text;
 }
 
 TEST(WebGroups, BadGroupRequestsSendNothing) {
