@@ -119,3 +119,6 @@ echo "== xArm (emulated): the same program as action group 5, replayed by the bo
 echo "== SCARA (joint bus): check and run $programs/scara-pick-place.prog"
 "$armctl" program check "$programs/scara-pick-place.prog" --arm scara --device "unix:$dir/bus.sock" | tail -n 1
 "$armctl" program run "$programs/scara-pick-place.prog" --arm scara --device "unix:$dir/bus.sock"
+
+echo "== Next: drive either arm from a browser (docs/dashboard.md):"
+echo "   $armctl serve --arm xarm     # then open http://127.0.0.1:8080/ (STOP button and Esc always stop it)"
