@@ -78,7 +78,13 @@ struct ArmBridge::Impl {
   MotionLane lane{worker};
 
   Impl(const BridgeOptions& o, std::unique_ptr<session::ArmSession> session)
-      : options(o), info(info_of(*session)), worker(std::move(session)) {}
+      : options(o), info(info_of(*session)), worker(std::move(session), worker_options(o)) {}
+
+  static session::ArmWorkerOptions worker_options(const BridgeOptions& o) {
+    session::ArmWorkerOptions w;
+    if (o.poll) w.poll = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(*o.poll));
+    return w;
+  }
 
   const arm::ArmModel& model() const { return worker.model(); }
 

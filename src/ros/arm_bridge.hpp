@@ -22,6 +22,9 @@ struct BridgeOptions {
   std::string device;       // "": the embedded simulator
   double goal_time = 1.0;   // s: goal_time_tolerance when a goal gives none
   double move_speed = 0.25; // pose goals and the gripper: fraction of the velocity limits
+  // s between position reads while idle (joint_states' period); 0: back to back, as fast
+  // as the link answers; nothing: the device's own poll interval.
+  std::optional<double> poll;
 };
 
 struct ArmInfo {

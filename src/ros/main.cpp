@@ -41,6 +41,9 @@ int run(int argc, char** argv) {
   options.goal_time = param_in(private_nh, "goal_time_tolerance", 1.0, 0.01, 60);
   options.move_speed = param_in(private_nh, "speed", 0.25, 0.01, 1);
   const double link_timeout = param_in(private_nh, "link_timeout", 5.0, 0, 3600);
+  // joint_states: one per position read; 0 Hz (the default): as fast as the link answers.
+  const double rate = param_in(private_nh, "rate", 0.0, 0, 1000);
+  options.poll = rate > 0 ? 1.0 / rate : 0.0;
 
   ArmBridge arm(options);
   ROS_INFO("armctl_ros: arm %s on %s", arm.info().name.c_str(),
@@ -49,17 +52,21 @@ int run(int argc, char** argv) {
   ros::AsyncSpinner spinner(4);
   spinner.start();
 
+  // The master's parameters tell whether it is the one this node registered with: a
+  // restarted master (however quickly it came back) has lost the marker.
+  const std::string marker = "armctl_ros_registered";
   auto node = std::make_unique<ArmNode>(arm, counters, options.device);
+  private_nh.setParam(marker, true);
   bool master_up = true;
   std::optional<std::chrono::steady_clock::time_point> link_down_since;
   while (ros::ok()) {
-    // A master that restarted knows nothing of this node: register everything again.
     const bool up = ros::master::check();
     if (!up && master_up) ROS_WARN("armctl_ros: the ROS master went away; waiting for it");
-    if (up && !master_up) {
-      ROS_INFO("armctl_ros: the ROS master is back; registering again");
+    if (up && !private_nh.hasParam(marker)) {
+      ROS_INFO("armctl_ros: a new ROS master; registering again");
       node.reset();
       node = std::make_unique<ArmNode>(arm, counters, options.device);
+      private_nh.setParam(marker, true);
     }
     master_up = up;
 

@@ -1,0 +1,40 @@
+#include "arm_reference.hpp"
+
+#include "arm/arm_model.hpp"
+
+namespace armctl::ros_test {
+
+namespace {
+
+arm::ArmModel model(const std::string& name) {
+  return arm::load_arm_model(arm::arm_file_path(name)).value();
+}
+
+std::vector<double> flat(const motion::Pose& p) {
+  return {p.position.x(), p.position.y(), p.position.z(), p.orientation.w(), p.orientation.x(), p.orientation.y(),
+          p.orientation.z()};
+}
+
+}  // namespace
+
+std::vector<ReferenceJoint> reference_joints(const std::string& arm) {
+  std::vector<ReferenceJoint> out;
+  for (const auto& j : model(arm).joints)
+    out.push_back({j.name, j.limits.lower, j.limits.upper, j.limits.velocity, j.role == arm::JointRole::chain});
+  return out;
+}
+
+std::vector<double> reference_tool_pose(const std::string& arm, const std::vector<double>& positions) {
+  const auto m = model(arm);
+  motion::JointVector q(m.chain_joints());
+  for (int i = 0; i < m.chain_joints(); ++i) q[i] = positions.at(std::size_t(i));
+  const motion::Pose link = m.kinematics->forward(q);
+  motion::Pose tool;
+  tool.position = link.position + link.orientation * m.tool.position;
+  tool.orientation = link.orientation * m.tool.orientation;
+  return flat(tool);
+}
+
+std::vector<double> reference_tool_offset(const std::string& arm) { return flat(model(arm).tool); }
+
+}  // namespace armctl::ros_test
