@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <mutex>
@@ -98,6 +99,8 @@ const RosWorld& ros_world() {
     char tmpl[] = "/tmp/armctl-ros-test-XXXXXX";
     if (!mkdtemp(tmpl)) throw std::runtime_error("mkdtemp failed");
     world.dir = tmpl;
+    // Gone when the test process ends (its children are ended by then).
+    std::atexit([] { std::filesystem::remove_all(world.dir); });
     world.port = free_port();
     world.master_uri = "http://127.0.0.1:" + std::to_string(world.port);
     // Every process started from here (the master, the node) inherits these: loopback only.
