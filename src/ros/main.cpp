@@ -41,8 +41,10 @@ int run(int argc, char** argv) {
   options.goal_time = param_in(private_nh, "goal_time_tolerance", 1.0, 0.01, 60);
   options.move_speed = param_in(private_nh, "speed", 0.25, 0.01, 1);
   const double link_timeout = param_in(private_nh, "link_timeout", 5.0, 0, 3600);
-  // joint_states: one per position read; 0 Hz (the default): as fast as the link answers.
-  const double rate = param_in(private_nh, "rate", 0.0, 0, 1000);
+  // joint_states: one per position read, ~rate a second (the link's pace if that is slower;
+  // 0: back to back, as fast as the link answers, which on the embedded simulators is
+  // thousands a second).
+  const double rate = param_in(private_nh, "rate", 50.0, 0, 1000);
   options.poll = rate > 0 ? 1.0 / rate : 0.0;
 
   ArmBridge arm(options);

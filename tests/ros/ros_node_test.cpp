@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -197,10 +198,13 @@ TEST_P(RosNode, PublishesJointStatesWithTheModelsNamesAndTheUrdf) {
     EXPECT_LE(m.position[j], joints_[j].upper + 1e-6) << m.name[j];
     EXPECT_NEAR(m.velocity[j], 0, 1e-6) << "at rest";
   }
-  // The rate: at least 10 Hz while idle (docs/ros.md; bench/ros measures it against the link).
+  // The rate: ~rate = 50 Hz by default (docs/ros.md; bench/ros measures it against the
+  // link); at least half of it on a loaded machine with the sanitizers.
   const auto t = states_->arrivals();
   const double rate = 19.0 / (t.back() - t[t.size() - 20]).toSec();
-  EXPECT_GE(rate, 10.0);
+  std::printf("joint_states of %s: %.1f Hz\n", arm().c_str(), rate);
+  EXPECT_GE(rate, 25.0);
+  EXPECT_LE(rate, 60.0);
   std::string urdf;
   ASSERT_TRUE(ros::param::get("/robot_description", urdf));
   EXPECT_THAT(urdf, HasSubstr("<robot"));
