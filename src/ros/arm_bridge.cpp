@@ -107,8 +107,18 @@ struct ArmBridge::Impl {
   }
 };
 
-ArmBridge::ArmBridge(const BridgeOptions& options)
-    : impl_(std::make_unique<Impl>(options, session::open_arm_session(options.arm, options.device))) {}
+namespace {
+
+// ROS clients watch the arm live: the embedded simulated joint bus in step with the wall clock.
+std::unique_ptr<session::ArmSession> open_session(const BridgeOptions& o) {
+  session::SessionOptions so;
+  so.wall_clock = true;
+  return session::open_arm_session(o.arm, o.device, so);
+}
+
+}  // namespace
+
+ArmBridge::ArmBridge(const BridgeOptions& options) : impl_(std::make_unique<Impl>(options, open_session(options))) {}
 
 ArmBridge::~ArmBridge() = default;
 
