@@ -1,6 +1,9 @@
 #include "arm_reference.hpp"
 
+#include <chrono>
+
 #include "arm/arm_model.hpp"
+#include "session/arm_session.hpp"
 
 namespace armctl::ros_test {
 
@@ -33,6 +36,16 @@ std::vector<double> reference_tool_pose(const std::string& arm, const std::vecto
   tool.position = link.position + link.orientation * m.tool.position;
   tool.orientation = link.orientation * m.tool.orientation;
   return flat(tool);
+}
+
+double reference_read_seconds(const std::string& arm, int reads) {
+  session::SessionOptions o;
+  o.wall_clock = true;
+  auto s = session::open_arm_session(arm, "", o);
+  (void)s->arm->read().value();  // the first read may wake the link up
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < reads; ++i) (void)s->arm->read().value();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / reads;
 }
 
 std::vector<double> reference_tool_offset(const std::string& arm) { return flat(model(arm).tool); }

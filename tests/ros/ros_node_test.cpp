@@ -164,15 +164,18 @@ class RosNode : public ::testing::TestWithParam<const char*> {
     return g;
   }
 
-  // The arm at rest: two joint_states in a row (after `after`) within `tolerance`.
+  // The arm at rest: three joint_states in a row, each within `tolerance` of the one before.
   bool at_rest(std::chrono::milliseconds timeout, double tolerance = 0.002) {
     std::vector<double> previous;
+    int seen = states_->count(), still = 0;
     return wait_until(
         [&] {
+          if (states_->count() == seen) return false;
+          seen = states_->count();
           const auto now = states_->last().position;
-          const bool still = !previous.empty() && distance(now, previous, chain_) < tolerance;
+          still = !previous.empty() && distance(now, previous, chain_) < tolerance ? still + 1 : 0;
           previous = now;
-          return still;
+          return still >= 3;
         },
         timeout);
   }
@@ -198,12 +201,16 @@ TEST_P(RosNode, PublishesJointStatesWithTheModelsNamesAndTheUrdf) {
     EXPECT_LE(m.position[j], joints_[j].upper + 1e-6) << m.name[j];
     EXPECT_NEAR(m.velocity[j], 0, 1e-6) << "at rest";
   }
-  // The rate: ~rate = 50 Hz by default (docs/ros.md; bench/ros measures it against the
-  // link); at least half of it on a loaded machine with the sanitizers.
+  // The rate: ~rate = 50 Hz by default, or the link's pace where that is slower (a read
+  // plus the 20 ms between reads); at least 60 % of it on a loaded machine with the
+  // sanitizers (bench/ros measures it on an idle one).
   const auto t = states_->arrivals();
   const double rate = 19.0 / (t.back() - t[t.size() - 20]).toSec();
-  std::printf("joint_states of %s: %.1f Hz\n", arm().c_str(), rate);
-  EXPECT_GE(rate, 25.0);
+  const double read = reference_read_seconds(arm(), 10);
+  const double expected = 1.0 / (read + 1.0 / 50);
+  std::printf("joint_states of %s: %.1f Hz (a read takes %.1f ms: %.1f Hz expected)\n", arm().c_str(), rate,
+              read * 1e3, expected);
+  EXPECT_GE(rate, 0.6 * expected);
   EXPECT_LE(rate, 60.0);
   std::string urdf;
   ASSERT_TRUE(ros::param::get("/robot_description", urdf));
