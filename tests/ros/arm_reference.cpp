@@ -23,7 +23,8 @@ std::vector<double> flat(const motion::Pose& p) {
 std::vector<ReferenceJoint> reference_joints(const std::string& arm) {
   std::vector<ReferenceJoint> out;
   for (const auto& j : model(arm).joints)
-    out.push_back({j.name, j.limits.lower, j.limits.upper, j.limits.velocity, j.role == arm::JointRole::chain});
+    out.push_back({j.name, j.limits.lower, j.limits.upper, j.limits.velocity, j.role == arm::JointRole::chain,
+                   j.dimension == Dimension::angle});
   return out;
 }
 

@@ -11,7 +11,8 @@ namespace armctl::ros_test {
 struct ReferenceJoint {
   std::string name;
   double lower = 0, upper = 0, velocity = 0;
-  bool chain = true;  // false: the gripper
+  bool chain = true;     // false: the gripper
+  bool revolute = true;  // false: prismatic (m)
 };
 
 std::vector<ReferenceJoint> reference_joints(const std::string& arm);
