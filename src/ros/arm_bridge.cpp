@@ -47,6 +47,7 @@ ArmInfo info_of(const session::ArmSession& session) {
 ArmState state_of(const session::ArmSnapshot& s) {
   ArmState out;
   out.sequence = s.sequence;
+  out.read_time = std::chrono::duration<double>(s.time.time_since_epoch()).count();
   out.link_ok = s.link_ok;
   out.link_error = s.link_error;
   out.positions = s.positions;
@@ -157,20 +158,25 @@ MotionOutcome ArmBridge::follow(const TrajectoryGoal& goal,
   auto done = impl_->lane.replace("trajectory", [=](arm::Arm& a, session::JobContext& ctx) {
     return run_trajectory(a, ctx, request, t, defaults, *outcome);
   });
-  std::uint64_t seen = 0;
+  // Feedback at every read-back: the plan where the arm should have been at that read.
+  std::uint64_t seen = 0, reads = 0;
   while (done.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
     const auto s = impl_->worker.wait_for_update(seen, std::chrono::milliseconds(100));
     seen = s.sequence;
-    if (!on_progress || !s.progress) continue;
+    if (!on_progress) continue;
     Desired d;
-    d.t = s.progress->t;
-    std::vector<double> a;
+    ArmState now = state_of(s);
     {
       std::lock_guard<std::mutex> lock(outcome->mutex);
-      if (!outcome->plan) continue;
+      if (!outcome->plan || outcome->last_read.count == reads) continue;
+      reads = outcome->last_read.count;
+      d.t = outcome->last_read.t;
+      now.positions = outcome->last_read.positions;
+      now.velocities = outcome->last_read.velocities;
+      std::vector<double> a;
       outcome->plan->motion.sample(d.t, d.positions, d.velocities, a);
     }
-    on_progress(d, state_of(s));
+    on_progress(d, now);
   }
   const Status status = done.get();
   MotionOutcome m;

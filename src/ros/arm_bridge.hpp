@@ -38,6 +38,7 @@ struct ArmInfo {
 // The newest snapshot of the arm worker.
 struct ArmState {
   std::uint64_t sequence = 0;  // 0: nothing read yet
+  double read_time = 0;        // s on the device's clock: when the positions were read
   bool link_ok = false;
   std::string link_error;
   std::vector<double> positions, velocities;  // SI, the model's order

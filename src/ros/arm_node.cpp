@@ -115,7 +115,9 @@ struct ArmNode::Impl {
     {
       std::lock_guard<std::mutex> lock(mutex);
       quit = true;
-      if (!active_goal.empty()) arm.stop();
+      // A motion this node started ends with it (its clients are gone with the master).
+      for (const auto& r : runners)
+        if (!*r.done) arm.stop();
     }
     publisher.join();
     for (auto& r : runners) r.thread.join();
@@ -130,10 +132,12 @@ struct ArmNode::Impl {
 
   void publish_loop() {
     std::uint64_t seen = 0;
+    double read_at = -1;  // one message per read: snapshots change for other reasons too
     auto next_status = std::chrono::steady_clock::now();
     while (!quitting()) {
       const ArmState s = arm.wait_for_update(seen, std::chrono::milliseconds(100));
-      if (s.sequence != seen && s.link_ok && !s.positions.empty()) {
+      if (s.read_time != read_at && s.link_ok && !s.positions.empty()) {
+        read_at = s.read_time;
         sensor_msgs::JointState m;
         m.header.stamp = ros::Time::now();
         m.name = info.joints;

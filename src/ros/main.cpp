@@ -60,7 +60,9 @@ int run(int argc, char** argv) {
   auto node = std::make_unique<ArmNode>(arm, counters, options.device);
   private_nh.setParam(marker, true);
   bool master_up = true;
-  std::optional<std::chrono::steady_clock::time_point> link_down_since;
+  // Not a std::optional: g++ 12 -O2 warns it may be read uninitialised.
+  bool link_down = false;
+  std::chrono::steady_clock::time_point link_down_since{};
   while (ros::ok()) {
     const bool up = ros::master::check();
     if (!up && master_up) ROS_WARN("armctl_ros: the ROS master went away; waiting for it");
@@ -74,14 +76,15 @@ int run(int argc, char** argv) {
 
     const ArmState s = arm.state();
     if (s.link_ok) {
-      link_down_since.reset();
+      link_down = false;
     } else if (!s.link_error.empty()) {
       const auto now = std::chrono::steady_clock::now();
-      if (!link_down_since) {
+      if (!link_down) {
+        link_down = true;
         link_down_since = now;
         ROS_ERROR("armctl_ros: link lost: %s", s.link_error.c_str());
       }
-      if (link_timeout > 0 && now - *link_down_since > std::chrono::duration<double>(link_timeout)) {
+      if (link_timeout > 0 && now - link_down_since > std::chrono::duration<double>(link_timeout)) {
         const auto why = fmt::format("armctl_ros: device lost: no position read for {:.1f} s ({}); exiting so that "
                                      "it is opened again (the launch files respawn the node)",
                                      link_timeout, s.link_error);

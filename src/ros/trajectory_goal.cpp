@@ -8,6 +8,8 @@
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
+#include "core/quantity.hpp"
+
 namespace armctl::ros_node {
 
 namespace {
@@ -75,11 +77,14 @@ struct Spline {
   }
 };
 
-std::string value(const arm::ArmModel& model, int joint, double si) { return arm::format_joint_value(model, joint, si); }
+// "30.000 deg" / "120.000 mm", as the Arm API writes joint values (arm::format_joint_value).
+std::string value(const arm::ArmModel& model, int joint, double si) {
+  return format_quantity(model.joints[std::size_t(joint)].dimension, si);
+}
 
-std::string rate(const arm::ArmModel& model, int joint, double si, const char* per) {
-  const bool angle = model.joints[std::size_t(joint)].dimension == Dimension::angle;
-  return fmt::format("{:.3f} {}/{}", angle ? si * 180 / M_PI : si * 1000, angle ? "deg" : "mm", per);
+// A joint rate as the Arm API writes it ("180 deg/s", "0.5 m/s^2"): per s (power 1) or per s^2 (2).
+std::string rate(const arm::ArmModel& model, int joint, double si, int power) {
+  return format_quantity(model.joints[std::size_t(joint)].dimension, si, power);
 }
 
 // Velocities at the knots where the request gives none: 0 at both ends, at an inner knot
@@ -190,7 +195,7 @@ Result<TrajectoryPlan> plan_trajectory(const arm::ArmModel& model, const std::ve
         return refused(GoalError::invalid_goal,
                        fmt::format("the last point gives joint {} a velocity of {}: the arm ends a trajectory at "
                                    "rest, so the last velocities must be 0", model.joints[std::size_t((*joints)[i])].name,
-                                   rate(model, (*joints)[i], last.velocities[i], "s")));
+                                   rate(model, (*joints)[i], last.velocities[i], 1)));
 
   // The knots: where the arm stands at 0 (a first point at 0 must be there), then the points.
   std::vector<double> times{0};
@@ -268,13 +273,13 @@ Result<TrajectoryPlan> plan_trajectory(const arm::ArmModel& model, const std::ve
         if (std::abs(v[j]) > jm.limits.velocity * (1 + 1e-6))
           return refused(GoalError::invalid_goal,
                          fmt::format("at {:.3f} s joint {} would move at {}, beyond its velocity limit {}: give the "
-                                     "points more time", t, jm.name, rate(model, ji, std::abs(v[j]), "s"),
-                                     rate(model, ji, jm.limits.velocity, "s")));
+                                     "points more time", t, jm.name, rate(model, ji, std::abs(v[j]), 1),
+                                     rate(model, ji, jm.limits.velocity, 1)));
         if (std::abs(a[j]) > jm.limits.acceleration * (1 + 1e-6))
           return refused(GoalError::invalid_goal,
                          fmt::format("at {:.3f} s joint {} would accelerate at {}, beyond its acceleration limit {}: "
-                                     "give the points more time", t, jm.name, rate(model, ji, std::abs(a[j]), "s^2"),
-                                     rate(model, ji, jm.limits.acceleration, "s^2")));
+                                     "give the points more time", t, jm.name, rate(model, ji, std::abs(a[j]), 2),
+                                     rate(model, ji, jm.limits.acceleration, 2)));
       }
     }
   }

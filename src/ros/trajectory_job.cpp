@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include <fmt/core.h>
 
@@ -47,6 +48,26 @@ Status run_trajectory(arm::Arm& arm, session::JobContext& ctx, const TrajectoryR
   const double inf = std::numeric_limits<double>::infinity();
   if (auto a = smallest(model, tolerances.path, Dimension::angle)) eo.following_error_angle = *a == inf ? 1e9 : *a;
   if (auto l = smallest(model, tolerances.path, Dimension::length)) eo.following_error_length = *l == inf ? 1e9 : *l;
+  // Each read-back with its nominal time: the last point's, advanced at its rate to the read.
+  struct Point {
+    double t = 0, rate = 0;
+    TimePoint at{};
+  };
+  auto last_point = std::make_shared<Point>();
+  const Clock& clock = arm.clock();
+  eo.on_point = [last_point, &clock](const arm::MotionProgress& p) { *last_point = {p.t, p.rate, clock.now()}; };
+  eo.on_read = [last_point, &outcome](const arm::JointState& s) {
+    const double t = last_point->t + last_point->rate * std::chrono::duration<double>(s.time - last_point->at).count();
+    std::lock_guard<std::mutex> lock(outcome.mutex);
+    auto& r = outcome.last_read;
+    const double dt = t - r.t;
+    r.velocities.assign(s.positions.size(), 0.0);
+    if (r.count > 0 && dt > 0 && r.positions.size() == s.positions.size())
+      for (std::size_t j = 0; j < s.positions.size(); ++j) r.velocities[j] = (s.positions[j] - r.positions[j]) / dt;
+    r.t = std::max(0.0, t);
+    r.positions = s.positions;
+    ++r.count;
+  };
   auto report = arm::execute_motion(arm, plan->motion, ctx.executor_options(eo));
   if (!report) {
     const bool following = report.error().message.find("following error") != std::string::npos;

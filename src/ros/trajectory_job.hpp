@@ -9,6 +9,8 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
+#include <cstdint>
 
 #include "arm/motion_executor.hpp"
 #include "ros/trajectory_goal.hpp"
@@ -21,6 +23,14 @@ struct TrajectoryDefaults {
   StartTolerance start;
 };
 
+// A read-back of the executor with the nominal time it was made at, for feedback: the
+// plan there is where the arm should have been.
+struct FollowSample {
+  std::uint64_t count = 0;  // +1 per read
+  double t = 0;             // nominal s at the read
+  std::vector<double> positions, velocities;  // SI, every joint
+};
+
 // What happened, for the action result (read after the job's future is ready).
 struct TrajectoryOutcome {
   GoalError code = GoalError::none;
@@ -28,7 +38,8 @@ struct TrajectoryOutcome {
   bool stopped = false;  // by a stop/cancel/replacement, at rest on the path
   std::optional<arm::MotionReport> report;
   std::optional<TrajectoryPlan> plan;
-  std::mutex mutex;  // plan is set on the worker thread, read for feedback meanwhile
+  FollowSample last_read;
+  std::mutex mutex;  // plan and last_read are set on the worker thread, read for feedback meanwhile
 };
 
 Status run_trajectory(arm::Arm& arm, session::JobContext& ctx, const TrajectoryRequest& request,
