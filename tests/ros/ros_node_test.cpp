@@ -17,6 +17,13 @@
 #include <actionlib/client/simple_action_client.h>
 #include <control_msgs/FollowJointTrajectoryAction.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <geometry_msgs/PoseStamped.h>
+#include <std_srvs/SetBool.h>
+#include <std_srvs/Trigger.h>
+#include <trajectory_msgs/JointTrajectory.h>
+
+#include "armctl/RunActionGroup.h"
+#include "armctl/SetGripper.h"
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -330,6 +337,104 @@ TEST_P(RosNode, SurvivesAMasterRestart) {
   client().sendGoal(goal_through({0.02}, 1.0));
   ASSERT_TRUE(client().waitForResult(ros::Duration(30)));
   EXPECT_EQ(client().getState(), actionlib::SimpleClientGoalState::SUCCEEDED) << client().getState().getText();
+}
+
+
+TEST_P(RosNode, AStreamedTrajectoryReplacesTheRunningOne) {
+  ros::NodeHandle nh;
+  auto command = nh.advertise<trajectory_msgs::JointTrajectory>("/arm_controller/command", 1);
+  ASSERT_TRUE(wait_until([&] { return command.getNumSubscribers() > 0; }, 10s));
+  const auto start = states_->last().position;
+  auto first = goal_through({0.2}, 6.0).trajectory;  // long: replaced before its end
+  auto second = goal_through({-0.03}, 1.0).trajectory;
+  for (std::size_t j = 0; j < chain_; ++j) second.points[0].positions[j] = start[j] + 0.5 * (second.points[0].positions[j] - start[j]);
+  command.publish(first);
+  ASSERT_TRUE(wait_until([&] { return distance(states_->last().position, start, chain_) > 0.01; }, 10s));
+  // The second one starts where the first was stopped (its first point at 1 s).
+  command.publish(second);
+  const auto& target = second.points[0].positions;
+  ASSERT_TRUE(wait_until([&] { return distance(states_->last().position, target, chain_) < 0.0175; }, 20s))
+      << ::testing::PrintToString(states_->last().position) << " " << ::testing::PrintToString(target);
+  ASSERT_TRUE(at_rest(10s));
+  EXPECT_LT(distance(states_->last().position, target, chain_), 0.0175) << "the first one did not go on";
+}
+
+TEST_P(RosNode, APoseGoalInTheBaseFrameMovesTheToolThereAndAnotherFrameIsRefused) {
+  ros::NodeHandle nh;
+  Diagnostics diagnostics;
+  auto pose = nh.advertise<geometry_msgs::PoseStamped>("/pose_goal", 1);
+  ASSERT_TRUE(wait_until([&] { return pose.getNumSubscribers() > 0; }, 10s));
+  auto q = states_->last().position;
+  for (std::size_t j = 0; j < chain_; ++j) q[j] += 0.03 * (joints_[j].upper - joints_[j].lower) * (j % 2 ? -1 : 1);
+  const auto target = reference_tool_pose(arm(), q);
+  geometry_msgs::PoseStamped m;
+  m.header.frame_id = "camera";
+  m.pose.position.x = target[0];
+  m.pose.position.y = target[1];
+  m.pose.position.z = target[2];
+  m.pose.orientation.w = target[3];
+  m.pose.orientation.x = target[4];
+  m.pose.orientation.y = target[5];
+  m.pose.orientation.z = target[6];
+  const auto before = states_->last().position;
+  pose.publish(m);
+  ASSERT_TRUE(wait_until(
+      [&] {
+        for (const auto& d : diagnostics.all())
+          for (const auto& kv : d.values)
+            if (kv.key == "last refusal" && kv.value.find("frame 'camera'") != std::string::npos) return true;
+        return false;
+      },
+      10s));
+  EXPECT_LT(distance(states_->last().position, before, chain_), 0.002) << "nothing moved";
+  m.header.frame_id = "base_link";
+  pose.publish(m);
+  auto tool_at_target = [&] {
+    const auto p = reference_tool_pose(arm(), states_->last().position);
+    return std::hypot(p[0] - target[0], p[1] - target[1], p[2] - target[2]) < 0.002;
+  };
+  ASSERT_TRUE(wait_until(tool_at_target, 20s)) << node_->log_text();
+}
+
+TEST_P(RosNode, ServicesStopTorqueGripperAndActionGroups) {
+  ros::NodeHandle nh;
+  auto stop = nh.serviceClient<std_srvs::Trigger>("/armctl_ros/stop");
+  auto torque = nh.serviceClient<std_srvs::SetBool>("/armctl_ros/set_torque");
+  auto gripper = nh.serviceClient<armctl::SetGripper>("/armctl_ros/gripper");
+  auto group = nh.serviceClient<armctl::RunActionGroup>("/armctl_ros/run_action_group");
+  ASSERT_TRUE(gripper.waitForExistence(ros::Duration(10)));
+  std_srvs::Trigger t;
+  ASSERT_TRUE(stop.call(t));
+  EXPECT_TRUE(t.response.success);
+  std_srvs::SetBool b;
+  b.request.data = true;
+  ASSERT_TRUE(torque.call(b));
+  EXPECT_TRUE(b.response.success) << b.response.message;
+
+  armctl::SetGripper g;
+  g.request.closed_fraction = 1.5;
+  ASSERT_TRUE(gripper.call(g));
+  EXPECT_FALSE(g.response.success);
+  EXPECT_THAT(g.response.message, HasSubstr("0 (open) to 1 (closed)"));
+  const std::size_t finger = joints_.size() - 1;
+  const double from = states_->last().position[finger];
+  g.request.closed_fraction = 0.3;
+  ASSERT_TRUE(gripper.call(g));
+  EXPECT_TRUE(g.response.success) << g.response.message;
+  EXPECT_GT(std::abs(states_->last().position[finger] - from), 1e-3) << "the gripper moved";
+
+  armctl::RunActionGroup r;
+  r.request.group = 255;
+  ASSERT_TRUE(group.call(r));
+  EXPECT_FALSE(r.response.success);
+  EXPECT_THAT(r.response.message, HasSubstr("0..254"));
+  r.request.group = 1;
+  r.request.times = 1;
+  ASSERT_TRUE(group.call(r));
+  if (arm() == std::string("scara")) {
+    EXPECT_FALSE(r.response.success);
+    EXPECT_THAT(r.response.message, HasSubstr("Robot Commands board"));
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(BothArms, RosNode, ::testing::Values("xarm", "scara"));
