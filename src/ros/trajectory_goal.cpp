@@ -14,6 +14,8 @@ namespace armctl::ros_node {
 
 namespace {
 
+constexpr double kLongestTrajectory = 3600;  // s
+
 Error refused(GoalError code, std::string message) {
   return Error{ErrorKind::invalid_argument, std::move(message), code};
 }
@@ -164,6 +166,12 @@ Result<TrajectoryPlan> plan_trajectory(const arm::ArmModel& model, const std::ve
                                  "only; leave effort empty", k));
     if (!std::isfinite(p.time))
       return refused(GoalError::invalid_goal, fmt::format("point {}: time_from_start is not finite", k));
+    // As long as any armctl motion may be (the Python module's durations too): beyond, the
+    // spline's polynomials lose their precision (found by fuzz_trajectory_goal).
+    if (p.time > kLongestTrajectory)
+      return refused(GoalError::invalid_goal,
+                     fmt::format("point {}: time_from_start {:.3f} s is beyond the longest trajectory, {:.0f} s", k,
+                                 p.time, kLongestTrajectory));
     if (p.time < 0)
       return refused(GoalError::invalid_goal,
                      fmt::format("{}: time_from_start is negative; times must be 0 or more and rising", where));
@@ -298,6 +306,8 @@ Result<TrajectoryPlan> plan_trajectory(const arm::ArmModel& model, const std::ve
 Result<GoalTolerances> map_tolerances(const arm::ArmModel& model, const std::vector<std::string>& names,
                                       const std::vector<JointTolerance>& path, const std::vector<JointTolerance>& goal,
                                       double goal_time) {
+  // The names first (a tolerance may name any of them): every one a joint of the arm.
+  if (auto known = map_joint_names(model, names); !known) return known.error();
   GoalTolerances out;
   out.path.assign(std::size_t(model.joint_count()), std::nullopt);
   out.goal = out.path;
@@ -310,9 +320,12 @@ Result<GoalTolerances> map_tolerances(const arm::ArmModel& model, const std::vec
                                    t.name, fmt::join(names, ", ")));
       if (std::isnan(t.position))
         return refused(GoalError::invalid_goal, fmt::format("{} tolerance of joint {} is NaN", which, t.name));
-      const int j = *model.find_joint(t.name);
-      if (t.position > 0) into[std::size_t(j)] = t.position;
-      if (t.position < 0) into[std::size_t(j)] = std::numeric_limits<double>::infinity();  // not checked
+      // Exact names, as map_joint_names matched them (find_joint ignores case).
+      const auto j = std::size_t(std::find_if(model.joints.begin(), model.joints.end(),
+                                              [&](const arm::JointModel& m) { return m.name == t.name; }) -
+                                 model.joints.begin());
+      if (t.position > 0) into[j] = t.position;
+      if (t.position < 0) into[j] = std::numeric_limits<double>::infinity();  // not checked
     }
     return Ok{};
   };

@@ -153,6 +153,10 @@ TEST_P(TrajectoryGoal, TimesMustBeFiniteNonNegativeAndRising) {
   r = five_points(m);
   r.points[1].time = std::nan("");
   EXPECT_THAT(refusal(m, r).message, HasSubstr("not finite"));
+
+  r = five_points(m);
+  r.points.back().time = 1e277;  // found by fuzz_trajectory_goal: the polynomials lost precision
+  EXPECT_THAT(refusal(m, r).message, HasSubstr("beyond the longest trajectory, 3600 s"));
 }
 
 TEST_P(TrajectoryGoal, EmptyNanWrongSizesAndEffortAreRefused) {
@@ -222,6 +226,14 @@ TEST_P(TrajectoryGoal, TolerancesAreMappedByName) {
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(refusal_of(bad.error()).code, GoalError::invalid_joints);
   EXPECT_FALSE(map_tolerances(m, names, {}, {}, -1).ok());
+  // A tolerance for a name the trajectory gives but the arm does not have (found by
+  // fuzz_trajectory_goal: it was looked up without a check).
+  auto unknown = names;
+  unknown[0] = "nope";
+  auto e = map_tolerances(m, unknown, {{"nope", 0.1}}, {}, 0);
+  ASSERT_FALSE(e.ok());
+  EXPECT_EQ(refusal_of(e.error()).code, GoalError::invalid_joints);
+  EXPECT_THAT(e.error().message, HasSubstr("unknown joint 'nope'"));
 }
 
 INSTANTIATE_TEST_SUITE_P(BothArms, TrajectoryGoal, ::testing::Values("xarm", "scara"));
