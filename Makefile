@@ -14,7 +14,10 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
   clang libclang-rt-14-dev ccache \
   liburdfdom-dev liborocos-kdl-dev libkdl-parser-dev libeigen3-dev \
   pybind11-dev python3-dev python3-pytest python3-numpy \
-  libcpp-httplib-dev
+  libcpp-httplib-dev \
+  libroscpp-dev libactionlib-dev libactionlib-msgs-dev libsensor-msgs-dev libtrajectory-msgs-dev \
+  libgeometry-msgs-dev libdiagnostic-msgs-dev libstd-msgs-dev libstd-srvs-dev libtf2-ros-dev \
+  python3-genmsg python3-gencpp python3-rosmaster ros-robot-state-publisher python3-roslaunch
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 JOBS ?= 2
@@ -31,6 +34,8 @@ WITH_PYTHON := -DARMCTL_PYTHON=ON
 # The benchmarks build without it: the module makes every library position-independent code.
 # The dashboard's browser tests (tests/browser): ON, so that a missing node or chromium fails.
 WITH_BROWSER := -DARMCTL_BROWSER_TESTS=ON
+# The ROS 1 node (docs/ros.md): ON, so that a missing ROS package fails the build.
+WITH_ROS := -DARMCTL_ROS=ON
 FUZZ_BUILD := build/fuzz
 FUZZ_SECONDS ?= 60
 TEST_FUZZ_SECONDS ?= 10
@@ -72,7 +77,7 @@ web/node_modules: web/package-lock.json | deb-deps
 	touch $@
 
 $(BUILD)/build.ninja: | deps
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DARMCTL_SANITIZE=ON $(WITH_FIRMWARE) $(WITH_PYTHON) $(WITH_BROWSER)
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DARMCTL_SANITIZE=ON $(WITH_FIRMWARE) $(WITH_PYTHON) $(WITH_BROWSER) $(WITH_ROS)
 
 configure: deps $(BUILD)/build.ninja
 
@@ -87,7 +92,7 @@ demo: build
 	./scripts/demo.sh $(BUILD)/armctl
 
 bench: deps
-	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF $(WITH_FIRMWARE) -DARMCTL_PYTHON=OFF
+	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF $(WITH_FIRMWARE) -DARMCTL_PYTHON=OFF $(WITH_ROS)
 	cmake --build $(BENCH_BUILD) -j $(JOBS)
 	./scripts/bench.sh $(BENCH_BUILD)
 
@@ -110,10 +115,11 @@ flash: deps
 # nor simavr) installed into $(PREFIX): bin/armctl, the static libraries, their headers
 # (include/armctl/), the CMake package (lib/cmake/armctl: find_package(armctl)) and the
 # default configs (share/armctl), the Python package (lib/python3.N/dist-packages/armctl, where
-# Debian's python3 finds it); then the udev rule for the xArm's USB HID board.
+# Debian's python3 finds it), the ROS package (bin/armctl_ros, share/armctl: package.xml,
+# launch/, rviz/; docs/ros.md); then the udev rule for the xArm's USB HID board.
 install: deps
 	cmake -S . -B $(RELEASE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF \
-	  -DARMCTL_TESTS=OFF -DARMCTL_BENCH=OFF -DARMCTL_FIRMWARE=OFF -DARMCTL_HIL=OFF $(WITH_PYTHON) \
+	  -DARMCTL_TESTS=OFF -DARMCTL_BENCH=OFF -DARMCTL_FIRMWARE=OFF -DARMCTL_HIL=OFF $(WITH_PYTHON) $(WITH_ROS) \
 	  -DCMAKE_INSTALL_PREFIX=$(PREFIX)
 	cmake --build $(RELEASE_BUILD) -j $(JOBS)
 	$(SUDO) cmake --install $(RELEASE_BUILD)

@@ -173,7 +173,8 @@ void ArmWorker::publish_error(const std::string& error) {
 }
 
 void ArmWorker::poll_once() {
-  auto state = session_->arm->read();
+  // A byte pipe under a device may throw (a closed socket): the worker thread must outlive it.
+  auto state = catch_error([&] { return session_->arm->read(); });
   if (state) {
     publish(*state);
   } else {
@@ -237,7 +238,12 @@ void ArmWorker::loop() {
       next_read = arm.clock().now() + poll;
     }
     if (now >= next_status) {
-      ArmStatus status = options_.read_status(*session_);
+      ArmStatus status;
+      try {
+        status = options_.read_status(*session_);
+      } catch (const std::exception& e) {
+        publish_error(e.what());
+      }
       std::lock_guard guard(mutex_);
       if (status.battery_volts != snapshot_.status.battery_volts || status.faults != snapshot_.status.faults) {
         snapshot_.status = std::move(status);
@@ -250,7 +256,9 @@ void ArmWorker::loop() {
     // that a job or a stop is taken up quickly.
     const Duration wait = std::clamp(next_read - arm.clock().now(), Duration{0}, kIdleSlice);
     if (wait > Duration{0}) {
-      if (auto s = arm.device().idle(wait); !s) publish_error(s.error().message);
+      // A joint bus whose socket closed throws from idle (joint_bus::idle reads the link).
+      const Status s = catch_error([&]() -> Status { return arm.device().idle(wait); });
+      if (!s) publish_error(s.error().message);
     }
   }
   // Closing: whatever the last job left moving stops.
