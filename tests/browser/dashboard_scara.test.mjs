@@ -1,35 +1,20 @@
 // The same page on the embedded simulated SCARA arm (joint bus, seven joints, a prismatic
 // Z in mm): built from its model, its sliders move it, its 3D view follows, and the action
 // group editor says why it is not offered (no Robot Commands board).
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  startServer, launchBrowser, openDashboard, apiClient, waitFor, waitForPosition, waitIdle, screenshot, expectRefused,
+  waitFor, waitForPosition, waitIdle, screenshot, expectRefused,
+  dashboardForFile,
 } from './harness.mjs';
 
-let server;
-let browser;
 let page;
 let problems;
 let script;
 
 const viewValue = (name) => page.evaluate((n) => window.armctlView.jointValues()[n], name);
 
-before(async () => {
-  server = await startServer({ arm: 'scara' });
-  browser = await launchBrowser();
-  ({ page, problems } = await openDashboard(browser, server));
-  script = apiClient(server);
-});
-
-after(async () => {
-  await browser?.close();
-  const exit = await server?.stop();
-  // A server that crashed (a sanitizer report) during the run or at its end fails the run,
-  // with its output; the console errors it caused come second.
-  assert.ok(!exit || exit.code === 0 || exit.signal === 'SIGTERM', `armctl serve ended with ${JSON.stringify(exit)}: ${server?.output}`);
-  assert.deepEqual(problems ?? [], [], 'no console errors during the whole run');
-});
+dashboardForFile('scara', (s) => ({ page, problems, script } = s));
 
 test('the SCARA page loads with no console errors, a slider per joint in its units', async () => {
   const model = await script.get('/api/v1/model');

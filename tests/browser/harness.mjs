@@ -2,6 +2,8 @@
 // embedded simulators, drives Debian's chromium (headless) through playwright-core, and
 // gives the tests an HTTP client of their own (another client, as a script would be).
 // Waits are for conditions (a poll with a deadline), never for a fixed time.
+import { before, after } from 'node:test';
+import assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
 import { createRequire } from 'node:module';
 import fs from 'node:fs';
@@ -109,6 +111,28 @@ export async function launchBrowser() {
   const args = ['--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--ignore-gpu-blocklist'];
   if (process.getuid && process.getuid() === 0) args.push('--no-sandbox');
   return chromium.launch({ executablePath: chromiumPath, headless: true, args });
+}
+
+// One dashboard for a whole test file, through node:test's before/after: `armctl serve` for
+// `arm`, a browser, the page, and a second API client (another client, as a script would
+// be), handed to `use` once they are up. At the end the file fails if the server crashed (a
+// sanitizer report) or the page logged an error.
+export function dashboardForFile(arm, use) {
+  const s = {};
+  before(async () => {
+    s.server = await startServer({ arm });
+    s.browser = await launchBrowser();
+    ({ page: s.page, problems: s.problems } = await openDashboard(s.browser, s.server));
+    s.script = apiClient(s.server);
+    use(s);
+  });
+  after(async () => {
+    await s.browser?.close();
+    const exit = await s.server?.stop();
+    assert.ok(!exit || exit.code === 0 || exit.signal === 'SIGTERM',
+      `armctl serve ended with ${JSON.stringify(exit)}: ${s.server?.output}`);
+    assert.deepEqual(s.problems ?? [], [], 'no console errors during the whole run');
+  });
 }
 
 // A page on the dashboard that records every console error and page error.
