@@ -6,6 +6,7 @@
 
 #include "motion/rob_file.hpp"
 #include "web/api_error.hpp"
+#include "refusal.hpp"
 #include "web/base64.hpp"
 #include "web/control_lease.hpp"
 #include "web/program_check.hpp"
@@ -15,22 +16,6 @@ namespace armctl::web {
 namespace {
 
 using json = nlohmann::json;
-
-const arm::ArmModel& xarm() {
-  static const arm::ArmModel m = arm::load_arm_model(arm::arm_file_path("xarm")).value();
-  return m;
-}
-
-template <typename F>
-std::pair<int, std::string> refusal(F f) {
-  try {
-    f();
-  } catch (const ApiError& e) {
-    return {e.status(), e.what()};
-  }
-  ADD_FAILURE() << "not refused";
-  return {0, ""};
-}
 
 json frame(int time_ms, double value) {
   json positions = json::object();

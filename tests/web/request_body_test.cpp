@@ -6,26 +6,10 @@
 
 #include "arm/arm_model.hpp"
 #include "web/api_error.hpp"
+#include "refusal.hpp"
 
 namespace armctl::web {
 namespace {
-
-const arm::ArmModel& xarm() {
-  static const arm::ArmModel m = arm::load_arm_model(arm::arm_file_path("xarm")).value();
-  return m;
-}
-
-// The status and message of the ApiError `f` throws.
-template <typename F>
-std::pair<int, std::string> refusal(F f) {
-  try {
-    f();
-  } catch (const ApiError& e) {
-    return {e.status(), e.what()};
-  }
-  ADD_FAILURE() << "not refused";
-  return {0, ""};
-}
 
 TEST(RequestBody, EmptyBodyIsAnEmptyObject) {
   EXPECT_EQ(parse_body(""), json::object());
