@@ -9,6 +9,7 @@
 
 #include <fmt/core.h>
 
+#include "core/ascii.hpp"
 #include "core/json_reader.hpp"
 #include "core/printable.hpp"
 
@@ -55,12 +56,6 @@ bool allowed(MoveKind kind, std::string_view key) {
   if (key == "zone" || key == "angular_speed") return kind != MoveKind::ptp;
   if (key == "via") return kind == MoveKind::circ;
   return false;
-}
-
-std::string lower(std::string_view text) {
-  std::string out(text);
-  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return out;
 }
 
 // Outside text quoted in a message: control bytes escaped (core/printable.hpp), so one bad
@@ -122,7 +117,7 @@ class Parser {
   Result<PathMove> parse_move(std::size_t line, const std::vector<Field>& fields) {
     PathMove move;
     move.line = line;
-    const std::string kind = lower(fields[0].text);
+    const std::string kind = ascii_lower(fields[0].text);
     if (kind == "ptp") move.kind = MoveKind::ptp;
     else if (kind == "lin") move.kind = MoveKind::lin;
     else if (kind == "circ") move.kind = MoveKind::circ;
@@ -191,7 +186,7 @@ class Parser {
         move.joints.push_back({*length, Dimension::length});
       }
     } else if (key == "elbow") {
-      const std::string e = lower(value);
+      const std::string e = ascii_lower(value);
       if (e == "up") move.elbow = Elbow::up;
       else if (e == "down") move.elbow = Elbow::down;
       else if (e == "left") move.elbow = Elbow::left;

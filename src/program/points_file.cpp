@@ -1,5 +1,6 @@
 #include "program/points_file.hpp"
 
+#include "core/ascii.hpp"
 #include "core/atomic_file.hpp"
 
 
@@ -19,12 +20,6 @@
 namespace armctl::program {
 
 namespace {
-
-std::string lower(std::string_view text) {
-  std::string out(text);
-  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return out;
-}
 
 // Outside text for messages: control bytes escaped (core/printable.hpp), long text cut.
 std::string shown(std::string_view text, std::size_t longest = 60) {
@@ -70,7 +65,7 @@ std::string number(double v) { return fmt::format("{}", v == 0 ? 0.0 : v); }
 }  // namespace
 
 bool is_language_word(std::string_view word) {
-  const std::string w = lower(word);
+  const std::string w = ascii_lower(word);
   return std::find(kLanguageWords.begin(), kLanguageWords.end(), w) != kLanguageWords.end();
 }
 
@@ -81,7 +76,7 @@ std::optional<std::string> bad_name(std::string_view name) {
   if (!letter(name[0])) return "a name starts with a letter or '_'";
   for (char c : name)
     if (!letter(c) && !std::isdigit(static_cast<unsigned char>(c))) return "a name has only letters, digits and '_'";
-  if (is_language_word(name)) return fmt::format("'{}' is a word of the program language", lower(name));
+  if (is_language_word(name)) return fmt::format("'{}' is a word of the program language", ascii_lower(name));
   return std::nullopt;
 }
 

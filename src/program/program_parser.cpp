@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "core/ascii.hpp"
 #include "core/json_reader.hpp"
 #include "program/language_words.hpp"
 #include "program/points_file.hpp"
@@ -13,12 +14,6 @@
 namespace armctl::program {
 
 namespace {
-
-std::string lower(std::string_view text) {
-  std::string out(text);
-  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return out;
-}
 
 // What may follow each move (docs/programs.md "Moves").
 constexpr std::string_view kPtpOptions = "speed=N% and accel=N% (of the joints' limits)";
@@ -57,7 +52,7 @@ class Parser {
     if (k_ + 1 < t_.size()) ++k_;
     return t;
   }
-  static bool word_is(const Token& t, std::string_view w) { return t.kind == TokenKind::name && lower(t.text) == w; }
+  static bool word_is(const Token& t, std::string_view w) { return t.kind == TokenKind::name && ascii_lower(t.text) == w; }
   static bool symbol_is(const Token& t, std::string_view s) { return t.kind == TokenKind::symbol && t.text == s; }
   void skip_newlines() {
     while (peek().kind == TokenKind::newline) next();
@@ -134,7 +129,7 @@ class Parser {
     Statement s;
     s.at = t.at;
     if (t.kind != TokenKind::name) fail(t, kStatements);
-    const std::string w = lower(t.text);
+    const std::string w = ascii_lower(t.text);
     if (w == "ptp" || w == "lin" || w == "circ") {
       move(s, w);
       return s;
@@ -247,7 +242,7 @@ class Parser {
     while (peek().kind == TokenKind::name) {
       Field f;
       f.at = peek().at;
-      f.name = lower(peek().text);
+      f.name = ascii_lower(peek().text);
       const bool ok = s.move == MoveKind::ptp ? (f.name == "speed" || f.name == "accel")
                                               : (f.name == "speed" || f.name == "accel" || f.name == "angular_speed" ||
                                                  f.name == "zone");
@@ -294,7 +289,7 @@ class Parser {
       if (word_is(peek(), "tool")) t.offset_frame = OffsetFrame::tool;
       else if (word_is(peek(), "base")) t.offset_frame = OffsetFrame::base;
       else fail(peek(), "tool(...) or base(...) after '+': an offset in the tool's or the base's frame");
-      const std::string frame = lower(peek().text);
+      const std::string frame = ascii_lower(peek().text);
       next();
       t.offset = fields(frame, {"x", "y", "z"});
     }
@@ -311,7 +306,7 @@ class Parser {
     for (;;) {
       Field f;
       f.at = peek().at;
-      f.name = peek().kind == TokenKind::name ? lower(peek().text) : "";
+      f.name = peek().kind == TokenKind::name ? ascii_lower(peek().text) : "";
       if (std::find(allowed.begin(), allowed.end(), f.name) == allowed.end())
         fail(peek(), fmt::format("a field of {}: {}", what, names));
       for (const auto& o : out)
@@ -320,7 +315,7 @@ class Parser {
       expect_symbol("=", fmt::format("'=' and a value after {}", f.name));
       if (f.name == "elbow") {
         const Token& e = peek();
-        const std::string v = e.kind == TokenKind::name ? lower(e.text) : "";
+        const std::string v = e.kind == TokenKind::name ? ascii_lower(e.text) : "";
         if (v != "up" && v != "down" && v != "left" && v != "right") fail(e, "elbow up or down (xArm), left or right (SCARA)");
         f.word = v;
         next();

@@ -87,22 +87,16 @@ class Planner {
                                 t.joints[i].dimension == Dimension::angle ? "an angle" : "a length"));
         q[i] = t.joints[i].value;
       }
-      if (!t.offset_frame) {
-        g.joints = q;
-        const motion::Pose p = arm_.forward(chain(q));
-        const motion::Rpy r = arm_.tool_rpy(p, chain(q));
-        g.goal.position = p.position;
-        g.goal.roll = r.roll;
-        g.goal.pitch = r.pitch;
-        g.goal.yaw = r.yaw;
-        return g;
-      }
       const motion::Pose p = arm_.forward(chain(q));
       const motion::Rpy r = arm_.tool_rpy(p, chain(q));
       g.goal.position = p.position;
       g.goal.roll = r.roll;
       g.goal.pitch = r.pitch;
       g.goal.yaw = r.yaw;
+      if (!t.offset_frame) {
+        g.joints = q;
+        return g;
+      }
     } else {
       g.goal.position = t.position;
       g.goal.roll = t.roll;

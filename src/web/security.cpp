@@ -5,18 +5,13 @@
 
 #include <fmt/core.h>
 
+#include "core/ascii.hpp"
 #include "core/error.hpp"
 #include "core/printable.hpp"
 
 namespace armctl::web {
 
 namespace {
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
 
 bool is_ip_literal(std::string_view host) {
   if (host.size() > 2 && host.front() == '[' && host.back() == ']') {
@@ -36,7 +31,7 @@ std::string bracketed(const std::string& host) {
 }
 
 bool host_allowed(const SecurityPolicy& p, std::string_view header) {
-  const std::string h = lower(header);
+  const std::string h = ascii_lower(header);
   // Split off the port: the last ':' after any ']'.
   const auto bracket = h.rfind(']');
   const auto colon = h.rfind(':');
@@ -46,7 +41,7 @@ bool host_allowed(const SecurityPolicy& p, std::string_view header) {
     port = h.substr(colon + 1);
   }
   if (port != std::to_string(p.port)) return false;
-  const std::string listen = lower(bracketed(p.listen_host));
+  const std::string listen = ascii_lower(bracketed(p.listen_host));
   if (name == listen || name == "localhost" || name == "127.0.0.1" || name == "[::1]") return true;
   // Listening on every address: any address literal (a DNS name could be rebound to us).
   if (p.listen_host == "0.0.0.0" || p.listen_host == "::") return is_ip_literal(name);
@@ -63,7 +58,7 @@ bool same_secret(std::string_view a, std::string_view b) {
 bool token_given(const SecurityPolicy& p, const RequestFacts& r) {
   if (r.authorization) {
     const std::string_view a = *r.authorization;
-    if (a.size() > 7 && lower(a.substr(0, 7)) == "bearer " && same_secret(a.substr(7), p.token)) return true;
+    if (a.size() > 7 && ascii_lower(a.substr(0, 7)) == "bearer " && same_secret(a.substr(7), p.token)) return true;
   }
   return r.token_parameter && same_secret(*r.token_parameter, p.token);
 }
@@ -71,7 +66,7 @@ bool token_given(const SecurityPolicy& p, const RequestFacts& r) {
 }  // namespace
 
 bool is_loopback(std::string_view host) {
-  const std::string h = lower(host);
+  const std::string h = ascii_lower(host);
   return h == "localhost" || h == "::1" || h == "[::1]" || h.rfind("127.", 0) == 0;
 }
 
@@ -91,7 +86,7 @@ std::optional<Refusal> check_request(const SecurityPolicy& policy, const Request
                                     printable(r.origin->substr(0, 100)), printable(*r.host))};
   const bool safe = r.method == "GET" || r.method == "HEAD";
   if (!safe && r.has_body) {
-    const std::string type = r.content_type ? lower(*r.content_type) : "";
+    const std::string type = r.content_type ? ascii_lower(*r.content_type) : "";
     const auto semicolon = type.find(';');
     std::string base = type.substr(0, semicolon);
     while (!base.empty() && base.back() == ' ') base.pop_back();
