@@ -3,6 +3,7 @@ unchanged on the emulated xArm and on the SCARA arm controller, and the calls ke
 package's argument forms and return values (with its misbehaviours fixed)."""
 
 import os
+import re
 import subprocess
 import sys
 import time
@@ -40,12 +41,12 @@ def test_servo_objects_map_angles_as_the_servos_turn():
 
 
 def test_calls_and_return_values_on_the_emulated_xarm():
-    with xarm.Controller("sim") as arm:
+    with xarm.Controller("sim", timeout=3.0) as arm:
         volts = arm.getBatteryVoltage()
         assert isinstance(volts, float) and 5.0 < volts < 13.0
         started = time.monotonic()
         p = arm.getPosition(1)
-        assert time.monotonic() - started < 0.3  # not a full timeout per reply
+        assert time.monotonic() - started < 1.5  # not the full 3 s timeout per reply
         assert isinstance(p, int) and 0 <= p <= 1000
         arm.setPosition(1, 600, 300, wait=True)
         assert abs(arm.getPosition(1) - 600) <= 1
@@ -93,12 +94,18 @@ def test_scripts_run_on_the_emulated_xarm(script):
     assert out
 
 
+def numbers(line):
+    return [float(n) for n in re.findall(r"-?\d+(?:\.\d+)?", line.split(":", 1)[1])]
+
+
 def test_move_script_positions(tmp_path):
+    # wait=True returns once every servo is within one unit (0.24 deg) of its target, as
+    # a real servo settles; the emulated one may still be that one unit short.
     out = run_script("move_servos.py", "sim").splitlines()
-    assert out[0] == "servo 1: 300"
-    assert out[1] == "servo 2: 700"
-    assert out[2].startswith("servo 3 (degrees): 45.")
-    assert out[-1] == "servos 1, 2, 3: [500, 500, 500]"
+    assert out[0].startswith("servo 1:") and numbers(out[0]) == pytest.approx([300], abs=1)
+    assert out[1].startswith("servo 2:") and numbers(out[1]) == pytest.approx([700], abs=1)
+    assert out[2].startswith("servo 3 (degrees):") and numbers(out[2]) == pytest.approx([45.0], abs=0.25)
+    assert out[-1].startswith("servos 1, 2, 3:") and numbers(out[-1]) == pytest.approx([500, 500, 500], abs=1)
 
 
 @pytest.fixture
