@@ -70,7 +70,8 @@ Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Dur
                    [&](std::size_t a, std::size_t b) { return plan.joints[a].start < plan.joints[b].start; });
   for (std::size_t k : order) {
     const TimePoint due = start + plan.joints[k].start - transaction_ * 2;
-    if (due > link_.clock().now()) (void)idle(due - link_.clock().now());
+    if (due > link_.clock().now())
+      if (auto s = idle(due - link_.clock().now()); !s) return failed(s.error());
     if (auto s = master_.set_speed(inputs[k].joint, static_cast<std::int16_t>(plan.joints[k].percent)); !s)
       return failed(s.error());
     if (auto d = master_.drive_to(inputs[k].joint, clicks[k]); !d) return failed(d.error());
@@ -136,8 +137,12 @@ Status BusArmDevice::stream(const std::vector<double>& targets, const std::vecto
 }
 
 Status BusArmDevice::idle(Duration d) {
-  joint_bus::idle(link_, d);
-  return Ok{};
+  // A link that fails while nothing is asked (a simulated arm's socket closed) throws from
+  // read_byte; the caller gets the error as it gets a failed transaction's.
+  return catch_error([&]() -> Status {
+    joint_bus::idle(link_, d);
+    return Ok{};
+  });
 }
 
 }  // namespace armctl::arm

@@ -256,9 +256,7 @@ void ArmWorker::loop() {
     // that a job or a stop is taken up quickly.
     const Duration wait = std::clamp(next_read - arm.clock().now(), Duration{0}, kIdleSlice);
     if (wait > Duration{0}) {
-      // A joint bus whose socket closed throws from idle (joint_bus::idle reads the link).
-      const Status s = catch_error([&]() -> Status { return arm.device().idle(wait); });
-      if (!s) publish_error(s.error().message);
+      if (const Status s = arm.device().idle(wait); !s) publish_error(s.error().message);
     }
   }
   // Closing: whatever the last job left moving stops.

@@ -111,5 +111,37 @@ TEST_F(BusArm, ADeadJointFailsTheCommandNamingIt) {
   EXPECT_NE(s.error().message.find("3"), std::string::npos) << s.error().message;
 }
 
+// A link whose far end went away (a simulated arm's socket closed): every read throws, as
+// sim_link_client does.
+class ClosedLink : public transport::JointBusLink {
+ public:
+  explicit ClosedLink(transport::JointBusLink& inner) : inner_(inner) {}
+  int joint_count() const override { return inner_.joint_count(); }
+  void set_select(int joint, bool high) override { inner_.set_select(joint, high); }
+  void write(std::span<const std::uint8_t> bytes) override { inner_.write(bytes); }
+  void flush() override { inner_.flush(); }
+  std::optional<std::uint8_t> read_byte(TimePoint) override {
+    throw ArmctlError(ErrorKind::io, "simulated arm at /tmp/x closed the connection");
+  }
+  std::size_t drain() override { return 0; }
+  const Clock& clock() const override { return inner_.clock(); }
+  std::uint32_t baud() const override { return inner_.baud(); }
+
+ private:
+  transport::JointBusLink& inner_;
+};
+
+TEST(BusArmDevice, ALinkThatFailsWhileIdleIsAnErrorNotAnException) {
+  auto sim = test::make_arm();
+  ClosedLink link(sim->link());
+  joint_bus::BusMaster master{link};
+  BusArmDevice device(testing::shipped("scara"), master, link, "simulated SCARA");
+  Status s = Ok{};
+  EXPECT_NO_THROW(s = device.idle(std::chrono::milliseconds(20)));
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.error().kind, ErrorKind::io);
+  EXPECT_NE(s.error().message.find("closed the connection"), std::string::npos) << s.error().message;
+}
+
 }  // namespace
 }  // namespace armctl::arm
