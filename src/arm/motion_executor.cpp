@@ -112,7 +112,20 @@ class Execution {
     for (;;) {
       const TimePoint now = clock_.now();
       const double new_rate = ramp.at(now);
-      t_ += 0.5 * (rate + new_rate) * seconds(now - last);
+      const double mean_rate = 0.5 * (rate + new_rate);
+      double advance = mean_rate * seconds(now - last);
+      // Each point leads by the latency plus its interval. A step that took longer than
+      // that (the host was not scheduled, a read hung) found the arm at rest at the last
+      // point: nominal time goes no further than that point, so the motion goes on from
+      // where the arm is instead of jumping to where the plan went meanwhile (a jump no
+      // servo can follow, and a following-error halt).
+      if (report_.points > 0 && last_due_ < motion_.duration && t_ + advance > last_due_) {
+        ++report_.late_steps;
+        report_.held += std::chrono::duration_cast<Duration>(
+            std::chrono::duration<double>((t_ + advance - last_due_) / mean_rate));
+        advance = std::max(0.0, last_due_ - t_);
+      }
+      t_ += advance;
       rate = new_rate;
       last = now;
       t_ = std::min(t_, motion_.duration);
@@ -153,6 +166,7 @@ class Execution {
         // Where nominal time will be when the device gets there (the ramp's rate then, too).
         const double ahead = 0.5 * (rate + ramp.value(now + latency_ + in)) * seconds(latency_ + in);
         const double due = std::min(motion_.duration, t_ + ahead);
+        last_due_ = due;
         motion_.sample(due, pos_, vel_, acc_);
         for (double& v : vel_) v *= rate;
         std::vector<double> dq, dv;
@@ -218,8 +232,10 @@ class Execution {
     if (!s) return s.error();
     ++report_.reads;
     if (options_.on_read) options_.on_read(*s);
-    // The device answers about halfway through the exchange.
-    const double t_read = std::min(motion_.duration, t_now + rate * 0.5 * seconds(clock_.now() - before));
+    // The device answers about halfway through the exchange, and it cannot be past the last
+    // point it was sent (a read that hung for a while finds it resting there).
+    const double t_read =
+        std::min({motion_.duration, last_due_, t_now + rate * 0.5 * seconds(clock_.now() - before)});
     motion_.sample(t_read, pos_, vel_, acc_);
     report_.reads_log.push_back({clock_.now() - start, pos_, s->positions});
     for (std::size_t i = 0; i < pos_.size(); ++i) {
@@ -264,6 +280,7 @@ class Execution {
   const Clock& clock_;
   std::vector<double> pos_, vel_, acc_;
   double t_ = 0;
+  double last_due_ = 0;  // nominal time of the last point sent
   Duration period_{}, read_time_{}, latency_{};
   MotionReport report_;
 };

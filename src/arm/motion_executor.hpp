@@ -7,6 +7,8 @@
 // limit), so the arm slows down and comes to rest ON the path; abort halts at once.
 // Each point is sent early by the link's latency plus one period, so that the device,
 // interpolating to it over one period, is there when the plan says.
+// A host that falls behind (not scheduled for a while) holds nominal time rather than jump
+// ahead: the arm rests at the last point it got and the motion goes on from there.
 // Following error: every few points the positions are read back and compared with the plan
 // at the instant of the read; beyond the threshold the arm is halted and the error names
 // the joint. Docs: docs/motion.md.
@@ -73,6 +75,10 @@ struct MotionReport {
   std::size_t points = 0;
   std::size_t reads = 0;
   Duration period{};
+  // Loop steps the host was late for (not scheduled, a slow read) beyond what the points'
+  // lead covers, and the time the motion was held for them (it ends that much later).
+  std::size_t late_steps = 0;
+  Duration held{};
   double largest_following_error = 0;  // SI, the largest over all joints and reads
   int largest_following_joint = -1;
   std::vector<FollowingSample> reads_log;  // every read-back

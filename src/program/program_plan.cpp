@@ -35,6 +35,7 @@ class Planner {
         PlannedPiece p;
         p.kind = PieceKind::wait;
         p.first_line = p.last_line = act.at.line;
+        p.first_column = act.at.column;
         p.label = fmt::format("line {} (WAIT {:.3g} s)", act.at.line, act.seconds);
         p.seconds = act.seconds;
         p.end = state_;
@@ -43,6 +44,7 @@ class Planner {
         PlannedPiece p;
         p.kind = PieceKind::print;
         p.first_line = p.last_line = act.at.line;
+        p.first_column = act.at.column;
         p.label = fmt::format("line {} (PRINT)", act.at.line);
         p.text = act.text;
         p.end = state_;
@@ -135,6 +137,7 @@ class Planner {
     if (!planned) refuse(a, planned.error().message);
     PlannedPiece p;
     p.first_line = p.last_line = a.at.line;
+    p.first_column = a.at.column;
     p.label = label;
     p.motion = std::move(planned).value();
     p.moves = 1;
@@ -200,6 +203,7 @@ class Planner {
     for (int i = 0; i < end.size(); ++i) state_[std::size_t(i)] = end[i];
     PlannedPiece p;
     p.first_line = a[from].at.line;
+    p.first_column = a[from].at.column;
     p.last_line = a[to - 1].at.line;
     p.label = from + 1 == to ? what(a[from])
                              : fmt::format("line {} ({}) .. line {} ({})", a[from].at.line, to_string(a[from].move.kind),

@@ -33,6 +33,7 @@ enum class PieceKind { motion, wait, print };
 struct PlannedPiece {
   PieceKind kind = PieceKind::motion;
   std::size_t first_line = 0, last_line = 0;
+  std::size_t first_column = 0;  // of the statement on first_line (1-based)
   std::string label;  // "line 12 (LIN pick + tool(...))", "line 12 (LIN) .. line 14 (CIRC)"
   arm::PlannedMotion motion;  // motion
   std::shared_ptr<const motion::CartesianPath> path;  // Cartesian pieces

@@ -26,7 +26,8 @@ MotionJob program_job(WebServer::State& s, ProgramRequest request) {
     }
     const program::ProgramPlan& plan = *checked.plan;
     s.program.started();
-    s.program.at(plan.pieces.empty() ? 0 : plan.pieces.front().first_line, 0, plan.duration / request.speed);
+    if (plan.pieces.empty()) s.program.at(0, 0, 0);
+    else s.program.at(plan.pieces.front().first_line, plan.pieces.front().first_column, plan.duration / request.speed);
     accept(json{{"started", true}, {"duration_s", plan.duration / request.speed}});
     program::RunOptions o;
     o.speed_override = request.speed;
@@ -37,7 +38,7 @@ MotionJob program_job(WebServer::State& s, ProgramRequest request) {
     o.command = [&ctx] { return ctx.stopping() ? arm::MotionCommand::stop : arm::MotionCommand::none; };
     o.on_event = [&s](const program::RunEvent& e) {
       if (e.kind == program::RunEventKind::print) s.program.print(e.piece->text);
-      s.program.at(e.piece->first_line, 0, e.left);
+      s.program.at(e.piece->first_line, e.piece->first_column, e.left);
     };
     auto report = program::run_plan(arm, plan, o);
     s.program.ended();

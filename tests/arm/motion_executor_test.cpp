@@ -88,7 +88,39 @@ TEST_F(RcStream, FollowsTheMotionAndArrives) {
   EXPECT_GT(r->points, 60u);
   EXPECT_LT(r->points, 80u);
   EXPECT_GE(r->reads, 7u);  // every 200 ms plus the read itself
+  EXPECT_EQ(r->late_steps, 0u);  // on time on the simulated clock: nothing held
+  EXPECT_EQ(r->held, Duration{0});
   // Read back during the motion: within a few servo units (0.24 deg each) of the plan.
+  EXPECT_LT(r->largest_following_error, 2.5 * kDeg) << "joint " << r->largest_following_joint;
+  ASSERT_TRUE(arm.wait());
+  const auto end = here();
+  for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(end[i], b[i], 0.25 * kDeg) << i;
+}
+
+// A host that stalls mid-motion (another process took the CPU for 400 ms) sends nothing
+// meanwhile: the arm comes to rest at the last point it got. The motion goes on from there
+// instead of jumping 400 ms ahead on the plan (a jump the servos cannot follow, and a
+// following-error halt), and the report says how long it was held.
+TEST_F(RcStream, AStalledHostHoldsTheMotionInsteadOfJumpingAhead) {
+  const auto a = here(), b = goal();
+  auto m = cosine_motion(a, b, 2.0);
+  ExecutorOptions o;
+  bool stalled = false;
+  o.on_point = [&](const MotionProgress& p) {
+    if (!stalled && p.t > 0.8) {
+      stalled = true;
+      (void)arm.device().idle(std::chrono::milliseconds(400));
+    }
+  };
+  auto r = execute_motion(arm, m, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(stalled);
+  EXPECT_TRUE(r->completed);
+  EXPECT_EQ(r->late_steps, 1u);
+  const double held = std::chrono::duration<double>(r->held).count();
+  EXPECT_GT(held, 0.3);  // 400 ms less the last point's lead
+  EXPECT_LT(held, 0.45);
+  EXPECT_NEAR(std::chrono::duration<double>(r->elapsed).count(), 2.0 + held, 0.06);
   EXPECT_LT(r->largest_following_error, 2.5 * kDeg) << "joint " << r->largest_following_joint;
   ASSERT_TRUE(arm.wait());
   const auto end = here();
@@ -207,6 +239,10 @@ TEST_F(BusStream, FollowsTheMotionAndArrives) {
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_TRUE(r->completed);
   EXPECT_GT(r->reads, 20u);
+  // The first point also sets every joint's speed (two transactions each): the joints wait
+  // for it a few ms, and the plan with them. Nothing else is held.
+  EXPECT_LE(r->late_steps, 1u);
+  EXPECT_LT(r->held, r->period);
   EXPECT_LT(r->largest_following_error, 1.5 * kDeg) << "joint " << r->largest_following_joint;
   ASSERT_TRUE(arm.wait());
   const auto end = here();
@@ -283,6 +319,40 @@ TEST_F(BusStream, PauseHoldsAndResumeFinishes) {
   EXPECT_GT(std::chrono::duration<double>(r->elapsed).count(), 3.5);
   ASSERT_TRUE(arm.wait());
   EXPECT_NEAR(here()[1], b[1], 0.1 * kDeg);
+}
+
+}  // namespace
+}  // namespace armctl::arm
+
+namespace armctl::arm {
+namespace {
+
+// The stalled host on the joint bus: the joints ramp to the last target they got and hold
+// there; the motion goes on from there when the host is back.
+TEST_F(BusStream, AStalledHostHoldsTheMotionInsteadOfJumpingAhead) {
+  const auto a = here();
+  auto b = a;
+  b[1] = a[1] + 30 * kDeg;  // SHOULDER
+  b[2] = a[2] - 20 * kDeg;  // UAE
+  auto m = cosine_motion(a, b, 2.0);
+  ExecutorOptions o;
+  bool stalled = false;
+  o.on_point = [&](const MotionProgress& p) {
+    if (!stalled && p.t > 0.8) {
+      stalled = true;
+      (void)arm.device().idle(std::chrono::milliseconds(400));
+    }
+  };
+  auto r = execute_motion(arm, m, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->completed);
+  EXPECT_GE(r->late_steps, 1u);
+  EXPECT_GT(std::chrono::duration<double>(r->held).count(), 0.3);
+  EXPECT_LT(r->largest_following_error, 2.5 * kDeg) << "joint " << r->largest_following_joint;
+  ASSERT_TRUE(arm.wait());
+  const auto end = here();
+  EXPECT_NEAR(end[1], b[1], 0.1 * kDeg);
+  EXPECT_NEAR(end[2], b[2], 0.1 * kDeg);
 }
 
 }  // namespace

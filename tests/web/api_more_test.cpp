@@ -1,5 +1,7 @@
 // The API's points, action groups and programs on the embedded simulators.
 #include <filesystem>
+#include <set>
+#include <utility>
 
 #include "program/points_file.hpp"
 #include "api_server.hpp"
@@ -177,18 +179,23 @@ TEST(WebProgram, RunShowsProgressAndEnds) {
   api.take("page");
   Reply r = api.post("/api/v1/program/pause", json::object(), "page");
   EXPECT_EQ(r.status, 409);
-  const std::string source = "ptp home speed=30%\nprint \"at home\"\nwait 0.2s\n";
+  const std::string source = "  ptp home speed=30%\nprint \"at home\"\nwait 0.2s\n";
   r = api.post("/api/v1/program/run", {{"source", source}, {"points", kPoints}, {"speed", 1.0}}, "page");
   ASSERT_EQ(r.status, 202) << r.text;
   EXPECT_EQ(r.body["started"], true);
   // While it runs the state shows it, then it ends idle with its print.
   bool saw_running = false;
+  std::set<std::pair<int, int>> places;  // (line, column) while running
   ASSERT_TRUE(api.wait_until([&](const session::ArmSnapshot&) {
     const json p = api.get("/api/v1/state", "page").body["program"];
-    if (p.is_object() && p["state"] == "running") saw_running = true;
+    if (p.is_object() && p["state"] == "running") {
+      saw_running = true;
+      places.insert({p["line"].get<int>(), p["column"].get<int>()});
+    }
     return p.is_object() && p["state"] == "idle" && !api.worker().busy();
   }));
   EXPECT_TRUE(saw_running);
+  EXPECT_TRUE(places.count({1, 3})) << "the indented ptp runs at line 1, column 3";
   const json p = api.get("/api/v1/state", "page").body["program"];
   ASSERT_EQ(p["prints"].size(), 1u);
   EXPECT_EQ(p["prints"][0], "at home");
