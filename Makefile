@@ -84,8 +84,12 @@ configure: deps $(BUILD)/build.ninja
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
+# A failed test runs once more, and the run fails only if it fails again: the tests that
+# drive the simulators in real time (the dashboard, the ROS node, the Python scripts, the
+# browser) can miss a deadline on a machine loaded by other jobs. The first failure's output
+# stays in the log; the deterministic tests fail twice just the same.
 test: build
-	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600 -LE long
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600 -LE long --repeat until-pass:2
 	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(TEST_FUZZ_SECONDS) FUZZ_SEED=1
 
 demo: build

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <atomic>
+#include <condition_variable>
 #include <list>
 #include <memory>
 #include <optional>
@@ -85,6 +86,8 @@ struct ArmNode::Impl {
   std::mutex mutex;
   bool quit = false;
   std::string active_goal;  // id of the goal whose motion runs or waits ("" = none)
+  std::string canceled_goal;  // a cancel for the active goal before its motion started
+  std::condition_variable goal_changed;  // active_goal, canceled_goal or quit
   struct Runner {
     std::thread thread;
     std::shared_ptr<std::atomic<bool>> done;
@@ -115,6 +118,7 @@ struct ArmNode::Impl {
     {
       std::lock_guard<std::mutex> lock(mutex);
       quit = true;
+      goal_changed.notify_all();
       // A motion this node started ends with it (its clients are gone with the master).
       for (const auto& r : runners)
         if (!*r.done) arm.stop();
@@ -256,21 +260,57 @@ struct ArmNode::Impl {
                         fmt::format("the trajectory's header stamp {:.3f} s plus its {:.3f} s is in the past (now "
                                     "{:.3f} s): it would have ended already", stamp.toSec(), duration,
                                     ros::Time::now().toSec())});
+    // One in the future is when to start; further ahead than the longest trajectory allowed
+    // is a mistake (a stamp in another clock, seconds taken for nanoseconds).
+    if (!stamp.isZero() && stamp > ros::Time::now() + ros::Duration(kLongestTrajectory))
+      return refuse(g, {GoalError::invalid_goal,
+                        fmt::format("the trajectory's header stamp {:.3f} s is {:.0f} s in the future (now {:.3f} s); "
+                                    "allowed: 0 (start now) or a time at most {:.0f} s ahead",
+                                    stamp.toSec(), (stamp - ros::Time::now()).toSec(), ros::Time::now().toSec(),
+                                    kLongestTrajectory)});
     g.setAccepted("accepted");
-    start_runner([this, g, t] { run_goal(g, t); });
+    start_runner([this, g, t, stamp] { run_goal(g, t, stamp); });
   }
 
   void on_cancel(GoalHandle g) {
     std::lock_guard<std::mutex> lock(mutex);
-    if (g.getGoalID().id == active_goal) arm.stop();
+    if (g.getGoalID().id != active_goal) return;
+    canceled_goal = active_goal;
+    goal_changed.notify_all();
+    arm.stop();
   }
 
-  void run_goal(GoalHandle g, const TrajectoryGoal& t) {
+  // Until the goal's header stamp (now if it has none or it has passed). False if the goal
+  // was canceled or preempted by a newer one meanwhile, or the node ends: then nothing moved.
+  bool wait_for_start(const std::string& id, const ros::Time& stamp) {
+    std::unique_lock<std::mutex> lock(mutex);
+    const auto still_ours = [&] { return !quit && active_goal == id && canceled_goal != id; };
+    while (still_ours() && !stamp.isZero() && ros::Time::now() < stamp) {
+      // In slices: ROS time may be simulated (use_sim_time) and not run with the wall clock.
+      const double left = (stamp - ros::Time::now()).toSec();
+      goal_changed.wait_for(lock, std::chrono::duration<double>(std::min(left, 0.05)));
+    }
+    return still_ours();
+  }
+
+  void run_goal(GoalHandle g, const TrajectoryGoal& t, const ros::Time& stamp) {
     const std::string id = g.getGoalID().id;
     {
       // Before the motion is queued, so that a cancel while it waits reaches it.
       std::lock_guard<std::mutex> lock(mutex);
       active_goal = id;
+      goal_changed.notify_all();
+    }
+    if (!wait_for_start(id, stamp)) {
+      FollowJointTrajectoryResult result;
+      result.error_code = FollowJointTrajectoryResult::SUCCESSFUL;
+      result.error_string = "canceled before its header stamp: nothing moved";
+      {
+        std::lock_guard<std::mutex> c(counters.mutex);
+        ++counters.canceled;
+      }
+      g.setCanceled(result, result.error_string);
+      return;
     }
     const MotionOutcome m = arm.follow(t, [&](const Desired& d, const ArmState& s) { feedback(g, t, d, s); });
     {

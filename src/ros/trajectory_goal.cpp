@@ -14,8 +14,6 @@ namespace armctl::ros_node {
 
 namespace {
 
-constexpr double kLongestTrajectory = 3600;  // s
-
 Error refused(GoalError code, std::string message) {
   return Error{ErrorKind::invalid_argument, std::move(message), code};
 }

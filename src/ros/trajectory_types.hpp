@@ -22,6 +22,10 @@ struct TrajectoryRequest {
   std::vector<TrajectoryPoint> points;
 };
 
+// The longest trajectory a goal may give (s), and the furthest ahead its header stamp may
+// start it: more is taken for a mistake (a stamp in another clock, a unit slip).
+constexpr double kLongestTrajectory = 3600;
+
 // control_msgs/FollowJointTrajectoryResult's error codes.
 enum class GoalError { none = 0, invalid_goal = -1, invalid_joints = -2, old_header_timestamp = -3,
                        path_tolerance_violated = -4, goal_tolerance_violated = -5 };

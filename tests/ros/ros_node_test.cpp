@@ -262,6 +262,11 @@ TEST_P(RosNode, BadGoalsAreRejectedWithAClearMessageAndNothingMoves) {
   g = goal_through({0.03, 0.06, 0.02}, 1.0);
   g.trajectory.points[2].time_from_start = g.trajectory.points[1].time_from_start;
   cases.push_back({"non-increasing times", g, FollowJointTrajectoryResult::INVALID_GOAL, "times must rise"});
+  g = goal_through({0.03, 0.06}, 1.0);
+  g.trajectory.header.stamp = ros::Time::now() - ros::Duration(100);
+  cases.push_back({"ended already", g, FollowJointTrajectoryResult::OLD_HEADER_TIMESTAMP, "it would have ended already"});
+  g.trajectory.header.stamp = ros::Time::now() + ros::Duration(4000);
+  cases.push_back({"far future", g, FollowJointTrajectoryResult::INVALID_GOAL, "at most 3600 s ahead"});
   for (const auto& c : cases) {
     client().sendGoal(c.goal);
     ASSERT_TRUE(client().waitForResult(ros::Duration(10))) << c.what;
@@ -274,6 +279,30 @@ TEST_P(RosNode, BadGoalsAreRejectedWithAClearMessageAndNothingMoves) {
   const int seen = states_->count();
   ASSERT_TRUE(wait_until([&] { return states_->count() >= seen + 5; }, 10s));
   EXPECT_LT(distance(states_->last().position, before, joints_.size()), 0.002);
+}
+
+TEST_P(RosNode, AHeaderStampInTheFutureIsWhenTheMotionStarts) {
+  ASSERT_TRUE(at_rest(10s));
+  const auto before = states_->last().position;
+  auto moved = [&] { return distance(states_->last().position, before, chain_) > 0.002; };
+  // Canceled while it waits for its stamp: nothing moves.
+  auto goal = goal_through({0.03}, 1.0);
+  goal.trajectory.header.stamp = ros::Time::now() + ros::Duration(30);
+  client().sendGoal(goal);
+  ASSERT_TRUE(wait_until([&] { return client().getState() == actionlib::SimpleClientGoalState::ACTIVE; }, 10s));
+  client().cancelGoal();
+  ASSERT_TRUE(client().waitForResult(ros::Duration(10)));
+  EXPECT_EQ(client().getState(), actionlib::SimpleClientGoalState::PREEMPTED) << client().getState().getText();
+  EXPECT_THAT(client().getState().getText(), HasSubstr("canceled before its header stamp"));
+  EXPECT_FALSE(moved());
+  // Left alone, it starts at its stamp, not when it was accepted.
+  goal.trajectory.header.stamp = ros::Time::now() + ros::Duration(1.5);
+  const ros::Time stamp = goal.trajectory.header.stamp;
+  client().sendGoal(goal);
+  ASSERT_TRUE(wait_until(moved, 20s)) << node_->log_text();
+  EXPECT_GE(ros::Time::now().toSec(), stamp.toSec()) << "it moved before its stamp";
+  ASSERT_TRUE(client().waitForResult(ros::Duration(30)));
+  EXPECT_EQ(client().getState(), actionlib::SimpleClientGoalState::SUCCEEDED) << client().getState().getText();
 }
 
 TEST_P(RosNode, CancelHaltsTheArmMidTrajectory) {
