@@ -471,15 +471,24 @@ INSTANTIATE_TEST_SUITE_P(BothArms, RosNode, ::testing::Values("xarm", "scara"));
 // The SCARA's simulator as its own process, reached over a unix socket: killing it is the
 // device going away. The node reports it in diagnostics at once, then exits with a clear
 // error after ~link_timeout (the launch files respawn it, which opens the device again).
-TEST(RosNodeDevice, ReportsALostDeviceThenExitsWithAClearError) {
+// Each arm's simulator as its own process (the SCARA's joint bus on a unix socket, the
+// xArm's board on a pty), killed while the node reads it.
+class RosNodeDevice : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(RosNodeDevice, ReportsALostDeviceThenExitsWithAClearError) {
+  const std::string arm = GetParam();
   const auto& w = ros_world();
   auto master = start_master();
   ros::AsyncSpinner spinner(2);
   spinner.start();
-  const std::string socket = w.dir + "/scara.sock";
-  Process sim({ARMCTL_BINARY_DIR "/armctl", "sim", "scara", "--listen", socket}, w.dir + "/sim.log");
-  ASSERT_TRUE(wait_until([&] { return access(socket.c_str(), F_OK) == 0; }, 30s)) << sim.log_text();
-  auto node = start_node("scara", {"_device:=unix:" + socket, "_link_timeout:=3"});
+  const std::string path = w.dir + "/" + arm + (arm == "scara" ? ".sock" : ".pty");
+  const std::vector<std::string> command =
+      arm == "scara" ? std::vector<std::string>{ARMCTL_BINARY_DIR "/armctl", "sim", "scara", "--listen", path}
+                     : std::vector<std::string>{ARMCTL_BINARY_DIR "/armctl", "sim", "xarm", "--link", path};
+  Process sim(command, w.dir + "/sim-" + arm + ".log");
+  ASSERT_TRUE(wait_until([&] { return access(path.c_str(), F_OK) == 0; }, 30s)) << sim.log_text();
+  auto node = start_node(arm, {"_device:=" + std::string(arm == "scara" ? "unix:" : "serial:") + path,
+                               "_link_timeout:=3"});
   JointStates states;
   Diagnostics diagnostics;
   ASSERT_TRUE(wait_until([&] { return states.count() > 0; }, 60s)) << node->log_text();
@@ -500,6 +509,8 @@ TEST(RosNodeDevice, ReportsALostDeviceThenExitsWithAClearError) {
   EXPECT_THAT(node->log_text(), HasSubstr("device lost"));
   spinner.stop();
 }
+
+INSTANTIATE_TEST_SUITE_P(BothArms, RosNodeDevice, ::testing::Values("xarm", "scara"));
 
 }  // namespace
 }  // namespace armctl::ros_test
