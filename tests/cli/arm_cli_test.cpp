@@ -6,7 +6,11 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -54,6 +58,52 @@ TEST_F(ArmCli, MoveToAPointInMillimetresOnBothArms) {
     auto doc = nlohmann::json::parse(r.out);
     EXPECT_LT(doc["position_error_mm"].get<double>(), 2.0) << cmd << ": " << r.out;
   }
+}
+
+// `arm path` on the embedded xArm: the example square as --json events (planned, progress,
+// one done per piece with its errors), then bad files refused before anything moves.
+TEST_F(ArmCli, PathFilesRunAsJsonEventsAndBadOnesMoveNothing) {
+  const std::string square = std::string(ARMCTL_SOURCE_DIR) + "/examples/paths/xarm-square.path";
+  auto r = run_armctl("arm --json path " + square, "2>&1");
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::vector<nlohmann::json> done;
+  nlohmann::json planned;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    const auto e = nlohmann::json::parse(line);
+    if (!e.contains("event")) continue;  // the final joints document
+    if (e["event"] == "planned") planned = e;
+    if (e["event"] == "done") done.push_back(e);
+  }
+  EXPECT_EQ(planned["moves"], 5) << r.out;
+  EXPECT_EQ(planned["pieces"], 2) << r.out;  // the PTP, then the four blended LINs
+  ASSERT_EQ(done.size(), 2u) << r.out;
+  for (const auto& e : done) {
+    EXPECT_GE(e["held_s"].get<double>(), 0.0);
+    EXPECT_GT(e["points"].get<int>(), 10);
+  }
+  // The square's path error: the demo shows 0.8 mm; the target is twice a LIN's quantization
+  // limit on the xArm, 3.27 mm (docs/benchmarks.md, Motion).
+  EXPECT_LT(done[1]["path_error_mm"].get<double>(), 3.27) << done[1].dump();
+
+  const auto bad = state / "bad.path";
+  for (const auto& [text, says] : std::vector<std::pair<std::string, std::string>>{
+           {"ptp x=180mm y=-40mm z=100mm pitch=50deg\nlin x=180mm y=40mm z=100mm speed=-4mm/s\n",
+            "bad.path:2:34: found '-4mm/s', expected a speed > 0"},
+           {"ptp x=180mm y=-40mm z=100mm pitch=50deg\nlin x=900mm y=40mm z=100mm speed=40mm/s\n",
+            "segment 1 (LIN): at "}}) {
+    {
+      std::ofstream out(bad);
+      out << text;
+    }
+    auto refused = run_armctl("arm --json path " + bad.string(), "2>&1");
+    EXPECT_NE(refused.status, 0) << text;
+    EXPECT_TRUE(contains(refused.out, says)) << refused.out;
+    EXPECT_FALSE(contains(refused.out, "\"event\"")) << "nothing planned, nothing moved: " << refused.out;
+  }
+  auto stop = run_armctl("arm stop");
+  EXPECT_EQ(stop.status, 0) << stop.out;
+  EXPECT_TRUE(contains(stop.out, "stopped")) << stop.out;
 }
 
 TEST_F(ArmCli, MoveJointsByNameOrNumberWithUnits) {

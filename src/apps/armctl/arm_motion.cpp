@@ -222,16 +222,23 @@ void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& mo
                  {"points", report->points},
                  {"reads", report->reads},
                  {"period_ms", std::chrono::duration<double, std::milli>(report->period).count()},
-                 {"following_error_mm", following_mm}};
+                 {"following_error_mm", following_mm},
+                 {"held_s", std::chrono::duration<double>(report->held).count()}};
       if (path_mm) event["path_error_mm"] = *path_mm;
       fmt::print("{}\n", event.dump());
     } else {
+      // A host late beyond the points' lead held the motion (docs/motion.md): say so when it
+      // was more than a period, so a slow run on a busy machine explains itself.
+      const std::string held = report->held > report->period
+                                   ? fmt::format("; held {:.2f} s for a late host",
+                                                 std::chrono::duration<double>(report->held).count())
+                                   : std::string();
       fmt::print("{}: {} in {:.2f} s, {} points every {:.1f} ms; read back {} times: tool within {:.2f} mm of the "
-                 "plan{}\n",
+                 "plan{}{}\n",
                  piece.label, report->completed ? "done" : "stopped",
                  std::chrono::duration<double>(report->elapsed).count(), report->points,
                  std::chrono::duration<double, std::milli>(report->period).count(), report->reads, following_mm,
-                 path_mm ? fmt::format(", {:.2f} mm of the path", *path_mm) : std::string());
+                 path_mm ? fmt::format(", {:.2f} mm of the path", *path_mm) : std::string(), held);
     }
     std::fflush(stdout);
     if (!report->completed)
