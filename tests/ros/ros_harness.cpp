@@ -33,7 +33,14 @@ Process::Process(const std::vector<std::string>& argv, const std::string& log) :
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
-  const int r = posix_spawnp(&pid_, args[0], &actions, nullptr, args.data(), environ);
+  // Its own process group, so that kill_now also ends what it started (roscore's rosmaster
+  // and rosout) instead of leaving them on the port.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  const int r = posix_spawnp(&pid_, args[0], &actions, &attributes, args.data(), environ);
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   if (r != 0) throw std::runtime_error("cannot start " + argv[0]);
 }
@@ -62,7 +69,7 @@ void Process::terminate() {
 
 void Process::kill_now() {
   if (status_ || pid_ <= 0) return;
-  ::kill(pid_, SIGKILL);
+  ::kill(-pid_, SIGKILL);
   wait_exit(std::chrono::seconds(10));
 }
 
@@ -130,10 +137,9 @@ bool wait_until(const std::function<bool()>& condition, std::chrono::millisecond
 std::unique_ptr<Process> start_master() {
   const auto& w = ros_world();
   auto p = std::make_unique<Process>(
-      std::vector<std::string>{"rosmaster", "--core", "-p", std::to_string(w.port), "-w", "3"},
-      w.dir + "/rosmaster.log");
+      std::vector<std::string>{"roscore", "-p", std::to_string(w.port)}, w.dir + "/roscore.log");
   if (!wait_until([] { return ros::master::check(); }, std::chrono::seconds(30)))
-    throw std::runtime_error("rosmaster did not answer on " + w.master_uri + ": " + p->log_text());
+    throw std::runtime_error("roscore did not answer on " + w.master_uri + ": " + p->log_text());
   return p;
 }
 

@@ -1,5 +1,5 @@
 // What the ROS node tests need around them: processes they start and stop themselves (a
-// rosmaster on a free loopback port, the node, robot_state_publisher, a simulator), with
+// roscore on a free loopback port, the node, robot_state_publisher, a simulator), with
 // ROS_HOME and ROS_LOG_DIR in a temporary folder, and waiting for conditions with a
 // timeout (never a sleep to let things settle). C++17: it includes ROS headers.
 #pragma once
@@ -13,8 +13,8 @@
 
 namespace armctl::ros_test {
 
-// A child process; its stdout and stderr go to `log`. Ended (SIGTERM, then SIGKILL) when
-// destroyed.
+// A child process in its own process group; its stdout and stderr go to `log`. Ended
+// (SIGTERM, then SIGKILL to the group) when destroyed.
 class Process {
  public:
   Process(const std::vector<std::string>& argv, const std::string& log);
@@ -43,7 +43,8 @@ struct RosWorld {
 };
 const RosWorld& ros_world();  // also initialises roscpp in this process (once)
 
-// rosmaster --core on ros_world().port; waits until it answers.
+// roscore (the master and rosout, as a user starts them) on ros_world().port; waits until
+// the master answers.
 std::unique_ptr<Process> start_master();
 
 // Polls `condition` (every 20 ms) until it holds or `timeout` passes.

@@ -1,4 +1,4 @@
-// armctl_ros against a real rosmaster, on both embedded simulators: every test starts its
+// armctl_ros against a real roscore, on both embedded simulators: every test starts its
 // own master (a free loopback port, ROS_HOME in a temporary folder) and node, and ends them.
 // A ROS client (roscpp, actionlib, tf2_ros) checks what the issue lists: joint_states, a
 // five-point goal, refused goals that move nothing, cancel, tf against armctl's FK, a
