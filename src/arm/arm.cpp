@@ -241,7 +241,9 @@ Result<JointState> Arm::wait(const WaitOptions& options) {
     for (std::size_t i = 0; i < last_targets_.size(); ++i) {
       if (!last_targets_[i]) continue;
       const JointModel& j = model_.joints[i];
-      const double asked = j.dimension == Dimension::angle ? options.angle_tolerance : options.length_tolerance;
+      const double asked = i < options.joint_tolerance.size() && options.joint_tolerance[i] > 0
+                               ? options.joint_tolerance[i]
+                               : j.dimension == Dimension::angle ? options.angle_tolerance : options.length_tolerance;
       // A joint can be no nearer its target than half a unit of its device (through the arm
       // controller a SCARA joint's unit is 1.42 deg).
       const auto& map = j.map(device_->protocol());

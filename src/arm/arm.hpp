@@ -50,6 +50,8 @@ struct WaitOptions {
   std::optional<Duration> poll;
   double angle_tolerance = 0.0087;  // rad (0.5 deg: two xArm servo units)
   double length_tolerance = 0.0005;  // m
+  // Per joint (SI, the model's order): where given and above 0, it replaces the one above.
+  std::vector<double> joint_tolerance;
   // Asked between reads (a Ctrl-C flag, e.g. Python's KeyboardInterrupt): true ends the wait
   // at once with an error (device, "wait interrupted"); the arm is left as it is.
   std::function<bool()> interrupted;

@@ -60,6 +60,7 @@ void to_device(const ArmModel& model, Protocol p, const std::vector<double>& q, 
 }
 
 double threshold(const ArmModel& model, std::size_t joint, const ExecutorOptions& o) {
+  if (joint < o.following_error.size() && o.following_error[joint] > 0) return o.following_error[joint];
   return model.joints[joint].dimension == Dimension::length ? o.following_error_length : o.following_error_angle;
 }
 

@@ -54,6 +54,9 @@ struct ExecutorOptions {
   std::optional<Duration> read_interval;
   double following_error_angle = 0.087;   // rad (5 deg)
   double following_error_length = 0.005;  // m
+  // Per joint (SI, the model's order): where given and above 0, it replaces the one above
+  // for that joint (a ROS goal's path tolerance names joints one by one).
+  std::vector<double> following_error;
   // Asked before every point (a flag set by a signal handler, a key, a test script).
   std::function<MotionCommand(const MotionProgress&)> command;
   // After every point (progress lines, test probes).

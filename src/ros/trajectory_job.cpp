@@ -12,12 +12,12 @@ namespace armctl::ros_node {
 
 namespace {
 
-// The smallest tolerance given for a joint of `dimension`, or nothing.
-std::optional<double> smallest(const arm::ArmModel& model, const std::vector<std::optional<double>>& given,
-                               Dimension dimension) {
-  std::optional<double> out;
+// Each joint's tolerance as the executor and Arm::wait take them: the one given (one that is
+// not checked becomes a bound no motion reaches), or 0 for the default of its kind.
+std::vector<double> per_joint(const std::vector<std::optional<double>>& given) {
+  std::vector<double> out(given.size(), 0.0);
   for (std::size_t j = 0; j < given.size(); ++j)
-    if (given[j] && model.joints[j].dimension == dimension) out = std::min(out.value_or(*given[j]), *given[j]);
+    if (given[j]) out[j] = std::isinf(*given[j]) ? 1e9 : *given[j];
   return out;
 }
 
@@ -45,9 +45,7 @@ Status run_trajectory(arm::Arm& arm, session::JobContext& ctx, const TrajectoryR
   }
 
   arm::ExecutorOptions eo;
-  const double inf = std::numeric_limits<double>::infinity();
-  if (auto a = smallest(model, tolerances.path, Dimension::angle)) eo.following_error_angle = *a == inf ? 1e9 : *a;
-  if (auto l = smallest(model, tolerances.path, Dimension::length)) eo.following_error_length = *l == inf ? 1e9 : *l;
+  eo.following_error = per_joint(tolerances.path);
   // Each read-back with its nominal time: the last point's, advanced at its rate to the read.
   struct Point {
     double t = 0, rate = 0;
@@ -88,8 +86,7 @@ Status run_trajectory(arm::Arm& arm, session::JobContext& ctx, const TrajectoryR
   arm::WaitOptions w;
   const double goal_time = tolerances.goal_time.value_or(defaults.goal_time);
   w.timeout = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(goal_time));
-  if (auto a = smallest(model, tolerances.goal, Dimension::angle); a && *a != inf) w.angle_tolerance = *a;
-  if (auto l = smallest(model, tolerances.goal, Dimension::length); l && *l != inf) w.length_tolerance = *l;
+  w.joint_tolerance = per_joint(tolerances.goal);
   auto arrived = arm.wait(ctx.wait_options(w));
   if (!arrived) {
     if (ctx.stopping()) {

@@ -94,6 +94,26 @@ TEST_F(BusArm, StopBrakesAndHolds) {
   EXPECT_GT(held, 10 * kDeg);
 }
 
+TEST_F(BusArm, WaitTakesAToleranceForEachJoint) {
+  // SHOULDER held back by an obstacle short of its target: the default tolerance waits in
+  // vain; a tolerance of its own that it meets ends the wait.
+  auto& hw = sim->joint(2).hardware();
+  const auto at = static_cast<std::int32_t>(hw.position_clicks());
+  hw.set_end_stops({at - 5, at + 5});
+  auto t = none();
+  t[1] = 3 * kDeg;
+  ASSERT_TRUE(arm.move_joints(t));
+  WaitOptions w;
+  w.timeout = std::chrono::seconds(3);
+  auto late = arm.wait(w);
+  ASSERT_FALSE(late);
+  EXPECT_NE(late.error().message.find("SHOULDER"), std::string::npos) << late.error().message;
+  w.joint_tolerance.assign(7, 0.0);
+  w.joint_tolerance[1] = 5 * kDeg;
+  auto there = arm.wait(w);
+  EXPECT_TRUE(there) << there.error().message;
+}
+
 TEST_F(BusArm, TorqueOffTurnsThePositionLoopsOff) {
   ASSERT_TRUE(arm.set_torque(false));
   for (int j = 1; j <= 7; ++j) EXPECT_FALSE(sim->joint(j).controller().loop_enabled()) << j;

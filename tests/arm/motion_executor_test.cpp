@@ -288,6 +288,40 @@ TEST_F(BusStream, FollowingErrorHaltsAndNamesTheJoint) {
   EXPECT_NE(r.error().message.find("following error on joint SHOULDER"), std::string::npos) << r.error().message;
 }
 
+TEST_F(BusStream, AJointsOwnFollowingErrorLimitReplacesItsKinds) {
+  const auto a = here();
+  auto b = a;
+  b[1] = a[1] + 30 * kDeg;  // SHOULDER, held back by an obstacle as above
+  b[2] = a[2] - 20 * kDeg;  // UAE, free
+  auto m = cosine_motion(a, b, 2.0);
+  auto& hw = sim->joint(2).hardware();
+  const auto at = static_cast<std::int32_t>(hw.position_clicks());
+  hw.set_end_stops({at - 5, at + 5});
+  ExecutorOptions o;
+  o.following_error.assign(7, 0.0);
+  o.following_error[1] = 1e9;  // SHOULDER not checked: the rest of the motion runs
+  auto r = execute_motion(arm, m, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->completed);
+  EXPECT_EQ(r->largest_following_joint, 1);
+  // UAE held where it stands through a 2 deg move: within the 5 deg default, beyond a
+  // 0.5 deg limit of its own.
+  auto& uae = sim->joint(3).hardware();
+  const auto u = static_cast<std::int32_t>(uae.position_clicks());
+  uae.set_end_stops({u - 5, u + 5});
+  const auto from = here();
+  auto to = from;
+  to[2] = from[2] + 2 * kDeg;
+  o.following_error[2] = 0.5 * kDeg;
+  auto halted = execute_motion(arm, cosine_motion(from, to, 1.0), o);
+  ASSERT_FALSE(halted);
+  EXPECT_NE(halted.error().message.find("following error on joint UAE"), std::string::npos)
+      << halted.error().message;
+  o.following_error[2] = 0;
+  auto within_default = execute_motion(arm, cosine_motion(here(), to, 1.0), o);
+  EXPECT_TRUE(within_default) << within_default.error().message;
+}
+
 }  // namespace
 }  // namespace armctl::arm
 

@@ -305,6 +305,39 @@ TEST_P(RosNode, AHeaderStampInTheFutureIsWhenTheMotionStarts) {
   EXPECT_EQ(client().getState(), actionlib::SimpleClientGoalState::SUCCEEDED) << client().getState().getText();
 }
 
+// A path tolerance is one joint's: a tight one on a moving joint aborts the goal naming it;
+// the same on a joint that stays where it is leaves the others at the default (5 deg / 5 mm).
+TEST_P(RosNode, PathTolerancesAreTakenJointByJoint) {
+  ASSERT_TRUE(at_rest(10s));
+  std::vector<std::size_t> revolute;  // chain joints; one moves, another stays
+  for (std::size_t j = 0; j < chain_; ++j)
+    if (joints_[j].revolute) revolute.push_back(j);
+  ASSERT_GE(revolute.size(), 2u);
+  const std::size_t moving = revolute.front(), still = revolute.back();
+
+  auto tight = [](const std::string& name, double position) {
+    control_msgs::JointTolerance t;
+    t.name = name;
+    t.position = position;
+    return t;
+  };
+  auto goal = goal_through({0.04}, 1.5);
+  goal.path_tolerance.push_back(tight(joints_[moving].name, 1e-5));
+  client().sendGoal(goal);
+  ASSERT_TRUE(client().waitForResult(ros::Duration(30)));
+  EXPECT_EQ(client().getState(), actionlib::SimpleClientGoalState::ABORTED) << client().getState().getText();
+  EXPECT_EQ(client().getResult()->error_code, FollowJointTrajectoryResult::PATH_TOLERANCE_VIOLATED);
+  EXPECT_THAT(client().getResult()->error_string, HasSubstr("following error on joint " + joints_[moving].name));
+  ASSERT_TRUE(at_rest(10s));
+
+  goal = goal_through({0.04}, 1.5);
+  for (auto& p : goal.trajectory.points) p.positions[still] = states_->last().position[still];
+  goal.path_tolerance.push_back(tight(joints_[still].name, 0.0035));  // 0.2 deg
+  client().sendGoal(goal);
+  ASSERT_TRUE(client().waitForResult(ros::Duration(30)));
+  EXPECT_EQ(client().getState(), actionlib::SimpleClientGoalState::SUCCEEDED) << client().getState().getText();
+}
+
 TEST_P(RosNode, CancelHaltsTheArmMidTrajectory) {
   const auto start = states_->last().position;
   auto goal = goal_through({0.25}, 6.0);
