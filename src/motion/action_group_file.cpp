@@ -8,28 +8,14 @@
 #include <fmt/core.h>
 
 #include "core/printable.hpp"
+#include "core/text_fields.hpp"
 #include "core/regular_file.hpp"
 #include "protocol/robot_commands/units.hpp"
 
 namespace armctl::motion {
 namespace {
 
-struct Field {
-  std::string_view text;
-  std::size_t column;  // 1-based
-};
-
-std::vector<Field> split_fields(std::string_view line) {
-  std::vector<Field> fields;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-    std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
-    if (i > start) fields.push_back({line.substr(start, i - start), start + 1});
-  }
-  return fields;
-}
+using Field = TextField;
 
 std::optional<long> whole_number(std::string_view s) {
   long value = 0;

@@ -12,28 +12,13 @@
 #include "core/ascii.hpp"
 #include "core/json_reader.hpp"
 #include "core/printable.hpp"
+#include "core/text_fields.hpp"
 
 namespace armctl::motion {
 
 namespace {
 
-struct Field {
-  std::string_view text;
-  std::size_t column;  // 1-based
-};
-
-std::vector<Field> split_fields(std::string_view line) {
-  std::vector<Field> fields;
-  std::size_t i = 0;
-  auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
-  while (i < line.size()) {
-    while (i < line.size() && blank(line[i])) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !blank(line[i])) ++i;
-    if (i > start) fields.push_back({line.substr(start, i - start), start + 1});
-  }
-  return fields;
-}
+using Field = TextField;
 
 // What each move takes (docs/paths.md).
 constexpr std::array<std::string_view, 13> kKeys = {"joints", "x",     "y",     "z",             "roll",
