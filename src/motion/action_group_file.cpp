@@ -8,8 +8,8 @@
 #include <fmt/core.h>
 
 #include "core/printable.hpp"
-#include "core/text_fields.hpp"
 #include "core/regular_file.hpp"
+#include "core/text_fields.hpp"
 #include "protocol/robot_commands/units.hpp"
 
 namespace armctl::motion {
