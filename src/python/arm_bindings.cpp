@@ -79,6 +79,7 @@ struct PyReport {
   std::size_t points = 0, reads = 0;
   double largest_following_error = 0;
   std::optional<std::string> largest_following_joint;
+  double held = 0;  // s a late host held the motion (docs/motion.md)
 };
 
 // A LIN or CIRC segment of armctl.Arm.path, as Python writes it.
@@ -398,6 +399,7 @@ class PyArm {
     p.points = m.points;
     p.reads = m.reads;
     p.largest_following_error = m.largest_following_error;
+    p.held = seconds(m.held);
     if (m.largest_following_joint >= 0)
       p.largest_following_joint = model().joints[std::size_t(m.largest_following_joint)].name;
     return p;
@@ -586,6 +588,7 @@ void define_arm(py::module_& m) {
       .def_readonly("period", &PyReport::period, "s between stream points")
       .def_readonly("largest_following_error", &PyReport::largest_following_error, "SI, over all joints and reads")
       .def_readonly("largest_following_joint", &PyReport::largest_following_joint, "its joint, or None")
+      .def_readonly("held", &PyReport::held, "s the motion was held for a late host (it ended that much later)")
       .def("__repr__", [](const PyReport& r) {
         return fmt::format("MotionReport(completed={}, elapsed={:.3f}, points={})", r.completed ? "True" : "False",
                            r.elapsed, r.points);

@@ -29,6 +29,7 @@ def test_move_linear_keeps_the_tool_on_the_line(xarm):
     end = xarm.pose().position
     assert np.allclose(end, [0.16, 0.03, 0.12], atol=0.004)
     assert report.largest_following_error < 5 * DEG
+    assert isinstance(report.held, float) and 0.0 <= report.held < report.elapsed
     assert np.linalg.norm(end - start) > 0.025
 
 
