@@ -154,6 +154,25 @@ test('jog, gripper, torque and points from the Move view', async () => {
   assert.ok(!(await script.get('/api/v1/points')).points.some((p) => p.name === 'pick'));
 });
 
+test('the move-to form: use the current pose, change z, move the tool there in a straight line', async () => {
+  await tab('Move').click();
+  await waitIdle(script);
+  const home = { servo6: 0, servo5: 20, servo4: 40, servo3: 40, servo2: 0 };
+  await pageMove(home);
+  for (const [name, value] of Object.entries(home)) await waitForPosition(script, name, value, 0.6);
+  const before = (await waitIdle(script)).tool;
+  await page.getByRole('button', { name: 'Use current pose' }).click();
+  const z = page.getByRole('spinbutton', { name: 'tool z target (mm)' });
+  assert.ok(Math.abs(Number(await z.inputValue()) - before.z) < 0.5, `z target ${await z.inputValue()}, the tool at ${before.z}`);
+  await z.fill(String(before.z - 15));
+  await clickAnswered(page.getByRole('button', { name: 'Move tool' }), '/api/v1/tool');
+  await waitFor(async () => {
+    const s = await script.state();
+    return s.motion === null && s.job === '' && Math.abs(s.tool.z - (before.z - 15)) < 1 &&
+      Math.abs(s.tool.x - before.x) < 1 && Math.abs(s.tool.y - before.y) < 1;
+  }, `the tool 15 mm lower, at z = ${before.z - 15} mm`);
+});
+
 test('group editor round trip: read frames, download, run, read back positions', async () => {
   await tab('Action groups').click();
   await page.getByRole('button', { name: 'Clear table' }).click();
@@ -290,6 +309,27 @@ test('a program run shows progress: current line, time left, output', async () =
   await waitFor(async () => (await page.getByLabel('Program output').textContent()).includes('halfway'), 'the print');
   await waitFor(async () => (await progress.textContent()) === 'idle', 'the end of the run', 60000);
   assert.equal(await page.locator('.gutter .line.current').count(), 0);
+});
+
+test('Stop program ends a run on the path, the arm at rest short of the end', async () => {
+  await tab('Program').click();
+  await waitIdle(script);
+  const source = [
+    'ptp joints(0deg, 0deg, 0deg, 0deg, 0deg) speed=30%',
+    'ptp joints(-90deg, 0deg, 0deg, 0deg, 0deg) speed=10%',
+    'print "not reached"',
+  ].join('\n');
+  await page.getByRole('textbox', { name: 'Program source' }).fill(source);
+  await page.getByRole('button', { name: 'Run', exact: true }).click();
+  const progress = page.getByRole('status', { name: 'Program progress' });
+  await waitFor(async () => /^running: line 2/.test(await progress.textContent()), 'the run at line 2');
+  await waitFor(async () => (await script.position('servo6')) < -5, 'servo6 on its way');
+  await page.getByRole('button', { name: 'Stop program' }).click();
+  await waitFor(async () => (await progress.textContent()) === 'idle', 'the run ended');
+  const stopped = await waitIdle(script);
+  const at = stopped.joints.find((j) => j.name === 'servo6').position;
+  assert.ok(at < -5 && at > -85, `servo6 stopped at ${at}, short of -90`);
+  assert.ok(!(await page.getByLabel('Program output').textContent()).includes('not reached'));
 });
 
 async function stopsAMove(how) {
