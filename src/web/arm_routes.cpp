@@ -55,9 +55,16 @@ void add_arm_routes(WebServer::State& s) {
   // From anyone, always, whatever the body: a STOP must never be refused for its form. The
   // worker tells the running job, drops queued ones and halts the arm (Arm::stop: on a
   // Robot Commands board that also stops a running action group).
+  // With the link lost the halt may not reach the arm: the answer says so (still 200: the
+  // stop was taken; the arm's own safety is what is left, docs/http-api.md).
   s.router.add("POST", "/api/v1/stop", [&s](Call& c) {
     s.worker.command(arm::MotionCommand::stop);
-    c.reply({{"stopped", true}});
+    const session::ArmSnapshot now = s.worker.snapshot();
+    json answer{{"stopped", true}, {"link_ok", now.link_ok}};
+    if (!now.link_ok)
+      answer["warning"] = fmt::format("the link to the arm is lost ({}): the stop may not have reached it",
+                                      now.link_error.empty() ? "nothing read yet" : now.link_error);
+    c.reply(answer);
   });
 
   s.router.add("POST", "/api/v1/joints", [&s](Call& c) {

@@ -158,6 +158,8 @@ TEST_F(WebMoves, StopFromAnyoneHaltsAMove) {
   const Reply stop = api_.send("POST", "/api/v1/stop", "{}", "watcher");
   ASSERT_EQ(stop.status, 200) << stop.text;
   EXPECT_EQ(stop.body["stopped"], true);
+  EXPECT_EQ(stop.body["link_ok"], true);
+  EXPECT_FALSE(stop.body.contains("warning"));
   ASSERT_TRUE(api_.wait_idle(10s));
   // It comes to rest (two reads in a row the same) short of the target.
   std::vector<double> previous;

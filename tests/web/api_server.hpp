@@ -31,11 +31,12 @@ struct Reply {
 
 class ApiServer {
  public:
-  explicit ApiServer(const std::string& arm_name = "xarm", ServerOptions options = {}) {
-    auto session = session::open_arm_session(arm_name, "");
+  // `device`: a device URI ("" = the arm's embedded simulator).
+  explicit ApiServer(const std::string& arm_name = "xarm", ServerOptions options = {}, const std::string& device = "") {
+    auto session = session::open_arm_session(arm_name, device);
     options.port = 0;
     if (options.host.empty()) options.host = "127.0.0.1";
-    options.device = describe_device(*session, "");
+    options.device = describe_device(*session, device);
     options.urdf = read_regular_file(session->arm->model().urdf, "urdf", 1 << 20).value();
     worker_ = std::make_unique<session::ArmWorker>(std::move(session));
     server_ = std::make_unique<WebServer>(*worker_, options);

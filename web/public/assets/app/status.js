@@ -18,7 +18,11 @@ export function clearErrors() { $('#errors').replaceChildren(); }
 
 async function stop() {
   // Accepted from anyone, always: no control check, no confirmation.
-  try { await api.post('/api/v1/stop', {}); } catch { /* shown */ }
+  try {
+    const answer = await api.post('/api/v1/stop', {});
+    // Taken, but with the link lost it may not have reached the arm: say so.
+    if (answer && answer.warning) showError(`STOP: ${answer.warning}`);
+  } catch { /* shown */ }
 }
 
 async function takeControl() {
