@@ -40,6 +40,21 @@ Status within_limits(const ArmModel& model, std::size_t joint, double lowest, do
 
 }  // namespace
 
+Result<std::vector<double>> joint_values_target(const ArmModel& model, const std::vector<double>& from,
+                                                const std::vector<motion::JointValue>& values) {
+  if (values.size() > from.size())
+    return refuse(fmt::format("{} joint values given; arm '{}' has {} joints", values.size(), model.name, from.size()));
+  auto kind = [](Dimension d) { return d == Dimension::angle ? "an angle" : "a length"; };
+  std::vector<double> target = from;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (values[i].dimension != model.joints[i].dimension)
+      return refuse(fmt::format("joint {} takes {}, not {}", model.joints[i].name, kind(model.joints[i].dimension),
+                                kind(values[i].dimension)));
+    target[i] = values[i].value;
+  }
+  return target;
+}
+
 Result<PlannedMotion> plan_joint_move(const ArmModel& model, const std::vector<double>& from, const JointMove& move) {
   const int n = model.joint_count();
   if (n < 1 || n > motion::kMaxTrajectoryJoints)

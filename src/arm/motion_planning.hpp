@@ -17,6 +17,7 @@
 #include "core/error.hpp"
 #include "motion/cartesian_path.hpp"
 #include "motion/path_check.hpp"
+#include "motion/path_file.hpp"
 #include "motion/trajectory.hpp"
 
 namespace armctl::arm {
@@ -31,6 +32,12 @@ struct JointMove {
   double min_duration = 0;  // s
 };
 Result<PlannedMotion> plan_joint_move(const ArmModel& model, const std::vector<double>& from, const JointMove& move);
+
+// A PTP's joint values as a path file or a program gives them: the leading joints, each an
+// angle or a length as its joint is; the joints not given stay where `from` has them. The
+// target (SI, every joint), or why not (too many values, a value of the wrong kind).
+Result<std::vector<double>> joint_values_target(const ArmModel& model, const std::vector<double>& from,
+                                                const std::vector<motion::JointValue>& values);
 
 // The timing of a Cartesian path along its length: how fast the tool may speed up and slow
 // down (the speed of each segment is in the segment).

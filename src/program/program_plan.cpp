@@ -79,16 +79,9 @@ class Planner {
   Goal goal_of(const Action& a, const TargetValue& t, const std::vector<double>& from) const {
     Goal g;
     if (!t.joints.empty()) {
-      std::vector<double> q = from;
-      if (t.joints.size() > q.size())
-        refuse(a, fmt::format("{} joint values given; arm '{}' has {} joints", t.joints.size(), model_.name, q.size()));
-      for (std::size_t i = 0; i < t.joints.size(); ++i) {
-        if (t.joints[i].dimension != model_.joints[i].dimension)
-          refuse(a, fmt::format("joint {} takes {}, not {}", model_.joints[i].name,
-                                model_.joints[i].dimension == Dimension::angle ? "an angle" : "a length",
-                                t.joints[i].dimension == Dimension::angle ? "an angle" : "a length"));
-        q[i] = t.joints[i].value;
-      }
+      auto given = arm::joint_values_target(model_, from, t.joints);
+      if (!given) refuse(a, given.error().message);
+      const std::vector<double> q = std::move(given).value();
       const motion::Pose p = arm_.forward(chain(q));
       const motion::Rpy r = arm_.tool_rpy(p, chain(q));
       g.goal.position = p.position;

@@ -87,6 +87,20 @@ TEST_F(XarmMotion, JointMoveIsJerkLimitedAndEndsTogether) {
   EXPECT_NEAR(end[2], move.target[2], 0.25 * kDeg);
 }
 
+TEST(JointValuesTarget, LeadingJointsOfTheirKindTheRestStay) {
+  const ArmModel scara = testing::shipped("scara");  // Z (a length) first, then angles
+  const std::vector<double> from = {0.15, 0.1, 0.2, 0.3, 0.4, 0.5, 0.02};
+  auto t = joint_values_target(scara, from, {{0.2, Dimension::length}, {-0.5, Dimension::angle}});
+  ASSERT_TRUE(t) << t.error().message;
+  EXPECT_EQ(*t, (std::vector<double>{0.2, -0.5, 0.2, 0.3, 0.4, 0.5, 0.02}));
+  auto wrong = joint_values_target(scara, from, {{0.2, Dimension::angle}});
+  ASSERT_FALSE(wrong);
+  EXPECT_EQ(wrong.error().message, "joint Z takes a length, not an angle");
+  auto many = joint_values_target(scara, from, std::vector<motion::JointValue>(8));
+  ASSERT_FALSE(many);
+  EXPECT_EQ(many.error().message, "8 joint values given; arm 'scara' has 7 joints");
+}
+
 TEST_F(XarmMotion, RefusesAJointMoveOutsideTheLimits) {
   JointMove move;
   move.target = here();

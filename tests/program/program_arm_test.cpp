@@ -153,6 +153,16 @@ TEST_F(XarmProgram, CheckRefusesAnUnreachableMoveBeforeAnyByteIsSent) {
   auto outside = plan_program(arm, start, joints, "t.prog");
   ASSERT_FALSE(outside);
   EXPECT_NE(outside.error().message.find("servo6"), std::string::npos) << outside.error().message;
+  // A length for a revolute joint, and more values than the arm has joints.
+  auto wrong_kind = plan_program(arm, start, flow_of("ptp joints(10deg, 20mm)\n", ""), "t.prog");
+  ASSERT_FALSE(wrong_kind);
+  EXPECT_NE(wrong_kind.error().message.find("joint servo5 takes an angle, not a length"), std::string::npos)
+      << wrong_kind.error().message;
+  auto too_many = plan_program(arm, start, flow_of("ptp joints(0deg, 0deg, 0deg, 0deg, 0deg, 0deg, 0deg)\n", ""),
+                               "t.prog");
+  ASSERT_FALSE(too_many);
+  EXPECT_NE(too_many.error().message.find("7 joint values given; arm 'xarm' has 6 joints"), std::string::npos)
+      << too_many.error().message;
   EXPECT_EQ(link.sent.size(), sent);
 }
 

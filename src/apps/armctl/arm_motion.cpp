@@ -63,16 +63,9 @@ class Planner {
   void plan_ptp(const motion::PathMove& m) {
     std::vector<double> target = state_;
     if (!m.joints.empty()) {
-      if (m.joints.size() > state_.size())
-        refuse_at(m, fmt::format("{} joint values given; arm '{}' has {} joints", m.joints.size(), model_.name,
-                                 state_.size()));
-      for (std::size_t i = 0; i < m.joints.size(); ++i) {
-        if (m.joints[i].dimension != model_.joints[i].dimension)
-          refuse_at(m, fmt::format("joint {} takes {}, not {}", model_.joints[i].name,
-                                   model_.joints[i].dimension == Dimension::angle ? "an angle" : "a length",
-                                   m.joints[i].dimension == Dimension::angle ? "an angle" : "a length"));
-        target[i] = m.joints[i].value;
-      }
+      auto given = arm::joint_values_target(model_, state_, m.joints);
+      if (!given) refuse_at(m, given.error().message);
+      target = std::move(given).value();
     } else {
       arm::CartesianGoal goal = goal_of(m);
       goal.elbow = m.elbow;
