@@ -206,8 +206,8 @@ void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& mo
     if (progress_line) fmt::print(stderr, "\r\033[K");
     if (!report) throw ArmctlError(ErrorKind(report.error().kind), fmt::format("{}: {}", piece.label, report.error().message));
     const double following_mm = tool_following_error(arm, *report);
-    const std::optional<double> path_mm =
-        piece.path ? std::optional(tool_path_error(arm, *report, *piece.path)) : std::nullopt;
+    // Cartesian pieces only (a plain double: g++ 12 at -O2 warns on an optional here).
+    const double path_mm = piece.path ? tool_path_error(arm, *report, *piece.path) : 0.0;
     if (options.json) {
       json event{{"event", report->completed ? "done" : "stopped"},
                  {"line", piece.line},
@@ -215,9 +215,9 @@ void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& mo
                  {"points", report->points},
                  {"reads", report->reads},
                  {"period_ms", std::chrono::duration<double, std::milli>(report->period).count()},
-                 {"following_error_mm", following_mm},
-                 {"held_s", std::chrono::duration<double>(report->held).count()}};
-      if (path_mm) event["path_error_mm"] = *path_mm;
+                 {"following_error_mm", following_mm}};
+      event["held_s"] = std::chrono::duration<double>(report->held).count();
+      if (piece.path) event["path_error_mm"] = path_mm;
       fmt::print("{}\n", event.dump());
     } else {
       // A host late beyond the points' lead held the motion (docs/motion.md): say so when it
@@ -231,7 +231,7 @@ void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& mo
                  piece.label, report->completed ? "done" : "stopped",
                  std::chrono::duration<double>(report->elapsed).count(), report->points,
                  std::chrono::duration<double, std::milli>(report->period).count(), report->reads, following_mm,
-                 path_mm ? fmt::format(", {:.2f} mm of the path", *path_mm) : std::string(), held);
+                 piece.path ? fmt::format(", {:.2f} mm of the path", path_mm) : std::string(), held);
     }
     std::fflush(stdout);
     if (!report->completed)
