@@ -101,7 +101,10 @@ bool bench_arm(const std::string& arm) {
   }
   const auto joints = ros_test::reference_joints(arm);
   Client client("/arm_controller/follow_joint_trajectory", true);
-  if (!client.waitForServer(ros::Duration(30))) return false;
+  if (!client.waitForServer(ros::Duration(30))) {
+    std::fprintf(stderr, "no action server from the %s node within 30 s:\n%s\n", arm.c_str(), node.log_text().c_str());
+    return false;
+  }
   std::mutex mutex;
   double worst = 0;
   client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),

@@ -61,16 +61,35 @@ std::optional<int> Process::wait_exit(std::chrono::milliseconds timeout) {
   return std::nullopt;
 }
 
+namespace {
+
+// Until no process of group `group` is left (roscore's rosmaster and rosout outlive the
+// roscore process by a moment): a master restarted before would find the port taken.
+bool group_gone(int group, std::chrono::milliseconds timeout) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (::kill(-group, 0) == 0) {
+    if (std::chrono::steady_clock::now() >= end) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
+}  // namespace
+
 void Process::terminate() {
-  if (status_ || pid_ <= 0) return;
-  ::kill(pid_, SIGTERM);
-  if (!wait_exit(std::chrono::seconds(10))) kill_now();
+  if (pid_ <= 0) return;
+  if (!status_) {
+    ::kill(pid_, SIGTERM);
+    if (!wait_exit(std::chrono::seconds(10))) return kill_now();
+  }
+  if (!group_gone(pid_, std::chrono::seconds(10))) kill_now();
 }
 
 void Process::kill_now() {
-  if (status_ || pid_ <= 0) return;
+  if (pid_ <= 0) return;
   ::kill(-pid_, SIGKILL);
-  wait_exit(std::chrono::seconds(10));
+  if (!status_) wait_exit(std::chrono::seconds(10));
+  group_gone(pid_, std::chrono::seconds(10));
 }
 
 std::string Process::log_text() const {
@@ -138,7 +157,11 @@ std::unique_ptr<Process> start_master() {
   const auto& w = ros_world();
   auto p = std::make_unique<Process>(
       std::vector<std::string>{"roscore", "-p", std::to_string(w.port)}, w.dir + "/roscore.log");
-  if (!wait_until([] { return ros::master::check(); }, std::chrono::seconds(30)))
+  // Answered by this roscore, not by one that is still going away.
+  Process* started = p.get();
+  if (!wait_until([started] { return !started->wait_exit(std::chrono::milliseconds(0)) && ros::master::check(); },
+                  std::chrono::seconds(30)) ||
+      p->wait_exit(std::chrono::milliseconds(0)))
     throw std::runtime_error("roscore did not answer on " + w.master_uri + ": " + p->log_text());
   return p;
 }
