@@ -55,6 +55,19 @@ double off_line(const std::vector<double>& q, const std::vector<double>& a, cons
   return std::sqrt(off / dd);
 }
 
+// Options that stall the host once, at nominal time `at`: for `how_long` nothing is sent
+// while the device's clock runs on (as when another process takes the CPU).
+ExecutorOptions stalling_once(Arm& arm, double at, Duration how_long, bool& stalled) {
+  ExecutorOptions o;
+  o.on_point = [&arm, at, how_long, &stalled](const MotionProgress& p) {
+    if (!stalled && p.t > at) {
+      stalled = true;
+      (void)arm.device().idle(how_long);
+    }
+  };
+  return o;
+}
+
 class RcStream : public ::testing::Test {
  protected:
   robot_commands::testing::EmulatedLink link{9600};
@@ -104,15 +117,8 @@ TEST_F(RcStream, FollowsTheMotionAndArrives) {
 TEST_F(RcStream, AStalledHostHoldsTheMotionInsteadOfJumpingAhead) {
   const auto a = here(), b = goal();
   auto m = cosine_motion(a, b, 2.0);
-  ExecutorOptions o;
   bool stalled = false;
-  o.on_point = [&](const MotionProgress& p) {
-    if (!stalled && p.t > 0.8) {
-      stalled = true;
-      (void)arm.device().idle(std::chrono::milliseconds(400));
-    }
-  };
-  auto r = execute_motion(arm, m, o);
+  auto r = execute_motion(arm, m, stalling_once(arm, 0.8, std::chrono::milliseconds(400), stalled));
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_TRUE(stalled);
   EXPECT_TRUE(r->completed);
@@ -369,16 +375,10 @@ TEST_F(BusStream, AStalledHostHoldsTheMotionInsteadOfJumpingAhead) {
   b[1] = a[1] + 30 * kDeg;  // SHOULDER
   b[2] = a[2] - 20 * kDeg;  // UAE
   auto m = cosine_motion(a, b, 2.0);
-  ExecutorOptions o;
   bool stalled = false;
-  o.on_point = [&](const MotionProgress& p) {
-    if (!stalled && p.t > 0.8) {
-      stalled = true;
-      (void)arm.device().idle(std::chrono::milliseconds(400));
-    }
-  };
-  auto r = execute_motion(arm, m, o);
+  auto r = execute_motion(arm, m, stalling_once(arm, 0.8, std::chrono::milliseconds(400), stalled));
   ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(stalled);
   EXPECT_TRUE(r->completed);
   EXPECT_GE(r->late_steps, 1u);
   EXPECT_GT(std::chrono::duration<double>(r->held).count(), 0.3);
