@@ -85,7 +85,8 @@ struct ArmNode::Impl {
 
   std::mutex mutex;
   bool quit = false;
-  std::string active_goal;  // id of the goal whose motion runs or waits ("" = none)
+  std::string active_goal;  // the newest accepted goal, waiting for its stamp or moving ("" = none)
+  std::string moving_goal;  // the goal whose motion runs (an older one until a newer one starts)
   std::string canceled_goal;  // a cancel for the active goal before its motion started
   std::condition_variable goal_changed;  // active_goal, canceled_goal or quit
   struct Runner {
@@ -269,19 +270,29 @@ struct ArmNode::Impl {
                                     stamp.toSec(), (stamp - ros::Time::now()).toSec(), ros::Time::now().toSec(),
                                     kLongestTrajectory)});
     g.setAccepted("accepted");
+    {
+      // Before its runner starts, so that a cancel right after the accept reaches it and an
+      // older goal still waiting for its stamp gives way at once.
+      std::lock_guard<std::mutex> lock(mutex);
+      active_goal = g.getGoalID().id;
+      goal_changed.notify_all();
+    }
     start_runner([this, g, t, stamp] { run_goal(g, t, stamp); });
   }
 
   void on_cancel(GoalHandle g) {
     std::lock_guard<std::mutex> lock(mutex);
-    if (g.getGoalID().id != active_goal) return;
-    canceled_goal = active_goal;
-    goal_changed.notify_all();
-    arm.stop();
+    const std::string id = g.getGoalID().id;
+    if (id == active_goal) {
+      canceled_goal = id;
+      goal_changed.notify_all();
+    }
+    if (id == moving_goal) arm.stop();
   }
 
   // Until the goal's header stamp (now if it has none or it has passed). False if the goal
   // was canceled or preempted by a newer one meanwhile, or the node ends: then nothing moved.
+  // True: it is the moving goal from then on.
   bool wait_for_start(const std::string& id, const ros::Time& stamp) {
     std::unique_lock<std::mutex> lock(mutex);
     const auto still_ours = [&] { return !quit && active_goal == id && canceled_goal != id; };
@@ -290,17 +301,13 @@ struct ArmNode::Impl {
       const double left = (stamp - ros::Time::now()).toSec();
       goal_changed.wait_for(lock, std::chrono::duration<double>(std::min(left, 0.05)));
     }
-    return still_ours();
+    if (!still_ours()) return false;
+    moving_goal = id;
+    return true;
   }
 
   void run_goal(GoalHandle g, const TrajectoryGoal& t, const ros::Time& stamp) {
     const std::string id = g.getGoalID().id;
-    {
-      // Before the motion is queued, so that a cancel while it waits reaches it.
-      std::lock_guard<std::mutex> lock(mutex);
-      active_goal = id;
-      goal_changed.notify_all();
-    }
     if (!wait_for_start(id, stamp)) {
       FollowJointTrajectoryResult result;
       result.error_code = FollowJointTrajectoryResult::SUCCESSFUL;
@@ -316,6 +323,7 @@ struct ArmNode::Impl {
     {
       std::lock_guard<std::mutex> lock(mutex);
       if (active_goal == id) active_goal.clear();
+      if (moving_goal == id) moving_goal.clear();
     }
     FollowJointTrajectoryResult result;
     result.error_string = m.message;

@@ -233,6 +233,13 @@ class BusStream : public ::testing::Test {
   Arm arm{testing::shipped("scara"),
           std::make_unique<BusArmDevice>(testing::shipped("scara"), master, sim->link(), "simulated SCARA")};
   std::vector<double> here() { return arm.read().value().positions; }
+  // An obstacle holds joint `number` (its joint-bus number) within a few clicks of where it
+  // stands.
+  void hold_where_it_stands(int number) {
+    auto& hw = sim->joint(number).hardware();
+    const auto at = static_cast<std::int32_t>(hw.position_clicks());
+    hw.set_end_stops({at - 5, at + 5});
+  }
 };
 
 TEST_F(BusStream, FollowsTheMotionAndArrives) {
@@ -284,10 +291,7 @@ TEST_F(BusStream, FollowingErrorHaltsAndNamesTheJoint) {
   auto b = a;
   b[1] = a[1] + 30 * kDeg;  // SHOULDER
   auto m = cosine_motion(a, b, 2.0);
-  // An obstacle holds SHOULDER within a few clicks of where it stands.
-  auto& hw = sim->joint(2).hardware();
-  const auto at = static_cast<std::int32_t>(hw.position_clicks());
-  hw.set_end_stops({at - 5, at + 5});
+  hold_where_it_stands(2);  // SHOULDER
   auto r = execute_motion(arm, m);
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().kind, ErrorKind::device);
@@ -300,9 +304,7 @@ TEST_F(BusStream, AJointsOwnFollowingErrorLimitReplacesItsKinds) {
   b[1] = a[1] + 30 * kDeg;  // SHOULDER, held back by an obstacle as above
   b[2] = a[2] - 20 * kDeg;  // UAE, free
   auto m = cosine_motion(a, b, 2.0);
-  auto& hw = sim->joint(2).hardware();
-  const auto at = static_cast<std::int32_t>(hw.position_clicks());
-  hw.set_end_stops({at - 5, at + 5});
+  hold_where_it_stands(2);
   ExecutorOptions o;
   o.following_error.assign(7, 0.0);
   o.following_error[1] = 1e9;  // SHOULDER not checked: the rest of the motion runs
@@ -312,9 +314,7 @@ TEST_F(BusStream, AJointsOwnFollowingErrorLimitReplacesItsKinds) {
   EXPECT_EQ(r->largest_following_joint, 1);
   // UAE held where it stands through a 2 deg move: within the 5 deg default, beyond a
   // 0.5 deg limit of its own.
-  auto& uae = sim->joint(3).hardware();
-  const auto u = static_cast<std::int32_t>(uae.position_clicks());
-  uae.set_end_stops({u - 5, u + 5});
+  hold_where_it_stands(3);
   const auto from = here();
   auto to = from;
   to[2] = from[2] + 2 * kDeg;
@@ -360,12 +360,6 @@ TEST_F(BusStream, PauseHoldsAndResumeFinishes) {
   ASSERT_TRUE(arm.wait());
   EXPECT_NEAR(here()[1], b[1], 0.1 * kDeg);
 }
-
-}  // namespace
-}  // namespace armctl::arm
-
-namespace armctl::arm {
-namespace {
 
 // The stalled host on the joint bus: the joints ramp to the last target they got and hold
 // there; the motion goes on from there when the host is back.

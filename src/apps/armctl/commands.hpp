@@ -22,6 +22,13 @@ void add_teach_command(CLI::App& app);       // teach_command.cpp: points and mo
 void add_replay_command(CLI::App& app);      // replay_command.cpp: recordings played back
 void add_serve_command(CLI::App& app);       // serve_command.cpp: the web dashboard and its HTTP API
 
+// --arm and --device as the commands that open an arm through the Arm API take them (teach,
+// serve, program; `armctl arm` says more about --device in its own help).
+inline void add_arm_options(CLI::App* cmd, std::string& arm, std::string& device) {
+  cmd->add_option("--arm", arm, "xarm | scara | an arm file (default xarm)");
+  cmd->add_option("--device", device, "As for `armctl arm` (default: the embedded simulated arm)");
+}
+
 // Where `armctl xarm --device ...` options end up (they are parsed after the subcommand is set up).
 struct XarmDeviceOptions {
   const std::string* device;

@@ -233,8 +233,7 @@ void add_program_command(CLI::App& app) {
       "stands: nothing moves unless every move is reachable and inside the joint limits.");
   auto common = [a](CLI::App* sub) {
     sub->add_option("file", a->file, "Program file")->required();
-    sub->add_option("--arm", a->arm, "xarm | scara | an arm file (default xarm)");
-    sub->add_option("--device", a->device, "As for `armctl arm` (default: the embedded simulated arm)");
+    add_arm_options(sub, a->arm, a->device);
     sub->add_option("--points", a->points, "Points file (default: FILE with .points, if it exists)");
     sub->add_flag("--json", a->json, "Machine-readable output (one JSON object per line)");
   };

@@ -105,8 +105,7 @@ void add_serve_command(CLI::App& app) {
       "Listens on the loopback address by default. On any other address every request needs a\n"
       "token (made up at start unless --token gives one; part of the printed URL). Without\n"
       "--device: the embedded simulated arm (see armctl arm --help).");
-  cmd->add_option("--arm", a->arm, "xarm | scara | an arm file (default xarm)");
-  cmd->add_option("--device", a->device, "As for `armctl arm` (default: the embedded simulated arm)");
+  add_arm_options(cmd, a->arm, a->device);
   cmd->add_option("--listen", a->listen, "HOST:PORT (default 127.0.0.1:8080; port 0: any free port)");
   cmd->add_option("--token", a->token, "The access token (default: made up off the loopback address)");
   cmd->add_option("--points", a->points, "Points file the dashboard records points into (program format)");

@@ -104,8 +104,7 @@ void run_teach(const TeachArgs& a) {
 void add_teach_command(CLI::App& app) {
   auto a = std::make_shared<TeachArgs>();
   auto* cmd = app.add_subcommand("teach", "Move the arm by hand (torque off) and record points or a motion (docs/teach.md)");
-  cmd->add_option("--arm", a->arm, "xarm | scara | an arm file (default xarm)");
-  cmd->add_option("--device", a->device, "As for `armctl arm` (default: the embedded simulated arm)");
+  add_arm_options(cmd, a->arm, a->device);
   cmd->add_option("--points", a->points, "Points file to add the points to (written after each point)");
   cmd->add_option("--record", a->record, "Record a continuous motion at this rate instead (e.g. 20Hz)");
   cmd->add_option("--out", a->out, "With --record: the recording file to write");
