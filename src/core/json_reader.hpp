@@ -19,6 +19,7 @@
 #include "core/error.hpp"
 #include "core/printable.hpp"
 #include "core/regular_file.hpp"
+#include "core/strict_json.hpp"
 
 namespace armctl::json_reader {
 
@@ -34,19 +35,9 @@ inline json parse_document(std::string_view text, const std::string& source) {
   if (text.size() > kMaxConfigBytes)
     throw ArmctlError(ErrorKind::invalid_config,
                       fmt::format("{}: {} bytes is larger than a config file may be (1 MiB)", printable(source), text.size()));
-  try {
-    return json::parse(text, [&source](int depth, json::parse_event_t, json&) {
-      if (depth > kMaxConfigDepth)
-        throw ArmctlError(ErrorKind::invalid_config,
-                          fmt::format("{}: nested deeper than {} levels", printable(source), kMaxConfigDepth));
-      return true;
-    });
-  } catch (const json::exception& e) {
-    // json::exception, not only parse_error: a number too large for a double ("1e400") is
-    // an out_of_range from the parser (found by the config fuzzers), and must not escape.
-    throw ArmctlError(ErrorKind::invalid_config,
-                      fmt::format("{}: not valid JSON: {}", printable(source), printable(e.what())));
-  }
+  Result<json> doc = parse_strict_json(text, kMaxConfigDepth);
+  if (!doc) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", printable(source), doc.error().message));
+  return std::move(doc).value();
 }
 
 // The text of a config file: a regular file of at most kMaxConfigBytes, checked before it is

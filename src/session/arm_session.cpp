@@ -1,5 +1,8 @@
 #include "session/arm_session.hpp"
 
+#include <thread>
+#include <utility>
+
 #include <fmt/core.h>
 
 #include "arm/bus_arm_device.hpp"
@@ -36,6 +39,18 @@ std::unique_ptr<ArmSession> open_arm_session(const std::string& arm_name, const 
     if (options.wall_clock && transport::runs_on_simulated_time(*link)) {
       s->paced = std::make_unique<transport::PacedLink>(*link);
       link = s->paced.get();
+    } else if (options.reconnect && !transport::runs_on_simulated_time(*link)) {
+      // The first link is the one just opened (kept by s->bus); later ones are opened anew.
+      auto open = [uri = device, first = link]() mutable -> std::shared_ptr<transport::JointBusLink> {
+        if (first) return std::shared_ptr<transport::JointBusLink>(std::exchange(first, nullptr), [](auto*) {});
+        std::shared_ptr<joint_bus::BusConnection> c(devices::open_joint_bus(uri).value());
+        return std::shared_ptr<transport::JointBusLink>(c, &c->link());  // lives as long as its connection
+      };
+      joint_bus::ReconnectOptions reconnect;
+      reconnect.while_lost = joint_bus::ReconnectOptions::WhileLost::refuse;
+      s->reconnecting = std::make_unique<joint_bus::ReconnectingLink>(
+          std::move(open), link->clock(), [](TimePoint t) { std::this_thread::sleep_until(t); }, nullptr, reconnect);
+      link = s->reconnecting.get();
     }
     s->master = std::make_unique<joint_bus::BusMaster>(*link, s->bus->default_options());
     auto dev = std::make_unique<arm::BusArmDevice>(model, *s->master, *link, s->bus->description());

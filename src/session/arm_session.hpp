@@ -14,6 +14,7 @@
 #include "arm/arm.hpp"
 #include "devices/joint_bus/bus_connection.hpp"
 #include "devices/joint_bus/bus_master.hpp"
+#include "devices/joint_bus/reconnecting_link.hpp"
 
 namespace armctl::session {
 
@@ -22,6 +23,7 @@ struct ArmSession {
   std::unique_ptr<XarmSession> rc;
   std::unique_ptr<joint_bus::BusConnection> bus;
   std::unique_ptr<transport::JointBusLink> paced;  // the embedded sim in step with the wall clock
+  std::unique_ptr<joint_bus::ReconnectingLink> reconnecting;  // SessionOptions::reconnect
   std::unique_ptr<joint_bus::BusMaster> master;
   std::unique_ptr<arm::Arm> arm;
 };
@@ -38,6 +40,11 @@ struct SessionOptions {
   // the CLI and tests want). Servers that many clients watch live (the ROS node, the web
   // dashboard) want it in step with the wall clock instead, like a real arm.
   bool wall_clock = false;
+  // A joint-bus link that closes (`armctl sim scara --listen` restarted, a USB-serial adapter
+  // pulled out) is opened again with back-off, under the same arm: what a server that runs
+  // for days wants. Each call meanwhile fails with the loss ("the joint bus link is lost
+  // ...; reconnecting"). Robot Commands devices are not reopened (docs/http-api.md).
+  bool reconnect = false;
 };
 std::unique_ptr<ArmSession> open_arm_session(const std::string& arm, const std::string& device,
                                              const SessionOptions& options = {});

@@ -14,6 +14,11 @@ using namespace std::chrono_literals;
 
 void add_event_stream(WebServer::State& s) {
   s.router.add("GET", "/api/v1/events", [&s](Call& c) {
+    // Each stream holds a connection for as long as the page is open: they have a budget of
+    // their own, so that tabs never use up what STOP and the page need.
+    if (s.connections)
+      if (auto refused = s.connections->begin_stream(GuardedServer::current_socket(), c.client))
+        throw ApiError(503, *refused);
     auto last = std::make_shared<std::uint64_t>(0);
     const std::string client = c.client;
     c.response.set_header("Cache-Control", "no-cache");

@@ -6,6 +6,7 @@
 
 #include "core/printable.hpp"
 #include "core/quantity.hpp"
+#include "core/strict_json.hpp"
 #include "program/points_file.hpp"
 #include "web/api_error.hpp"
 
@@ -42,19 +43,10 @@ json parse_body(std::string_view text) {
     throw ApiError(413, fmt::format("the request body is {} bytes; at most {} bytes (1 MiB) are allowed", text.size(),
                                     kMaxBodyBytes));
   if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) return json::object();
-  json body;
-  try {
-    body = json::parse(text, [](int depth, json::parse_event_t, json&) {
-      if (depth > kMaxBodyDepth)
-        throw ApiError(400, fmt::format("the request body is nested deeper than {} levels", kMaxBodyDepth));
-      return true;
-    });
-  } catch (const json::exception& e) {
-    // Any json::exception (a number too large for a double is out_of_range, not parse_error).
-    throw ApiError(400, fmt::format("the request body is not valid JSON: {}", printable(e.what())));
-  }
-  if (!body.is_object()) throw ApiError(400, "the request body must be a JSON object ({...})");
-  return body;
+  Result<json> body = parse_strict_json(text, kMaxBodyDepth);
+  if (!body) throw ApiError(400, "the request body: " + body.error().message);
+  if (!body->is_object()) throw ApiError(400, "the request body must be a JSON object ({...})");
+  return std::move(body).value();
 }
 
 BodyReader::BodyReader(const json& object, std::string path) : object_(object), path_(std::move(path)) {

@@ -63,6 +63,13 @@ bool token_given(const SecurityPolicy& p, const RequestFacts& r) {
   return r.token_parameter && same_secret(*r.token_parameter, p.token);
 }
 
+// `url` ("http://127.0.0.1:8080/page?x") is at `origin` ("http://127.0.0.1:8080").
+bool same_origin_url(std::string_view url, const std::string& origin) {
+  if (url.substr(0, origin.size()) != origin) return false;
+  return url.size() == origin.size() || url[origin.size()] == '/' || url[origin.size()] == '?' ||
+         url[origin.size()] == '#';
+}
+
 }  // namespace
 
 bool is_loopback(std::string_view host) {
@@ -85,6 +92,14 @@ std::optional<Refusal> check_request(const SecurityPolicy& policy, const Request
                                     "send requests",
                                     printable(r.origin->substr(0, 100)), printable(*r.host))};
   const bool safe = r.method == "GET" || r.method == "HEAD";
+  // Browsers send Origin with every request that can change something; a Referer without it
+  // comes from an old browser or an extension, and names the page that sent it. Scripts and
+  // curl send neither, and are allowed (they could forge either anyway: the token is what
+  // guards a server off the loopback address).
+  if (!safe && !r.origin && r.referer && !same_origin_url(*r.referer, "http://" + std::string(*r.host)))
+    return Refusal{403, fmt::format("Referer '{}' is not allowed: only pages served by this server (http://{}) may "
+                                    "send requests",
+                                    printable(r.referer->substr(0, 100)), printable(*r.host))};
   if (!safe && r.has_body) {
     const std::string type = r.content_type ? ascii_lower(*r.content_type) : "";
     const auto semicolon = type.find(';');

@@ -1,6 +1,7 @@
 // The checks every request passes before it is routed (docs/http-api.md "Security"): the
 // Host header names this server (no DNS rebinding), an Origin header is this server's own
-// (no cross-site requests), a body other than a GET's is JSON (an HTML form from another
+// (no cross-site requests; without an Origin, a Referer from another site is refused too, and a
+// request with neither, as curl and scripts send, is allowed), a body other than a GET's is JSON (an HTML form from another
 // site cannot send that type), and off the loopback address the token. Pure code.
 #pragma once
 
@@ -24,6 +25,7 @@ struct RequestFacts {
   bool has_body = false;
   std::optional<std::string_view> authorization;
   std::optional<std::string_view> token_parameter;  // ?token=
+  std::optional<std::string_view> referer;
 };
 
 struct Refusal {

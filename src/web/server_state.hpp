@@ -10,6 +10,7 @@
 
 #include "program/points_file.hpp"
 #include "session/arm_worker.hpp"
+#include "web/connection_guard.hpp"
 #include "web/control_lease.hpp"
 #include "web/motion_jobs.hpp"
 #include "web/program_run.hpp"
@@ -30,6 +31,7 @@ struct WebServer::State {
   ProgramRun program;
   std::atomic<bool> stopping{false};
   Router router;
+  ConnectionTable* connections = nullptr;  // the server's (event streams take their budget there)
 
   std::mutex points_mutex;
   program::PointsFile points;

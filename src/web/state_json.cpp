@@ -26,6 +26,7 @@ DeviceInfo describe_device(session::ArmSession& session, const std::string& uri)
   d.description = session.arm->device().description();
   d.protocol = session.arm->device().protocol();
   d.groups_supported = session.rc != nullptr;
+  d.reconnects = uri.empty() || session.reconnecting != nullptr;
   return d;
 }
 
@@ -72,7 +73,7 @@ json tool_json(const arm::Arm& arm, const motion::Pose& pose, const std::vector<
           {"roll", deg(rpy.roll)},      {"pitch", deg(rpy.pitch)},    {"yaw", deg(rpy.yaw)}};
 }
 
-json state_json(const arm::Arm& arm, const session::ArmSnapshot& s,
+json state_json(const arm::Arm& arm, const DeviceInfo& device, const session::ArmSnapshot& s,
                 const ControlView& control, const std::optional<ProgramView>& program) {
   const arm::ArmModel& model = arm.model();
   json joints = json::array();
@@ -85,7 +86,7 @@ json state_json(const arm::Arm& arm, const session::ArmSnapshot& s,
     joints.push_back(std::move(joint));
   }
   json out{{"sequence", s.sequence},
-           {"link", {{"ok", s.link_ok}, {"error", s.link_error}}},
+           {"link", {{"ok", s.link_ok}, {"error", s.link_error}, {"reconnects", device.reconnects}}},
            {"joints", std::move(joints)},
            {"tool", s.pose && s.positions.size() == model.joints.size() ? tool_json(arm, *s.pose, s.positions)
                                                                         : json(nullptr)},

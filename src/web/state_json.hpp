@@ -23,6 +23,9 @@ struct DeviceInfo {
   std::string description;  // the device's own description
   arm::Protocol protocol = arm::Protocol::robot_commands;
   bool groups_supported = false;  // a Robot Commands board (action groups)
+  // A lost link is opened again by itself (a joint bus on a socket or serial port, and the
+  // embedded simulators, which cannot be lost); else `serve` must be restarted.
+  bool reconnects = false;
 };
 
 // Of an open session (before it is handed to the worker): `uri` as the user gave it.
@@ -31,7 +34,7 @@ DeviceInfo describe_device(session::ArmSession& session, const std::string& uri)
 json model_json(const arm::ArmModel& model, const DeviceInfo& device);
 
 // `arm` for its model-only calls (tool_rpy); nothing is read from the device.
-json state_json(const arm::Arm& arm, const session::ArmSnapshot& snapshot,
+json state_json(const arm::Arm& arm, const DeviceInfo& device, const session::ArmSnapshot& snapshot,
                 const ControlView& control, const std::optional<ProgramView>& program);
 
 // The tool pose as {"x","y","z" (mm), "roll","pitch","yaw" (deg)}.

@@ -9,6 +9,7 @@
 
 #include "core/printable.hpp"
 #include "web/api_error.hpp"
+#include "web/connection_guard.hpp"
 #include "web/request_body.hpp"
 #include "web/server_state.hpp"
 #include "web/static_assets.hpp"
@@ -44,6 +45,26 @@ std::string client_of(const httplib::Request& r) {
   return "";
 }
 
+// Everything the page loads is its own: scripts, styles, the URDF and meshes, the API
+// (fetch and the event stream); three.js makes blob: URLs for textures.
+constexpr const char* kContentSecurityPolicy =
+    "default-src 'self'; img-src 'self' data: blob:; object-src 'none'; base-uri 'none'; "
+    "form-action 'self'; frame-ancestors 'none'";
+
+// The page, with a nonce of its own on its one inline script (the boot script that writes
+// the import map, whose text depends on the page's token): the policy allows that script and
+// the import map it adds, and no other inline script (an injected one is not run).
+void serve_page(const StaticAsset& page, httplib::Response& res) {
+  const std::string nonce = make_token();
+  std::string html(page.data());
+  const std::string tag = "<script>";
+  if (auto at = html.find(tag); at != std::string::npos) html.replace(at, tag.size(), "<script nonce=\"" + nonce + "\">");
+  res.headers.erase("Content-Security-Policy");
+  res.set_header("Content-Security-Policy",
+                 fmt::format("{}; script-src 'self' 'nonce-{}'", kContentSecurityPolicy, nonce));
+  res.set_content(std::move(html), content_type_for(page.path));
+}
+
 const char* status_text(int status) {
   switch (status) {
     case 400: return "the request is malformed";
@@ -51,6 +72,7 @@ const char* status_text(int status) {
     case 405: return "method not allowed";
     case 413: return "the request body is larger than 1 MiB (1048576 bytes), the most allowed";
     case 414: return "the request's URL is too long";
+    case 416: return "the Range header is not valid or names no part of the file";
     default: return "the request failed";
   }
 }
@@ -114,11 +136,12 @@ void WebServer::State::run_to_end(const std::string& what, session::ArmWorker::J
 }
 
 json WebServer::State::state_for(const std::string& client, const session::ArmSnapshot& snapshot) {
-  return state_json(arm(), snapshot, lease.view(client), program.view());
+  return state_json(arm(), options.device, snapshot, lease.view(client), program.view());
 }
 
 WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
-    : state_(std::make_unique<State>(worker, std::move(options))), http_(std::make_unique<httplib::Server>()) {
+    : state_(std::make_unique<State>(worker, std::move(options))),
+      http_(std::make_unique<GuardedServer>(state_->options.limits)) {
   State& s = *state_;
   if (!is_loopback(s.options.host) && s.options.token.empty())
     throw ArmctlError(ErrorKind::invalid_argument,
@@ -138,8 +161,20 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
   add_group_routes(s);
   add_program_routes(s);
 
-  httplib::Server& http = *http_;
-  http.new_task_queue = [] { return new httplib::ThreadPool(16); };
+  GuardedServer& http = *http_;
+  s.connections = &http.connections();
+  // A thread per connection (a pool's fixed count was what slow clients and event streams
+  // used up, leaving none for STOP); the connection table bounds how many are open.
+  const std::size_t hard_limit = 4 * s.options.limits.max_connections;
+  http.new_task_queue = [hard_limit] { return new ConnectionThreads(hard_limit); };
+  // Framing the page would let another site have its buttons clicked (clickjacking); the
+  // page loads only its own files, and its scripts and styles are files, not inline.
+  http.set_default_headers({
+      {"X-Frame-Options", "DENY"},
+      {"Content-Security-Policy", kContentSecurityPolicy},
+      {"X-Content-Type-Options", "nosniff"},
+      {"Referrer-Policy", "no-referrer"},
+  });
   http.set_payload_max_length(kMaxBodyBytes);
   // SO_REUSEADDR only: httplib's default SO_REUSEPORT would let a second server bind the same
   // port and share the requests (two arms behind one URL).
@@ -162,6 +197,7 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
     if (r.method == "GET" || r.method == "HEAD") {
       if (const StaticAsset* a = find_asset(r.path)) {
         res.set_header("Cache-Control", "no-cache");
+        if (std::string_view(a->path) == "/index.html") return serve_page(*a, res);
         res.set_content(std::string(a->data()), content_type_for(a->path));
         return;
       }
@@ -174,11 +210,23 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
   };
   http.set_pre_routing_handler([this](const httplib::Request& r, httplib::Response& res) {
     State& st = *state_;
-    RequestFacts facts{r.method,         header(r, "Host"),          header(r, "Origin"),
-                       header(r, "Content-Type"), has_body(r), header(r, "Authorization"),
-                       parameter(r, "token")};
+    RequestFacts facts{r.method,
+                       header(r, "Host"),
+                       header(r, "Origin"),
+                       header(r, "Content-Type"),
+                       has_body(r),
+                       header(r, "Authorization"),
+                       parameter(r, "token"),
+                       header(r, "Referer")};
     // A STOP is never refused for its form (its body is not read): any type will do.
     if (r.path == "/api/v1/stop") facts.has_body = false;
+    // httplib adds four headers of its own (REMOTE_ADDR, REMOTE_PORT, LOCAL_ADDR, LOCAL_PORT).
+    if (r.headers.size() > st.options.limits.max_header_count + 4) {
+      reply_error(res, 431,
+                  fmt::format("the request has {} header lines; at most {} are allowed", r.headers.size() - 4,
+                              st.options.limits.max_header_count));
+      return httplib::Server::HandlerResponse::Handled;
+    }
     if (auto refusal = check_request(st.policy, facts)) {
       reply_error(res, refusal->status, refusal->message);
       return httplib::Server::HandlerResponse::Handled;
@@ -242,6 +290,7 @@ void WebServer::stop() {
   // httplib's stop() does nothing until its loop runs: wait for that (or for its end).
   while (thread_.joinable() && !http_->is_running() && !listen_ended_) std::this_thread::sleep_for(1ms);
   http_->stop();
+  http_->connections().close_idle();
   if (thread_.joinable()) thread_.join();
   // Jobs started here use the server's state (a program's progress): they end before it goes.
   session::ArmWorker& worker = state_->worker;
@@ -251,6 +300,8 @@ void WebServer::stop() {
   while (worker.busy() && std::chrono::steady_clock::now() < deadline)
     snapshot = worker.wait_for_update(snapshot.sequence, 100ms);
 }
+
+ConnectionCounts WebServer::connections() const { return http_->connections().counts(); }
 
 std::string WebServer::url() const {
   const std::string& host = state_->options.host;

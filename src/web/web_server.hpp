@@ -12,15 +12,17 @@
 #include <thread>
 
 #include "session/arm_worker.hpp"
+#include "web/connection_limits.hpp"
 #include "web/state_json.hpp"
 
 namespace httplib {
-class Server;
 struct Request;
 struct Response;
 }
 
 namespace armctl::web {
+
+class GuardedServer;
 
 struct ServerOptions {
   std::string host = "127.0.0.1";
@@ -33,6 +35,8 @@ struct ServerOptions {
   DeviceInfo device;
   // SSE: a state event at least this often while nothing changes (a keep-alive).
   std::chrono::milliseconds idle_event_interval{500};
+  // Connections, request time and event streams (web/connection_guard.hpp).
+  ConnectionLimits limits;
 };
 
 class WebServer {
@@ -51,12 +55,14 @@ class WebServer {
   int port() const { return port_; }
   // http://HOST:PORT/ with ?token=T when a token is needed.
   std::string url() const;
+  // The open connections and event streams (tests, diagnostics).
+  ConnectionCounts connections() const;
 
   struct State;  // everything the handlers share (web_server.cpp)
 
  private:
   std::unique_ptr<State> state_;
-  std::unique_ptr<httplib::Server> http_;
+  std::unique_ptr<GuardedServer> http_;
   std::function<void(const httplib::Request&, httplib::Response&)> dispatch_;  // routes, then files
   std::thread thread_;
   int port_ = 0;

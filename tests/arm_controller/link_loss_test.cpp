@@ -9,10 +9,12 @@
 #include <vector>
 
 #include "controller_rig.hpp"
-#include "devices/arm_controller/reconnecting_link.hpp"
+#include "devices/joint_bus/reconnecting_link.hpp"
 
 namespace armctl::arm_controller::testing {
 namespace {
+
+using joint_bus::ReconnectingLink;
 
 using namespace std::chrono_literals;
 

@@ -101,6 +101,29 @@ test('a page of another origin cannot move the arm (a cross-site "simple" POST)'
   assert.ok(Math.abs(s.joints.find((j) => j.name === 'servo6').position - was) < 0.5, 'servo6 did not move');
 });
 
+test('a page of another origin cannot frame the dashboard (clickjacking)', async () => {
+  // The other server's page adds an iframe of this dashboard: the browser refuses to show it
+  // (X-Frame-Options DENY, CSP frame-ancestors 'none'), so none of its buttons can be clicked.
+  const context = await browser.newContext();
+  const page = await context.newPage();
+  await page.goto(remote.url);
+  const framed = await page.evaluate(async (target) => {
+    const frame = document.createElement('iframe');
+    frame.src = `${target}/`;
+    const loaded = new Promise((resolve) => { frame.onload = resolve; });
+    document.body.append(frame);
+    await Promise.race([loaded, new Promise((resolve) => setTimeout(resolve, 5000))]);
+    return true;
+  }, local.base.replace(/\/api\/v1$/, ''));
+  assert.ok(framed);
+  const child = page.frames().find((f) => f !== page.mainFrame());
+  assert.ok(child, 'the iframe exists');
+  // A refused frame holds the browser's error page, not the dashboard's STOP button.
+  const stopButtons = await child.locator('#stop').count().catch(() => 0);
+  assert.equal(stopButtons, 0, 'the dashboard rendered inside another site\'s frame');
+  await context.close();
+});
+
 test('a DNS-rebinding Host is refused: 403', async () => {
   const r = await raw(local, { headers: { Host: `attacker.example:${local.port}` } });
   assert.equal(r.status, 403);

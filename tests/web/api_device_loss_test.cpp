@@ -1,6 +1,7 @@
 // The API when the device goes away: the SCARA's simulator in its own process (as
 // `armctl sim scara --listen` serves it), killed while the server runs. The state says the
-// link is lost, a move is answered with the device's error, and the server keeps serving.
+// link is lost, a move is answered with the device's error, and the server keeps serving;
+// restarted, the simulator is found again.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -38,7 +39,7 @@ class SimProcess {
   pid_t pid_ = -1;
 };
 
-TEST(WebDeviceLoss, TheStateSaysTheLinkIsLostAndAMoveGetsTheDevicesError) {
+TEST(WebDeviceLoss, TheStateSaysTheLinkIsLostAMoveGetsTheDevicesErrorAndARestartedArmIsFoundAgain) {
   const auto dir = std::filesystem::temp_directory_path() / ("armctl-web-loss-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string socket = (dir / "scara.sock").string();
@@ -72,6 +73,18 @@ TEST(WebDeviceLoss, TheStateSaysTheLinkIsLostAndAMoveGetsTheDevicesError) {
     EXPECT_EQ(stop.body["stopped"], true);
     EXPECT_EQ(stop.body["link_ok"], false);
     EXPECT_NE(stop.body["warning"].get<std::string>().find("may not have reached it"), std::string::npos) << stop.text;
+
+    // The simulator comes back on the same socket: the server opens the link again by
+    // itself (no restart of serve), and the arm moves again.
+    EXPECT_EQ(state.body["link"]["reconnects"], true);
+    SimProcess again(socket);
+    ASSERT_TRUE(api.wait_until([](const session::ArmSnapshot& s) { return s.link_ok; }, 30s))
+        << api.worker().snapshot().link_error;
+    state = api.get("/api/v1/state", "page");
+    EXPECT_EQ(state.body["link"]["ok"], true) << state.text;
+    const Reply moved = api.post("/api/v1/joints", {{"positions", {{"SHOULDER", 5.0}}}, {"speed", 0.5}}, "page");
+    EXPECT_EQ(moved.status, 200) << moved.text;
+    EXPECT_TRUE(api.wait_idle(30s));
   }
   std::filesystem::remove_all(dir);
 }

@@ -33,7 +33,9 @@ class ApiServer {
  public:
   // `device`: a device URI ("" = the arm's embedded simulator).
   explicit ApiServer(const std::string& arm_name = "xarm", ServerOptions options = {}, const std::string& device = "") {
-    auto session = session::open_arm_session(arm_name, device);
+    session::SessionOptions session_options;
+    session_options.reconnect = true;  // as `armctl serve` opens it
+    auto session = session::open_arm_session(arm_name, device, session_options);
     options.port = 0;
     if (options.host.empty()) options.host = "127.0.0.1";
     options.device = describe_device(*session, device);

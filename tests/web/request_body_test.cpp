@@ -24,6 +24,16 @@ TEST(RequestBody, RefusesWhatIsNotAJsonObject) {
   EXPECT_NE(refusal([] { parse_body("1e400"); }).second.find("not valid JSON"), std::string::npos);
 }
 
+TEST(RequestBody, RefusesAKeyGivenTwice) {
+  // nlohmann would keep the last: {"speed": 0.1, "speed": 1} would move at full speed.
+  auto [status, message] = refusal([] { parse_body(R"({"speed": 0.1, "speed": 1})"); });
+  EXPECT_EQ(status, 400);
+  EXPECT_NE(message.find("key \"speed\" appears twice in one object"), std::string::npos) << message;
+  EXPECT_EQ(refusal([] { parse_body(R"({"a": {"b": 1, "b": 2}})"); }).first, 400);
+  // The same key in two objects is fine.
+  EXPECT_EQ(parse_body(R"({"a": {"b": 1}, "c": {"b": 2}})")["c"]["b"], 2);
+}
+
 TEST(RequestBody, RefusesDeepNestingAndLargeBodies) {
   const std::string deep = std::string(100, '[') + std::string(100, ']');
   EXPECT_NE(refusal([&] { parse_body("{\"a\":" + deep + "}"); }).second.find("nested deeper"), std::string::npos);

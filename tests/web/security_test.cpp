@@ -6,7 +6,7 @@
 namespace armctl::web {
 namespace {
 
-RequestFacts get_from(std::string_view host) { return RequestFacts{"GET", host, {}, {}, false, {}, {}}; }
+RequestFacts get_from(std::string_view host) { return RequestFacts{"GET", host, {}, {}, false, {}, {}, {}}; }
 
 TEST(Security, HostMustNameThisServer) {
   const SecurityPolicy p{"127.0.0.1", 8080, ""};
@@ -20,7 +20,7 @@ TEST(Security, HostMustNameThisServer) {
   EXPECT_NE(r->message.find("Host 'evil.example:8080' is not this server"), std::string::npos) << r->message;
   EXPECT_TRUE(check_request(p, get_from("127.0.0.1:8081")));
   EXPECT_TRUE(check_request(p, get_from("127.0.0.1")));  // port 80
-  EXPECT_TRUE(check_request(p, RequestFacts{"GET", {}, {}, {}, false, {}, {}}));
+  EXPECT_TRUE(check_request(p, RequestFacts{"GET", {}, {}, {}, false, {}, {}, {}}));
 }
 
 TEST(Security, EveryAddressTakesOnlyAddressLiterals) {
@@ -32,9 +32,28 @@ TEST(Security, EveryAddressTakesOnlyAddressLiterals) {
   EXPECT_EQ(check_request(p, r)->status, 403);
 }
 
+TEST(Security, WithoutAnOriginARefererMustBeThisServer) {
+  const SecurityPolicy p{"127.0.0.1", 8080, ""};
+  RequestFacts r{"POST", "127.0.0.1:8080", {}, "application/json", true, {}, {}, {}};
+  EXPECT_FALSE(check_request(p, r));  // curl, scripts: neither header
+  r.referer = "http://127.0.0.1:8080/";
+  EXPECT_FALSE(check_request(p, r));
+  r.referer = "http://127.0.0.1:8080?token=x";
+  EXPECT_FALSE(check_request(p, r));
+  for (const char* other : {"http://evil.example/", "http://127.0.0.1:8080.evil.example/", "http://127.0.0.1:80/"}) {
+    r.referer = other;
+    auto refused = check_request(p, r);
+    ASSERT_TRUE(refused) << other;
+    EXPECT_EQ(refused->status, 403);
+    EXPECT_NE(refused->message.find("Referer"), std::string::npos) << refused->message;
+  }
+  r.method = "GET";  // reading is allowed from anywhere the Host and Origin checks allow
+  EXPECT_FALSE(check_request(p, r));
+}
+
 TEST(Security, OriginMustBeThisServer) {
   const SecurityPolicy p{"127.0.0.1", 8080, ""};
-  RequestFacts r{"POST", "127.0.0.1:8080", "http://127.0.0.1:8080", "application/json", true, {}, {}};
+  RequestFacts r{"POST", "127.0.0.1:8080", "http://127.0.0.1:8080", "application/json", true, {}, {}, {}};
   EXPECT_FALSE(check_request(p, r));
   r.origin = "http://evil.example";
   auto refused = check_request(p, r);
@@ -49,7 +68,7 @@ TEST(Security, OriginMustBeThisServer) {
 
 TEST(Security, BodiesMustBeJson) {
   const SecurityPolicy p{"127.0.0.1", 8080, ""};
-  RequestFacts r{"POST", "127.0.0.1:8080", {}, "text/plain", true, {}, {}};
+  RequestFacts r{"POST", "127.0.0.1:8080", {}, "text/plain", true, {}, {}, {}};
   EXPECT_EQ(check_request(p, r)->status, 415);
   r.content_type = "application/x-www-form-urlencoded";
   EXPECT_EQ(check_request(p, r)->status, 415);

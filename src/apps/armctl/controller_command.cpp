@@ -14,7 +14,7 @@
 #include "core/printable.hpp"
 #include "devices/arm_controller/controller_config.hpp"
 #include "transport/paced_link.hpp"
-#include "devices/arm_controller/reconnecting_link.hpp"
+#include "devices/joint_bus/reconnecting_link.hpp"
 #include "devices/device_registry/device_registry.hpp"
 
 namespace armctl::cli {
@@ -48,7 +48,7 @@ void run_controller(const ControllerArgs& args) {
   connection.reset();
   const SteadyClock clock;
   const std::string label = args.serve.label;
-  arm_controller::ReconnectingLink link(
+  joint_bus::ReconnectingLink link(
       std::move(open), clock, [](TimePoint t) { std::this_thread::sleep_until(t); },
       [label](const std::string& line) {
         fmt::print(stderr, "{}: {}\n", label, printable(line));

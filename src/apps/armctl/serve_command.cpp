@@ -74,6 +74,7 @@ void run_serve(const ServeArgs& a) {
   // The embedded simulated bus in step with the wall clock, like a real arm: people watch it.
   session::SessionOptions session_options;
   session_options.wall_clock = true;
+  session_options.reconnect = true;  // a restarted simulator or a replugged adapter is picked up again
   auto session = open_arm_session(a.arm, a.device, session_options);
   const arm::ArmModel& model = session->arm->model();
   options.urdf = read_regular_file(model.urdf, "the arm's URDF", 1 << 20).value();

@@ -1,14 +1,13 @@
 #include "devices/arm_controller/joint_settings.hpp"
 
 #include <cstdint>
-#include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "core/strict_json.hpp"
 #include "devices/rc_board/atomic_file.hpp"
 #include "protocol/robot_commands/messages.hpp"
 
@@ -76,23 +75,6 @@ std::int64_t integer_in(const json& v, const std::string& name, std::int64_t lo,
   return integer_in(v, name, lo, hi, fmt::format("{}..{}", lo, hi));
 }
 
-// nlohmann keeps the last of two equal keys; in a hand-edited file that hides an edit.
-// Records the first key that appears twice in one object.
-json parse_rejecting_duplicate_keys(std::string_view text) {
-  std::vector<std::set<std::string>> open;
-  std::optional<std::string> duplicate;
-  json doc = json::parse(text, [&](int, json::parse_event_t event, json& parsed) {
-    if (event == json::parse_event_t::object_start) open.emplace_back();
-    else if (event == json::parse_event_t::object_end && !open.empty()) open.pop_back();
-    else if (event == json::parse_event_t::key && !open.empty() && !duplicate &&
-             !open.back().insert(parsed.get<std::string>()).second)
-      duplicate = parsed.get<std::string>();
-    return true;
-  });
-  if (duplicate) throw Refusal{fmt::format("key {} appears twice in one object (each key once)", key_text(*duplicate))};
-  return doc;
-}
-
 void parse_joint(const json& j, const std::string& name, int number, JointSettings& js) {
   expect_keys(j, name, {"saved_offset", "limits"});
   js.saved_offset = static_cast<std::int8_t>(
@@ -126,7 +108,15 @@ void parse_joint(const json& j, const std::string& name, int number, JointSettin
 }
 
 ControllerSettings parse_document(std::string_view text, const ControllerSettings& defaults) {
-  const json doc = parse_rejecting_duplicate_keys(text);
+  // A key twice in one object (nlohmann keeps the last) would hide a hand edit.
+  Result<json> parsed = parse_strict_json(text, 8);
+  if (!parsed) {
+    const JsonProblem* problem = parsed.error().detail_as<JsonProblem>();
+    if (problem && *problem == JsonProblem::syntax)
+      throw Refusal{fmt::format("not readable as settings JSON ({})", parsed.error().message)};
+    throw Refusal{parsed.error().message};
+  }
+  const json doc = std::move(parsed).value();
   expect_keys(doc, "the file", {"version", "info_joint", "joints"});
   integer_in(doc.at("version"), "version", 1, 1, "1 (the only format so far)");
   std::vector<std::string> numbers;  // the joint keys allowed: this arm's joint numbers

@@ -73,7 +73,9 @@ export function initStatus(model) {
     const link = $('#link-state');
     if (!streamUp) { link.textContent = 'no connection to armctl serve'; link.className = 'bad'; return; }
     if (!lastLink) return;
-    link.textContent = lastLink.ok ? 'ok' : `down: ${lastLink.error || 'no answer'}`;
+    // A device armctl serve does not open again (a Robot Commands board) needs a restart.
+    const restart = lastLink.reconnects ? '' : ' (restart armctl serve once the arm is back)';
+    link.textContent = lastLink.ok ? 'ok' : `down: ${lastLink.error || 'no answer'}${restart}`;
     link.className = lastLink.ok ? 'ok' : 'bad';
   };
   onConnection((up) => { streamUp = up; renderLink(); });

@@ -17,11 +17,16 @@
 #include "core/clock.hpp"
 #include "transport/joint_bus_link.hpp"
 
-namespace armctl::arm_controller {
+namespace armctl::joint_bus {
 
 struct ReconnectOptions {
   Duration first_delay = std::chrono::milliseconds(100);
   Duration max_delay = std::chrono::seconds(2);
+  // What a caller sees while there is no link. The arm controller wants a bus with every
+  // joint unplugged (its joints report no answer, as the spec has it); a host application
+  // (`armctl serve`) wants the loss itself: the error that ended the link, then "lost ...;
+  // reconnecting" from every call until it is back.
+  enum class WhileLost { unplugged, refuse } while_lost = WhileLost::unplugged;
 };
 
 class ReconnectingLink final : public transport::JointBusLink {
@@ -60,6 +65,8 @@ class ReconnectingLink final : public transport::JointBusLink {
   void lose(const std::string& why);
   // One attempt if one is due; true if the link is back.
   bool try_reconnect();
+  // In WhileLost::refuse: throws the loss (io) when there is no link and none came back.
+  void refuse_if_lost();
 
   Opener open_;
   const Clock& clock_;
@@ -72,10 +79,11 @@ class ReconnectingLink final : public transport::JointBusLink {
   Duration delay_{};
   TimePoint next_attempt_{};
   TimePoint lost_at_{};
+  std::string lost_why_;
   std::uint64_t attempts_in_outage_ = 0;
   std::uint64_t losses_ = 0;
   std::uint64_t attempts_ = 0;
   std::uint64_t recoveries_ = 0;
 };
 
-}  // namespace armctl::arm_controller
+}  // namespace armctl::joint_bus

@@ -1,4 +1,4 @@
-#include "devices/arm_controller/reconnecting_link.hpp"
+#include "devices/joint_bus/reconnecting_link.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,7 +7,7 @@
 
 #include "core/error.hpp"
 
-namespace armctl::arm_controller {
+namespace armctl::joint_bus {
 namespace {
 
 double seconds(Duration d) { return std::chrono::duration<double>(d).count(); }
@@ -35,12 +35,14 @@ bool ReconnectingLink::with_link(Use&& use) {
   } catch (const ArmctlError& e) {
     if (e.error().kind == ErrorKind::invalid_argument) throw;  // a caller's mistake, not the link's
     lose(e.what());
+    if (options_.while_lost == ReconnectOptions::WhileLost::refuse) throw;
     return false;
   }
 }
 
 void ReconnectingLink::lose(const std::string& why) {
   link_.reset();
+  lost_why_ = why;
   ++losses_;
   attempts_in_outage_ = 0;
   lost_at_ = clock_.now();
@@ -84,22 +86,35 @@ bool ReconnectingLink::try_reconnect() {
   return false;
 }
 
+void ReconnectingLink::refuse_if_lost() {
+  if (options_.while_lost != ReconnectOptions::WhileLost::refuse || link_ || try_reconnect()) return;
+  throw ArmctlError(ErrorKind::io,
+                    fmt::format("the joint bus link is lost ({}); reconnecting: {} attempt{} so far, the next in "
+                                "{:.1f} s",
+                                lost_why_, attempts_in_outage_, attempts_in_outage_ == 1 ? "" : "s",
+                                std::max(0.0, seconds(next_attempt_ - clock_.now()))));
+}
+
 void ReconnectingLink::set_select(int joint, bool high) {
   if (joint < 1 || joint > joints_)
     throw ArmctlError(ErrorKind::invalid_argument,
                       fmt::format("select line for joint {} does not exist: joints are 1..{}", joint, joints_));
+  refuse_if_lost();
   with_link([&](transport::JointBusLink& l) { l.set_select(joint, high); });
 }
 
 void ReconnectingLink::write(std::span<const std::uint8_t> bytes) {
+  refuse_if_lost();
   with_link([&](transport::JointBusLink& l) { l.write(bytes); });  // no link: like a cut wire
 }
 
 void ReconnectingLink::flush() {
+  refuse_if_lost();
   with_link([](transport::JointBusLink& l) { l.flush(); });
 }
 
 std::optional<std::uint8_t> ReconnectingLink::read_byte(TimePoint deadline) {
+  refuse_if_lost();
   if (link_) {
     std::optional<std::uint8_t> byte;
     if (with_link([&](transport::JointBusLink& l) { byte = l.read_byte(deadline); })) return byte;
@@ -120,4 +135,4 @@ std::size_t ReconnectingLink::drain() {
   return n;
 }
 
-}  // namespace armctl::arm_controller
+}  // namespace armctl::joint_bus
