@@ -21,6 +21,7 @@ void add_event_stream(WebServer::State& s) {
         throw ApiError(503, *refused);
     auto last = std::make_shared<std::uint64_t>(0);
     const std::string client = c.client;
+    s.lease.stream_opened(client);
     c.response.set_header("Cache-Control", "no-cache");
     c.response.set_header("X-Accel-Buffering", "no");
     // One "state" event per published snapshot; without news, one every idle interval.
@@ -34,7 +35,8 @@ void add_event_stream(WebServer::State& s) {
               "event: state\ndata: " + s.state_for(client, snapshot).dump(-1, ' ', false, json::error_handler_t::replace) +
               "\n\n";
           return sink.write(event.data(), event.size());
-        });
+        },
+        [&s, client](bool) { s.lease.stream_closed(client); });
   });
 }
 

@@ -27,9 +27,41 @@ void ControlLease::take(const std::string& client) {
   if (client.empty())
     throw ApiError(400, "taking control needs an X-Armctl-Client header naming this client (any id, e.g. a random one)");
   std::lock_guard lock(mutex_);
+  last_seen_ = clock_();
+  holder_left_.reset();
   if (holder_ == client) return;
   holder_ = client;
   since_ = utc_now();
+}
+
+void ControlLease::seen(const std::string& client) {
+  std::lock_guard lock(mutex_);
+  if (holder_ && *holder_ == client) last_seen_ = clock_();
+}
+
+void ControlLease::stream_opened(const std::string& client) {
+  std::lock_guard lock(mutex_);
+  ++streams_[client];
+  if (holder_ && *holder_ == client) holder_left_.reset();
+}
+
+void ControlLease::stream_closed(const std::string& client) {
+  std::lock_guard lock(mutex_);
+  auto it = streams_.find(client);
+  if (it == streams_.end()) return;
+  if (--it->second > 0) return;
+  streams_.erase(it);
+  // The page went away (closed, reloaded), or its stream dropped and will reopen.
+  if (holder_ && *holder_ == client) holder_left_ = clock_();
+}
+
+void ControlLease::expire() const {
+  if (!holder_ || streams_.contains(*holder_)) return;
+  const auto now = clock_();
+  const bool gone = holder_left_ ? now - *holder_left_ >= grace_ : now - last_seen_ >= idle_;
+  if (!gone) return;
+  holder_.reset();
+  since_.clear();
 }
 
 void ControlLease::release(const std::string& client) {
@@ -42,11 +74,13 @@ void ControlLease::release(const std::string& client) {
 
 ControlView ControlLease::view(const std::string& client) const {
   std::lock_guard lock(mutex_);
+  expire();
   return {holder_ && !client.empty() && *holder_ == client, holder_.has_value(), since_};
 }
 
 void ControlLease::require(const std::string& client) const {
   std::lock_guard lock(mutex_);
+  expire();
   if (holder_ && !client.empty() && *holder_ == client) return;
   if (client.empty())
     throw ApiError(409, "this request names no client (X-Armctl-Client header): take control first with POST "

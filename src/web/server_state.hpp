@@ -21,7 +21,7 @@
 namespace armctl::web {
 
 struct WebServer::State {
-  State(session::ArmWorker& w, ServerOptions o) : worker(w), options(std::move(o)) {}
+  State(session::ArmWorker& w, ServerOptions o) : worker(w), options(std::move(o)), lease(options.control_idle, options.control_grace) {}
 
   session::ArmWorker& worker;
   ServerOptions options;

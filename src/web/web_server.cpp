@@ -193,6 +193,7 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
     } catch (const ApiError& e) {
       return reply_error(res, e.status(), e.what());
     }
+    if (!client.empty()) st.lease.seen(client);
     if (st.router.dispatch(r, res, client)) return;
     if (r.method == "GET" || r.method == "HEAD") {
       if (const StaticAsset* a = find_asset(r.path)) {

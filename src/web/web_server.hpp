@@ -35,6 +35,11 @@ struct ServerOptions {
   DeviceInfo device;
   // SSE: a state event at least this often while nothing changes (a keep-alive).
   std::chrono::milliseconds idle_event_interval{500};
+  // A holder of control with no event stream open loses it after this long without a
+  // request (web/control_lease.hpp).
+  std::chrono::milliseconds control_idle = std::chrono::seconds(60);
+  // ... and this long after its page's last event stream closed (a reload, a closed tab).
+  std::chrono::milliseconds control_grace = std::chrono::seconds(5);
   // Connections, request time and event streams (web/connection_guard.hpp).
   ConnectionLimits limits;
 };

@@ -95,6 +95,33 @@ test('a refused request shows the server\'s message, and nothing is recorded', a
   await page.getByRole('button', { name: 'Dismiss error' }).first().click();
 });
 
+test('a joint target refused as busy is sent again by Enter, with one banner for its error', async () => {
+  // A slow move from the page keeps the arm busy; a target typed meanwhile is refused (409).
+  await pageMove({ servo2: 60 }, 3);
+  const target = page.getByRole('spinbutton', { name: 'servo3 target (deg)' });
+  await target.fill('20');
+  const refused = page.waitForResponse((r) => r.url().endsWith('/api/v1/joints') && r.request().method() === 'POST');
+  await target.press('Enter');
+  assert.equal((await refused).status(), 409);
+  const banners = page.getByRole('alert');
+  await waitFor(async () => (await banners.count()) >= 1, 'the busy refusal to be shown');
+  // Enter again on the same value sends it again; the same refusal keeps one banner.
+  const again = page.waitForResponse((r) => r.url().endsWith('/api/v1/joints') && r.request().method() === 'POST');
+  await target.press('Enter');
+  assert.equal((await again).status(), 409);
+  const texts = await banners.allTextContents();
+  assert.equal(new Set(texts).size, texts.length, `one banner per error: ${JSON.stringify(texts)}`);
+  expectRefused(problems, 409);
+  expectRefused(problems, 409);
+  await waitIdle(script);
+  // Once the arm is free, Enter sends it and it is taken.
+  const taken = page.waitForResponse((r) => r.url().endsWith('/api/v1/joints') && r.request().method() === 'POST');
+  await target.press('Enter');
+  assert.equal((await taken).status(), 200);
+  await waitForPosition(script, 'servo3', 20);
+  while (await banners.count()) await page.getByRole('button', { name: 'Dismiss error' }).first().click();
+});
+
 test('jog, gripper, torque and points from the Move view', async () => {
   // From a pose well inside the workspace (the example programs' home: tool forward, level),
   // jog the tool up 10 mm in a straight line: the pose read back has z 10 mm higher.

@@ -194,6 +194,23 @@ TEST(WebLimits, EventStreamsHaveABudget) {
   EXPECT_EQ(api.server().connections().streams, 3u);
 }
 
+TEST(WebLimits, ControlEndsWhenThePageThatHoldsItGoesAway) {
+  ServerOptions options;
+  options.control_grace = 200ms;
+  ApiServer api("xarm", options);
+  auto stream = open_stream(api.port(), "page");
+  api.take("page");
+  EXPECT_EQ(api.get("/api/v1/state", "other").body["control"]["holder"], true);
+  stream.reset();  // the tab is closed or reloaded
+  ASSERT_TRUE(api.wait_until(
+      [&](const session::ArmSnapshot&) { return api.get("/api/v1/state", "other").body["control"]["holder"] == false; },
+      10s));
+  // The reloaded page (a new id) takes it without "another client has control".
+  auto reloaded = open_stream(api.port(), "page-2");
+  api.take("page-2");
+  EXPECT_EQ(api.get("/api/v1/state", "page-2").body["control"]["you"], true);
+}
+
 TEST(WebLimits, ThePageCannotBeFramedAndRunsOnlyItsOwnScripts) {
   ApiServer api("xarm");
   const Reply page = api.get("/");

@@ -122,6 +122,48 @@ TEST(ControlLease, OneHolderAtATime) {
   EXPECT_EQ(refusal([] { check_client_id("a b", true); }).first, 400);
 }
 
+TEST(ControlLease, EndsWhenItsPageGoesAwayOrAfterIdleTime) {
+  auto now = std::chrono::steady_clock::time_point{};
+  ControlLease lease(std::chrono::seconds(60), std::chrono::seconds(5), [&] { return now; });
+  // A page: its stream open, control taken; quiet for longer than the idle time, it keeps it.
+  lease.stream_opened("page");
+  lease.take("page");
+  now += std::chrono::minutes(10);
+  EXPECT_TRUE(lease.view("page").you);
+  // Reloaded: a second stream opens before the first closes; closing the first keeps it.
+  lease.stream_opened("page");
+  lease.stream_closed("page");
+  EXPECT_TRUE(lease.view("other").holder);
+  // Its stream dropped and came back within the grace time: still its.
+  lease.stream_closed("page");
+  now += std::chrono::seconds(3);
+  EXPECT_TRUE(lease.view("page").you);
+  lease.stream_opened("page");
+  now += std::chrono::seconds(30);
+  EXPECT_TRUE(lease.view("page").you);
+  // Closed: its last stream ends, and control with it once the grace time has passed.
+  lease.stream_closed("page");
+  now += std::chrono::seconds(4);
+  EXPECT_TRUE(lease.view("other").holder);
+  now += std::chrono::seconds(1);
+  EXPECT_FALSE(lease.view("other").holder);
+  // A script without a stream keeps control while it sends requests, and loses it 60 s after
+  // its last one.
+  lease.take("script");
+  now += std::chrono::seconds(50);
+  lease.seen("script");
+  now += std::chrono::seconds(50);
+  EXPECT_TRUE(lease.view("script").you);
+  now += std::chrono::seconds(11);
+  EXPECT_FALSE(lease.view("other").holder);
+  EXPECT_EQ(refusal([&] { lease.require("script"); }).first, 409);
+  // Another client's stream closing changes nothing.
+  lease.take("script");
+  lease.stream_opened("watcher");
+  lease.stream_closed("watcher");
+  EXPECT_TRUE(lease.view("script").you);
+}
+
 TEST(ProgramCheck, ErrorsArePlacedAtTheirLine) {
   const PlacedError e = place_error("program:12:5: found 'x', expected a move");
   EXPECT_EQ(e.file, "program");

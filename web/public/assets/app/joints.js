@@ -48,11 +48,22 @@ export function initJoints(model) {
       row.holdUntil = performance.now() + HOLD_AFTER_RELEASE_MS;
       move(joint.name, slider.value);
     });
-    target.addEventListener('change', () => {
+    const send = () => {
       if (target.value === '') return;
       row.holdUntil = performance.now() + HOLD_AFTER_RELEASE_MS;
       slider.value = target.value;
       move(joint.name, target.value);
+    };
+    // 'change' fires only when the value changed: Enter sends again what was refused (busy).
+    let sentByEnter = false;
+    target.addEventListener('keydown', (event) => {
+      if (event.key !== 'Enter') return;
+      sentByEnter = true;
+      send();
+    });
+    target.addEventListener('change', () => {
+      if (sentByEnter) { sentByEnter = false; return; }  // already sent by its Enter
+      send();
     });
 
     root.append(el('div', { class: 'joint' },

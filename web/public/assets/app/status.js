@@ -7,6 +7,14 @@ const MAX_ERRORS = 4;
 
 export function showError(message) {
   const list = $('#errors');
+  // One banner per error: the same message again (a request's answer and the state's
+  // last_error say the same thing) moves its banner to the top instead of adding another.
+  for (const item of list.children) {
+    if (item.firstElementChild && item.firstElementChild.textContent === message) {
+      list.prepend(item);
+      return;
+    }
+  }
   const item = el('div', { class: 'error', role: 'alert' },
     el('span', {}, message),
     el('button', { type: 'button', class: 'dismiss', 'aria-label': 'Dismiss error', onclick: () => item.remove() }, '×'));
@@ -67,10 +75,13 @@ export function initStatus(model) {
   });
   onApiError((error) => showError(`${error.method} ${error.path}: ${error.message}${error.status ? ` (${error.status})` : ''}`));
 
-  let streamUp = true;
+  let streamUp = false;
+  let everUp = false;
   let lastLink = null;
   const renderLink = () => {
     const link = $('#link-state');
+    // Before the event stream first opens the page is connecting, not broken.
+    if (!streamUp && !everUp) { link.textContent = 'connecting…'; link.className = 'muted'; return; }
     if (!streamUp) { link.textContent = 'no connection to armctl serve'; link.className = 'bad'; return; }
     if (!lastLink) return;
     // A device armctl serve does not open again (a Robot Commands board) needs a restart.
@@ -78,7 +89,7 @@ export function initStatus(model) {
     link.textContent = lastLink.ok ? 'ok' : `down: ${lastLink.error || 'no answer'}${restart}`;
     link.className = lastLink.ok ? 'ok' : 'bad';
   };
-  onConnection((up) => { streamUp = up; renderLink(); });
+  onConnection((up) => { streamUp = up; everUp = everUp || up; renderLink(); });
   let lastErrorShown = '';
   onState((state) => {
     lastLink = state.link;
