@@ -92,9 +92,12 @@ TEST(BusCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
       // Numeric options name the option, the value and the range (not "Could not convert").
       {"bus --retries 99 ping", "--retries: 99 is outside 0..10"},
       {"bus --retries -1 ping", "--retries: -1 is outside 0..10"},
-      {"sim scara --baud 99999999999", "--baud: 99999999999 is outside 1..4000000"},
-      {"sim scara --baud fast", "--baud: 'fast' is not a whole number (allowed 1..4000000)"},
-      {"sim xarm --baud 99999999999", "--baud: 99999999999 is outside 1..4000000"},
+      // One message for every wrong --baud, listing the standard rates.
+      {"sim scara --baud 99999999999", "--baud: 99999999999 is not a standard rate (allowed: "},
+      {"sim scara --baud fast", "--baud: fast is not a standard rate (allowed: "},
+      {"sim scara --baud 0", "--baud: 0 is not a standard rate (allowed: "},
+      {"sim xarm --baud 99999999999", "--baud: 99999999999 is not a standard rate (allowed: "},
+      {"sim xarm --baud 12345", "--baud: 12345 is not a standard rate (allowed: "},
       {"sim xarm --battery -1", "--battery: -1 is outside 4500..12000"},
       {"sim xarm --battery 4294967296", "--battery: 4294967296 is outside 4500..12000"},
       {"bus --device 'sim?baud=99999999999' ping", "baud 99999999999 is outside 1..4000000"},
@@ -165,6 +168,8 @@ TEST(SimScaraCli, BadBaudIsRefused) {
   const CliRun r = armctl("sim scara --listen /tmp/armctl-never.sock --baud 12345");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.out.find("not a standard rate"), std::string::npos) << r.out;
+  // The same mistake, the same exit status, whatever the number (was 105 for 0, 1 for 12345).
+  EXPECT_EQ(armctl("sim scara --listen /tmp/armctl-never.sock --baud 0").status, r.status);
 }
 
 }  // namespace

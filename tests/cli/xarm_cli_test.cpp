@@ -495,6 +495,11 @@ TEST_F(XarmCli, AgainstASimXarmProcess) {
   docs = json_lines(stop.out);
   ASSERT_FALSE(docs.empty());
   EXPECT_EQ(docs.front()["event"], "stopped") << stop.out;
+  // In text, the board's event says it once (it was printed twice).
+  ASSERT_EQ(xarm(dev + "group run 5 --times 0").status, 0);
+  const Outcome stop_text = xarm(dev + "group stop");
+  ASSERT_EQ(stop_text.status, 0) << stop_text.err;
+  EXPECT_EQ(stop_text.out.find("stopped"), stop_text.out.rfind("stopped")) << stop_text.out;
   ASSERT_EQ(xarm(dev + "group erase all").status, 0);
   EXPECT_NE(xarm(dev + "group run 5 --wait").status, 0);
 

@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 
 #include "core/printable.hpp"
+#include "transport/serial_port.hpp"
 
 namespace armctl::cli {
 
@@ -45,6 +46,21 @@ CLI::Validator number_in(double min, double max, const std::string& unit, bool a
         return "";
       },
       "NUMBER in " + range);
+}
+
+CLI::Validator standard_baud() {
+  const std::string allowed = transport::standard_bauds_text();
+  return CLI::Validator(
+      [allowed](std::string& text) -> std::string {
+        long long v = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        const bool whole = !text.empty() && ec != std::errc::invalid_argument && end == text.data() + text.size();
+        if (!whole || ec == std::errc::result_out_of_range || v <= 0 || v > transport::kMaxStandardBaud ||
+            !transport::baud_constant(static_cast<std::uint32_t>(v)))
+          return fmt::format("{} is not a standard rate (allowed: {})", printable(text), allowed);
+        return "";
+      },
+      "BAUD (a standard rate)");
 }
 
 }  // namespace armctl::cli

@@ -15,5 +15,7 @@ CLI::Validator whole_number_in(long long min, long long max);
 // A finite number within min..max (no nan, no inf), `unit` is shown after it ("s", "ms").
 // With `above_min`, min itself is refused too (a timeout of 0 s).
 CLI::Validator number_in(double min, double max, const std::string& unit, bool above_min = false);
+// A standard serial line rate (0, 12345 and 99999999999 all get the one message listing them).
+CLI::Validator standard_baud();
 
 }  // namespace armctl::cli

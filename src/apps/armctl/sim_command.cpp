@@ -34,10 +34,6 @@ struct SimArgs {
 };
 
 void run_sim_scara(const SimArgs& args) {
-  if (args.baud != 0 && !transport::baud_constant(args.baud)) {
-    throw ArmctlError(ErrorKind::invalid_argument,
-                      fmt::format("--baud {} is not a standard rate ({})", args.baud, transport::standard_bauds_text()));
-  }
   if (!args.robot_commands && (!args.serve.link.empty() || !args.serve.state_dir.empty()))
     throw ArmctlError(ErrorKind::invalid_argument,
                       "--link and --state-dir belong to --robot-commands (the arm controller's pty); without it "
@@ -78,7 +74,7 @@ void add_sim_command(CLI::App& app) {
   CLI::App* scara = sim->add_subcommand("scara", "The simulated SCARA arm (7 joints on a joint bus) on a unix socket");
   scara->add_option("--listen", args->listen, "Unix socket path (default /tmp/armctl-scara.sock)");
   scara->add_option("--baud", args->baud, "Joint bus baud (default: the config's, 9600)")
-      ->check(whole_number_in(1, transport::kMaxStandardBaud));
+      ->check(standard_baud());
   scara->add_option("--config", args->config, "Arm config file (default config/scara.json)");
   scara->add_flag("--robot-commands", args->robot_commands,
                   "Serve the whole arm as a Robot Commands device on a pty (arm controller inside; prints the pty path)");

@@ -30,10 +30,6 @@ void run_sim_xarm(const SimXarmArgs& args) {
   if (args.battery < 4500 || args.battery > 12000)
     throw ArmctlError(ErrorKind::invalid_argument,
                       fmt::format("--battery {} mV is outside 4500..12000", args.battery));
-  if (!transport::baud_constant(args.baud))
-    throw ArmctlError(ErrorKind::invalid_argument,
-                      fmt::format("--baud {} is not a standard rate (allowed: {})", args.baud,
-                                  transport::standard_bauds_text()));
   xarm::EmulatorRunnerOptions options;
   if (!args.state_dir.empty()) options.emulator.state_dir = args.state_dir;
   options.emulator.battery_millivolts = static_cast<std::uint16_t>(args.battery);
@@ -65,7 +61,7 @@ void add_xarm_options(CLI::App& xarm, const std::shared_ptr<SimXarmArgs>& args) 
   xarm.add_option("--state-dir", args->state_dir,
                   "Keep action groups and saved servo settings here (default: in memory)");
   xarm.add_option("--baud", args->baud, "Line rate for --wire-timing (default 9600)")
-      ->check(whole_number_in(1, transport::kMaxStandardBaud));
+      ->check(standard_baud());
   xarm.add_flag("--wire-timing", args->wire_timing,
                 "Bytes take as long as on a real 8N1 line at --baud");
   xarm.add_option("--battery", args->battery, "Battery voltage in mV, 4500..12000 (default 7500)")

@@ -88,8 +88,11 @@ void print_event(const XarmCli& o, const GroupEvent& e) {
   std::fflush(stdout);
 }
 
-void print_events(const XarmCli& o, Client& c) {
-  while (auto e = c.next_event()) print_event(o, *e);
+// Prints every event the board sent; how many.
+std::size_t print_events(const XarmCli& o, Client& c) {
+  std::size_t n = 0;
+  for (; auto e = c.next_event(); ++n) print_event(o, *e);
+  return n;
 }
 
 void done(const XarmCli& o, const std::string& text) {
@@ -289,8 +292,9 @@ void run_group_stop(const XarmCli& o) {
   auto s = open(o);
   check(s->client->stop_group());
   check(s->client->pump_events(s->client->clock().now() + std::chrono::milliseconds(100)));
-  print_events(o, *s->client);
-  done(o, "group stopped");
+  // A running group's end is the board's own "group stopped" event: said once, not twice.
+  if (print_events(o, *s->client) == 0 || o.json)
+    done(o, "group stop sent");
 }
 
 void run_group_erase(const XarmCli& o) {
