@@ -40,7 +40,7 @@ FUZZ_BUILD := build/fuzz
 FUZZ_SECONDS ?= 60
 TEST_FUZZ_SECONDS ?= 10
 
-.PHONY: all deps deb-deps web-deps configure build test demo bench fuzz firmware flash install clean format
+.PHONY: all deps deb-deps web-deps configure build test demo bench fuzz firmware flash install uninstall clean format
 
 all: build
 
@@ -130,6 +130,15 @@ install: deps
 	$(SUDO) install -d $(UDEV_RULES_DIR)
 	$(SUDO) install -m 0644 udev/50-armctl.rules $(UDEV_RULES_DIR)/50-armctl.rules
 	-$(SUDO) udevadm control --reload-rules && $(SUDO) udevadm trigger
+
+# Removes what `make install` installed from this tree (CMake's install_manifest.txt lists
+# every file) and the udev rule.
+uninstall:
+	@test -f $(RELEASE_BUILD)/install_manifest.txt || { \
+	  echo "make uninstall: $(RELEASE_BUILD)/install_manifest.txt is missing: 'make install' from this tree writes it"; exit 1; }
+	xargs -d '\n' $(SUDO) rm -f -- < $(RELEASE_BUILD)/install_manifest.txt
+	$(SUDO) rm -f $(UDEV_RULES_DIR)/50-armctl.rules
+	-$(SUDO) udevadm control --reload-rules
 
 format:
 	find src tests bench fuzz firmware -name '*.[ch]pp' -o -name '*.[ch]' | xargs clang-format -i

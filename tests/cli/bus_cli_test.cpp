@@ -25,6 +25,12 @@ using armctl::cli_test::CliRun;
 CliRun armctl(const std::string& args) { return armctl::cli_test::run_armctl(args); }
 std::string stdout_only(const std::string& args) { return armctl::cli_test::run_armctl(args, "2>/dev/null").out; }
 
+TEST(Cli, VersionIsTheProjects) {
+  const CliRun r = armctl("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out, std::string("armctl ") + ARMCTL_VERSION + "\n");
+}
+
 TEST(BusCli, ReadsEveryJointOfTheEmbeddedSim) {
   const CliRun r = armctl("bus position all");
   EXPECT_EQ(r.status, 0) << r.out;

@@ -78,6 +78,7 @@ int main(int argc, char** argv) {
   // EFBIG, and the board or command reports that like any other storage error.
   std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"armctl: drive, simulate and program robot arms (xArm, SCARA joint bus)"};
+  app.set_version_flag("--version", std::string("armctl ") + ARMCTL_VERSION);
   app.require_subcommand(1);
   armctl::cli::add_arm_command(app);
   armctl::cli::add_stop_command(app);
