@@ -82,5 +82,17 @@ TEST(TeachCli, RobImportExport) {
   EXPECT_TRUE(contains(bad.out, "offset 0: found bytes")) << bad.out;
 }
 
+// The README's `group import examples/groups/wave.rob` has a file to import: the shipped
+// wave.rob is what armctl's own writer makes of the shipped wave.grp.
+TEST(TeachCli, TheShippedRobFileIsTheShippedGroup) {
+  const std::string examples = std::string(ARMCTL_SOURCE_DIR) + "/examples/groups";
+  const std::string rob = dir() + "/wave.rob";
+  auto e = run_armctl("xarm group export " + examples + "/wave.grp --out " + rob);
+  ASSERT_EQ(e.status, 0) << e.out;
+  EXPECT_EQ(slurp(rob), slurp(examples + "/wave.rob"));
+  auto i = run_armctl("xarm group import " + examples + "/wave.rob --out " + dir() + "/wave.grp");
+  ASSERT_EQ(i.status, 0) << i.out;
+}
+
 }  // namespace
 }  // namespace armctl::cli_test
