@@ -12,11 +12,16 @@ function(armctl_library name)
     add_library(${name} STATIC ${srcs})
     target_include_directories(${name} PUBLIC ${includes})
     target_link_libraries(${name} PUBLIC ${L_DEPS})
+    # The headers need C++20: a project that links the installed library gets it without
+    # setting CMAKE_CXX_STANDARD. Only on the install interface: in this tree the standard is
+    # set once (CMakeLists.txt), and the ROS node's own files must stay C++17.
+    target_compile_features(${name} INTERFACE $<INSTALL_INTERFACE:cxx_std_20>)
     armctl_warnings(${name})
   else()
     add_library(${name} INTERFACE)
     target_include_directories(${name} INTERFACE ${includes})
     target_link_libraries(${name} INTERFACE ${L_DEPS})
+    target_compile_features(${name} INTERFACE $<INSTALL_INTERFACE:cxx_std_20>)
   endif()
   if(NOT L_NO_INSTALL)
     string(REGEX REPLACE "^armctl_" "" export_name ${name})
