@@ -31,6 +31,50 @@ TEST(Cli, VersionIsTheProjects) {
   EXPECT_EQ(r.out, std::string("armctl ") + ARMCTL_VERSION + "\n");
 }
 
+// Exit statuses (README "Exit status"): 2 for every usage error (CLI11 had 105, 106, 109).
+TEST(Cli, UsageErrorsExitTwo) {
+  for (const char* args : {"bus --retries 99 ping", "bus", "frobnicate", "bus ping 1 --nope", "arm move-joints"}) {
+    const CliRun r = armctl(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.out;
+  }
+  EXPECT_EQ(armctl("--help").status, 0);
+}
+
+// A move stopped by Ctrl-C exits 130 (128 + SIGINT), as a shell reports an interrupted
+// command; it exited 1, like any failure.
+TEST(Cli, AMoveStoppedByCtrlCExits130) {
+  int out[2];
+  ASSERT_EQ(::pipe(out), 0);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::dup2(out[1], STDOUT_FILENO);
+    ::dup2(out[1], STDERR_FILENO);
+    const std::string bin = std::string(ARMCTL_BINARY_DIR) + "/armctl";
+    // The emulated xArm runs in real time: the square's 8 s of lines are under way when
+    // SIGINT comes.
+    const std::string square = std::string(ARMCTL_SOURCE_DIR) + "/examples/paths/xarm-square.path";
+    ::execl(bin.c_str(), bin.c_str(), "arm", "path", square.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ::close(out[1]);
+  // The first move's report says the lines run now (no fixed sleep).
+  char buffer[256];
+  std::string rest;
+  while (rest.find("done in") == std::string::npos) {
+    const ssize_t n = ::read(out[0], buffer, sizeof buffer);
+    ASSERT_GT(n, 0) << "the path ended early: " << rest;
+    rest.append(buffer, std::size_t(n));
+  }
+  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  for (ssize_t n; (n = ::read(out[0], buffer, sizeof buffer)) > 0;) rest.append(buffer, std::size_t(n));
+  ::close(out[0]);
+  int st = 0;
+  ASSERT_EQ(::waitpid(pid, &st, 0), pid);
+  ASSERT_TRUE(WIFEXITED(st)) << rest;
+  EXPECT_EQ(WEXITSTATUS(st), 130) << rest;
+}
+
 TEST(BusCli, ReadsEveryJointOfTheEmbeddedSim) {
   const CliRun r = armctl("bus position all");
   EXPECT_EQ(r.status, 0) << r.out;

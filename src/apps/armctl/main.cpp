@@ -12,6 +12,7 @@
 #include <fmt/core.h>
 
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/serve_support.hpp"
 #include "core/error.hpp"
 #include "core/printable.hpp"
 
@@ -70,6 +71,15 @@ void name_missing_subcommands(CLI::App& app) {
   });
 }
 
+// Exit statuses (README "Exit status"): 0 done, 1 failed, 2 a usage error, 128 + N a
+// command that ended because signal N stopped it (130: Ctrl-C), as shells report it.
+constexpr int kUsageError = 2;
+
+int failure_status() {
+  const int signal = armctl::cli::last_stop_signal();
+  return signal != 0 ? 128 + signal : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -111,23 +121,24 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     try {
-      // Usage errors: message on stderr, exit status 2 (106 for CLI11 internals). CLI11 echoes
-      // the arguments it did not expect: they pass through report() like every message.
+      // Usage errors: message on stderr, exit status 2 whatever CLI11's own code (105, 106,
+      // 109...); --help and --version exit 0. CLI11 echoes the arguments it did not expect:
+      // they pass through report() like every message.
       std::ostringstream message;
       const int status = app.exit(e, std::cout, message);
       std::string text = message.str();
       if (!text.empty() && text.back() == '\n') text.pop_back();
       if (!text.empty()) report(text);
-      return status;
+      return status == 0 ? 0 : kUsageError;
     } catch (const std::exception&) {
       return 2;
     }
   } catch (const armctl::ArmctlError& e) {
     report(fmt::format("armctl: {}: {}", armctl::to_string(e.error().kind), e.what()));
-    return 1;
+    return failure_status();
   } catch (const std::exception& e) {
     report(fmt::format("armctl: error: {}", e.what()));
-    return 1;
+    return failure_status();
   }
   // Output that did not reach stdout (a full disk, /dev/full, a closed pipe) is a failure:
   // a script must not read "0" as "printed".

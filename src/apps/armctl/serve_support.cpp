@@ -32,12 +32,17 @@ namespace {
 
 void (*g_stop)(void*) = nullptr;
 void* g_context = nullptr;
+std::atomic<int> g_last_signal{0};  // lock-free: a signal handler may store it
+static_assert(std::atomic<int>::is_always_lock_free);
 
-extern "C" void on_stop_signal(int) {
+extern "C" void on_stop_signal(int signal) {
+  g_last_signal.store(signal);
   if (g_stop != nullptr) g_stop(g_context);
 }
 
 }  // namespace
+
+int last_stop_signal() { return g_last_signal.load(); }
 
 StopOnSignals::StopOnSignals(void (*stop)(void*), void* context) {
   g_stop = stop;

@@ -42,6 +42,10 @@ class StopOnSignals {
   struct sigaction old_pipe_ {};
 };
 
+// The signal (SIGINT, SIGTERM) that last asked this process to stop, 0 if none: a command
+// that fails after one was interrupted by it (main exits 128 + the signal: 130 for Ctrl-C).
+int last_stop_signal();
+
 // For a command that loops until Ctrl-C (xarm watch, group run --wait): the flag it checks.
 struct Interrupted {
   std::atomic<bool> flag{false};
