@@ -127,7 +127,7 @@ demo:
 	@mkdir -p $(DEMO_BUILD)
 	cmake -S . -B $(DEMO_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF \
 	  -DARMCTL_TESTS=OFF -DARMCTL_BENCH=OFF -DARMCTL_FIRMWARE=OFF -DARMCTL_HIL=OFF -DARMCTL_PYTHON=OFF \
-	  -DARMCTL_ROS=OFF > $(DEMO_BUILD)/configure.log || { cat $(DEMO_BUILD)/configure.log; exit 1; }
+	  -DARMCTL_ROS=OFF -DARMCTL_QUICK_BUILD=ON > $(DEMO_BUILD)/configure.log || { cat $(DEMO_BUILD)/configure.log; exit 1; }
 	@echo "[demo] building $(DEMO_BUILD)/armctl on $(JOBS) cores (a first build takes a few minutes; then seconds)"
 	cmake --build $(DEMO_BUILD) -j $(JOBS) --target armctl
 	./scripts/demo.sh $(DEMO_BUILD)/armctl
