@@ -1,5 +1,5 @@
 # armctl — the README's commands. Each target does its own setup on a fresh Debian 12.
-#   make demo   build armctl and drive the embedded simulated arm
+#   make demo   build an optimised armctl only (build/demo) and drive the simulated arms
 #   make test   build with ASan+UBSan and run the whole test suite (CTest)
 #   make bench  build optimised and run the benchmarks (BENCH lines)
 #   make fuzz   run the libFuzzer targets for longer (FUZZ_SECONDS=60)
@@ -19,11 +19,19 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
   libgeometry-msgs-dev libdiagnostic-msgs-dev libstd-msgs-dev libstd-srvs-dev libtf2-ros-dev \
   python3-genmsg python3-gencpp python3-rosmaster ros-robot-state-publisher python3-roslaunch
 
+# What `make demo` installs: only what configuring and building the armctl CLI (Release)
+# needs, and python3 for the demo's picture (scripts/demo_picture.py). Not the test, benchmark,
+# firmware, Python-module or ROS packages above: the demo builds none of that.
+DEMO_PACKAGES := build-essential cmake ninja-build pkg-config \
+  libcli11-dev libfmt-dev nlohmann-json3-dev libhidapi-dev libgpiod-dev \
+  libeigen3-dev liburdfdom-dev libcpp-httplib-dev python3
+
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 JOBS ?= 2
 BUILD := build
 BENCH_BUILD := build/bench-release
 RELEASE_BUILD := build/release
+DEMO_BUILD := build/demo
 PREFIX ?= /usr/local
 UDEV_RULES_DIR ?= /etc/udev/rules.d
 # The test and benchmark builds need the firmware and its HIL tests (avr-gcc, simavr): ON
@@ -40,7 +48,7 @@ FUZZ_BUILD := build/fuzz
 FUZZ_SECONDS ?= 60
 TEST_FUZZ_SECONDS ?= 10
 
-.PHONY: all deps deb-deps web-deps configure build test demo bench fuzz firmware flash install uninstall clean format
+.PHONY: all deps deb-deps demo-deps web-deps configure build test demo bench fuzz firmware flash install uninstall clean format
 
 all: build
 
@@ -48,9 +56,12 @@ all: build
 # packages, then the dashboard's npm packages (armctl embeds them, so every build needs them).
 deps: deb-deps web/node_modules
 
+# $(call missing_packages,LIST): the shell words that print the packages of LIST not installed.
+missing_packages = for p in $(1); do \
+	    dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done
+
 deb-deps:
-	@missing=$$(for p in $(DEB_PACKAGES); do \
-	    dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
+	@missing=$$($(call missing_packages,$(DEB_PACKAGES))); \
 	if [ -n "$$missing" ]; then \
 	  echo "Installing Debian packages: $$missing"; \
 	  $(SUDO) apt-get update && \
@@ -72,7 +83,20 @@ deb-deps:
 # embeds web/vendor.txt's files (cmake/WebAssets.cmake) and finds playwright-core for the tests.
 web-deps: web/node_modules
 
-web/node_modules: web/package-lock.json | deb-deps
+# demo-deps: DEMO_PACKAGES, and node + npm when the commands are missing (armctl embeds the
+# dashboard's npm packages, so configuring it needs web/node_modules); one apt-get run.
+demo-deps:
+	@missing=$$($(call missing_packages,$(DEMO_PACKAGES)); \
+	  command -v node >/dev/null || echo nodejs; command -v npm >/dev/null || echo npm); \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing Debian packages: $$missing"; \
+	  $(SUDO) apt-get update && \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y --no-install-recommends $$missing; \
+	fi
+
+# NODE_SETUP: what installs node and npm first (make demo passes demo-deps).
+NODE_SETUP ?= deb-deps
+web/node_modules: web/package-lock.json | $(NODE_SETUP)
 	cd web && npm ci --no-audit --no-fund
 	touch $@
 
@@ -92,8 +116,21 @@ test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600 -LE long --repeat until-pass:2
 	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(TEST_FUZZ_SECONDS) FUZZ_SEED=1
 
-demo: build
-	./scripts/demo.sh $(BUILD)/armctl
+# The demo builds only what it runs: an optimised armctl in its own tree, no tests, no
+# sanitizers (the test build is 369 targets; this is one), then drives the simulated arms and
+# writes build/demo/demo.svg. How long each step takes, measured: README.md "Quick start".
+demo:
+	@echo "[demo] packages: installing what is missing of: $(DEMO_PACKAGES) (+ nodejs npm)"
+	@$(MAKE) --no-print-directory demo-deps
+	@$(MAKE) --no-print-directory web/node_modules NODE_SETUP=demo-deps
+	@echo "[demo] configuring $(DEMO_BUILD) (Release, the armctl CLI only)"
+	@mkdir -p $(DEMO_BUILD)
+	cmake -S . -B $(DEMO_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF \
+	  -DARMCTL_TESTS=OFF -DARMCTL_BENCH=OFF -DARMCTL_FIRMWARE=OFF -DARMCTL_HIL=OFF -DARMCTL_PYTHON=OFF \
+	  -DARMCTL_ROS=OFF -DARMCTL_QUICK_BUILD=ON > $(DEMO_BUILD)/configure.log || { cat $(DEMO_BUILD)/configure.log; exit 1; }
+	@echo "[demo] building $(DEMO_BUILD)/armctl on $(JOBS) cores (a first build takes a few minutes; then seconds)"
+	cmake --build $(DEMO_BUILD) -j $(JOBS) --target armctl
+	./scripts/demo.sh $(DEMO_BUILD)/armctl
 
 bench: deps
 	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF $(WITH_FIRMWARE) -DARMCTL_PYTHON=OFF $(WITH_ROS)

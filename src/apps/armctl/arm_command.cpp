@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "apps/armctl/arm_motion.hpp"
 #include "apps/armctl/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/motion_trace.hpp"
 #include "apps/armctl/number_options.hpp"
 #include "arm/arm_calibration.hpp"
 #include "core/error.hpp"
@@ -41,6 +43,7 @@ struct ArmArgs {
   std::string zone;
   std::string speed_override;
   std::string path_file;
+  std::string trace;  // path --trace FILE
 };
 
 [[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
@@ -280,9 +283,12 @@ void run_move_linear(const ArmArgs& a) {
 void run_path(const ArmArgs& a) {
   const motion::PathFile file = must(motion::read_path_file(a.path_file));
   if (file.moves.empty()) usage(fmt::format("{} has no moves", a.path_file));
-  const MotionCliOptions options = motion_cli_options(a);
+  MotionCliOptions options = motion_cli_options(a);
+  std::optional<MotionTrace> trace;  // opened before anything moves: a bad path is refused first
+  if (!a.trace.empty()) options.trace = &trace.emplace(a.trace);
   auto s = open_arm_session(a.arm, a.device);
   run_path_moves(*s, file.moves, options);
+  if (trace) trace->finish();
   ArmArgs waited = a;
   waited.wait = true;
   after_move(waited, *s, std::nullopt);
@@ -431,6 +437,8 @@ void add_arm_command(CLI::App& app) {
   auto* path = cmd->add_subcommand("path", "Run a path file: PTP, LIN and CIRC moves with speeds and fly-by zones");
   path->add_option("file", a->path_file, "Path file (docs/paths.md)")->required();
   path->add_option("--override", a->speed_override, "Percent of the programmed speeds (default 100%)");
+  path->add_option("--trace", a->trace, "Write the tool's planned and measured positions to FILE (CSV, mm)")
+      ->check(trace_file_check());
   path->callback([a] { run_path(*a); });
 
   cmd->add_subcommand("stop", "Stop every joint where it stands and hold it")->callback([a] { run_stop(*a); });

@@ -9,6 +9,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "apps/armctl/motion_trace.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "arm/motion_executor.hpp"
 #include "arm/motion_planning.hpp"
@@ -205,6 +206,7 @@ void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& mo
     auto report = arm::execute_motion(arm, piece.motion, eo);
     if (progress_line) fmt::print(stderr, "\r\033[K");
     if (!report) throw ArmctlError(ErrorKind(report.error().kind), fmt::format("{}: {}", piece.label, report.error().message));
+    if (options.trace) options.trace->add(arm, piece.line, piece.motion, *report);
     const double following_mm = tool_following_error(arm, *report);
     // Cartesian pieces only (a plain double: g++ 12 at -O2 warns on an optional here).
     const double path_mm = piece.path ? tool_path_error(arm, *report, *piece.path) : 0.0;

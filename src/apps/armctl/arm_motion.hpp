@@ -13,9 +13,12 @@
 
 namespace armctl::cli {
 
+class MotionTrace;  // apps/armctl/motion_trace.hpp
+
 struct MotionCliOptions {
   bool json = false;
   double speed_override = 1.0;  // (0, 1]
+  MotionTrace* trace = nullptr;  // --trace FILE: every piece's plan and read-backs
 };
 
 // A path file's moves, or one move from the command line (line 0). Throws ArmctlError

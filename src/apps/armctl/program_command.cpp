@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <fmt/core.h>
@@ -17,6 +18,7 @@
 
 #include "apps/armctl/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/motion_trace.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/xarm_args.hpp"
 #include "core/error.hpp"
@@ -47,6 +49,7 @@ struct ProgramArgs {
   bool dry_run = false;
   std::string group;
   std::string path_error;
+  std::string trace;  // run --trace FILE
 };
 
 [[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
@@ -114,6 +117,8 @@ void run_run(const ProgramArgs& a) {
     usage("--dry-run runs on the embedded simulated arm: leave out --device (or drop --dry-run to run on it)");
   const double speed_override = parse_override(a.speed_override);
   const Loaded l = load(a);
+  std::optional<MotionTrace> trace;  // opened before anything moves: a bad path is refused first
+  if (!a.trace.empty()) trace.emplace(a.trace);
   auto s = open_arm_session(a.arm, a.device);
   arm::Arm& arm = *s->arm;
   const auto p = plan(l, arm, !a.step);  // refuses before anything moves
@@ -142,6 +147,8 @@ void run_run(const ProgramArgs& a) {
     };
   o.on_event = [&](const program::RunEvent& e) {
     const auto& piece = *e.piece;
+    if (trace && e.kind == program::RunEventKind::piece_done && e.report)
+      trace->add(arm, piece.first_line, piece.motion, *e.report);
     if (a.json) {
       json j{{"line", piece.first_line}, {"what", piece.label}, {"left_s", e.left}};
       switch (e.kind) {
@@ -178,6 +185,7 @@ void run_run(const ProgramArgs& a) {
     }
   };
   const auto report = must(program::run_plan(arm, p, o));
+  if (trace) trace->finish();
   if (progress_line) fmt::print(stderr, "\r\033[K");
   const double elapsed = std::chrono::duration<double>(report.elapsed).count();
   if (a.json)
@@ -245,6 +253,8 @@ void add_program_command(CLI::App& app) {
   run->add_option("--override", a->speed_override, "Percent of the programmed speeds (default 100%)");
   run->add_flag("--step", a->step, "Wait for Enter before each move (moves are not blended)");
   run->add_flag("--dry-run", a->dry_run, "Run on the embedded simulated arm and print what would happen");
+  run->add_option("--trace", a->trace, "Write the tool's planned and measured positions to FILE (CSV, mm)")
+      ->check(trace_file_check());
   run->callback([a] { run_run(*a); });
   auto* compile = cmd->add_subcommand("compile", "Compile to a Robot Commands action group and download it");
   common(compile);
