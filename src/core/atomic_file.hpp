@@ -5,6 +5,11 @@
 // within a file system), then fsync the directory so the rename itself is durable. A kill
 // before the rename leaves only a stray temporary file (`is_temporary_name`), which loaders
 // delete; the target is untouched.
+//
+// Whose file it is stays the user's to say: a symlink is written through (its target is
+// replaced, the link stays a link), the file keeps its mode (and owner where allowed), and a
+// read-only file is refused, not replaced. Every writer (points files, recordings, group
+// files, .rob files, the board's store and settings) goes through here, so all behave alike.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +25,12 @@ namespace armctl {
 
 Status write_file_atomically(const std::filesystem::path& path,
                              std::span<const std::uint8_t> bytes);
+
+// Whether write_file_atomically(path, ...) would be allowed, asked before work that cannot
+// be redone is spent on its content (a recording made by hand): the directory exists and
+// may be written, the file (through symlinks) is a regular file that is not read-only, or
+// does not exist yet. The error names the path and why, as write_file_atomically's would.
+Status check_writable(const std::filesystem::path& path);
 
 // Removes `path` durably (unlink + fsync of the directory). Missing file: Ok.
 Status remove_file_durably(const std::filesystem::path& path);

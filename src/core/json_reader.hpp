@@ -41,9 +41,10 @@ inline json parse_document(std::string_view text, const std::string& source) {
 }
 
 // The text of a config file: a regular file of at most kMaxConfigBytes, checked before it is
-// read (a directory, a FIFO, a huge or sparse file never is). `what` names it in errors.
+// read (a directory, a FIFO, a huge or sparse file never is), without a leading UTF-8
+// byte-order mark (read_text_file). `what` names it in errors.
 inline std::string read_config_file(const std::filesystem::path& path, std::string_view what) {
-  return read_regular_file(path, what, kMaxConfigBytes).value();
+  return read_text_file(path, what, kMaxConfigBytes).value();
 }
 
 // Reads one JSON object, refusing unknown keys; errors carry "<source>: <path>: ...".

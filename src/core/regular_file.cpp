@@ -12,9 +12,8 @@
 #include "core/printable.hpp"
 
 namespace armctl {
-namespace {
-
 const char* file_type_name(mode_t mode) {
+  if (S_ISREG(mode)) return "a regular file";
   if (S_ISDIR(mode)) return "a directory";
   if (S_ISFIFO(mode)) return "a FIFO";
   if (S_ISSOCK(mode)) return "a socket";
@@ -22,6 +21,8 @@ const char* file_type_name(mode_t mode) {
   if (S_ISBLK(mode)) return "a block device";
   return "not a file";
 }
+
+namespace {
 
 struct Fd {
   int fd;
@@ -67,6 +68,13 @@ Result<std::string> read_regular_file(const std::filesystem::path& path, std::st
                    fmt::format("{} {} is larger than allowed ({} bytes)", what, name, max_bytes)};
     text.append(buffer, static_cast<std::size_t>(n));
   }
+  return text;
+}
+
+Result<std::string> read_text_file(const std::filesystem::path& path, std::string_view what,
+                                   std::uintmax_t max_bytes) {
+  auto text = read_regular_file(path, what, max_bytes);
+  if (text && std::string_view(*text).starts_with(kUtf8Bom)) text->erase(0, kUtf8Bom.size());
   return text;
 }
 

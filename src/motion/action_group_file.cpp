@@ -199,7 +199,7 @@ Result<ActionGroupFile> read_action_group_file(const std::filesystem::path& path
   // 1,020 actions of 17 servos take about 100 kB; 1 MiB leaves room for comments. A
   // directory or FIFO is refused at once instead of reading as "no actions" or blocking.
   constexpr std::uintmax_t kMaxGroupFileBytes = 1 << 20;
-  auto text = read_regular_file(path, "group file", kMaxGroupFileBytes);
+  auto text = read_text_file(path, "group file", kMaxGroupFileBytes);
   if (!text) return text.error();
   return parse_action_group(*text, path.string());
 }

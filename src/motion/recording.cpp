@@ -216,7 +216,7 @@ Result<Recording> parse_recording(std::string_view text, std::string_view source
 }
 
 Result<Recording> read_recording(const std::filesystem::path& path) {
-  auto text = read_regular_file(path, "recording", kRecordingMaxBytes);
+  auto text = read_text_file(path, "recording", kRecordingMaxBytes);
   if (!text) return text.error();
   return parse_recording(*text, path.string());
 }

@@ -13,6 +13,7 @@
 #include <fmt/core.h>
 
 #include "core/printable.hpp"
+#include "core/regular_file.hpp"
 
 #include "core/json_reader.hpp"
 #include "program/language_words.hpp"
@@ -156,29 +157,99 @@ Result<PointsFile> read_points_file(const std::filesystem::path& path) {
   return parse_points_file(*text, path.string());
 }
 
-std::string format_points_file(const PointsFile& file) {
-  std::string out = "# armctl points: NAME joints=... | NAME x= y= z= [roll= pitch= yaw= elbow=] (docs/programs.md)\n";
+std::string format_point_fields(const Point& p) {
+  constexpr double kDeg = 180 / M_PI;
+  std::string out;
+  if (p.is_joints()) {
+    out += "joints=";
+    for (std::size_t i = 0; i < p.joints.size(); ++i) {
+      const auto& j = p.joints[i];
+      out += (i ? "," : "") +
+             (j.dimension == Dimension::angle ? number(j.value * kDeg) + "deg" : number(j.value * 1e3) + "mm");
+    }
+  } else {
+    out += fmt::format("x={}mm y={}mm z={}mm", number(p.position.x() * 1e3), number(p.position.y() * 1e3),
+                       number(p.position.z() * 1e3));
+    if (p.roll) out += " roll=" + number(*p.roll * kDeg) + "deg";
+    if (p.pitch) out += " pitch=" + number(*p.pitch * kDeg) + "deg";
+    if (p.yaw) out += " yaw=" + number(*p.yaw * kDeg) + "deg";
+    if (p.elbow) out += std::string(" elbow=") + motion::to_string(*p.elbow);
+  }
+  return out;
+}
+
+namespace {
+
+std::size_t name_width(const PointsFile& file) {
   std::size_t width = 0;
   for (const Point& p : file.points) width = std::max(width, p.name.size());
-  constexpr double kDeg = 180 / M_PI;
-  for (const Point& p : file.points) {
-    out += fmt::format("{:<{}}", p.name, width);
-    if (p.is_joints()) {
-      out += " joints=";
-      for (std::size_t i = 0; i < p.joints.size(); ++i) {
-        const auto& j = p.joints[i];
-        out += (i ? "," : "") +
-               (j.dimension == Dimension::angle ? number(j.value * kDeg) + "deg" : number(j.value * 1e3) + "mm");
-      }
-    } else {
-      out += fmt::format(" x={}mm y={}mm z={}mm", number(p.position.x() * 1e3), number(p.position.y() * 1e3),
-                         number(p.position.z() * 1e3));
-      if (p.roll) out += " roll=" + number(*p.roll * kDeg) + "deg";
-      if (p.pitch) out += " pitch=" + number(*p.pitch * kDeg) + "deg";
-      if (p.yaw) out += " yaw=" + number(*p.yaw * kDeg) + "deg";
-      if (p.elbow) out += std::string(" elbow=") + motion::to_string(*p.elbow);
+  return width;
+}
+
+bool same_value(Point a, const Point& b) {
+  a.line = b.line;
+  return a == b;
+}
+
+}  // namespace
+
+std::string format_points_file(const PointsFile& file) {
+  std::string out = "# armctl points: NAME joints=... | NAME x= y= z= [roll= pitch= yaw= elbow=] (docs/programs.md)\n";
+  const std::size_t width = name_width(file);
+  for (const Point& p : file.points) out += fmt::format("{:<{}} {}\n", p.name, width, format_point_fields(p));
+  return out;
+}
+
+Result<std::string> update_points_text(std::string_view text, const PointsFile& file, std::string_view source) {
+  const std::string_view bom = text.starts_with(kUtf8Bom) ? kUtf8Bom : std::string_view();
+  text.remove_prefix(bom.size());
+  auto old = parse_points_file(text, source);
+  if (!old)
+    return Error{old.error().kind, fmt::format("{}; the file is left as it is (fix it, then save again)", old.error().message)};
+  std::string out(bom);
+  std::set<std::string, std::less<>> kept;
+  std::size_t pos = 0, line_no = 0;
+  auto point = old->points.begin();  // in line order, as parsed
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    end = end == std::string_view::npos ? text.size() : end + 1;
+    const std::string_view line = text.substr(pos, end - pos);
+    pos = end;
+    ++line_no;
+    if (point == old->points.end() || point->line != line_no) {
+      out += line;  // a comment, a blank line
+      continue;
     }
-    out += "\n";
+    const Point& was = *point++;
+    const Point* now = file.find(was.name);
+    if (now == nullptr) continue;  // deleted: its line goes
+    kept.insert(was.name);
+    if (same_value(*now, was)) {
+      out += line;
+      continue;
+    }
+    // The fields between the name (and the blanks after it) and the last field; the
+    // indentation, the alignment, a trailing comment and the line's end stay.
+    const std::string_view code = line.substr(0, std::min(line.find('#'), line.size()));
+    std::size_t from = 0;
+    while (from < code.size() && blank(code[from])) ++from;
+    from += was.name.size();
+    while (from < code.size() && blank(code[from])) ++from;
+    std::size_t to = code.size();
+    while (to > from && (blank(code[to - 1]) || code[to - 1] == '\n')) --to;
+    out += line.substr(0, from);
+    out += format_point_fields(*now);
+    out += line.substr(to);
+  }
+  // New points at the end, in the file's line ending, their names padded as the writer does.
+  const std::size_t first_newline = text.find('\n');
+  const std::string_view newline =
+      first_newline != std::string_view::npos && first_newline > 0 && text[first_newline - 1] == '\r' ? "\r\n" : "\n";
+  const std::size_t width = name_width(file);
+  for (const Point& p : file.points) {
+    if (kept.contains(p.name)) continue;
+    if (!out.empty() && out.back() != '\n') out += newline;
+    out += fmt::format("{:<{}} {}{}", p.name, width, format_point_fields(p), newline);
   }
   return out;
 }
@@ -186,7 +257,18 @@ std::string format_points_file(const PointsFile& file) {
 Status write_points_file(const std::filesystem::path& path, const PointsFile& file) {
   for (const Point& p : file.points)
     if (auto why = bad_name(p.name)) return Error{ErrorKind::invalid_argument, fmt::format("point '{}': {}", shown(p.name), *why)};
-  const std::string text = format_points_file(file);
+  // A file that is there is updated in its own words; read as it is (byte-order mark kept).
+  std::string text;
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) {
+    auto old = read_regular_file(path, "points file", json_reader::kMaxConfigBytes);
+    if (!old) return old.error();
+    auto updated = update_points_text(*old, file, path.string());
+    if (!updated) return updated.error();
+    text = std::move(updated).value();
+  } else {
+    text = format_points_file(file);
+  }
   return write_file_atomically(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 

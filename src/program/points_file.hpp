@@ -62,7 +62,21 @@ Result<PointsFile> read_points_file(const std::filesystem::path& path);
 // Text people read: lengths in mm, angles in deg, shortest round-trip digits, so
 // parse_points_file(format_points_file(f)) gives f back (values to within 1e-12 relative).
 std::string format_points_file(const PointsFile& file);
-// Writes atomically (a temporary file renamed over `path`), so a crash leaves the old file.
+// One point's fields as format_points_file writes them ("joints=10deg,20deg").
+std::string format_point_fields(const Point& point);
+
+// `text` (a points file as it is on disk, a UTF-8 byte-order mark allowed and kept) made to
+// hold `file` while keeping what a person wrote: comments, blank lines, line endings, the
+// order, and the exact line of every point whose value did not change. A changed point gets
+// new fields in its own line (its indentation, alignment and trailing comment kept); a point
+// not in `file` loses its line; a point new to the text is appended. Text that does not
+// parse is an error (`source` names it): nothing of it is guessed at.
+Result<std::string> update_points_text(std::string_view text, const PointsFile& file, std::string_view source);
+
+// Writes `file` to `path`: an existing file through update_points_text (so teaching or
+// saving one point changes that point's line only), a new one as format_points_file.
+// Atomically (core/atomic_file.hpp: a crash leaves the old file; a symlink is written
+// through, the mode kept, a read-only file refused).
 Status write_points_file(const std::filesystem::path& path, const PointsFile& file);
 
 // Whether `name` may name a point (or a variable, or a subroutine) of a program, and if

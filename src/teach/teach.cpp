@@ -4,6 +4,8 @@
 
 #include <fmt/core.h>
 
+#include "core/atomic_file.hpp"
+
 namespace armctl::teach {
 
 Result<std::unique_ptr<LimpArm>> LimpArm::make(arm::Arm& arm) {
@@ -68,6 +70,8 @@ Result<std::size_t> teach_points(arm::Arm& arm, const std::filesystem::path& poi
     if (!read) return read.error();
     file = std::move(read).value();
   }
+  // A file that cannot be written is said now, not after the arm was moved by hand.
+  if (auto s = check_writable(points_path); !s) return s.error();
   auto limp = LimpArm::make(arm);
   if (!limp) return limp.error();
   io.say(fmt::format("torque off: move the arm by hand; Enter records a point (type a name first, or "

@@ -48,7 +48,10 @@ struct TeachIo {
 // torque off, then each line records where the arm stands under the name typed (spaces
 // around it ignored), or p1, p2, ... (the first free) for an empty line; a name already in
 // the file is replaced. The file is written after every point. A bad name is said and
-// nothing recorded; teaching goes on. Returns the number of points recorded.
+// nothing recorded; teaching goes on. The file is written keeping its comments and every
+// other line (program::write_points_file). A file that does not parse or cannot be written
+// (read-only, no such directory) is refused before torque goes off. Returns the number of
+// points recorded.
 Result<std::size_t> teach_points(arm::Arm& arm, const std::filesystem::path& points_path, const TeachIo& io);
 
 struct RecordOptions {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -45,6 +46,39 @@ TEST(TeachCli, RecordThenReplayOnBothArms) {
     ASSERT_EQ(p.status, 0) << p.out;
     EXPECT_TRUE(contains(p.out, "replay through")) << p.out;
   }
+}
+
+// A motion made by hand cannot be made again: an --out that cannot be written (no such
+// directory, a read-only file) is refused before torque goes off, and nothing is written.
+TEST(TeachCli, RecordRefusesAnOutputItCannotWriteBeforeTorqueOff) {
+  const std::string missing = dir() + "/nodir/x.rec";
+  std::filesystem::remove_all(dir() + "/nodir");
+  auto r = run_armctl("teach --record 20Hz --out " + missing + " --duration 1s </dev/null");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_TRUE(contains(r.out, "armctl: I/O error: cannot write " + missing + ": directory " + dir() +
+                                  "/nodir does not exist; nothing recorded, torque not switched off"))
+      << r.out;
+  EXPECT_FALSE(contains(r.out, "torque off")) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(dir() + "/nodir"));
+
+  const std::string readonly = dir() + "/cli-readonly.rec";
+  std::filesystem::remove(readonly);
+  std::ofstream(readonly) << "mine\n";
+  std::filesystem::permissions(readonly, std::filesystem::perms::owner_read);
+  r = run_armctl("teach --record 20Hz --out " + readonly + " --duration 1s </dev/null");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_TRUE(contains(r.out, "cannot write " + readonly + ": it is read-only (mode 0400)")) << r.out;
+  EXPECT_FALSE(contains(r.out, "torque off")) << r.out;
+  EXPECT_EQ(slurp(readonly), "mine\n");
+}
+
+// Teaching into a file a person wrote keeps their comments; a byte-order mark is no error.
+TEST(TeachCli, PointsKeepTheFilesCommentsAndByteOrderMark) {
+  const std::string points = dir() + "/cli-kept.points";
+  std::ofstream(points, std::ios::binary) << "\xEF\xBB\xBF# my cell\nhome joints=10deg  # safe\n";
+  auto r = run_armctl("teach --points " + points + " <<'EOF'\npick\nEOF\n");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(slurp(points), "\xEF\xBB\xBF# my cell\nhome joints=10deg  # safe\npick joints=0deg,0deg,0deg,0deg,0deg,0deg\n");
 }
 
 TEST(TeachCli, RefusesBadArgumentsAndRecordings) {

@@ -1,5 +1,6 @@
 // read_regular_file(): a directory, a FIFO or an oversized (even sparse) file is refused at
-// once with the path named; a regular file within the limit is read whole.
+// once with the path named; a regular file within the limit is read whole. read_text_file():
+// the same without a leading UTF-8 byte-order mark.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -74,6 +75,19 @@ TEST_F(RegularFile, AMissingFileAndControlCharactersInItsNameAreReported) {
   ASSERT_FALSE(text);
   EXPECT_TRUE(contains(text.error().message, "\\x1b]0;x\\x07.grp: no such file")) << text.error().message;
   EXPECT_FALSE(contains(text.error().message, "\x1b"));
+}
+
+TEST_F(RegularFile, ATextFileIsReadWithoutItsByteOrderMark) {
+  std::ofstream(dir_ / "a.prog", std::ios::binary) << "\xEF\xBB\xBFptp home\n";
+  auto text = read_text_file(dir_ / "a.prog", "program", 1024);
+  ASSERT_TRUE(text) << text.error().message;
+  EXPECT_EQ(*text, "ptp home\n");
+  // Only a mark at the start, only once; the raw reader keeps every byte (binary files).
+  std::ofstream(dir_ / "b.prog", std::ios::binary) << "\xEF\xBB\xBF\xEF\xBB\xBFx \xEF\xBB\xBF";
+  EXPECT_EQ(*read_text_file(dir_ / "b.prog", "program", 1024), "\xEF\xBB\xBFx \xEF\xBB\xBF");
+  EXPECT_EQ(*read_regular_file(dir_ / "a.prog", "program", 1024), "\xEF\xBB\xBFptp home\n");
+  std::ofstream(dir_ / "c.prog", std::ios::binary) << "\xEF\xBB";
+  EXPECT_EQ(*read_text_file(dir_ / "c.prog", "program", 1024), "\xEF\xBB");
 }
 
 }  // namespace

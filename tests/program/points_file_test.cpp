@@ -4,11 +4,13 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <string>
 
 #include <unistd.h>
 
+#include "motion/path_file.hpp"
 #include "program/points_file.hpp"
 
 namespace armctl::program {
@@ -20,6 +22,12 @@ std::string error_of(std::string_view text) {
   auto r = parse_points_file(text, "p.points");
   EXPECT_FALSE(r.ok()) << text;
   return r ? std::string() : r.error().message;
+}
+
+PointsFile read_back(std::string_view text) {
+  auto r = parse_points_file(text.substr(text.starts_with("\xEF\xBB\xBF") ? 3 : 0), "p.points");
+  EXPECT_TRUE(r.ok()) << (r ? "" : r.error().message);
+  return r ? std::move(r).value() : PointsFile{};
 }
 
 TEST(PointsFile, ReadsJointsAndPoses) {
@@ -115,6 +123,80 @@ TEST(PointsFile, WritesAtomicallyAndRefusesBadNames) {
   ASSERT_FALSE(bad);
   EXPECT_EQ(bad.error().message, "point 'while': 'while' is a word of the program language");
   EXPECT_EQ(read_points_file(path)->points[0].name, "p1");  // the old file is kept
+  std::filesystem::remove(path);
+}
+
+// What a person wrote stays: a byte-order mark, comments, blank lines, CRLF line ends, the
+// order, odd spacing and number forms of untouched points, a changed point's alignment and
+// trailing comment; a removed point's line goes, a new one comes last.
+TEST(PointsFile, UpdatingKeepsEveryLineAPersonWrote) {
+  const std::string text =
+      "\xEF\xBB\xBF# my cell\r\n"
+      "\r\n"
+      "home   joints=0deg,20deg   # safe\r\n"
+      "  pick x=200mm y=0mm z=0.04m\r\n"
+      "# old\r\n"
+      "gone joints=1deg\r\n"
+      "place  x=1e2mm  y=150mm z=40mm";  // no line end at the end
+  auto f = read_back(text);
+  EXPECT_EQ(update_points_text(text, f, "p.points").value(), text);  // nothing changed: byte for byte
+
+  const PointsFile taught = parse_points_file("home joints=10deg,20deg\nnew joints=5deg\n").value();
+  f.points[0].joints = taught.points[0].joints;
+  std::erase_if(f.points, [](const Point& p) { return p.name == "gone"; });
+  f.points.push_back(taught.points[1]);
+  const std::string home = format_point_fields(f.points[0]);
+  ASSERT_EQ(home.rfind("joints=10", 0), 0u) << home;
+  EXPECT_EQ(update_points_text(text, f, "p.points").value(),
+            "\xEF\xBB\xBF# my cell\r\n"
+            "\r\n"
+            "home   " + home + "   # safe\r\n"
+            "  pick x=200mm y=0mm z=0.04m\r\n"
+            "# old\r\n"
+            "place  x=1e2mm  y=150mm z=40mm\r\n"
+            "new   joints=5deg\r\n");
+}
+
+TEST(PointsFile, UpdatingRefusesTextThatDoesNotParse) {
+  auto r = update_points_text("# mine\nhome joints=banana\n", PointsFile{}, "p.points");
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().message.rfind("p.points:2:", 0), 0u) << r.error().message;
+  EXPECT_NE(r.error().message.find("the file is left as it is"), std::string::npos) << r.error().message;
+}
+
+TEST(PointsFile, WritingAnExistingFileKeepsItsComments) {
+  const auto path = std::filesystem::temp_directory_path() / ("armctl-points-kept-" + std::to_string(::getpid()) + ".points");
+  std::ofstream(path, std::ios::binary) << "# my cell\nhome joints=0deg  # safe\n";
+  auto f = read_points_file(path).value();
+  f.points.push_back(parse_points_file("p1 joints=1deg\n").value().points[0]);
+  ASSERT_TRUE(write_points_file(path, f));
+  std::ifstream in(path, std::ios::binary);
+  const std::string back((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(back, "# my cell\nhome joints=0deg  # safe\np1   joints=1deg\n");
+  std::filesystem::remove(path);
+}
+
+// Editors on other systems start a file with EF BB BF: it is read as nothing, and the
+// columns of errors are the characters' (the mark is not one).
+TEST(PointsFile, AByteOrderMarkIsNotPartOfAPointsOrPathFile) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto points = dir / ("armctl-bom-" + std::to_string(::getpid()) + ".points");
+  std::ofstream(points, std::ios::binary) << "\xEF\xBB\xBFhome joints=10deg\n";
+  auto read = read_points_file(points);
+  ASSERT_TRUE(read) << read.error().message;
+  ASSERT_EQ(read->points.size(), 1u);
+  EXPECT_EQ(read->points[0].name, "home");
+  std::ofstream(points, std::ios::binary) << "\xEF\xBB\xBFhome  x=200 y=0mm z=0mm\n";
+  const std::string error = read_points_file(points).error().message;
+  EXPECT_EQ(error, points.string() + error_of("home  x=200 y=0mm z=0mm\n").substr(std::string("p.points").size()));
+  EXPECT_NE(error.find(":1:9: "), std::string::npos) << error;
+  std::filesystem::remove(points);
+
+  const auto path = dir / ("armctl-bom-" + std::to_string(::getpid()) + ".path");
+  std::ofstream(path, std::ios::binary) << "\xEF\xBB\xBFptp joints=10deg\n";
+  auto moves = motion::read_path_file(path);
+  ASSERT_TRUE(moves) << moves.error().message;
+  EXPECT_EQ(moves->moves.size(), 1u);
   std::filesystem::remove(path);
 }
 

@@ -3,7 +3,12 @@
 // was expected.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <numbers>
+#include <string>
+
+#include <unistd.h>
 
 #include "program/program_parser.hpp"
 
@@ -152,6 +157,20 @@ TEST(ProgramParser, DeepNestingIsRefusedNotACrash) {
   std::string blocks;
   for (int i = 0; i < 40; ++i) blocks += "if 1\n";
   EXPECT_NE(error_of(blocks).find("at most 32 IF/LOOP/WHILE inside one another"), std::string::npos);
+}
+
+// A program saved with a UTF-8 byte-order mark reads as without it; errors keep their columns.
+TEST(ProgramParser, AByteOrderMarkIsNotPartOfAProgramFile) {
+  const auto path = std::filesystem::temp_directory_path() / ("armctl-bom-" + std::to_string(::getpid()) + ".prog");
+  std::ofstream(path, std::ios::binary) << "\xEF\xBB\xBFptp home\n";
+  auto p = read_program_file(path);
+  ASSERT_TRUE(p) << p.error().message;
+  ASSERT_EQ(p->main.size(), 1u);
+  EXPECT_EQ(p->main[0].target.point, "home");
+  std::ofstream(path, std::ios::binary) << "\xEF\xBB\xBFptp home zone=5mm\n";
+  EXPECT_EQ(read_program_file(path).error().message,
+            path.string() + error_of("ptp home zone=5mm\n").substr(std::string("t.prog").size()));
+  std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
 
 #include "motion/recording.hpp"
 
@@ -126,6 +129,19 @@ TEST(Recording, KeepSamplesWithinTolerance) {
         const double line = w[k[n]].positions[j] + f * (w[k[n + 1]].positions[j] - w[k[n]].positions[j]);
         EXPECT_LE(std::abs(w[i].positions[j] - line), 0.01 + 1e-12);
       }
+}
+
+// A recording saved with a UTF-8 byte-order mark reads as without it; errors keep their columns.
+TEST(Recording, AByteOrderMarkIsNotPartOfTheFile) {
+  const std::string path = ::testing::TempDir() + "/teach_test_bom.rec";
+  std::ofstream(path, std::ios::binary) << "\xEF\xBB\xBF" << kHead << "0 1 2\n";
+  auto r = read_recording(path);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_EQ(r->arm, "scara");
+  EXPECT_EQ(r->samples.size(), 1u);
+  std::ofstream(path, std::ios::binary) << "\xEF\xBB\xBF" << "arm a b\n";
+  EXPECT_EQ(read_recording(path).error().message, path + ":1:7: found 'b'; expected the end of the line");
+  std::remove(path.c_str());
 }
 
 }  // namespace

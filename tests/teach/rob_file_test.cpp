@@ -3,8 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <string>
 #include <vector>
 
+#include "motion/action_group_file.hpp"
 #include "motion/rob_file.hpp"
 
 namespace armctl::motion {
@@ -146,6 +150,20 @@ TEST(RobFile, ReadsFilesAndRefusesOthers) {
   auto g = read_rob_file(path);
   ASSERT_TRUE(g) << g.error().message;
   EXPECT_EQ(g->actions.size(), 1u);
+}
+
+// A group file (what .rob files import to) saved with a UTF-8 byte-order mark reads as
+// without it; errors keep their columns.
+TEST(RobFile, AGroupFileWithAByteOrderMarkReads) {
+  const std::string path = ::testing::TempDir() + "/teach_test_bom.grp";
+  std::ofstream(path, std::ios::binary) << "\xEF\xBB\xBFservos 1\n100 1=500\n";
+  auto g = read_action_group_file(path);
+  ASSERT_TRUE(g) << g.error().message;
+  EXPECT_EQ(g->actions.size(), 1u);
+  std::ofstream(path, std::ios::binary) << "\xEF\xBB\xBF" "100 1=2000\n";
+  const std::string plain = parse_action_group("100 1=2000\n", "x").error().message;
+  EXPECT_EQ(read_action_group_file(path).error().message, path + plain.substr(1));
+  std::remove(path.c_str());
 }
 
 }  // namespace

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <functional>
 
 #include "arm/arm.hpp"
@@ -147,6 +150,77 @@ TEST_F(XarmTeach, AnUnreadablePointsFileLeavesTorqueOn) {
   EXPECT_NE(n.error().message.find("bad.points:1:"), std::string::npos) << n.error().message;
   EXPECT_TRUE(servos().torque(1));
   EXPECT_EQ(script.lines.size(), 1u);  // nothing read
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Teaching one point changes that point's line only: the user's comments, blank lines and
+// other points stay byte for byte; a new point comes last.
+TEST_F(XarmTeach, TeachingKeepsTheFilesCommentsAndOtherLines) {
+  const std::string path = temp_file("kept.points");
+  const std::string before =
+      "# my cell\n"
+      "\n"
+      "home   joints=0deg,0deg,0deg,0deg,0deg,0deg   # safe\n"
+      "place  x=150mm y=70mm z=60mm pitch=50deg  # the tray\n";
+  std::ofstream(path, std::ios::binary) << before;
+  Script script;
+  script.lines.push_back({[&] { EXPECT_TRUE(hand(0, 0.3)); }, "home"});
+  script.lines.push_back({nullptr, "pick"});
+  ASSERT_TRUE(teach_points(arm, path, script.io()));
+  const auto file = program::read_points_file(path).value();
+  const std::string home = program::format_point_fields(*file.find("home"));
+  const std::string pick = program::format_point_fields(*file.find("pick"));
+  EXPECT_NEAR(file.find("home")->joints[0].value, 0.3, 0.005);
+  EXPECT_EQ(slurp(path),
+            "# my cell\n"
+            "\n"
+            "home   " + home + "   # safe\n"
+            "place  x=150mm y=70mm z=60mm pitch=50deg  # the tray\n"
+            "pick  " + pick + "\n");
+}
+
+// A read-only points file is the user's "keep this": refused, naming it, before torque goes
+// off (nothing typed is read), and left as it was.
+TEST_F(XarmTeach, AReadOnlyPointsFileIsRefusedBeforeTorqueOff) {
+  const std::string path = temp_file("readonly.points");
+  std::ofstream(path, std::ios::binary) << "home joints=0deg\n";
+  std::filesystem::permissions(path, std::filesystem::perms::owner_read | std::filesystem::perms::group_read |
+                                         std::filesystem::perms::others_read);
+  Script script;
+  script.lines.push_back({nullptr, "pick"});
+  auto n = teach_points(arm, path, script.io());
+  ASSERT_FALSE(n);
+  EXPECT_EQ(n.error().message, "cannot write " + path +
+                                   ": it is read-only (mode 0444); make it writable (chmod u+w) to replace it, or "
+                                   "write another file");
+  for (int id = 1; id <= 6; ++id) EXPECT_TRUE(servos().torque(std::uint8_t(id)));
+  EXPECT_EQ(script.lines.size(), 1u);  // nothing read
+  EXPECT_EQ(slurp(path), "home joints=0deg\n");
+  std::filesystem::remove(path);
+}
+
+// A points file that is a symlink (kept in a shared folder, say) is taught through: the
+// link stays a link and its target holds the point.
+TEST_F(XarmTeach, ASymlinkedPointsFileIsWrittenThrough) {
+  const std::string target = temp_file("shared.points"), symlink = temp_file("link.points");
+  std::ofstream(target, std::ios::binary) << "# shared\n";
+  std::filesystem::create_symlink(target, symlink);
+  Script script;
+  script.lines.push_back({nullptr, "pick"});
+  ASSERT_TRUE(teach_points(arm, symlink, script.io()));
+  EXPECT_TRUE(std::filesystem::is_symlink(std::filesystem::symlink_status(symlink)));
+  EXPECT_EQ(std::filesystem::read_symlink(symlink), target);
+  const auto file = program::read_points_file(target);
+  ASSERT_TRUE(file) << file.error().message;
+  ASSERT_NE(file->find("pick"), nullptr);
+  EXPECT_EQ(slurp(target).rfind("# shared\npick ", 0), 0u) << slurp(target);
+  std::filesystem::remove(symlink);
 }
 
 TEST_F(XarmTeach, RecordAndReplay) {

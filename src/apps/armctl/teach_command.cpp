@@ -11,6 +11,7 @@
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/stdin_lines.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/quantity.hpp"
 #include "motion/recording.hpp"
@@ -64,6 +65,11 @@ void run_teach(const TeachArgs& a) {
   std::optional<Duration> duration;
   if (!a.duration.empty()) duration = parse_duration(a.duration);
 
+  // The recording is made by hand and cannot be made again: where it goes is checked
+  // before the arm is even opened (no such directory, a read-only file).
+  if (recording)
+    if (auto w = check_writable(a.out); !w)
+      throw ArmctlError(w.error().kind, w.error().message + "; nothing recorded, torque not switched off");
   auto s = open_arm_session(a.arm, a.device);
   arm::Arm& arm = *s->arm;
   Interrupted interrupted;
