@@ -1,11 +1,13 @@
 // armctl.Arm: the Arm API (arm/arm.hpp) and host-planned motion (arm/motion_planning.hpp,
 // arm/motion_executor.hpp) for Python. SI units and the C++ names; every value is checked
 // by the C++ layers before anything moves. Device I/O runs with the GIL released; Ctrl-C
-// stops the arm, then raises KeyboardInterrupt (docs/python.md).
+// stops the arm, then raises KeyboardInterrupt. One Arm serves several Python threads, one
+// call at a time (DeviceGate); close() stops what runs, then ends the device (docs/python.md).
 #include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/core.h>
@@ -108,13 +110,16 @@ class PyArm {
     session_ = session::open_arm_session(arm, device);
   }
 
+  // Stops what another thread runs on this arm (a wait ends, a streamed motion stops on its
+  // path), waits for it, then ends the device.
   void close() {
+    const auto turn = gate_.close();
     py::gil_scoped_release nogil;
     session_.reset();
   }
 
   arm::Arm& arm() {
-    if (!session_) raise(ErrorKind::invalid_argument, "this Arm is closed");
+    if (!session_) gate_.raise_closed();
     return *session_->arm;
   }
   const arm::ArmModel& model() { return arm().model(); }
@@ -179,14 +184,22 @@ class PyArm {
     return pose_of(a.forward(q), q);
   }
 
-  // Chain joints (or every joint: the gripper is ignored).
+  // Chain joints (or every joint: the gripper is ignored), each finite and within its limits:
+  // a pose past a limit is not one the arm can take. Named in SI, as Python gives them.
   motion::JointVector chain_from(const std::vector<double>& q) {
     const int chain = model().chain_joints();
     if (static_cast<int>(q.size()) != chain && static_cast<int>(q.size()) != model().joint_count())
       raise(ErrorKind::invalid_argument, fmt::format("{} joint values given: arm '{}' takes {} (the chain) or {} (every joint)",
                                                      q.size(), model().name, chain, model().joint_count()));
-    for (std::size_t i = 0; i < q.size(); ++i)
-      if (!std::isfinite(q[i])) raise(ErrorKind::invalid_argument, fmt::format("joint value {} is not finite", i));
+    for (int i = 0; i < chain; ++i) {
+      const arm::JointModel& j = model().joints[std::size_t(i)];
+      const double x = q[std::size_t(i)];
+      if (!j.limits.contains(x, 1e-9)) {  // false for NaN too
+        const char* unit = j.dimension == Dimension::angle ? "rad" : "m";
+        raise(ErrorKind::invalid_argument, fmt::format("joint {}: {:g} {} is not allowed: {:.4f}..{:.4f} {}", j.name, x,
+                                                       unit, j.limits.lower, j.limits.upper, unit));
+      }
+    }
     motion::JointVector v(chain);
     for (int i = 0; i < chain; ++i) v[i] = q[std::size_t(i)];
     return v;
@@ -299,18 +312,26 @@ class PyArm {
     return w;
   }
 
-  // Waits with the GIL released; Ctrl-C: Arm::stop, then KeyboardInterrupt.
+  // Waits with the GIL released; Ctrl-C: Arm::stop, then KeyboardInterrupt; stop() or
+  // close() from another thread: Arm::stop, then armctl.Error.
   PyJointState wait_with(arm::WaitOptions w) {
     arm::Arm& a = arm();
     InterruptWatch watch;
-    w.interrupted = [&] { return watch.check(); };
+    bool closed = false, stopped = false;
+    w.interrupted = [&] {
+      closed = gate_.closing();
+      stopped = gate_.stop_asked();
+      return closed || stopped || watch.check();
+    };
     auto s = [&] {
       py::gil_scoped_release nogil;
       auto r = a.wait(w);
-      if (watch.tripped()) (void)a.stop();
+      if (watch.tripped() || closed || stopped) (void)a.stop();
       return r;
     }();
     if (watch.tripped()) watch.rethrow();
+    if (closed) gate_.raise_closed("a wait (the arm was stopped)");
+    if (stopped) raise(ErrorKind::device, "the wait ended: stop() was called during it (the arm was stopped)");
     return state_of(must(std::move(s)));
   }
 
@@ -359,21 +380,34 @@ class PyArm {
   void stop() {
     command([](arm::Arm& a) { return a.stop(); });
   }
+  // stop() as bound: the calls before it stop first (DeviceGate::stop), so that the stop does
+  // not wait for its turn until their moves would have ended. From a signal handler during a
+  // call on this thread, asking is all: that call stops the arm at its next check.
+  void stop_now() {
+    if (const auto turn = gate_.stop()) stop();
+  }
   void set_torque(bool on) {
     command([on](arm::Arm& a) { return a.set_torque(on); });
   }
 
   // Streams a planned motion through the executor; Ctrl-C: the executor's stop (the arm
-  // decelerates on the path), then KeyboardInterrupt.
+  // decelerates on the path), then KeyboardInterrupt; close() from another thread: the same
+  // stop, then armctl.Error; stop() from another thread: the same stop, and the report says
+  // so (stopped, not completed).
   PyReport execute(const arm::PlannedMotion& motion, double speed_override) {
     if (!(speed_override > 0 && speed_override <= 1))
       raise(ErrorKind::invalid_argument, fmt::format("speed_override {} is not allowed: above 0 up to 1", speed_override));
     arm::Arm& a = arm();
     InterruptWatch watch;
+    bool closed = false;
+    auto stop_asked = [&] {
+      closed = closed || gate_.closing();
+      return closed || gate_.stop_asked() || watch.check();
+    };
     arm::ExecutorOptions eo;
     eo.speed_override = speed_override;
     eo.command = [&](const arm::MotionProgress&) {
-      return watch.check() ? arm::MotionCommand::stop : arm::MotionCommand::none;
+      return stop_asked() ? arm::MotionCommand::stop : arm::MotionCommand::none;
     };
     auto r = [&] {
       py::gil_scoped_release nogil;
@@ -381,13 +415,14 @@ class PyArm {
       // The last point is due when the motion ends: let the arm get there.
       if (report && report->completed) {
         arm::WaitOptions w;
-        w.interrupted = [&] { return watch.check(); };
-        if (auto s = a.wait(w); !s && !watch.tripped()) return Result<arm::MotionReport>(s.error());
+        w.interrupted = stop_asked;
+        if (auto s = a.wait(w); !s && !watch.tripped() && !closed) return Result<arm::MotionReport>(s.error());
       }
-      if (watch.tripped()) (void)a.stop();
+      if (watch.tripped() || closed) (void)a.stop();
       return report;
     }();
     if (watch.tripped()) watch.rethrow();
+    if (closed) gate_.raise_closed("a streamed motion (the arm stopped on its path)");
     const auto& m = must(std::move(r));
     PyReport p;
     p.elapsed = seconds(m.elapsed);
@@ -478,19 +513,27 @@ class PyArm {
     if (!(speed_override > 0 && speed_override <= 1))
       raise(ErrorKind::invalid_argument, fmt::format("speed_override {} is not allowed: above 0 up to 1", speed_override));
     const program::ProgramPlan plan = plan_program_file(file, points);  // every check first
+    arm::Arm& a = arm();  // may raise: not where the GIL is released
     InterruptWatch watch;
+    bool closed = false;
+    auto stop_asked = [&] {
+      closed = closed || gate_.closing();
+      return closed || gate_.stop_asked() || watch.check();
+    };
     std::vector<std::string> printed;
     auto r = [&] {
       py::gil_scoped_release nogil;
       program::RunOptions o;
       o.speed_override = speed_override;
-      o.command = [&] { return watch.check() ? arm::MotionCommand::stop : arm::MotionCommand::none; };
+      o.command = [&] { return stop_asked() ? arm::MotionCommand::stop : arm::MotionCommand::none; };
+      o.wait.interrupted = stop_asked;  // the final wait, too
       o.on_event = [&](const program::RunEvent& e) {
         if (e.kind == program::RunEventKind::print && e.piece) printed.push_back(e.piece->text);
       };
-      return program::run_plan(arm(), plan, o);
+      return program::run_plan(a, plan, o);
     }();
     if (watch.tripped()) watch.rethrow();
+    if (closed) gate_.raise_closed("a program (the arm stopped on its path)");
     const program::RunReport& rep = must(std::move(r));
     py::dict out;
     out["completed"] = rep.completed;
@@ -514,8 +557,18 @@ class PyArm {
   std::string description() { return arm().device().description(); }
   std::string protocol() { return arm::to_string(arm().device().protocol()); }
 
+  DeviceGate gate_{"Arm"};  // before the session: it outlives it
   std::unique_ptr<session::ArmSession> session_;
 };
+
+// A bound call of PyArm: it takes its turn on the arm for its whole run (DeviceGate).
+template <typename R, typename... A>
+auto in_turn(R (PyArm::*call)(A...)) {
+  return [call](PyArm& self, A... args) -> R {
+    const auto turn = self.gate_.enter();
+    return (self.*call)(std::forward<A>(args)...);
+  };
+}
 
 PySegment segment(motion::SegmentKind kind, const std::vector<double>& position, const std::vector<double>& via,
                   std::optional<double> roll, std::optional<double> pitch, std::optional<double> yaw, double speed,
@@ -538,6 +591,12 @@ std::string repr_array(const Array& a) { return py::repr(a).cast<std::string>();
 }  // namespace
 
 void define_arm(py::module_& m) {
+  // pybind11 (2.10) looks NumPy's C API up on first use, importing numpy inside a C++ static
+  // initialisation; the import lets other threads run, and one whose first result is an array
+  // then waits on that initialisation holding the GIL the import needs: a deadlock. Looked up
+  // here, it happens once while `import armctl` runs, before any thread can call in.
+  (void)Array(0);
+
   py::class_<PyJointState>(m, "JointState", "Every joint's position as read: SI and device units, and when.")
       .def_readonly("time", &PyJointState::time, "s on the device's clock, when the positions were read")
       .def_readonly("positions", &PyJointState::positions, "every joint, rad (revolute) or m (prismatic), the model's order")
@@ -582,7 +641,7 @@ void define_arm(py::module_& m) {
       .def_readonly("t_reached", &PyReport::t_reached, "nominal s of the plan where it ended")
       .def_readonly("duration", &PyReport::duration, "nominal s of the whole plan")
       .def_readonly("completed", &PyReport::completed, "reached the end of the motion")
-      .def_readonly("stopped", &PyReport::stopped, "stopped on the path (never seen: Ctrl-C raises)")
+      .def_readonly("stopped", &PyReport::stopped, "stopped on the path by stop() from another thread (Ctrl-C and close() raise instead)")
       .def_readonly("points", &PyReport::points, "stream points sent")
       .def_readonly("reads", &PyReport::reads, "position read-backs")
       .def_readonly("period", &PyReport::period, "s between stream points")
@@ -638,70 +697,84 @@ void define_arm(py::module_& m) {
                     "its joint bus), 'hid', 'serial:/dev/ttyUSB0', 'unix:/tmp/scara.sock', ... exactly as\n"
                     "`armctl arm --device`. Joints in rad or m in the model's order; every value is checked\n"
                     "before anything moves (armctl.Error, kind 'invalid_argument'). Ctrl-C during a move or a wait\n"
-                    "stops the arm, then raises KeyboardInterrupt. Use as a context manager to close it.")
+                    "stops the arm, then raises KeyboardInterrupt. Threads may share an Arm: calls take turns on\n"
+                    "the device. Use as a context manager to close it.")
       .def(py::init<const std::string&, const std::string&>(), "arm"_a = "xarm", "device"_a = "")
-      .def("close", &PyArm::close, "Closes the device (an embedded simulator ends). Later calls raise armctl.Error.")
+      .def("close", &PyArm::close, "Closes the device (an embedded simulator ends). What another thread runs is stopped first (a wait\n"
+           "ends, a streamed motion stops on its path; that call raises armctl.Error) and waited for. Later\n"
+           "calls raise armctl.Error.")
       .def("__enter__", [](PyArm& a) -> PyArm& { return a; }, py::return_value_policy::reference)
       .def("__exit__", [](PyArm& a, py::object, py::object, py::object) { a.close(); })
-      .def_property_readonly("name", [](PyArm& a) { return a.model().name; }, "the arm model's name")
-      .def_property_readonly("joints", &PyArm::joints, "every joint: name, kind, role, limits, device ids")
-      .def_property_readonly("joint_names", &PyArm::joint_names, "the joints' names, in the model's order")
-      .def_property_readonly("chain_joints", [](PyArm& a) { return a.model().chain_joints(); },
+      .def_property_readonly("name", [](PyArm& a) {
+            const auto turn = a.gate_.enter();
+            return a.model().name;
+          }, "the arm model's name")
+      .def_property_readonly("joints", in_turn(&PyArm::joints), "every joint: name, kind, role, limits, device ids")
+      .def_property_readonly("joint_names", in_turn(&PyArm::joint_names), "the joints' names, in the model's order")
+      .def_property_readonly("chain_joints", [](PyArm& a) {
+                               const auto turn = a.gate_.enter();
+                               return a.model().chain_joints();
+                             },
                              "how many joints the kinematic chain has (the gripper follows them)")
-      .def_property_readonly("protocol", &PyArm::protocol, "'robot_commands' or 'joint_bus'")
-      .def_property_readonly("device_description", &PyArm::description, "what the arm is driven through")
-      .def("read", &PyArm::read, "Every joint's position now (JointState: SI and device units).")
-      .def("pose", &PyArm::pose, "The tool pose where the arm stands now.")
-      .def("forward", &PyArm::forward, "q"_a,
-           "Forward kinematics (nothing sent): the tool pose at chain joints `q` (or every joint, gripper ignored).")
-      .def("inverse", &PyArm::inverse, "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
+      .def_property_readonly("protocol", in_turn(&PyArm::protocol), "'robot_commands' or 'joint_bus'")
+      .def_property_readonly("device_description", in_turn(&PyArm::description), "what the arm is driven through")
+      .def("read", in_turn(&PyArm::read), "Every joint's position now (JointState: SI and device units).")
+      .def("pose", in_turn(&PyArm::pose), "The tool pose where the arm stands now.")
+      .def("forward", in_turn(&PyArm::forward), "q"_a,
+           "Forward kinematics (nothing sent): the tool pose at chain joints `q` (or every joint, gripper ignored).\n"
+           "A value that is not finite or past its joint's limits raises armctl.Error naming the joint, the value\n"
+           "and the range.")
+      .def("inverse", in_turn(&PyArm::inverse), "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
            "yaw"_a = py::none(), "elbow"_a = py::none(), "nearest_orientation"_a = false, "near"_a = py::none(),
            "Every IK solution for the tool at `position` (m), nearest to `near` (every joint; default: read()) first.\n"
            "roll, pitch, yaw (rad) left out keep the tool's (xArm: yaw follows the position); elbow keeps one\n"
            "configuration; nearest_orientation lets the 5-joint xArm reach the position with the nearest orientation.\n"
            "Unreachable: armctl.Error saying why (beyond reach by N mm, joint outside its limits). Nothing moves.")
-      .def("move_joints", &PyArm::move_joints, "targets"_a, "duration"_a = py::none(), "speed"_a = 0.25,
+      .def("move_joints", in_turn(&PyArm::move_joints), "targets"_a, "duration"_a = py::none(), "speed"_a = 0.25,
            "wait"_a = false, "timeout"_a = 10.0,
            "Moves the joints that have a target: a sequence with one value per joint (None keeps it) or a dict\n"
            "{name or index: value}, SI. All arrive together after `duration` s, or with the slowest at `speed` (0..1]\n"
            "of its velocity limit. wait=True: wait(timeout) afterwards.")
-      .def("move_to", &PyArm::move_to, "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
+      .def("move_to", in_turn(&PyArm::move_to), "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
            "yaw"_a = py::none(), "elbow"_a = py::none(), "nearest_orientation"_a = false, "duration"_a = py::none(),
            "speed"_a = 0.25, "wait"_a = false, "timeout"_a = 10.0,
            "PTP: moves the tool to `position` (m) through the IK solution nearest the current joints (as move_joints).")
-      .def("move_linear", &PyArm::move_linear, "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
+      .def("move_linear", in_turn(&PyArm::move_linear), "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
            "yaw"_a = py::none(), "speed"_a = 0.05, "angular_speed"_a = M_PI / 4, "speed_override"_a = 1.0,
            "LIN: the tool along a straight line to `position` (m) at `speed` m/s, planned and checked on the host and\n"
            "streamed; returns when it is there (MotionReport). Ctrl-C stops on the line, then KeyboardInterrupt.")
-      .def("check_program", &PyArm::check_program, "file"_a, "points"_a = "",
+      .def("check_program", in_turn(&PyArm::check_program), "file"_a, "points"_a = "",
            "Checks a robot program (docs/programs.md) before anything moves: every point resolves, every move is\n"
            "reachable and inside the joint limits along its whole path. Returns {'duration': s, 'moves', 'pieces'};\n"
            "armctl.Error names the file, line and why. `points`: the points file (default FILE.points if it exists).")
-      .def("run_program", &PyArm::run_program, "file"_a, "points"_a = "", "speed_override"_a = 1.0,
+      .def("run_program", in_turn(&PyArm::run_program), "file"_a, "points"_a = "", "speed_override"_a = 1.0,
            "Checks, then runs a robot program on the arm. Returns {'completed', 'pieces', 'elapsed', \n"
            "'largest_following_error', 'printed'}. Ctrl-C stops on the path, then KeyboardInterrupt.")
-      .def("path", &PyArm::path, "segments"_a, "speed_override"_a = 1.0, "acceleration"_a = 0.5,
+      .def("path", in_turn(&PyArm::path), "segments"_a, "speed_override"_a = 1.0, "acceleration"_a = 0.5,
            "angular_acceleration"_a = 3.0,
            "Runs a Cartesian path: a list of armctl.Lin / armctl.Circ, corners blended by their zones, timed with\n"
            "the tool's `acceleration` (m/s^2) and `angular_acceleration` (rad/s^2). The whole path is checked first.\n"
            "Ctrl-C stops on the path, then KeyboardInterrupt.")
-      .def("joint_move", &PyArm::joint_move, "target"_a, "waypoints"_a = std::vector<py::object>{}, "speed"_a = 0.25,
+      .def("joint_move", in_turn(&PyArm::joint_move), "target"_a, "waypoints"_a = std::vector<py::object>{}, "speed"_a = 0.25,
            "min_duration"_a = 0.0, "speed_override"_a = 1.0,
            "A jerk-limited joint move (plan_joint_move), streamed: through `waypoints` without stopping to `target`\n"
            "(each as for move_joints), at `speed` of the velocity limits, taking at least `min_duration` s.")
-      .def("wait", &PyArm::wait, "timeout"_a = 10.0, "poll"_a = py::none(), "angle_tolerance"_a = 0.0087,
+      .def("wait", in_turn(&PyArm::wait), "timeout"_a = 10.0, "poll"_a = py::none(), "angle_tolerance"_a = 0.0087,
            "length_tolerance"_a = 0.0005,
            "Until every joint of the last move is within tolerance (rad, m) of its target and at rest; returns the\n"
            "JointState. Not arrived in `timeout` s: armctl.Error (kind 'timeout') naming every late joint.")
-      .def("stop", &PyArm::stop, "Stops every joint where it is and holds it.")
-      .def("set_torque", &PyArm::set_torque, "on"_a, "off: the arm can be moved by hand; on: hold where it stands.")
-      .def("gripper", &PyArm::gripper, "closed_fraction"_a, "duration"_a = py::none(), "speed"_a = 0.25,
+      .def("stop", &PyArm::stop_now,
+           "Stops every joint where it is and holds it. A wait another thread runs ends (armctl.Error), a\n"
+           "streamed motion stops on its path (its MotionReport: stopped), before the stop is sent.")
+      .def("set_torque", in_turn(&PyArm::set_torque), "on"_a, "off: the arm can be moved by hand; on: hold where it stands.")
+      .def("gripper", in_turn(&PyArm::gripper), "closed_fraction"_a, "duration"_a = py::none(), "speed"_a = 0.25,
            "wait"_a = false, "timeout"_a = 10.0, "The gripper: 0 = open, 1 = closed, anything between.")
       .def(
           "download_group",
           [](PyArm& a, int group, const std::string& text) {
             if (group < 0 || group > 254) raise(ErrorKind::invalid_argument, fmt::format("group {} is not allowed: 0..254", group));
             const auto file = must(motion::parse_action_group(text, "<text>"));
+            const auto turn = a.gate_.enter();
             auto& c = a.client();
             must(released([&] { return c.download_group(static_cast<std::uint8_t>(group), file.actions); }));
           },
@@ -713,6 +786,7 @@ void define_arm(py::module_& m) {
             if (group < 0 || group > 254 || times < 0 || times > 65535)
               raise(ErrorKind::invalid_argument,
                     fmt::format("group {} times {} is not allowed: group 0..254, times 0..65535 (0: forever)", group, times));
+            const auto turn = a.gate_.enter();
             auto& c = a.client();
             must(released([&] { return c.run_group(static_cast<std::uint8_t>(group), static_cast<std::uint16_t>(times)); }));
           },
@@ -720,6 +794,7 @@ void define_arm(py::module_& m) {
       .def(
           "stop_group",
           [](PyArm& a) {
+            const auto turn = a.gate_.enter();
             auto& c = a.client();
             must(released([&] { return c.stop_group(); }));
           },
@@ -728,13 +803,16 @@ void define_arm(py::module_& m) {
           "erase_group",
           [](PyArm& a, int group) {
             if (group < 0 || group > 255) raise(ErrorKind::invalid_argument, fmt::format("group {} is not allowed: 0..255 (255: all)", group));
+            const auto turn = a.gate_.enter();
             auto& c = a.client();
             must(released([&] { return c.erase_group(static_cast<std::uint8_t>(group)); }));
           },
           "group"_a, "Erases an action group (255: all of them).")
       .def(
           "group_events",
-          [](PyArm& a, double timeout) { return group_events(a.client(), timeout); }, "timeout"_a = 0.0,
+          [](PyArm& a, double timeout) {
+            return group_events(a.gate_, [&]() -> robot_commands::Client& { return a.client(); }, timeout);
+          }, "timeout"_a = 0.0,
           "The action-group notifications received so far (and within `timeout` s): a list of dicts\n"
           "{'kind': 'started'|'stopped'|'finished', 'group': int|None, 'count': int|None}.");
 }

@@ -1,6 +1,8 @@
 // The parts of the armctl Python module, each defined into the module by its own file.
 #pragma once
 
+#include <functional>
+
 #include <pybind11/pybind11.h>
 
 #include "devices/robot_commands/client.hpp"
@@ -12,9 +14,13 @@ namespace py = pybind11;
 void define_arm(py::module_& m);             // arm_bindings.cpp: Arm, Lin, Circ and their values
 void define_robot_commands(py::module_& m);  // robot_commands_bindings.cpp: RobotCommands
 
-// The action-group notifications `client` has queued, and those that arrive within
-// `timeout` s, as dicts {kind, group, count}; the GIL is released while receiving.
-py::list group_events(robot_commands::Client& client, double timeout);
+class DeviceGate;
+
+// The action-group notifications the client has queued, and those that arrive within
+// `timeout` s, as dicts {kind, group, count}. Receives in short turns on `gate` (the GIL
+// released meanwhile), so that other threads' calls (a run_group, a stop_group) go between
+// them and a close() does not wait for the timeout; `client()` gives the client during a turn.
+py::list group_events(DeviceGate& gate, const std::function<robot_commands::Client&()>& client, double timeout);
 
 // Runs `f` with the GIL released and returns what it returns.
 template <typename F>

@@ -1,5 +1,7 @@
 #include "python_support.hpp"
 
+#include <fmt/core.h>
+
 namespace armctl::python {
 
 namespace {
@@ -80,6 +82,70 @@ void InterruptWatch::rethrow() {
   PyErr_Restore(type_, pending_, traceback_);
   type_ = pending_ = traceback_ = nullptr;
   throw py::error_already_set();
+}
+
+void DeviceGate::refuse_nesting() const {
+  if (held_here())
+    raise(ErrorKind::invalid_argument,
+          fmt::format("this {} is already running a call on this thread (a signal handler or a callback called it "
+                      "during another call): calls cannot nest",
+                      what_));
+}
+
+DeviceGate::Turn DeviceGate::wait_for_turn() {
+  refuse_nesting();
+  std::unique_lock lock(mutex_);
+  const std::uint64_t ticket = tickets_++;
+  if (serving_ != ticket) {
+    lock.unlock();  // not held while the GIL is taken back
+    py::gil_scoped_release nogil;
+    lock.lock();
+    next_.wait(lock, [&] { return serving_ == ticket; });
+    lock.unlock();
+  }
+  owner_ = std::this_thread::get_id();
+  return Turn(this);
+}
+
+void DeviceGate::leave() {
+  owner_ = std::thread::id{};
+  stop_here_ = false;  // asked of the call that has ended
+  {
+    const std::lock_guard lock(mutex_);
+    ++serving_;
+  }
+  next_.notify_all();
+}
+
+DeviceGate::Turn DeviceGate::enter() {
+  if (closing()) raise_closed();
+  Turn turn = wait_for_turn();
+  if (closing()) raise_closed();  // closed while this call waited for its turn
+  return turn;
+}
+
+DeviceGate::Turn DeviceGate::close() {
+  refuse_nesting();
+  closing_ = true;
+  return wait_for_turn();
+}
+
+std::optional<DeviceGate::Turn> DeviceGate::stop() {
+  if (held_here()) {
+    stop_here_ = true;
+    return std::nullopt;
+  }
+  ++stops_waiting_;
+  struct Arrived {  // the calls after this stop run as usual, also when enter() raises
+    std::atomic<int>& waiting;
+    ~Arrived() { --waiting; }
+  } arrived{stops_waiting_};
+  return enter();
+}
+
+void DeviceGate::raise_closed(const std::string& during) const {
+  raise(ErrorKind::invalid_argument, during.empty() ? fmt::format("this {} is closed", what_)
+                                                    : fmt::format("this {} was closed during {}", what_, during));
 }
 
 }  // namespace armctl::python

@@ -1,7 +1,10 @@
 // armctl.RobotCommands: the Robot Commands SDK client (devices/robot_commands/client.hpp) on
 // any board URI, in device units, for scripts that speak to servos directly; the drop-in
 // armctl.xarm is written on top of it. Every call validates before sending (armctl.Error,
-// kind 'invalid_argument') and releases the GIL while it talks to the board.
+// kind 'invalid_argument') and releases the GIL while it talks to the board. One connection
+// serves several Python threads, one call at a time (DeviceGate): a request and its reply are
+// never interleaved with another thread's.
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -39,7 +42,10 @@ class PyRobotCommands {
     session_ = released([&] { return session::open_xarm_session(device, servo_count, static_cast<int>(timeout * 1000)); });
   }
 
+  // Waits for the call another thread runs (a group_events between two of its turns), then
+  // ends the board.
   void close() {
+    const auto turn = gate_.close();
     released([&] {
       session_.reset();
       return 0;
@@ -47,7 +53,7 @@ class PyRobotCommands {
   }
 
   robot_commands::Client& client() {
-    if (!session_) raise(ErrorKind::invalid_argument, "this RobotCommands connection is closed");
+    if (!session_) gate_.raise_closed();
     return *session_->client;
   }
 
@@ -168,26 +174,44 @@ class PyRobotCommands {
     }));
   }
 
+  DeviceGate gate_{"RobotCommands connection"};  // before the session: it outlives it
   std::unique_ptr<session::XarmSession> session_;
 };
 
+// A bound call of PyRobotCommands: it takes its turn on the connection for its whole run.
+template <typename R, typename... A>
+auto in_turn(R (PyRobotCommands::*call)(A...)) {
+  return [call](PyRobotCommands& self, A... args) -> R {
+    const auto turn = self.gate_.enter();
+    return (self.*call)(std::forward<A>(args)...);
+  };
+}
+
 }  // namespace
 
-py::list group_events(robot_commands::Client& client, double timeout) {
+py::list group_events(DeviceGate& gate, const std::function<robot_commands::Client&()>& client, double timeout) {
   if (!(timeout >= 0 && timeout <= 3600))
     raise(ErrorKind::invalid_argument, fmt::format("timeout {} s is not allowed: 0..3600 s", timeout));
-  const TimePoint deadline =
-      client.clock().now() + std::chrono::duration_cast<Duration>(std::chrono::duration<double>(timeout));
-  must(released([&] { return client.pump_events(deadline); }));
-  py::list out;
-  while (auto e = client.next_event()) {
-    py::dict d;
-    d["kind"] = std::string(robot_commands::to_string(e->kind));
-    d["group"] = e->group ? py::object(py::int_(*e->group)) : py::object(py::none());
-    d["count"] = e->count ? py::object(py::int_(*e->count)) : py::object(py::none());
-    out.append(d);
+  const auto wait = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(timeout));
+  constexpr Duration turn_length = std::chrono::milliseconds(50);
+  std::optional<TimePoint> deadline;
+  while (true) {
+    const auto turn = gate.enter();
+    auto& c = client();
+    const TimePoint now = c.clock().now();
+    if (!deadline) deadline = now + wait;
+    must(released([&] { return c.pump_events(std::min(*deadline, now + turn_length)); }));
+    if (c.clock().now() < *deadline) continue;
+    py::list out;
+    while (auto e = c.next_event()) {
+      py::dict d;
+      d["kind"] = std::string(robot_commands::to_string(e->kind));
+      d["group"] = e->group ? py::object(py::int_(*e->group)) : py::object(py::none());
+      d["count"] = e->count ? py::object(py::int_(*e->count)) : py::object(py::none());
+      out.append(d);
+    }
+    return out;
   }
-  return out;
 }
 
 void define_robot_commands(py::module_& m) {
@@ -199,39 +223,48 @@ void define_robot_commands(py::module_& m) {
       "timeout=0) opens the board URI ('sim' = an emulated xArm inside this process, 'hid',\n"
       "'hid:SERIAL', 'serial:/dev/ttyUSB0', a /dev path) with `servo_count` servos (7 on the arm\n"
       "controller); timeout 0 = the link's reply timeout. A reply that does not come in time raises\n"
-      "armctl.Error (kind 'timeout'). Use as a context manager to close it.")
+      "armctl.Error (kind 'timeout'). Threads may share one: each request and its reply take their\n"
+      "turn on the link. Use as a context manager to close it.")
       .def(py::init<const std::string&, int, double>(), "device"_a = "sim", "servo_count"_a = 6, "timeout"_a = 0.0)
-      .def("close", &PyRobotCommands::close, "Closes the board (an embedded one ends).")
+      .def("close", &PyRobotCommands::close, "Closes the board (an embedded one ends), after the call another thread runs (group_events\n"
+           "ends early).")
       .def("__enter__", [](PyRobotCommands& c) -> PyRobotCommands& { return c; }, py::return_value_policy::reference)
       .def("__exit__", [](PyRobotCommands& c, py::object, py::object, py::object) { c.close(); })
       .def_property_readonly(
-          "servo_count", [](PyRobotCommands& c) { return c.client().options().servo_count; },
+          "servo_count",
+          [](PyRobotCommands& c) {
+            const auto turn = c.gate_.enter();
+            return c.client().options().servo_count;
+          },
           "how many servos (IDs 1..n) this connection addresses")
-      .def("move", &PyRobotCommands::move, "targets"_a, "time_ms"_a,
+      .def("move", in_turn(&PyRobotCommands::move), "targets"_a, "time_ms"_a,
            "MultiServoMove: [(servo, position 0..1000 or None to keep), ...] over time_ms (0..30000).")
-      .def("read_positions", &PyRobotCommands::read_positions, "servos"_a = py::none(),
+      .def("read_positions", in_turn(&PyRobotCommands::read_positions), "servos"_a = py::none(),
            "[(servo, position), ...] of the listed servos (default: all).")
-      .def("servos_off", &PyRobotCommands::servos_off, "servos"_a = py::none(),
+      .def("servos_off", in_turn(&PyRobotCommands::servos_off), "servos"_a = py::none(),
            "Removes torque from the listed servos (default: all); the next move restores it.")
-      .def("battery_millivolts", &PyRobotCommands::battery_millivolts, "The board's supply voltage in mV.")
-      .def("read_offsets", &PyRobotCommands::read_offsets, "servos"_a = py::none(), "[(servo, offset), ...]")
-      .def("adjust_offset", &PyRobotCommands::adjust_offset, "servo"_a, "offset"_a,
+      .def("battery_millivolts", in_turn(&PyRobotCommands::battery_millivolts), "The board's supply voltage in mV.")
+      .def("read_offsets", in_turn(&PyRobotCommands::read_offsets), "servos"_a = py::none(), "[(servo, offset), ...]")
+      .def("adjust_offset", in_turn(&PyRobotCommands::adjust_offset), "servo"_a, "offset"_a,
            "Sets a servo's offset now (-125..125, lost at power-off).")
-      .def("save_offsets", &PyRobotCommands::save_offsets, "servos"_a = py::none(),
+      .def("save_offsets", in_turn(&PyRobotCommands::save_offsets), "servos"_a = py::none(),
            "Keeps the current offsets across power-off.")
-      .def("write_servo_id", &PyRobotCommands::write_servo_id, "new_id"_a,
+      .def("write_servo_id", in_turn(&PyRobotCommands::write_servo_id), "new_id"_a,
            "Gives the servo on the bus the ID `new_id` (1..254), its limits kept. BusServoInfoWrite reaches\n"
            "every servo on the bus: connect only the one to renumber.")
-      .def("download_group", &PyRobotCommands::download_group, "group"_a, "text"_a,
+      .def("download_group", in_turn(&PyRobotCommands::download_group), "group"_a, "text"_a,
            "Downloads an action group written in armctl's group-file format (docs/action-groups.md).")
-      .def("run_group", &PyRobotCommands::run_group, "group"_a, "times"_a = 1,
+      .def("run_group", in_turn(&PyRobotCommands::run_group), "group"_a, "times"_a = 1,
            "Runs a stored action group `times` times (0: until stop_group).")
-      .def("stop_group", &PyRobotCommands::stop_group, "Stops the running action group.")
-      .def("erase_group", &PyRobotCommands::erase_group, "group"_a, "Erases a group (255: all).")
-      .def("set_group_speed", &PyRobotCommands::set_group_speed, "group"_a, "percent"_a,
+      .def("stop_group", in_turn(&PyRobotCommands::stop_group), "Stops the running action group.")
+      .def("erase_group", in_turn(&PyRobotCommands::erase_group), "group"_a, "Erases a group (255: all).")
+      .def("set_group_speed", in_turn(&PyRobotCommands::set_group_speed), "group"_a, "percent"_a,
            "Playback speed of a group in % (100 = as recorded; group 255: all).")
       .def(
-          "group_events", [](PyRobotCommands& c, double timeout) { return group_events(c.client(), timeout); },
+          "group_events",
+          [](PyRobotCommands& c, double timeout) {
+            return group_events(c.gate_, [&]() -> robot_commands::Client& { return c.client(); }, timeout);
+          },
           "timeout"_a = 0.0,
           "Action-group notifications received so far (and within `timeout` s): list of dicts\n"
           "{'kind': 'started'|'stopped'|'finished', 'group': int|None, 'count': int|None}.");

@@ -132,6 +132,25 @@ def test_refusals_name_what_was_wrong_and_send_nothing(xarm):
     assert np.array_equal(xarm.read().device, before)  # nothing moved
 
 
+@pytest.mark.parametrize("arm_name", ["xarm", "scara"])
+def test_forward_refuses_joints_that_are_not_finite_or_past_a_limit(arm_name):
+    with armctl.Arm(arm_name) as arm:
+        chain = arm.joints[:arm.chain_joints]
+        inside = [(j.lower + j.upper) / 2 for j in chain]
+        arm.forward(inside)  # the middle of every range: a pose
+        for i, j in enumerate(chain):
+            unit = "rad" if j.kind == "revolute" else "m"
+            for bad, shown in [(1e308, "1e+308"), (float("inf"), "inf"), (float("nan"), "nan"),
+                               (j.upper + 0.01, f"{j.upper + 0.01:g}"), (j.lower - 0.01, f"{j.lower - 0.01:g}")]:
+                q = list(inside)
+                q[i] = bad
+                e = error_of(arm.forward, q)
+                assert e.kind == "invalid_argument"
+                assert e.message == f"joint {j.name}: {shown} {unit} is not allowed: {j.lower:.4f}..{j.upper:.4f} {unit}"
+        # Every joint given: the gripper is ignored, whatever it says.
+        assert arm.forward(inside + [1e308] * (len(arm.joints) - len(chain))) is not None
+
+
 def test_wait_timeout_names_the_late_joint(xarm):
     xarm.move_joints({"servo6": 20 * DEG}, duration=1.5)
     e = error_of(xarm.wait, timeout=0.2)

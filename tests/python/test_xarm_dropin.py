@@ -153,3 +153,69 @@ def test_a_missing_usb_board_is_an_error_not_a_hang():
         xarm.Controller("USB", usb_path="/dev/hidraw-none")
     assert e.value.kind in ("io", "invalid_argument")
     assert time.monotonic() - started < 5
+
+
+def test_servo_ids_the_board_does_not_have_are_refused():
+    with xarm.Controller("sim") as arm:  # the emulated xArm: six servos, though the drop-in assumes seven
+        before = arm.getPosition(6)
+        with pytest.raises(xarm.ArgumentError) as e:
+            arm.setPosition(7, 500)
+        assert e.value.kind == "invalid_argument"
+        assert e.value.message == "servo ID 7 is not allowed: the board has servos 1, 2, 3, 4, 5, 6"
+        with pytest.raises(xarm.ArgumentError):
+            arm.setPosition([[6, 300], [7, 500]])  # refused whole: servo 6 does not move either
+        assert arm.getPosition(6) == before
+        arm.setPosition(6, before + 20, 100, wait=True)  # the servos it has still move
+        assert abs(arm.getPosition(6) - (before + 20)) <= 1
+
+
+def test_integral_numbers_of_any_type_are_accepted():
+    import numpy as np
+
+    with xarm.Controller("sim") as arm:
+        arm.setPosition(np.int64(1), np.int64(600), np.int32(200), wait=True)
+        assert abs(arm.getPosition(np.uint8(1)) - 600) <= 1
+        arm.setPosition([[2, np.int16(400)], xarm.Servo(np.int64(3), np.int64(650))], 200.0, wait=True)
+        assert [abs(p - t) <= 1 for p, t in zip(arm.getPosition([2, 3]), [400, 650])] == [True, True]
+        arm.setPosition(4, np.float64(-30.0), 200, wait=True)  # a float, NumPy's too, is an angle
+        assert arm.getPosition(4, degrees=True) == pytest.approx(-30.0, abs=0.25)
+    s = xarm.Servo(1)
+    s.position = np.int64(700)
+    assert s.position == 700 and type(s.position) is int
+    s.position = 650.0  # integral: units
+    assert s.position == 650
+    for bad in [True, np.bool_(True), 650.5, float("nan"), np.int64(1001), -1, "600"]:
+        with pytest.raises(xarm.ArgumentError):
+            s.position = bad
+    for call in [lambda: xarm.Servo(True), lambda: xarm.Servo(np.int64(255)),
+                 lambda: xarm.Controller.setPosition(None, 1, 500, duration=100.5),
+                 lambda: xarm.Controller.setPosition(None, 1, 500, duration=True)]:
+        with pytest.raises(xarm.ArgumentError):
+            call()
+
+
+def test_four_threads_move_one_arm():
+    import threading
+
+    with xarm.Controller("sim") as arm:  # the link's own reply timeout, 0.5 s
+        start = threading.Barrier(4)
+        raised = []
+        targets = {1: [300, 700], 2: [350, 650], 3: [400, 600], 4: [450, 550]}
+
+        def moves(sid):
+            try:
+                start.wait(30)
+                for position in targets[sid]:
+                    arm.setPosition(sid, position, 100, wait=True)
+                    assert abs(arm.getPosition(sid) - position) <= 1
+            except BaseException as e:  # noqa: B036 (reported below)
+                raised.append(e)
+
+        threads = [threading.Thread(target=moves, args=(sid,)) for sid in targets]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join(60)
+            assert not t.is_alive()
+        assert raised == []
+        assert [abs(p - t[-1]) <= 1 for p, t in zip(arm.getPosition(list(targets)), targets.values())] == [True] * 4

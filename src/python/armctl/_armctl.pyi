@@ -96,7 +96,8 @@ class MotionReport:
     @property
     def completed(self) -> bool: ...
     @property
-    def stopped(self) -> bool: ...
+    def stopped(self) -> bool:
+        """Stopped on the path by stop() from another thread (Ctrl-C and close() raise instead)."""
     @property
     def points(self) -> int: ...
     @property
@@ -142,11 +143,14 @@ def Circ(via: Vector, position: Vector, roll: Optional[float] = None, pitch: Opt
     """A circular arc of the tool through ``via`` to ``position`` (m)."""
 
 class Arm:
-    """One arm in SI units over any device: Arm(arm='xarm', device='') ('' = the embedded simulator)."""
+    """One arm in SI units over any device: Arm(arm='xarm', device='') ('' = the embedded simulator).
+
+    Safe to share between threads: calls take turns on the device, one at a time."""
 
     def __init__(self, arm: str = "xarm", device: str = "") -> None: ...
     def close(self) -> None:
-        """Closes the device; later calls raise Error."""
+        """Stops what another thread runs on the arm (a wait, a streamed motion: it raises Error), waits
+        for it, then closes the device; later calls raise Error."""
     def __enter__(self) -> "Arm": ...
     def __exit__(self, *exc: object) -> None: ...
     @property
@@ -166,7 +170,8 @@ class Arm:
     def pose(self) -> Pose:
         """The tool pose where the arm stands now."""
     def forward(self, q: Vector) -> Pose:
-        """The tool pose at chain joints ``q`` (or every joint); nothing is sent."""
+        """The tool pose at chain joints ``q`` (or every joint); nothing is sent. A value that is not finite
+        or past its joint's limits raises Error naming the joint, the value and the range."""
     def inverse(self, position: Vector, roll: Optional[float] = None, pitch: Optional[float] = None,
                 yaw: Optional[float] = None, elbow: Optional[str] = None, nearest_orientation: bool = False,
                 near: Optional[Vector] = None) -> list[IkSolution]:
@@ -197,7 +202,7 @@ class Arm:
              length_tolerance: float = 0.0005) -> JointState:
         """Until every joint of the last move is there and at rest; Error (timeout) names the late joints."""
     def stop(self) -> None:
-        """Stops every joint where it is and holds it."""
+        """Stops every joint where it is and holds it; what other threads run on the arm stops first."""
     def set_torque(self, on: bool) -> None:
         """off: the arm can be moved by hand; on: hold where it stands."""
     def gripper(self, closed_fraction: float, duration: Optional[float] = None, speed: float = 0.25,
@@ -213,10 +218,13 @@ class Arm:
         """Action-group notifications: {'kind', 'group', 'count'}."""
 
 class RobotCommands:
-    """A Robot Commands board in device units: RobotCommands(device='sim', servo_count=6, timeout=0)."""
+    """A Robot Commands board in device units: RobotCommands(device='sim', servo_count=6, timeout=0).
+
+    Safe to share between threads: each request and its reply take their turn on the link."""
 
     def __init__(self, device: str = "sim", servo_count: int = 6, timeout: float = 0.0) -> None: ...
-    def close(self) -> None: ...
+    def close(self) -> None:
+        """Waits for the call another thread runs (group_events ends early), then closes the board."""
     def __enter__(self) -> "RobotCommands": ...
     def __exit__(self, *exc: object) -> None: ...
     @property

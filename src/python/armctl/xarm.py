@@ -18,12 +18,19 @@ right thing (docs/python.md "The xarm drop-in"):
 - ``getPosition([servo, ...])`` also returns the positions (that package returns None);
 - ``setPosition(..., wait=True)`` returns when the servos are there (within one unit, as read
   back after the duration, for at most one second more), not merely when the time is up;
-- a duration that is not an int 0..30000 ms is refused (that package sends its low 16 bits).
+- a duration that is not an int 0..30000 ms is refused (that package sends its low 16 bits);
+- ``setPosition`` refuses a servo ID the board does not have (a board ignores a move to it);
+- one Controller can be used from several threads: each request and its reply take their turn
+  on the link (that package lets them interleave and take each other's replies).
+
+Integers may be any integral number (``numpy.int64(600)``, ``600.0`` where only units are
+taken); bools are not numbers here.
 
 Argument errors raise armctl.xarm.ArgumentError, which is both armctl.Error (kind
 'invalid_argument') and ValueError, as that package's checks raise ValueError.
 """
 
+import numbers as _numbers
 import time as _time
 
 from . import _armctl
@@ -47,8 +54,25 @@ class ArgumentError(_armctl.Error, ValueError):
         self.message = message
 
 
-def _is_int(value):
-    return isinstance(value, int) and not isinstance(value, bool)
+def _integer(value):
+    """``value`` as an int when it is an integral number (an int, a NumPy integer, a float without
+    a fraction such as 600.0), else None; a bool is not a number here (True is not servo 1)."""
+    if isinstance(value, bool) or not isinstance(value, _numbers.Real):  # numpy.bool_ is no Real
+        return None
+    if isinstance(value, _numbers.Integral):
+        return int(value)
+    value = float(value)
+    return int(value) if value.is_integer() else None
+
+
+def _is_units(value):
+    """An integer type (int, NumPy integers): a position in units where an angle may also go."""
+    return isinstance(value, _numbers.Integral) and not isinstance(value, bool)
+
+
+def _is_angle(value):
+    """Any other real number (float, NumPy floats): an angle in degrees where a position may also go."""
+    return isinstance(value, _numbers.Real) and not isinstance(value, (bool, _numbers.Integral))
 
 
 def _angle_to_position(angle):
@@ -72,18 +96,19 @@ def _check_position(position):
 
 def _units(position):
     """A position as that package takes it: an int in units, a float an angle in degrees."""
-    if _is_int(position):
-        return _check_position(position)
-    if isinstance(position, float):
-        return _angle_to_position(position)
+    if _is_units(position):
+        return _check_position(int(position))
+    if _is_angle(position):
+        return _angle_to_position(float(position))
     raise ArgumentError(
         f"position {position!r} is not allowed: an int 0..1000 (units) or a float -120.0..120.0 (degrees)")
 
 
 def _check_id(servo_id):
-    if not _is_int(servo_id) or not 1 <= servo_id <= 254:
+    sid = _integer(servo_id)
+    if sid is None or not 1 <= sid <= 254:
         raise ArgumentError(f"servo ID {servo_id!r} is not allowed: an int 1..254")
-    return servo_id
+    return sid
 
 
 class Servo:
@@ -96,7 +121,7 @@ class Servo:
     def __init__(self, servo_id, position=500):
         self.servo_id = _check_id(servo_id)
         self._position = _CENTRE
-        if isinstance(position, float):
+        if _is_angle(position):
             self.angle = position
         else:
             self.position = position
@@ -108,9 +133,10 @@ class Servo:
 
     @position.setter
     def position(self, value):
-        if not _is_int(value):
+        units = _integer(value)
+        if units is None:
             raise ArgumentError(f"position {value!r} is not allowed: an int 0..1000")
-        self._position = _check_position(value)
+        self._position = _check_position(units)
 
     @property
     def angle(self):
@@ -119,7 +145,7 @@ class Servo:
 
     @angle.setter
     def angle(self, value):
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
+        if isinstance(value, bool) or not isinstance(value, _numbers.Real):
             raise ArgumentError(f"angle {value!r} is not allowed: a number of degrees -120..120")
         self._position = _angle_to_position(float(value))
 
@@ -150,14 +176,14 @@ def _armctl_error(kind, message):
 
 def _ids(servos, what):
     """Servo IDs from an int, a Servo, or a list of them."""
-    if _is_int(servos):
+    if _integer(servos) is not None:
         return [_check_id(servos)]
     if isinstance(servos, Servo):
         return [servos.servo_id]
     if isinstance(servos, (list, tuple)):
         out = []
         for s in servos:
-            out.extend(_ids(s, what) if isinstance(s, (Servo, int)) and not isinstance(s, bool) else _bad(s, what))
+            out.extend(_ids(s, what) if isinstance(s, Servo) or _integer(s) is not None else _bad(s, what))
         return out
     return _bad(servos, what)
 
@@ -180,6 +206,7 @@ class Controller:
         self.debug = debug
         self.servos = []
         self._present = None
+        self._answered = set()  # servo IDs that answered a read: the board has them
         self._client = _armctl.RobotCommands(_device_uri(com_port, usb_path), servo_count, timeout)
 
     def close(self):
@@ -203,10 +230,12 @@ class Controller:
         float angle in degrees), a Servo (its position), or a list of Servos and
         ``[id, position]`` pairs.
         """
-        if not _is_int(duration) or not 0 <= duration <= 30000:
+        ms = _integer(duration)
+        if ms is None or not 0 <= ms <= 30000:
             raise ArgumentError(f"duration {duration!r} is not allowed: an int 0..30000 (ms)")
+        duration = ms
         targets = []
-        if _is_int(servos):
+        if _integer(servos) is not None:
             if position is None:
                 raise ArgumentError("parameter 'position' missing: give a position (int) or an angle (float)")
             targets.append((_check_id(servos), _units(position)))
@@ -216,17 +245,40 @@ class Controller:
             for s in servos:
                 if isinstance(s, Servo):
                     targets.append((s.servo_id, s.position))
-                elif isinstance(s, (list, tuple)) and len(s) == 2 and _is_int(s[0]):
+                elif isinstance(s, (list, tuple)) and len(s) == 2 and _integer(s[0]) is not None:
                     targets.append((_check_id(s[0]), _units(s[1])))
                 else:
                     raise ArgumentError(f"list entry {s!r} is not allowed: a Servo or an [id, position] pair")
         else:
             raise ArgumentError(f"servos {servos!r} is not allowed: a servo ID, a Servo, or a list")
+        self._check_present([sid for sid, _ in targets])
         self._log(f"setPosition {targets} over {duration} ms")
         self._client.move(targets, duration)
         if wait:
             _time.sleep(duration / 1000)
             self._settle(targets)
+
+    def _check_present(self, ids):
+        # A board ignores a move to a servo it does not have: refuse it instead. IDs are
+        # confirmed by reading them once (a few ms); only when that read gets no answer are the
+        # board's servos looked up (_present_servos) to say which it has.
+        unknown = [sid for sid in ids if sid not in self._answered]
+        if not unknown:
+            return
+        try:
+            self._client.read_positions(unknown)
+            self._answered.update(unknown)
+            return
+        except _armctl.Error as e:
+            if e.kind != "timeout":
+                raise
+        present = self._present_servos()
+        missing = [sid for sid in ids if sid not in present]
+        if missing:
+            raise ArgumentError(
+                f"servo ID {', '.join(map(str, missing))} is not allowed: the board has servos"
+                f" {', '.join(map(str, present))}")
+        self._answered.update(ids)
 
     def _settle(self, targets):
         # The board's time is when its interpolation ends; a servo under load arrives a little
@@ -251,7 +303,7 @@ class Controller:
             read = dict(self._client.read_positions(ids))
             out = []
             for s in servos:
-                sid = s.servo_id if isinstance(s, Servo) else s
+                sid = s.servo_id if isinstance(s, Servo) else _check_id(s)
                 value = read[sid]
                 if isinstance(s, Servo):
                     s.position = min(max(value, 0), 1000)
@@ -276,8 +328,10 @@ class Controller:
 
     def listServos(self, maximum_servo_id=6):
         """The servo IDs 1..maximum_servo_id that answer a position read (kept in ``servos``)."""
-        if not _is_int(maximum_servo_id) or not 1 <= maximum_servo_id <= 254:
+        maximum = _integer(maximum_servo_id)
+        if maximum is None or not 1 <= maximum <= 254:
             raise ArgumentError(f"maximum_servo_id {maximum_servo_id!r} is not allowed: 1..254")
+        maximum_servo_id = maximum
         found = []
         ids = list(range(1, maximum_servo_id + 1))
         try:  # one request when every servo is there (the usual case)
@@ -296,8 +350,10 @@ class Controller:
     def writeServoId(self, new_servo_id=0, overwrite_all_servo_ids=False):
         """Gives the servo on the bus the ID ``new_servo_id``; with more than one servo connected,
         only if ``overwrite_all_servo_ids`` (the command reaches every servo on the bus)."""
-        if not _is_int(new_servo_id) or not 1 <= new_servo_id <= 254:
+        new_id = _integer(new_servo_id)
+        if new_id is None or not 1 <= new_id <= 254:
             raise ArgumentError(f"new_servo_id {new_servo_id!r} is not allowed: 1..254")
+        new_servo_id = new_id
         if not overwrite_all_servo_ids:
             present = self.listServos(self._client.servo_count)
             if not present:
