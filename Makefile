@@ -48,7 +48,7 @@ FUZZ_BUILD := build/fuzz
 FUZZ_SECONDS ?= 60
 TEST_FUZZ_SECONDS ?= 10
 
-.PHONY: all deps deb-deps demo-deps web-deps configure build test demo bench fuzz firmware flash install uninstall clean format
+.PHONY: all deps deb-deps demo-deps web-deps configure build test demo python bench fuzz firmware flash install uninstall clean format
 
 all: build
 
@@ -167,6 +167,19 @@ install: deps
 	$(SUDO) install -d $(UDEV_RULES_DIR)
 	$(SUDO) install -m 0644 udev/50-armctl.rules $(UDEV_RULES_DIR)/50-armctl.rules
 	-$(SUDO) udevadm control --reload-rules && $(SUDO) udevadm trigger
+
+# The Python module, optimised and without sanitizers (the test build's module needs the ASan
+# runtime preloaded into python3): then `PYTHONPATH=build/python-release/python python3`.
+PYTHON_PACKAGES := pybind11-dev python3-dev python3-numpy
+PYTHON_BUILD := build/python-release
+python:
+	@$(MAKE) --no-print-directory demo-deps DEMO_PACKAGES="$(DEMO_PACKAGES) $(PYTHON_PACKAGES)"
+	@$(MAKE) --no-print-directory web/node_modules NODE_SETUP=demo-deps
+	cmake -S . -B $(PYTHON_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARMCTL_SANITIZE=OFF \
+	  -DARMCTL_TESTS=OFF -DARMCTL_BENCH=OFF -DARMCTL_FIRMWARE=OFF -DARMCTL_HIL=OFF -DARMCTL_PYTHON=ON \
+	  -DARMCTL_ROS=OFF -DARMCTL_QUICK_BUILD=ON > /dev/null
+	cmake --build $(PYTHON_BUILD) -j $(JOBS) --target armctl_python
+	@echo "python: PYTHONPATH=$(PYTHON_BUILD)/python python3"
 
 # Removes what `make install` installed from this tree (CMake's install_manifest.txt lists
 # every file) and the udev rule.
