@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <vector>
 
 #include <fmt/core.h>
 
@@ -103,8 +104,18 @@ class Runner {
     return {};
   }
 
+  // A chain "a + b + c ..." is a left-deep tree: walked down its left side and evaluated
+  // back up by a loop, so that only nesting (parentheses, signs, NOT: at most
+  // kExpressionMaxNesting) makes eval recurse.
   Value binary(const Expr& e) {
-    const Value a = eval(*e.left), b = eval(*e.right);
+    std::vector<const Expr*> chain{&e};
+    while (chain.back()->left->kind == ExprKind::binary) chain.push_back(chain.back()->left.get());
+    Value a = eval(*chain.back()->left);
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) a = apply(**it, a, eval(*(*it)->right));
+    return a;
+  }
+
+  Value apply(const Expr& e, const Value& a, const Value& b) {
     auto same = [&](const char* what) {
       if (a.unit != b.unit)
         fail(e.at, fmt::format("'{}' {} {} and {} ({} {} {}); both sides need the same kind of value", to_string(e.op),

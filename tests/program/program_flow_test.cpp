@@ -167,5 +167,47 @@ TEST(ProgramFlow, LoopsAndCallsAreBounded) {
             "run may do (a loop that never ends?)");
 }
 
+// A left-deep chain far longer than the parser lets through (built here by hand): the flow
+// evaluates it by a loop and the tree frees itself by one; recursing per term overflowed the
+// stack at some 50,000 terms.
+TEST(ProgramFlow, LongChainsAreEvaluatedWithoutRecursion) {
+  auto literal = [](double v) {
+    auto e = std::make_unique<Expr>();
+    e->value = {v, Unit::number};
+    e->at = {1, 5};
+    return e;
+  };
+  ExprPtr sum = literal(1);
+  for (int i = 0; i < 300'000; ++i) {
+    auto e = std::make_unique<Expr>();
+    e->kind = ExprKind::binary;
+    e->op = i % 2 ? Operator::add : Operator::sub;
+    e->at = {1, 7};
+    e->left = std::move(sum);
+    e->right = literal(i % 2 ? 3 : 1);
+    sum = std::move(e);
+  }
+  Program p;
+  p.source = "f.prog";
+  Statement assign;
+  assign.kind = StatementKind::assign;
+  assign.name = "n";
+  assign.value = std::move(sum);
+  p.main.push_back(std::move(assign));
+  Statement print;
+  print.kind = StatementKind::print;
+  print.at = {2, 1};
+  PrintItem item;
+  item.value = std::make_unique<Expr>();
+  item.value->kind = ExprKind::variable;
+  item.value->name = "n";
+  print.print.push_back(std::move(item));
+  p.main.push_back(std::move(print));
+  auto f = run_flow(p, points());
+  ASSERT_TRUE(f.ok()) << f.error().message;
+  // 1, then 150,000 times (- 1 + 3): 300,001.
+  EXPECT_EQ(prints(*f), std::vector<std::string>{"300001"});
+}
+
 }  // namespace
 }  // namespace armctl::program
