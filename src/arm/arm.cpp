@@ -167,6 +167,7 @@ motion::Rpy Arm::goal_rpy(const CartesianGoal& goal, const motion::Rpy& current)
 Result<std::vector<motion::IkSolution>> Arm::inverse(const CartesianGoal& goal, const JointState& now) const {
   for (int k = 0; k < 3; ++k)
     if (!std::isfinite(goal.position[k])) return refuse("the tool position is not a finite number");
+  if (auto ok = within_reach(model_, goal.position, "the tool target"); !ok) return ok.error();
   for (const auto& a : {goal.roll, goal.pitch, goal.yaw})
     if (a && !std::isfinite(*a)) return refuse("the tool orientation is not a finite number");
   const motion::JointVector near = chain_part(model_, now.positions);

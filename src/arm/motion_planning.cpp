@@ -181,6 +181,24 @@ Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& fro
       !std::isfinite(timing.angular_acceleration))
     return refuse("path accelerations must be finite and above 0");
   if (segments.empty()) return refuse("the path has no segments");
+  // A point beyond any reach, and a speed outside what a request may ask, are refused here,
+  // before the path is built and sampled (the apps check speeds in their users' words
+  // first; this holds for every caller).
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const motion::PathSegment& seg = segments[i];
+    const std::string what = fmt::format("segment {} ({})", i + 1, motion::to_string(seg.kind));
+    if (auto ok = check_quantity_in(seg.speed, Dimension::length, what + ": speed", 1, motion::kMinToolSpeed,
+                                    motion::kMaxToolSpeed);
+        !ok)
+      return ok.error();
+    if (auto ok = check_quantity_in(seg.angular_speed, Dimension::angle, what + ": angular speed", 1,
+                                    motion::kMinToolAngularSpeed, motion::kMaxToolAngularSpeed);
+        !ok)
+      return ok.error();
+    if (auto ok = within_reach(model, seg.target.position, what + ": target"); !ok) return ok.error();
+    if (seg.kind == motion::SegmentKind::circ)
+      if (auto ok = within_reach(model, seg.via, what + ": via point"); !ok) return ok.error();
+  }
   const int chain = model.chain_joints();
   motion::JointVector start(chain);
   for (int i = 0; i < chain; ++i) start[i] = from[std::size_t(i)];

@@ -16,6 +16,7 @@
 #include "arm/motion_executor.hpp"
 #include "core/error.hpp"
 #include "motion/cartesian_path.hpp"
+#include "motion/move_limits.hpp"
 #include "motion/path_check.hpp"
 #include "motion/path_file.hpp"
 #include "motion/trajectory.hpp"
