@@ -109,7 +109,7 @@ struct ArmModel {
 // Ok when `position` (m, base frame) lies within model.reach of the base, else
 // invalid_argument naming `what`, the coordinate that is farthest out with its value in mm,
 // and the reach: "segment 1 (LIN): target: x 1e+200 mm is beyond reach: arm 'xarm' reaches
-// at most 453 mm from its base".
+// at most 366 mm from its base".
 Status within_reach(const ArmModel& model, const Eigen::Vector3d& position, std::string_view what);
 
 // Parses an arm file's text. `urdf_text` is the URDF it names (read by the caller relative

@@ -6,6 +6,8 @@
 
 #include <fmt/core.h>
 
+#include "motion/move_limits.hpp"
+
 namespace armctl::program {
 
 namespace {
@@ -307,7 +309,7 @@ class Runner {
         return;
       }
       case StatementKind::override_:
-        override_ = want(*s.value, Unit::percent, "OVERRIDE", 0, 1, true);
+        override_ = want(*s.value, Unit::percent, "OVERRIDE", motion::kMinSpeedFraction, motion::kMaxSpeedFraction);
         return;
     }
   }
@@ -321,15 +323,17 @@ class Runner {
     m.override_fraction = override_;
     for (const auto& o : s.options) {
       const std::string what = fmt::format("{}'s {}", to_string(s.move), o.name);
+      // The ranges every app takes (motion/move_limits.hpp).
       if (s.move == MoveKind::ptp) {
-        const double f = want(*o.value, Unit::percent, what, 0, 1, true);
+        const double f = want(*o.value, Unit::percent, what, motion::kMinSpeedFraction, motion::kMaxSpeedFraction);
         (o.name == "speed" ? m.speed : m.acceleration) = f;
       } else if (o.name == "speed") {
-        m.speed = want(*o.value, Unit::speed, what, 0, 10, true);
+        m.speed = want(*o.value, Unit::speed, what, motion::kMinToolSpeed, motion::kMaxToolSpeed);
       } else if (o.name == "accel") {
         m.acceleration = want(*o.value, Unit::acceleration, what, 0, 100, true);
       } else if (o.name == "angular_speed") {
-        m.angular_speed = want(*o.value, Unit::angular_speed, what, 0, 100, true);
+        m.angular_speed =
+            want(*o.value, Unit::angular_speed, what, motion::kMinToolAngularSpeed, motion::kMaxToolAngularSpeed);
       } else {
         m.zone = want(*o.value, Unit::length, what, 0, 1);
       }
