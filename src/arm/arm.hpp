@@ -38,7 +38,7 @@ struct MoveOptions {
   // The duration in the user's words, for the note ("--time 0.1s"), and where the note
   // goes when the duration is stretched (called before the move is sent).
   std::string duration_words = "the duration";
-  std::function<void(const std::string&)> on_note;
+  std::function<void(const std::string&)> on_note = nullptr;
 };
 
 // A tool target. Orientation components left empty keep the tool's current ones (the
