@@ -6,6 +6,10 @@
 
 #include <fmt/core.h>
 
+#include "arm/motion_planning.hpp"
+#include "core/quantity.hpp"
+#include "motion/move_limits.hpp"
+
 namespace armctl::arm {
 
 namespace {
@@ -109,8 +113,11 @@ Duration Arm::move_time(const std::vector<double>& from, const std::vector<std::
 
 Status Arm::move_joints(const std::vector<std::optional<double>>& targets, const MoveOptions& options) {
   if (auto ok = check_targets(targets); !ok) return ok;
-  if (!options.duration && !(options.speed > 0 && options.speed <= 1))
-    return refuse(fmt::format("speed {} is outside (0, 1] (a fraction of the joints' velocity limits)", options.speed));
+  if (!options.duration)
+    if (auto ok = check_fraction_in(options.speed, "speed (of the joints' velocity limits)", motion::kMinSpeedFraction,
+                                    motion::kMaxSpeedFraction);
+        !ok)
+      return ok;
   if (options.duration && options.duration->count() < 0) return refuse("a move's duration cannot be negative");
   auto now = read();
   if (!now) return now.error();
@@ -137,7 +144,16 @@ Status Arm::move_joints(const std::vector<std::optional<double>>& targets, const
                                 to_string(device_->protocol()), range.min, range.max));
     device_targets[i] = device[i];
   }
-  const Duration duration = options.duration ? *options.duration : move_time(now->positions, with_partners, options.speed);
+  Duration duration{};
+  if (options.duration) {
+    auto timed = joint_move_duration(model_, now->positions, full, std::chrono::duration<double>(*options.duration).count(),
+                                     options.duration_words);
+    if (!timed) return timed.error();
+    if (timed->stretched && options.on_note) options.on_note(timed->note);
+    duration = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(timed->seconds));
+  } else {
+    duration = move_time(now->positions, with_partners, options.speed);
+  }
   if (auto sent = device_->move(device_targets, duration); !sent) return sent;
   last_targets_ = with_partners;
   return Ok{};
@@ -167,6 +183,7 @@ motion::Rpy Arm::goal_rpy(const CartesianGoal& goal, const motion::Rpy& current)
 Result<std::vector<motion::IkSolution>> Arm::inverse(const CartesianGoal& goal, const JointState& now) const {
   for (int k = 0; k < 3; ++k)
     if (!std::isfinite(goal.position[k])) return refuse("the tool position is not a finite number");
+  if (auto ok = within_reach(model_, goal.position, "the tool target"); !ok) return ok.error();
   for (const auto& a : {goal.roll, goal.pitch, goal.yaw})
     if (a && !std::isfinite(*a)) return refuse("the tool orientation is not a finite number");
   const motion::JointVector near = chain_part(model_, now.positions);

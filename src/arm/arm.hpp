@@ -29,10 +29,16 @@ struct JointState {
 };
 
 struct MoveOptions {
-  // Exactly this long (all joints arrive together). Without it, the slowest joint moves at
-  // `speed` times its velocity limit with its acceleration limit.
+  // This long (all joints arrive together), but never faster than the arm file allows: a
+  // duration shorter than the jerk-limited move at the joints' limits is stretched to it
+  // (arm/motion_planning.hpp joint_move_duration, the rule of every app). Without it, the
+  // slowest joint moves at `speed` times its velocity limit with its acceleration limit.
   std::optional<Duration> duration;
-  double speed = 0.25;  // fraction of the velocity limits, (0, 1]
+  double speed = 0.25;  // fraction of the velocity limits, 0.001..1 (motion/move_limits.hpp)
+  // The duration in the user's words, for the note ("--time 0.1s"), and where the note
+  // goes when the duration is stretched (called before the move is sent).
+  std::string duration_words = "the duration";
+  std::function<void(const std::string&)> on_note = nullptr;
 };
 
 // A tool target. Orientation components left empty keep the tool's current ones (the

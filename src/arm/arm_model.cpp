@@ -269,6 +269,13 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
   std::vector<motion::PositionLimits> limits;
   for (const auto& j : m.joints)
     if (j.role == JointRole::chain) limits.push_back({j.limits.lower, j.limits.upper});
+  m.reach = chain->tip_from_last.translation().norm() + m.tool.position.norm();
+  for (std::size_t i = 0; i < chain->joints.size(); ++i) {
+    const motion::ChainJoint& cj = chain->joints[i];
+    m.reach += cj.from_previous.translation().norm();
+    if (cj.type == motion::ChainJointType::prismatic)
+      m.reach += std::max(std::abs(m.joints[i].limits.lower), std::abs(m.joints[i].limits.upper));
+  }
   auto kin = motion::make_kinematics(m.family, *chain, limits);
   if (!kin) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, kin.error().message));
   m.kinematics = std::shared_ptr<const motion::Kinematics>(std::move(kin.value()));
@@ -276,6 +283,26 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
 }
 
 }  // namespace
+
+Status within_reach(const ArmModel& model, const Eigen::Vector3d& position, std::string_view what) {
+  if (!position.allFinite())
+    return Error{ErrorKind::invalid_argument, fmt::format("{}: the position is not a finite number", what)};
+  // The norm of a finite vector can overflow (1e200 squared): the largest coordinate
+  // decides first, and it is the one named.
+  Eigen::Index axis = 0;
+  position.cwiseAbs().maxCoeff(&axis);
+  const auto error = [&](std::string beyond) {
+    return Error{ErrorKind::invalid_argument,
+                 fmt::format("{}: {} is beyond reach: arm '{}' reaches at most {:.0f} mm from its base",
+                             what, beyond, model.name, model.reach * 1e3)};
+  };
+  if (std::abs(position[axis]) > model.reach)
+    return error(fmt::format("{} {:.6g} mm", "xyz"[axis], position[axis] * 1e3));
+  if (position.norm() > model.reach)
+    return error(fmt::format("the point (x {:.1f} y {:.1f} z {:.1f} mm), {:.0f} mm from the base,", position.x() * 1e3,
+                             position.y() * 1e3, position.z() * 1e3, position.norm() * 1e3));
+  return Ok{};
+}
 
 const char* to_string(Protocol p) { return p == Protocol::robot_commands ? "robot_commands" : "joint_bus"; }
 

@@ -88,6 +88,10 @@ struct ArmModel {
   std::optional<GripperModel> gripper;
   motion::Pose tool;  // the tool frame in the URDF's tool link
   std::shared_ptr<const motion::Kinematics> kinematics;
+  // The farthest the tool point can be from the base frame's origin (m), for any joint
+  // values: the chain's offsets end to end, plus each prismatic joint's travel and the
+  // tool's offset. An upper bound: a target beyond it is refused before any planning.
+  double reach = 0;
   std::filesystem::path file;  // the arm file it came from ("" if parsed from text)
   std::filesystem::path urdf;
 
@@ -101,6 +105,12 @@ struct ArmModel {
   std::vector<double> to_device(Protocol p, const std::vector<double>& joints) const;
   std::vector<double> from_device(Protocol p, const std::vector<double>& device) const;
 };
+
+// Ok when `position` (m, base frame) lies within model.reach of the base, else
+// invalid_argument naming `what`, the coordinate that is farthest out with its value in mm,
+// and the reach: "segment 1 (LIN): target: x 1e+200 mm is beyond reach: arm 'xarm' reaches
+// at most 366 mm from its base".
+Status within_reach(const ArmModel& model, const Eigen::Vector3d& position, std::string_view what);
 
 // Parses an arm file's text. `urdf_text` is the URDF it names (read by the caller relative
 // to the arm file); every error (invalid_config) names the key or URDF element and what is

@@ -5,6 +5,9 @@
 
 #include <fmt/core.h>
 
+#include "core/quantity.hpp"
+#include "motion/move_limits.hpp"
+
 namespace armctl::arm {
 
 namespace {
@@ -88,10 +91,13 @@ class Execution {
   }
 
   Result<MotionReport> run() {
-    const double top = std::clamp(options_.speed_override, 0.0, 1.0);
-    if (!(top > 0))
-      return Error{ErrorKind::invalid_argument,
-                   fmt::format("speed override {:.0f} %: allowed is above 0 up to 100 %", options_.speed_override * 100)};
+    // Every app's override (the CLI's --override, OVERRIDE in programs, Python's
+    // speed_override, the HTTP API's speed) within one range.
+    if (auto ok = check_fraction_in(options_.speed_override, "speed override", motion::kMinSpeedFraction,
+                                    motion::kMaxSpeedFraction);
+        !ok)
+      return ok.error();
+    const double top = options_.speed_override;
     if (!motion_.sample || !(motion_.duration >= 0) || !std::isfinite(motion_.duration))
       return Error{ErrorKind::invalid_argument, "the motion has no samples or no finite duration"};
     if (auto at_start = check_start(); !at_start) return at_start.error();

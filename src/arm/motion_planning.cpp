@@ -60,8 +60,10 @@ Result<PlannedMotion> plan_joint_move(const ArmModel& model, const std::vector<d
   if (n < 1 || n > motion::kMaxTrajectoryJoints)
     return refuse(fmt::format("arm '{}' has {} joints; host-planned moves take 1..{}", model.name, n,
                               motion::kMaxTrajectoryJoints));
-  if (!(move.speed > 0 && move.speed <= 1))
-    return refuse(fmt::format("speed {:.0f} %: allowed is above 0 up to 100 %", move.speed * 100));
+  if (auto ok = check_fraction_in(move.speed, "speed", motion::kMinSpeedFraction, motion::kMaxSpeedFraction); !ok)
+    return ok.error();
+  if (!(move.min_duration >= 0 && move.min_duration <= motion::kMaxMoveDuration))
+    return refuse(fmt::format("duration {:g} s: allowed 0..{:g} s", move.min_duration, motion::kMaxMoveDuration));
   if (auto s = check_joint_count(model, from, "the start"); !s) return s.error();
   if (auto s = check_joint_count(model, move.target, "the target"); !s) return s.error();
   for (const auto& w : move.waypoints)
@@ -101,6 +103,51 @@ Result<PlannedMotion> plan_joint_move(const ArmModel& model, const std::vector<d
     }
   };
   return m;
+}
+
+Result<MoveDuration> joint_move_duration(const ArmModel& model, const std::vector<double>& from,
+                                         const std::vector<double>& to, double requested_s, std::string_view as_given) {
+  if (!(requested_s >= 0 && requested_s <= motion::kMaxMoveDuration))
+    return refuse(fmt::format("{}: {:g} s is {}; allowed 0..{:g} s (0: as fast as the arm file's limits allow)",
+                              as_given, requested_s,
+                              std::isnan(requested_s) ? "not a number" : requested_s < 0 ? "negative" : "too long",
+                              motion::kMaxMoveDuration));
+  if (auto s = check_joint_count(model, from, "the start"); !s) return s.error();
+  if (auto s = check_joint_count(model, to, "the target"); !s) return s.error();
+  // A joint read back a hair past its limit (a servo's rounding; a joint without a target
+  // stays there) still times the move.
+  std::vector<double> start = from, target = to;
+  for (std::size_t j = 0; j < start.size(); ++j) {
+    start[j] = std::clamp(start[j], model.joints[j].limits.lower, model.joints[j].limits.upper);
+    target[j] = std::clamp(target[j], model.joints[j].limits.lower, model.joints[j].limits.upper);
+  }
+  JointMove fastest;
+  fastest.target = target;
+  fastest.speed = 1;
+  auto planned = plan_joint_move(model, start, fastest);
+  if (!planned) return planned.error();
+  MoveDuration out;
+  out.shortest = planned->duration;
+  out.seconds = std::max(requested_s, out.shortest);
+  // Within a microsecond of the shortest is not worth a note (a duration read back).
+  out.stretched = requested_s < out.shortest - 1e-6;
+  if (!out.stretched) return out;
+  // The joint that needs the longest alone at its limits names the reason.
+  std::size_t slowest = 0;
+  double longest = -1;
+  for (std::size_t j = 0; j < to.size(); ++j) {
+    const JointLimits& l = model.joints[j].limits;
+    const double t = std::abs(to[j] - from[j]) / l.velocity;
+    if (t > longest) {
+      longest = t;
+      slowest = j;
+    }
+  }
+  const JointModel& jm = model.joints[slowest];
+  out.note = fmt::format("{} is too short for joint {} to move {} within its limits ({}): the move takes {:.2f} s",
+                         as_given, jm.name, format_quantity(jm.dimension, std::abs(to[slowest] - from[slowest])),
+                         format_quantity(jm.dimension, jm.limits.velocity, 1), out.seconds);
+  return out;
 }
 
 double tool_quantization(const ArmModel& model, Protocol protocol, const std::vector<double>& q) {
@@ -181,6 +228,24 @@ Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& fro
       !std::isfinite(timing.angular_acceleration))
     return refuse("path accelerations must be finite and above 0");
   if (segments.empty()) return refuse("the path has no segments");
+  // A point beyond any reach, and a speed outside what a request may ask, are refused here,
+  // before the path is built and sampled (the apps check speeds in their users' words
+  // first; this holds for every caller).
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const motion::PathSegment& seg = segments[i];
+    const std::string what = fmt::format("segment {} ({})", i + 1, motion::to_string(seg.kind));
+    if (auto ok = check_quantity_in(seg.speed, Dimension::length, what + ": speed", 1, motion::kMinToolSpeed,
+                                    motion::kMaxToolSpeed);
+        !ok)
+      return ok.error();
+    if (auto ok = check_quantity_in(seg.angular_speed, Dimension::angle, what + ": angular speed", 1,
+                                    motion::kMinToolAngularSpeed, motion::kMaxToolAngularSpeed);
+        !ok)
+      return ok.error();
+    if (auto ok = within_reach(model, seg.target.position, what + ": target"); !ok) return ok.error();
+    if (seg.kind == motion::SegmentKind::circ)
+      if (auto ok = within_reach(model, seg.via, what + ": via point"); !ok) return ok.error();
+  }
   const int chain = model.chain_joints();
   motion::JointVector start(chain);
   for (int i = 0; i < chain; ++i) start[i] = from[std::size_t(i)];

@@ -9,6 +9,8 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "arm/arm.hpp"
@@ -16,6 +18,7 @@
 #include "arm/motion_executor.hpp"
 #include "core/error.hpp"
 #include "motion/cartesian_path.hpp"
+#include "motion/move_limits.hpp"
 #include "motion/path_check.hpp"
 #include "motion/path_file.hpp"
 #include "motion/trajectory.hpp"
@@ -32,6 +35,25 @@ struct JointMove {
   double min_duration = 0;  // s
 };
 Result<PlannedMotion> plan_joint_move(const ArmModel& model, const std::vector<double>& from, const JointMove& move);
+
+// The one rule for a duration people ask of a joint move, in every app (the CLI's --time,
+// Python's duration=, the HTTP API's duration, a board move or a host-planned one): never
+// faster than the arm file allows. The shortest a move may take is that of the jerk-limited
+// move with every joint at its velocity, acceleration and jerk limits (plan_joint_move at
+// speed 1); a duration asked below it is stretched to it, and the note says so. Refused:
+// a duration that is not a number, negative or above motion::kMaxMoveDuration.
+struct MoveDuration {
+  double seconds = 0;   // what the move takes
+  double shortest = 0;  // the shortest the arm file's limits allow
+  bool stretched = false;
+  // When stretched, for people: "--time 0.1s is too short for servo6 to move 194.8 deg
+  // within its limits (180.0 deg/s): the move takes 1.46 s".
+  std::string note;
+};
+// `from` and `to`: SI, every joint. `as_given`: the duration in the user's words ("--time
+// 0.1s", "duration=0.1").
+Result<MoveDuration> joint_move_duration(const ArmModel& model, const std::vector<double>& from,
+                                         const std::vector<double>& to, double requested_s, std::string_view as_given);
 
 // A PTP's joint values as a path file or a program gives them: the leading joints, each an
 // angle or a length as its joint is; the joints not given stay where `from` has them. The

@@ -27,6 +27,27 @@ Result<double> parse_quantity(std::string_view text, Dimension dimension, std::s
                               int per_second_power = 0,
                               std::optional<std::string_view> default_unit = std::nullopt);
 
+// parse_quantity, then the range [min_si, max_si] (SI), refused in the user's words and
+// the display unit: "--speed: '1e-300mm/s' is too slow; allowed 0.1..500 mm/s".
+Result<double> parse_quantity_in(std::string_view text, Dimension dimension, std::string_view what,
+                                 int per_second_power, std::optional<std::string_view> default_unit, double min_si,
+                                 double max_si);
+
+// The same range check for a number given in SI already (Python's arguments, the HTTP
+// API's fields): "speed: 1e-300 m/s is too slow; allowed 0.1..500 mm/s".
+Status check_quantity_in(double si, Dimension dimension, std::string_view what, int per_second_power, double min_si,
+                         double max_si);
+
+// A percentage as people write it, "50%" or "12.5%", as a fraction (0.5) within
+// [min_fraction, max_fraction]. A bare number is refused (is "0.5" half or 0.5 %?):
+// "--override: '50' has no unit; write a percentage like 50%", and so is a value outside:
+// "--override: '1e-300%' is too small; allowed 0.1..100 %".
+Result<double> parse_percent(std::string_view text, std::string_view what, double min_fraction, double max_fraction);
+
+// The same range check for a fraction given as a number (Python, HTTP): "speed_override:
+// 1e-300 is too small; allowed 0.001..1 (0.1..100 %)".
+Status check_fraction_in(double fraction, std::string_view what, double min_fraction, double max_fraction);
+
 // "30 deg", "120.5 mm": for messages; `per_second_power` adds "/s", "/s^2", ...
 std::string format_quantity(Dimension d, double si, int per_second_power = 0);
 

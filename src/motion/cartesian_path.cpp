@@ -226,8 +226,19 @@ Result<CartesianPath> build_cartesian_path(const Pose& start, std::span<const Pa
       if (!finite(in.via)) return refuse(fmt::format("{}: the via point is not a finite number", what));
       if (auto ok = build_circle(g, in.via, what); !ok) return ok.error();
     }
+    // Coordinates of 1e200 m are finite, their distance is not; and a speed of 1e300 m/s
+    // makes a segment take no time at all: either would leave nothing to sample.
+    const double nominal = std::max(g.length / g.speed, g.angle / g.angular_speed);
+    if (!std::isfinite(g.length) || !std::isfinite(nominal))
+      return refuse(fmt::format("{}: the target is {:.6g} m from the segment's start, taking {:.6g} s at {:.6g} m/s; "
+                                "a segment's length and time must be finite numbers",
+                                what, g.length, nominal, g.speed));
+    if (!(s + nominal > s))
+      return refuse(fmt::format("{}: at {:.6g} m/s and {:.6g} rad/s its {:.6g} m and {:.6g} rad take no time after the "
+                                "{:.6g} s of path before it; lower its speed",
+                                what, g.speed, g.angular_speed, g.length, g.angle, s));
     g.start_s = s;
-    g.end_s = s + std::max(g.length / g.speed, g.angle / g.angular_speed);
+    g.end_s = s + nominal;
     s = g.end_s;
     here = g.target;
     path.segments_.push_back(g);

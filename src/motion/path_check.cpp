@@ -207,11 +207,14 @@ class Checker {
     for (const BuiltSegment& g : path_.segments()) {
       if (g.end_s <= from || g.start_s >= to) continue;
       const double t = g.end_s - g.start_s;
+      if (!(t > 0)) continue;  // no nominal time: nothing between its ends to sample
       double step = t;
       if (g.length > 0) step = std::min(step, kPathSampleLength * t / g.length);
       if (g.angle > 0) step = std::min(step, kPathSampleAngle * t / g.angle);
       const double n = std::ceil(t / step);
-      if (n > double(kMaxSamples))
+      // Written so that a NaN (an infinite length over an infinite time) is refused too:
+      // int(NaN) would leave the stretch without samples.
+      if (!(n >= 1 && n <= double(kMaxSamples)))
         return refuse(fmt::format("the path needs more than {} samples to check; split it", kMaxSamples));
       for (int i = 1; i <= int(n); ++i) s.push_back(i == int(n) ? g.end_s : g.start_s + t * i / n);
     }
@@ -240,7 +243,9 @@ class Checker {
     return out;
   }
 
-  // Derivatives by finite differences over one stretch [first, last] of the samples.
+  // Derivatives by finite differences over one stretch [first, last] of the samples. A
+  // stretch of one sample (a rest with no motion after it) has none: zero, and nothing past
+  // `last` is read.
   static void differentiate(CheckedPath& c, std::size_t first, std::size_t last) {
     const std::vector<double>& s = c.s;
     const Eigen::Index n = c.joints[first].size();
@@ -248,6 +253,7 @@ class Checker {
       c.dq_ds[i] = JointVector::Zero(n);
       c.d2q_ds2[i] = JointVector::Zero(n);
     }
+    if (last <= first) return;
     if (last == first + 1) {
       c.dq_ds[first] = c.dq_ds[last] = (c.joints[last] - c.joints[first]) / (s[last] - s[first]);
       return;
@@ -400,6 +406,8 @@ Result<CheckedPath> check_path(const CartesianPath& path, const Kinematics& kine
                                bool nearest_orientation) {
   const int n = kinematics.joint_count();
   if (path.segments().empty()) return refuse("the path has no segments");
+  if (!std::isfinite(path.duration()) || !(path.duration() > 0))
+    return refuse(fmt::format("the path's nominal duration is {} s; it must be finite and above 0", path.duration()));
   if (int(limits.size()) != n)
     return refuse(fmt::format("{} joint limits given for a chain of {} joints", limits.size(), n));
   if (start.size() != n) return refuse(fmt::format("{} start joints given for a chain of {} joints", start.size(), n));

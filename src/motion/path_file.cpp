@@ -13,6 +13,7 @@
 #include "core/json_reader.hpp"
 #include "core/printable.hpp"
 #include "core/text_fields.hpp"
+#include "motion/move_limits.hpp"
 
 namespace armctl::motion {
 
@@ -179,22 +180,30 @@ class Parser {
       else return fail(line, value_column, value, "elbow up or down (xArm), left or right (SCARA)");
     } else if (key == "speed") {
       if (move.kind == MoveKind::ptp) {
-        auto p = percent(value);
-        if (!p) return fail(line, value_column, value, "a ptp speed in percent of the joints' velocity limits, 0 < N <= 100 (e.g. 50%)");
-        move.speed_fraction = *p / 100;
+        auto p = parse_percent(value, "speed", kMinSpeedFraction, kMaxSpeedFraction);
+        if (!p)
+          return fail(line, value_column, value,
+                      fmt::format("a ptp speed in percent of the joints' velocity limits, {:g}..{:g} % (e.g. 50%)",
+                                  kMinSpeedFraction * 100, kMaxSpeedFraction * 100));
+        move.speed_fraction = *p;
       } else {
         if (!value.empty() && value.back() == '%')
           return fail(line, value_column, value,
                       fmt::format("the tool's speed for a {} (e.g. 50mm/s); a percent is for ptp", to_string(move.kind)));
         auto v = quantity(line, f, key, value, Dimension::length, 1);
         if (!v) return v.error();
-        if (!(*v > 0)) return fail(line, value_column, value, "a speed > 0 (e.g. 50mm/s)");
+        if (!(*v >= kMinToolSpeed && *v <= kMaxToolSpeed))
+          return fail(line, value_column, value,
+                      fmt::format("a speed within {} (e.g. 50mm/s)", shown_range(Dimension::length, kMinToolSpeed, kMaxToolSpeed)));
         move.speed = *v;
       }
     } else if (key == "angular_speed") {
       auto v = quantity(line, f, key, value, Dimension::angle, 1);
       if (!v) return v.error();
-      if (!(*v > 0)) return fail(line, value_column, value, "an angular speed > 0 (e.g. 30deg/s)");
+      if (!(*v >= kMinToolAngularSpeed && *v <= kMaxToolAngularSpeed))
+        return fail(line, value_column, value,
+                    fmt::format("an angular speed within {} (e.g. 30deg/s)",
+                                shown_range(Dimension::angle, kMinToolAngularSpeed, kMaxToolAngularSpeed)));
       move.angular_speed = *v;
     } else if (key == "zone") {
       auto v = quantity(line, f, key, value, Dimension::length, 0);
@@ -228,15 +237,9 @@ class Parser {
     return move;
   }
 
-  static std::optional<double> percent(std::string_view text) {
-    if (text.size() < 2 || text.back() != '%') return std::nullopt;
-    std::string_view number = text.substr(0, text.size() - 1);
-    if (number.front() == '+') number.remove_prefix(1);
-    double v = 0;
-    auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), v);
-    if (ec != std::errc() || end != number.data() + number.size() || !std::isfinite(v) || !(v > 0 && v <= 100))
-      return std::nullopt;
-    return v;
+  // "0.1..500 mm/s": a speed range for people.
+  static std::string shown_range(Dimension d, double min_si, double max_si) {
+    return fmt::format("{:g}..{:g} {}/s", to_display(d, min_si), to_display(d, max_si), display_unit(d));
   }
 
   // Comma-separated parts with their offsets in `value`.

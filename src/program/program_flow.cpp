@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <map>
+#include <vector>
 
 #include <fmt/core.h>
+
+#include "motion/move_limits.hpp"
 
 namespace armctl::program {
 
@@ -103,8 +106,18 @@ class Runner {
     return {};
   }
 
+  // A chain "a + b + c ..." is a left-deep tree: walked down its left side and evaluated
+  // back up by a loop, so that only nesting (parentheses, signs, NOT: at most
+  // kExpressionMaxNesting) makes eval recurse.
   Value binary(const Expr& e) {
-    const Value a = eval(*e.left), b = eval(*e.right);
+    std::vector<const Expr*> chain{&e};
+    while (chain.back()->left->kind == ExprKind::binary) chain.push_back(chain.back()->left.get());
+    Value a = eval(*chain.back()->left);
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) a = apply(**it, a, eval(*(*it)->right));
+    return a;
+  }
+
+  Value apply(const Expr& e, const Value& a, const Value& b) {
     auto same = [&](const char* what) {
       if (a.unit != b.unit)
         fail(e.at, fmt::format("'{}' {} {} and {} ({} {} {}); both sides need the same kind of value", to_string(e.op),
@@ -296,7 +309,7 @@ class Runner {
         return;
       }
       case StatementKind::override_:
-        override_ = want(*s.value, Unit::percent, "OVERRIDE", 0, 1, true);
+        override_ = want(*s.value, Unit::percent, "OVERRIDE", motion::kMinSpeedFraction, motion::kMaxSpeedFraction);
         return;
     }
   }
@@ -310,15 +323,17 @@ class Runner {
     m.override_fraction = override_;
     for (const auto& o : s.options) {
       const std::string what = fmt::format("{}'s {}", to_string(s.move), o.name);
+      // The ranges every app takes (motion/move_limits.hpp).
       if (s.move == MoveKind::ptp) {
-        const double f = want(*o.value, Unit::percent, what, 0, 1, true);
+        const double f = want(*o.value, Unit::percent, what, motion::kMinSpeedFraction, motion::kMaxSpeedFraction);
         (o.name == "speed" ? m.speed : m.acceleration) = f;
       } else if (o.name == "speed") {
-        m.speed = want(*o.value, Unit::speed, what, 0, 10, true);
+        m.speed = want(*o.value, Unit::speed, what, motion::kMinToolSpeed, motion::kMaxToolSpeed);
       } else if (o.name == "accel") {
         m.acceleration = want(*o.value, Unit::acceleration, what, 0, 100, true);
       } else if (o.name == "angular_speed") {
-        m.angular_speed = want(*o.value, Unit::angular_speed, what, 0, 100, true);
+        m.angular_speed =
+            want(*o.value, Unit::angular_speed, what, motion::kMinToolAngularSpeed, motion::kMaxToolAngularSpeed);
       } else {
         m.zone = want(*o.value, Unit::length, what, 0, 1);
       }

@@ -334,7 +334,15 @@ class Parser {
   ExprPtr expression(const std::string& what) {
     what_ = &what;
     depth_ = 0;
+    operators_ = 0;
     return or_expr();
+  }
+  // Counts the binary operators of the expression as they are read, before their right
+  // side is: `at` is the operator's place.
+  void count_operator(Place at, std::string_view op) {
+    if (++operators_ > kExpressionMaxOperators)
+      fail_at(at, op, fmt::format("at most {} operators in one expression (split it: give parts of it to variables)",
+                                  kExpressionMaxOperators));
   }
   ExprPtr binary(Operator op, Place at, ExprPtr l, ExprPtr r) {
     auto e = std::make_unique<Expr>();
@@ -349,6 +357,7 @@ class Parser {
     ExprPtr l = and_expr();
     while (word_is(peek(), "or")) {
       const Place at = next().at;
+      count_operator(at, "or");
       l = binary(Operator::or_, at, std::move(l), and_expr());
     }
     return l;
@@ -357,14 +366,15 @@ class Parser {
     ExprPtr l = not_expr();
     while (word_is(peek(), "and")) {
       const Place at = next().at;
+      count_operator(at, "and");
       l = binary(Operator::and_, at, std::move(l), not_expr());
     }
     return l;
   }
   ExprPtr not_expr() {
     if (word_is(peek(), "not")) {
+      guard(peek());
       const Place at = next().at;
-      guard();
       auto e = std::make_unique<Expr>();
       e->kind = ExprKind::unary;
       e->op = Operator::not_;
@@ -383,6 +393,7 @@ class Parser {
     for (auto [text, op] : kOps)
       if (symbol_is(peek(), text)) {
         const Place at = next().at;
+        count_operator(at, text);
         return binary(op, at, std::move(l), additive());
       }
     return l;
@@ -393,6 +404,7 @@ class Parser {
       // "p + tool(...)" is an offset, not arithmetic: expressions never hold a target.
       if (word_is(peek(1), "tool") || word_is(peek(1), "base")) break;
       const Token& t = next();
+      count_operator(t.at, t.text);
       l = binary(t.text == "+" ? Operator::add : Operator::sub, t.at, std::move(l), multiplicative());
     }
     return l;
@@ -401,14 +413,15 @@ class Parser {
     ExprPtr l = unary();
     while (symbol_is(peek(), "*") || symbol_is(peek(), "/")) {
       const Token& t = next();
+      count_operator(t.at, t.text);
       l = binary(t.text == "*" ? Operator::mul : Operator::div, t.at, std::move(l), unary());
     }
     return l;
   }
   ExprPtr unary() {
     if (symbol_is(peek(), "-")) {
+      guard(peek());
       const Place at = next().at;
-      guard();
       auto e = std::make_unique<Expr>();
       e->kind = ExprKind::unary;
       e->op = Operator::neg;
@@ -435,8 +448,8 @@ class Parser {
       return e;
     }
     if (symbol_is(t, "(")) {
+      guard(t);
       next();
-      guard();
       ExprPtr inner = or_expr();
       --depth_;
       expect_symbol(")", "')' to close the '('");
@@ -444,9 +457,11 @@ class Parser {
     }
     fail(t, *what_ + " (a number with its unit, a variable or '(')");
   }
-  // Deeply nested input must not exhaust the stack.
-  void guard() {
-    if (++depth_ > 64) fail(peek(), "at most 64 nested parentheses or signs");
+  // Deeply nested input must not exhaust the stack (the parser recurses per level, and so
+  // do the evaluator and the tree's destructor).
+  void guard(const Token& opener) {
+    if (++depth_ > kExpressionMaxNesting)
+      fail(opener, fmt::format("at most {} parentheses, signs and NOTs inside one another", kExpressionMaxNesting));
   }
 
   std::vector<Token> t_;
@@ -454,9 +469,26 @@ class Parser {
   std::string_view source_;
   const std::string* what_ = nullptr;
   int depth_ = 0;
+  int operators_ = 0;
 };
 
 }  // namespace
+
+Expr::~Expr() {
+  if (!left && !right) return;
+  std::vector<ExprPtr> pending;
+  auto take = [&](ExprPtr& child) {
+    if (child) pending.push_back(std::move(child));
+  };
+  take(left);
+  take(right);
+  while (!pending.empty()) {
+    ExprPtr e = std::move(pending.back());
+    pending.pop_back();
+    take(e->left);
+    take(e->right);
+  }  // e goes here, its children already taken
+}
 
 const char* to_string(Operator op) {
   switch (op) {

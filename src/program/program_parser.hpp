@@ -13,6 +13,11 @@ namespace armctl::program {
 
 inline constexpr std::size_t kProgramMaxBytes = 1 << 20;
 inline constexpr std::size_t kProgramMaxNesting = 32;  // IF/LOOP/WHILE inside one another
+// One expression: parentheses, signs and NOTs inside one another, and binary operators in
+// all (a chain "a + b + c" is parsed and evaluated by a loop, but a program never needs a
+// thousand terms in one expression: split it over variables).
+inline constexpr int kExpressionMaxNesting = 64;
+inline constexpr int kExpressionMaxOperators = 1000;
 
 // `source` names the text in errors ("pick.prog:12:5: found 'end', expected ...").
 Result<Program> parse_program(std::string_view text, std::string_view source = "<program>");

@@ -152,7 +152,10 @@ class Planner {
       const motion::JointVector& q = solutions->front().joints;
       for (int i = 0; i < q.size(); ++i) target[std::size_t(i)] = q[i];
     }
-    const double speed = std::clamp(a.move.speed.value_or(kDefaultPtpSpeed) * a.move.override_fraction, 1e-3, 1.0);
+    // The flow checked the speed and the OVERRIDE, each in its range; their product is held
+    // to the slowest any move runs (motion/move_limits.hpp), as it is for LIN/CIRC below.
+    const double speed = std::clamp(a.move.speed.value_or(kDefaultPtpSpeed) * a.move.override_fraction,
+                                    motion::kMinSpeedFraction, motion::kMaxSpeedFraction);
     joint_piece(a, target, speed, a.move.acceleration, what(a));
   }
 
@@ -181,8 +184,9 @@ class Planner {
       t.kind = m.kind == MoveKind::circ ? motion::SegmentKind::circ : motion::SegmentKind::lin;
       t.goal = goal_of(a[k], m.target, state_).goal;
       if (m.via) t.via = goal_of(a[k], *m.via, state_).goal.position;
-      t.speed = m.speed.value_or(arm::kDefaultPathSpeed) * m.override_fraction;
-      t.angular_speed = m.angular_speed.value_or(arm::kDefaultAngularSpeed) * m.override_fraction;
+      t.speed = std::max(m.speed.value_or(arm::kDefaultPathSpeed) * m.override_fraction, motion::kMinToolSpeed);
+      t.angular_speed = std::max(m.angular_speed.value_or(arm::kDefaultAngularSpeed) * m.override_fraction,
+                                 motion::kMinToolAngularSpeed);
       t.zone = m.zone;
       if (m.acceleration) acceleration = std::min(acceleration, *m.acceleration);
       targets.push_back(t);

@@ -4,12 +4,16 @@
 
 #include <fmt/core.h>
 
+#include "core/quantity.hpp"
+#include "motion/move_limits.hpp"
+
 namespace armctl::program {
 
 Result<RunReport> run_plan(arm::Arm& arm, const ProgramPlan& plan, const RunOptions& options) {
-  if (!(options.speed_override > 0 && options.speed_override <= 1))
-    return Error{ErrorKind::invalid_argument,
-                 fmt::format("speed override {} is outside (0, 1]", options.speed_override)};
+  if (auto ok = check_fraction_in(options.speed_override, "speed override", motion::kMinSpeedFraction,
+                                  motion::kMaxSpeedFraction);
+      !ok)
+    return ok.error();
   RunReport report;
   const TimePoint began = arm.clock().now();
   auto command = [&] { return options.command ? options.command() : arm::MotionCommand::none; };

@@ -25,6 +25,13 @@ enum class Operator { add, sub, mul, div, neg, lt, le, gt, ge, eq, ne, and_, or_
 const char* to_string(Operator op);  // as written: "+", "<=", "and", ...
 
 struct Expr {
+  Expr() = default;
+  Expr(const Expr&) = delete;
+  Expr& operator=(const Expr&) = delete;
+  // Frees the children by a loop, not by recursion: a long chain (a + b + c ...) is a
+  // left-deep tree, and freeing it node by node recursively would exhaust the stack.
+  ~Expr();
+
   ExprKind kind = ExprKind::number;
   Place at;
   Value value;       // number

@@ -293,11 +293,18 @@ class PyArm {
     return out;
   }
 
-  static arm::MoveOptions move_options(std::optional<double> duration, double speed) {
+  // A duration shorter than the arm file allows is stretched (arm::joint_move_duration);
+  // the note lands in `note` (the move runs without the GIL) for warn_note.
+  static arm::MoveOptions move_options(std::optional<double> duration, double speed, std::string* note = nullptr) {
     arm::MoveOptions o;
     if (duration) o.duration = duration_of(*duration, "duration");
+    o.duration_words = fmt::format("duration={:g}", duration.value_or(0));
+    if (note) o.on_note = [note](const std::string& n) { *note = n; };
     o.speed = speed;
     return o;
+  }
+  static void warn_note(const std::string& note) {
+    if (!note.empty() && PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1) != 0) throw py::error_already_set();
   }
 
   static arm::WaitOptions wait_options(double timeout, std::optional<double> poll, double angle_tolerance,
@@ -356,8 +363,10 @@ class PyArm {
   void move_joints(const py::object& targets, std::optional<double> duration, double speed, bool wait_for_it,
                    double timeout) {
     const auto t = targets_of(targets);
-    const auto o = move_options(duration, speed);
+    std::string note;
+    const auto o = move_options(duration, speed, &note);
     command([&](arm::Arm& a) { return a.move_joints(t, o); });
+    warn_note(note);
     after_move(wait_for_it, timeout);
   }
 
@@ -365,8 +374,10 @@ class PyArm {
                std::optional<double> yaw, const std::optional<std::string>& elbow, bool nearest,
                std::optional<double> duration, double speed, bool wait_for_it, double timeout) {
     const auto g = goal_of(position, roll, pitch, yaw, elbow, nearest);
-    const auto o = move_options(duration, speed);
+    std::string note;
+    const auto o = move_options(duration, speed, &note);
     command([&](arm::Arm& a) { return a.move_to(g, o); });
+    warn_note(note);
     after_move(wait_for_it, timeout);
   }
 
@@ -395,8 +406,7 @@ class PyArm {
   // stop, then armctl.Error; stop() from another thread: the same stop, and the report says
   // so (stopped, not completed).
   PyReport execute(const arm::PlannedMotion& motion, double speed_override) {
-    if (!(speed_override > 0 && speed_override <= 1))
-      raise(ErrorKind::invalid_argument, fmt::format("speed_override {} is not allowed: above 0 up to 1", speed_override));
+    must(check_fraction_in(speed_override, "speed_override", motion::kMinSpeedFraction, motion::kMaxSpeedFraction));
     arm::Arm& a = arm();
     InterruptWatch watch;
     bool closed = false;
@@ -510,8 +520,7 @@ class PyArm {
   }
 
   py::dict run_program(const std::string& file, const std::string& points, double speed_override) {
-    if (!(speed_override > 0 && speed_override <= 1))
-      raise(ErrorKind::invalid_argument, fmt::format("speed_override {} is not allowed: above 0 up to 1", speed_override));
+    must(check_fraction_in(speed_override, "speed_override", motion::kMinSpeedFraction, motion::kMaxSpeedFraction));
     const program::ProgramPlan plan = plan_program_file(file, points);  // every check first
     arm::Arm& a = arm();  // may raise: not where the GIL is released
     InterruptWatch watch;

@@ -6,6 +6,8 @@
 
 #include "arm/motion_executor.hpp"
 #include "arm/motion_planning.hpp"
+#include "core/quantity.hpp"
+#include "motion/move_limits.hpp"
 
 namespace armctl::web {
 
@@ -27,20 +29,32 @@ Status run_planned(arm::Arm& arm, session::JobContext& ctx, const arm::PlannedMo
   return Ok{};
 }
 
-json moving(const arm::PlannedMotion& m) { return {{"moving", true}, {"duration_s", m.duration}}; }
+// `note`: why the move takes longer than asked (a duration below the arm file's limits).
+json moving(const arm::PlannedMotion& m, const std::string& note = {}) {
+  json out{{"moving", true}, {"duration_s", m.duration}};
+  if (!note.empty()) out["note"] = note;
+  return out;
+}
 
-// A joint-space move to `target` (SI, every joint): planned, accepted, run.
+// A joint-space move to `target` (SI, every joint): planned, accepted, run. With a
+// `duration`, the rule of every app: stretched to the arm file's limits, and the reply says so.
 Status joint_move(arm::Arm& arm, session::JobContext& ctx, const Accept& accept, const std::vector<double>& from,
-                  const std::vector<double>& target, double speed, double min_duration) {
+                  const std::vector<double>& target, double speed, std::optional<double> duration) {
   std::vector<std::optional<double>> check(target.begin(), target.end());
   if (auto ok = arm.check_targets(check); !ok) return ok.error();
   arm::JointMove move;
   move.target = target;
-  move.speed = speed;
-  move.min_duration = min_duration;
+  move.speed = duration ? 1.0 : speed;
+  std::string note;
+  if (duration) {
+    auto timed = arm::joint_move_duration(arm.model(), from, target, *duration, fmt::format("duration {:g} s", *duration));
+    if (!timed) return timed.error();
+    move.min_duration = timed->seconds;
+    note = timed->note;
+  }
   auto planned = arm::plan_joint_move(arm.model(), from, move);
   if (!planned) return planned.error();
-  accept(moving(*planned));
+  accept(moving(*planned, note));
   return run_planned(arm, ctx, *planned);
 }
 
@@ -53,8 +67,11 @@ Status tool_move(arm::Arm& arm, session::JobContext& ctx, const Accept& accept, 
     std::vector<double> target = here.positions;
     const motion::JointVector& q = solutions->front().joints;
     for (int i = 0; i < q.size(); ++i) target[std::size_t(i)] = q[i];
-    return joint_move(arm, ctx, accept, here.positions, target, speed, 0);
+    return joint_move(arm, ctx, accept, here.positions, target, speed, std::nullopt);
   }
+  // The request's speed, a fraction, checked as given (not as the m/s it becomes).
+  if (auto ok = check_fraction_in(speed, "speed", motion::kMinSpeedFraction, motion::kMaxSpeedFraction); !ok)
+    return ok.error();
   arm::CartesianMove line;
   line.goal = goal;
   line.speed = speed * kMaxLinearSpeed;
@@ -76,7 +93,7 @@ MotionJob joint_move_job(JointsRequest r) {
     std::vector<double> target = here->positions;
     for (std::size_t i = 0; i < target.size() && i < r.targets.size(); ++i)
       if (r.targets[i]) target[i] = *r.targets[i];
-    return joint_move(arm, ctx, accept, here->positions, target, r.duration ? 1.0 : r.speed, r.duration.value_or(0));
+    return joint_move(arm, ctx, accept, here->positions, target, r.speed, r.duration);
   };
 }
 

@@ -6,6 +6,11 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <fmt/core.h>
 
 #include "arm/arm.hpp"
 #include "arm/bus_arm_device.hpp"
@@ -217,6 +222,61 @@ TEST_F(XarmMotion, PathLeavingTheWorkspaceIsRefusedBeforeAnyByteIsSent) {
   ASSERT_FALSE(plan);
   EXPECT_NE(plan.error().message.find("segment 1"), std::string::npos) << plan.error().message;
   EXPECT_EQ(link.sent.size(), before);
+}
+
+// x=1e200 mm (move-to --linear) or 1e308 mm (a path file) made the planner read past its
+// samples: such targets are refused before the path is built, naming the coordinate, its
+// value and the arm's reach; nothing is sent.
+TEST_F(XarmMotion, ATargetBeyondAnyReachIsRefusedBeforePlanning) {
+  const auto from = here();
+  const motion::Pose start = arm.forward(arm.chain_of(from));
+  const std::string reach = fmt::format("arm 'xarm' reaches at most {:.0f} mm from its base", arm.model().reach * 1e3);
+  const std::size_t before = link.sent.size();
+  for (const auto& [x, shown] : std::vector<std::pair<double, std::string>>{{1e197, "1e+200"}, {1e305, "1e+308"},
+                                                                           {-1e305, "-1e+308"}}) {
+    motion::PathSegment seg = lin_to(start, {0, 0, 0}, 0.04);
+    seg.target.position.x() = x;
+    auto plan = plan_path(arm.model(), from, std::span(&seg, 1));
+    ASSERT_FALSE(plan);
+    EXPECT_EQ(plan.error().message, fmt::format("segment 1 (LIN): target: x {} mm is beyond reach: {}", shown, reach));
+    seg.kind = motion::SegmentKind::circ;
+    seg.target.position.x() = start.position.x();
+    seg.via = start.position + Eigen::Vector3d(0, 0, x);
+    plan = plan_path(arm.model(), from, std::span(&seg, 1));
+    ASSERT_FALSE(plan);
+    EXPECT_EQ(plan.error().message,
+              fmt::format("segment 1 (CIRC): via point: z {} mm is beyond reach: {}", shown, reach));
+  }
+  EXPECT_EQ(link.sent.size(), before);
+  // The same rule for a joint move to a tool pose.
+  CartesianGoal goal;
+  goal.position = {0.1, 1e197, 0.1};
+  EXPECT_EQ(arm.inverse(goal, arm.read().value()).error().message,
+            "the tool target: y 1e+200 mm is beyond reach: " + reach);
+}
+
+// The reach is an upper bound of where the tool can be, and not a loose one.
+TEST(ArmReach, BoundsTheToolOfBothArms) {
+  for (const char* name : {"xarm", "scara"}) {
+    const ArmModel m = testing::shipped(name);
+    double farthest = 0;
+    std::uint64_t state = 12345;
+    auto uniform = [&] {  // a fixed LCG: the same joints every run
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      return double(state >> 11) / double(1ull << 53);
+    };
+    for (int k = 0; k < 20000; ++k) {
+      motion::JointVector q(m.chain_joints());
+      for (int i = 0; i < q.size(); ++i) {
+        const JointLimits& l = m.joints[std::size_t(i)].limits;
+        q[i] = l.lower + (l.upper - l.lower) * uniform();
+      }
+      const motion::Pose flange = m.kinematics->forward(q);
+      farthest = std::max(farthest, (flange.position + flange.orientation * m.tool.position).norm());
+    }
+    EXPECT_LE(farthest, m.reach) << name;
+    EXPECT_GT(farthest, 0.7 * m.reach) << name << ": reach " << m.reach << " m, farthest seen " << farthest << " m";
+  }
 }
 
 class ScaraMotion : public ::testing::Test {

@@ -33,6 +33,36 @@ TEST(Quantity, BadTextIsRefusedWithWhatIsAllowed) {
   EXPECT_FALSE(parse_quantity("90deg/s", Dimension::angle, "a", 2));
 }
 
+// The one parser of speeds, overrides and their ranges (item 10 of issue 21): refused in
+// the user's words and unit, with the range, never as an internal quantity.
+TEST(Quantity, RangesAndPercentagesInTheUsersWords) {
+  EXPECT_DOUBLE_EQ(*parse_quantity_in("40mm/s", Dimension::length, "--speed", 1, "mm/s", 1e-4, 0.5), 0.04);
+  EXPECT_EQ(parse_quantity_in("1e-300mm/s", Dimension::length, "--speed", 1, "mm/s", 1e-4, 0.5).error().message,
+            "--speed: '1e-300mm/s' is too slow; allowed 0.1..500 mm/s");
+  EXPECT_EQ(parse_quantity_in("2m/s", Dimension::length, "--speed", 1, "mm/s", 1e-4, 0.5).error().message,
+            "--speed: '2m/s' is too fast; allowed 0.1..500 mm/s");
+  EXPECT_EQ(check_quantity_in(1e-300, Dimension::length, "speed", 1, 1e-4, 0.5).error().message,
+            "speed: 1e-300 m/s is too slow; allowed 0.1..500 mm/s");
+  EXPECT_EQ(check_quantity_in(std::nan(""), Dimension::angle, "angular speed", 1, 0.1, 1).error().message.find(
+                "is not a number"),
+            std::string("angular speed: nan rad/s ").size());
+  EXPECT_DOUBLE_EQ(*parse_percent("50%", "--override", 0.001, 1), 0.5);
+  EXPECT_DOUBLE_EQ(*parse_percent("+0.1%", "--override", 0.001, 1), 0.001);
+  EXPECT_EQ(parse_percent("50", "--override", 0.001, 1).error().message,
+            "--override: '50' has no unit; write a percentage like 50%, within 0.1..100 %");
+  EXPECT_EQ(parse_percent("1e-300%", "--override", 0.001, 1).error().message,
+            "--override: '1e-300%' is too small; allowed 0.1..100 %");
+  EXPECT_EQ(parse_percent("101%", "--override", 0.001, 1).error().message,
+            "--override: '101%' is too large; allowed 0.1..100 %");
+  EXPECT_EQ(parse_percent("1e999%", "--override", 0.001, 1).error().message, "--override: '1e999%' is outside 0.1..100 %");
+  for (const char* bad : {"", "%", "nan%", "inf%", "fast", "5 %", "50%%"})
+    EXPECT_NE(parse_percent(bad, "--override", 0.001, 1).error().message.find("is not a percentage"), std::string::npos)
+        << bad;
+  EXPECT_TRUE(check_fraction_in(0.5, "speed_override", 0.001, 1));
+  EXPECT_EQ(check_fraction_in(1e-300, "speed_override", 0.001, 1).error().message,
+            "speed_override: 1e-300 is too small; allowed 0.001..1 (0.1..100 %)");
+}
+
 TEST(Quantity, FormatsForPeople) {
   EXPECT_EQ(format_quantity(Dimension::angle, std::numbers::pi), "180.000 deg");
   EXPECT_EQ(format_quantity(Dimension::length, 0.1205, 1), "120.500 mm/s");

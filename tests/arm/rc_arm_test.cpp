@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "arm/arm.hpp"
+#include "arm/motion_planning.hpp"
 #include "arm/rc_arm_device.hpp"
 #include "arm_files.hpp"
 #include "robot_commands/sim_links.hpp"
@@ -49,6 +50,65 @@ TEST_F(RcArm, MoveJointsArrivesInTheTimeAsked) {
   EXPECT_NEAR(s->positions[1], 30 * kDeg, 0.5 * kDeg);  // the wait's tolerance
   EXPECT_NEAR(s->positions[2], -45 * kDeg, 0.5 * kDeg);
   EXPECT_NEAR(s->positions[0], 0, 1e-9);  // untouched
+}
+
+// servo6 from -1.7 rad to 1.7 rad (194.8 deg; the arm file allows 180 deg/s): --time 0.1
+// arrived in 0.54 s on the board while the HTTP API took 1.46 s. Now every app's duration
+// goes through joint_move_duration: stretched to the jerk-limited move at the limits (what
+// plan_joint_move, the HTTP API's planner, takes), and the note says so.
+TEST_F(RcArm, ADurationShorterThanTheLimitsAllowIsStretchedAsInEveryApp) {
+  const ArmModel& model = arm.model();
+  const double vmax = model.joints[0].limits.velocity;
+  auto t = none();
+  t[0] = -1.7;  // servo6
+  MoveOptions fastest;
+  fastest.speed = 1;
+  ASSERT_TRUE(arm.move_joints(t, fastest));
+  ASSERT_TRUE(arm.wait());
+  double to = 1.7;
+  for (const double asked : {0.0, 1e-300, 0.1, 0.5}) {
+    const std::vector<double> from = arm.read().value().positions;
+    std::vector<double> target = from;
+    target[0] = to;
+    auto timed = joint_move_duration(model, from, target, asked, "--time x");
+    ASSERT_TRUE(timed) << timed.error().message;
+    EXPECT_TRUE(timed->stretched);
+    EXPECT_GE(timed->seconds, std::abs(to - from[0]) / vmax) << "never faster than the arm file";
+    EXPECT_EQ(timed->note.rfind("--time x is too short for joint servo6 to move 194.8", 0), 0u) << timed->note;
+    // The HTTP API's planner, asked the same, takes as long.
+    JointMove move;
+    move.target = target;
+    move.speed = 1;
+    move.min_duration = asked;
+    EXPECT_NEAR(plan_joint_move(model, from, move).value().duration, timed->seconds, 1e-9);
+    // The board move (the CLI's and Python's), on simulated time.
+    MoveOptions o;
+    o.duration = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(asked));
+    o.duration_words = "--time x";
+    std::string note;
+    o.on_note = [&](const std::string& n) { note = n; };
+    auto goal = none();
+    goal[0] = to;
+    const double t0 = seconds();
+    ASSERT_TRUE(arm.move_joints(goal, o));
+    ASSERT_TRUE(arm.wait());
+    const double took = seconds() - t0;
+    EXPECT_EQ(note, timed->note);
+    EXPECT_GE(took, timed->seconds - 0.05) << asked;
+    EXPECT_LE(took, timed->seconds + 2 * 0.2 + 0.05) << asked;  // arrival seen within two polls
+    to = -to;
+  }
+  // Long enough: no note, the duration as asked; negative or past 600 s: refused.
+  const std::vector<double> here = arm.read().value().positions;
+  std::vector<double> there = here;
+  there[0] = 0;
+  auto slow = joint_move_duration(model, here, there, 5, "--time 5s");
+  ASSERT_TRUE(slow);
+  EXPECT_FALSE(slow->stretched);
+  EXPECT_EQ(slow->seconds, 5);
+  EXPECT_EQ(slow->note, "");
+  EXPECT_EQ(joint_move_duration(model, here, there, 601, "--time 601s").error().message,
+            "--time 601s: 601 s is too long; allowed 0..600 s (0: as fast as the arm file's limits allow)");
 }
 
 TEST_F(RcArm, MoveToReachesThePoseWithinServoResolution) {

@@ -89,8 +89,10 @@ TEST_F(ArmCli, PathFilesRunAsJsonEventsAndBadOnesMoveNothing) {
   const auto bad = state / "bad.path";
   for (const auto& [text, says] : std::vector<std::pair<std::string, std::string>>{
            {"ptp x=180mm y=-40mm z=100mm pitch=50deg\nlin x=180mm y=40mm z=100mm speed=-4mm/s\n",
-            "bad.path:2:34: found '-4mm/s', expected a speed > 0"},
-           {"ptp x=180mm y=-40mm z=100mm pitch=50deg\nlin x=900mm y=40mm z=100mm speed=40mm/s\n",
+            "bad.path:2:34: found '-4mm/s', expected a speed within 0.1..500 mm/s"},
+           {"ptp x=180mm y=-40mm z=100mm pitch=50deg\nlin x=1e308mm y=40mm z=100mm speed=40mm/s\n",
+            "lines 2..2: segment 1 (LIN): target: x 1e+308 mm is beyond reach: arm 'xarm' reaches at most"},
+           {"ptp x=180mm y=-40mm z=100mm pitch=50deg\nlin x=340mm y=40mm z=100mm speed=40mm/s\n",
             "segment 1 (LIN): at "}}) {
     {
       std::ofstream out(bad);
@@ -138,6 +140,22 @@ TEST_F(ArmCli, CalibrateZeroRewritesACopyOfTheArmFile) {
   EXPECT_TRUE(contains(one.out, "coupled")) << one.out;
 }
 
+// --time 0 (or 1e-300, 0.1) moved servo6 at twice the 180 deg/s its arm file allows: the
+// move is stretched to the limits and says so.
+TEST_F(ArmCli, ATimeShorterThanTheLimitsAllowIsStretchedAndSaysSo) {
+  for (const char* time : {"0", "1e-300", "0.1s"}) {
+    auto r = run_armctl(std::string("arm move-joints servo6=1.7rad --time ") + time + " --wait", "2>&1");
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_TRUE(contains(r.out, std::string("note: --time ") + time +
+                                    " is too short for joint servo6 to move 97.403 deg within its limits (180.000 "
+                                    "deg/s): the move takes "))
+        << r.out;
+  }
+  auto fine = run_armctl("arm move-joints servo6=10deg --time 2s --wait", "2>&1");
+  EXPECT_EQ(fine.status, 0) << fine.out;
+  EXPECT_FALSE(contains(fine.out, "note:")) << fine.out;
+}
+
 TEST_F(ArmCli, BadValuesAreRefusedClearly) {
   struct Case {
     const char* args;
@@ -154,7 +172,16 @@ TEST_F(ArmCli, BadValuesAreRefusedClearly) {
       {"arm move-to x=100 y=0", "z is missing"},
       {"arm move-to x=100 y=0 z=100 w=3", "not a pose key"},
       {"arm move-to x=100 y=0 z=100 --elbow sideways", "--elbow 'sideways'"},
-      {"arm move-joints servo6=3deg --speed 0%", "--speed '0%'"},
+      {"arm move-joints servo6=3deg --speed 0%", "--speed (of the joints' velocity limits): '0%' is too small; allowed 0.1..100 %"},
+      {"arm move-joints servo6=3deg --speed 1e-300%", "'1e-300%' is too small; allowed 0.1..100 %"},
+      {"arm move-joints servo6=3deg --speed 50", "'50' has no unit; write a percentage like 50%"},
+      // Refused before planning (a heap-buffer-overflow in the path check once), with the reach.
+      {"arm move-to x=1e200 y=0 z=100 --linear", "segment 1 (LIN): target: x 1e+200 mm is beyond reach: arm 'xarm' reaches at most"},
+      {"arm move-to x=1e200 y=0 z=100", "the tool target: x 1e+200 mm is beyond reach"},
+      {"arm move-to x=200 y=0 z=100 --linear --speed 1e-300mm/s", "--speed: '1e-300mm/s' is too slow; allowed 0.1..500 mm/s"},
+      {"arm move-to x=200 y=0 z=100 --linear --override 50",
+       "--override (of the programmed speeds): '50' has no unit; write a percentage like 50%, within 0.1..100 %"},
+      {"arm move-to x=200 y=0 z=100 --linear --override 1e-300%", "'1e-300%' is too small; allowed 0.1..100 %"},
       {"arm move-joints servo6=3deg --time -1s", "--time '-1s'"},
       {"arm move-joints servo6=3deg --time 1s --speed 10%", "cannot be used together"},
       {"arm gripper half", "open, close"},

@@ -300,6 +300,23 @@ TEST(CartesianPath, ValidationNamesTheSegmentAndWhatIsAllowed) {
               HasSubstr("segment 2 (LIN): the target is where the segment starts (it neither moves nor turns the tool)"));
 }
 
+// A coordinate of 1e200 or 1e308 m is finite but its distance is not; such a path had an
+// infinite nominal time, and the check read past its samples (heap-buffer-overflow in
+// differentiate). A speed of 1e300 m/s made a segment take no time. Both are refused here.
+TEST(CartesianPath, LengthsAndTimesThatAreNotFiniteAreRefused) {
+  const Pose start = pose(0.2, 0, 0.1);
+  for (double x : {1e200, 1e308, -1e308}) {
+    EXPECT_THAT(refused(start, {lin(pose(x, 0, 0.1))}).message,
+                HasSubstr("segment 1 (LIN): the target is inf m from the segment's start, taking inf s at 0.05 m/s; a "
+                          "segment's length and time must be finite numbers"))
+        << x;
+  }
+  PathSegment fast = lin(pose(0.3, 0, 0.1), 1e300);
+  EXPECT_THAT(refused(start, {lin(pose(0.25, 0, 0.1)), fast}).message,
+              HasSubstr("segment 2 (LIN): at 1e+300 m/s and 0.5 rad/s its 0.05 m and 0 rad take no time after "
+                        "the 1 s of path before it; lower its speed"));
+}
+
 TEST(CartesianPath, CircRefusesPointsThatMakeNoCircle) {
   const Pose start = pose(0.2, 0, 0.1);
   const Pose target = pose(0.3, 0, 0.1);

@@ -120,14 +120,24 @@ TEST(PathFile, ErrorsNameFileLineColumnFoundAndExpected) {
             "t.path:1:29: found '20%', expected the tool's speed for a lin (e.g. 50mm/s); a percent is for ptp");
   EXPECT_EQ(refused("lin x=1mm y=0mm z=0mm speed=20mm\n"),
             "t.path:1:29: speed: '20mm' has the unknown unit 'mm'; write a number with one of the units mm/s, m/s");
-  EXPECT_EQ(refused("lin x=1mm y=0mm z=0mm speed=0mm/s\n"), "t.path:1:29: found '0mm/s', expected a speed > 0 (e.g. 50mm/s)");
+  EXPECT_EQ(refused("lin x=1mm y=0mm z=0mm speed=0mm/s\n"),
+            "t.path:1:29: found '0mm/s', expected a speed within 0.1..500 mm/s (e.g. 50mm/s)");
+  // 1e-300 mm/s was accepted (a move of many lifetimes, "would take -9223372036.9 s").
+  EXPECT_EQ(refused("lin x=1mm y=0mm z=0mm speed=1e-300mm/s\n"),
+            "t.path:1:29: found '1e-300mm/s', expected a speed within 0.1..500 mm/s (e.g. 50mm/s)");
+  EXPECT_EQ(refused("lin x=1mm y=0mm z=0mm speed=1e300mm/s\n"),
+            "t.path:1:29: found '1e300mm/s', expected a speed within 0.1..500 mm/s (e.g. 50mm/s)");
   EXPECT_EQ(refused("lin x=1mm y=0mm z=0mm angular_speed=-1deg/s\n"),
-            "t.path:1:37: found '-1deg/s', expected an angular speed > 0 (e.g. 30deg/s)");
+            "t.path:1:37: found '-1deg/s', expected an angular speed within 0.1..720 deg/s (e.g. 30deg/s)");
+  EXPECT_EQ(refused("lin x=1mm y=0mm z=0mm angular_speed=1e-300rad/s\n"),
+            "t.path:1:37: found '1e-300rad/s', expected an angular speed within 0.1..720 deg/s (e.g. 30deg/s)");
   EXPECT_EQ(refused("lin x=1mm y=0mm z=0mm zone=-1mm\n"),
             "t.path:1:28: found '-1mm', expected a zone >= 0 (e.g. 5mm; 0 stops exactly at the target)");
   EXPECT_EQ(refused("ptp joints=1deg speed=0%\n"),
-            "t.path:1:23: found '0%', expected a ptp speed in percent of the joints' velocity limits, 0 < N <= 100 "
+            "t.path:1:23: found '0%', expected a ptp speed in percent of the joints' velocity limits, 0.1..100 % "
             "(e.g. 50%)");
+  EXPECT_THAT(refused("ptp joints=1deg speed=1e-300%\n"), HasSubstr("found '1e-300%', expected a ptp speed"));
+  EXPECT_THAT(refused("ptp joints=1deg speed=50\n"), HasSubstr("found '50', expected a ptp speed"));
   EXPECT_THAT(refused("ptp joints=1deg speed=101%\n"), HasSubstr("found '101%'"));
   EXPECT_THAT(refused("ptp joints=1deg speed=nan%\n"), HasSubstr("found 'nan%'"));
   EXPECT_EQ(refused("lin x=1mm y=0mm\n"), "t.path:1:16: found '', expected z=: a lin needs the tool's position x, y and z");

@@ -134,7 +134,9 @@ TEST_F(XarmProgram, CheckRefusesAnUnreachableMoveBeforeAnyByteIsSent) {
       "ptp home\n"
       "lin home + base(z=-20mm)\n"
       "lin far speed=40mm/s\n",
-      "home x=180mm y=0mm z=100mm pitch=50deg\nfar x=600mm y=0mm z=100mm pitch=50deg\n");
+      // Within the xArm's reach bound (366 mm from its base), beyond where it reaches with
+      // this pitch: the path check finds where (farther points are refused before planning).
+      "home x=180mm y=0mm z=100mm pitch=50deg\nfar x=340mm y=0mm z=100mm pitch=50deg\n");
   const auto start = here();
   const std::size_t sent = link.sent.size();
   auto plan = plan_program(arm, start, flow, "t.prog");
@@ -143,6 +145,10 @@ TEST_F(XarmProgram, CheckRefusesAnUnreachableMoveBeforeAnyByteIsSent) {
   // The line of the move that fails, its kind and target, and the path check's reason.
   EXPECT_EQ(plan.error().message.rfind("t.prog:3: (LIN far): at ", 0), 0u) << plan.error().message;
   EXPECT_EQ(link.sent.size(), sent);
+  // Beyond any reach: refused before planning, with the coordinate and the reach.
+  const Flow beyond = flow_of("lin far speed=40mm/s\n", "far x=600mm y=0mm z=100mm pitch=50deg\n");
+  EXPECT_EQ(plan_program(arm, start, beyond, "t.prog").error().message,
+            "t.prog:1: (LIN far): target: x 600 mm is beyond reach: arm 'xarm' reaches at most 366 mm from its base");
   // A PTP to a point out of reach: the IK's reason.
   const Flow ptp = flow_of("ptp far\n", "far x=600mm y=0mm z=100mm\n");
   auto refused = plan_program(arm, start, ptp, "t.prog");

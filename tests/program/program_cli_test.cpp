@@ -63,7 +63,15 @@ TEST(ProgramCli, UsageErrors) {
   const std::string prog = example("xarm-pick-place.prog");
   auto r = run_armctl("program run " + prog + " --override 0%");
   EXPECT_EQ(r.status, 1);
-  EXPECT_TRUE(contains(r.out, "--override '0%' is not allowed")) << r.out;
+  EXPECT_TRUE(contains(r.out, "--override (of the programmed speeds): '0%' is too small; allowed 0.1..100 %")) << r.out;
+  // An override without its unit, or of 1e-300 %, was accepted.
+  r = run_armctl("program run " + prog + " --override 50");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_TRUE(contains(r.out, "--override (of the programmed speeds): '50' has no unit; write a percentage like 50%"))
+      << r.out;
+  r = run_armctl("program run " + prog + " --override 1e-300%");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_TRUE(contains(r.out, "'1e-300%' is too small; allowed 0.1..100 %")) << r.out;
   r = run_armctl("program run " + prog + " --dry-run --device hid");
   EXPECT_EQ(r.status, 1);
   EXPECT_TRUE(contains(r.out, "--dry-run runs on the embedded simulated arm")) << r.out;

@@ -131,7 +131,16 @@ TEST(ProgramFlow, ValuesOfTheWrongKindAreRefusedWithTheirPlace) {
   EXPECT_EQ(error_of("wait 2\n"), "f.prog:1:6: WAIT takes a time (e.g. 0.5s), found a plain number (2)");
   EXPECT_EQ(error_of("wait -1s\n"), "f.prog:1:6: WAIT is -1 s; allowed 0 s up to 3600 s");
   EXPECT_EQ(error_of("lin p speed=50%\n"), "f.prog:1:13: LIN's speed takes a speed (e.g. 40mm/s), found a percentage (50 %)");
-  EXPECT_EQ(error_of("ptp p speed=0%\n"), "f.prog:1:13: PTP's speed is 0 %; allowed above 0 % up to 100 %");
+  EXPECT_EQ(error_of("ptp p speed=0%\n"), "f.prog:1:13: PTP's speed is 0 %; allowed 0.1 % up to 100 %");
+  // Speeds of 1e-300 were accepted and answered later about internal quantities.
+  EXPECT_EQ(error_of("ptp p speed=1e-300%\n"), "f.prog:1:13: PTP's speed is 1e-300 %; allowed 0.1 % up to 100 %");
+  EXPECT_EQ(error_of("lin p speed=1e-300mm/s\n"),
+            "f.prog:1:13: LIN's speed is 1e-300 mm/s; allowed 0.1 mm/s up to 500 mm/s");
+  EXPECT_EQ(error_of("lin p speed=2m/s\n"), "f.prog:1:13: LIN's speed is 2000 mm/s; allowed 0.1 mm/s up to 500 mm/s");
+  EXPECT_EQ(error_of("lin p angular_speed=1e-300deg/s\n"),
+            "f.prog:1:21: LIN's angular_speed is 1e-300 deg/s; allowed 0.1 deg/s up to 720 deg/s");
+  EXPECT_EQ(error_of("override 1e-300%\n"), "f.prog:1:10: OVERRIDE is 1e-300 %; allowed 0.1 % up to 100 %");
+  EXPECT_EQ(error_of("override 0.5\n"), "f.prog:1:10: OVERRIDE takes a percentage (e.g. 50%), found a plain number (0.5)");
   EXPECT_EQ(error_of("ptp pose(x=200, y=0mm, z=0mm)\n"),
             "f.prog:1:12: x takes a length (e.g. 40mm), found a plain number (200)");
   EXPECT_EQ(error_of("n = 40mm + 1deg\n"),
@@ -143,7 +152,7 @@ TEST(ProgramFlow, ValuesOfTheWrongKindAreRefusedWithTheirPlace) {
   EXPECT_EQ(error_of("if 3mm\nend\n"), "f.prog:1:4: IF takes a condition (e.g. n < 3), found a length (3 mm)");
   EXPECT_EQ(error_of("loop 2.5 times\nend\n"), "f.prog:1:6: LOOP's count is 2.5; it must be a whole number");
   EXPECT_EQ(error_of("gripper 150%\n"), "f.prog:1:9: GRIPPER is 150 %; allowed 0 % up to 100 %");
-  EXPECT_EQ(error_of("override 0%\n"), "f.prog:1:10: OVERRIDE is 0 %; allowed above 0 % up to 100 %");
+  EXPECT_EQ(error_of("override 0%\n"), "f.prog:1:10: OVERRIDE is 0 %; allowed 0.1 % up to 100 %");
   EXPECT_EQ(error_of("ptp joints(10deg, 5)\n"),
             "f.prog:1:19: a joint value is an angle or a length (e.g. 30deg, 120mm), found a plain number (5)");
   EXPECT_EQ(error_of("n = 1e300 * 1e300\n"), "f.prog:1:11: '*' overflows (1e+300 * 1e+300)");
@@ -165,6 +174,48 @@ TEST(ProgramFlow, LoopsAndCallsAreBounded) {
   EXPECT_EQ(error_of("loop 10 times\n  wait 0s\nend\n", few),
             "f.prog:2:3: the program performs more than 5 moves, waits, gripper moves and prints; that is the most one "
             "run may do (a loop that never ends?)");
+}
+
+// A left-deep chain far longer than the parser lets through (built here by hand): the flow
+// evaluates it by a loop and the tree frees itself by one; recursing per term overflowed the
+// stack at some 50,000 terms.
+TEST(ProgramFlow, LongChainsAreEvaluatedWithoutRecursion) {
+  auto literal = [](double v) {
+    auto e = std::make_unique<Expr>();
+    e->value = {v, Unit::number};
+    e->at = {1, 5};
+    return e;
+  };
+  ExprPtr sum = literal(1);
+  for (int i = 0; i < 300'000; ++i) {
+    auto e = std::make_unique<Expr>();
+    e->kind = ExprKind::binary;
+    e->op = i % 2 ? Operator::add : Operator::sub;
+    e->at = {1, 7};
+    e->left = std::move(sum);
+    e->right = literal(i % 2 ? 3 : 1);
+    sum = std::move(e);
+  }
+  Program p;
+  p.source = "f.prog";
+  Statement assign;
+  assign.kind = StatementKind::assign;
+  assign.name = "n";
+  assign.value = std::move(sum);
+  p.main.push_back(std::move(assign));
+  Statement print;
+  print.kind = StatementKind::print;
+  print.at = {2, 1};
+  PrintItem item;
+  item.value = std::make_unique<Expr>();
+  item.value->kind = ExprKind::variable;
+  item.value->name = "n";
+  print.print.push_back(std::move(item));
+  p.main.push_back(std::move(print));
+  auto f = run_flow(p, points());
+  ASSERT_TRUE(f.ok()) << f.error().message;
+  // 1, then 150,000 times (- 1 + 3): 300,001.
+  EXPECT_EQ(prints(*f), std::vector<std::string>{"300001"});
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <string>
 
 #include <unistd.h>
+#include <fmt/core.h>
 
 #include "program/program_parser.hpp"
 
@@ -153,7 +154,14 @@ TEST(ProgramParser, EveryErrorSaysWhereWhatAndWhatWasExpected) {
 
 TEST(ProgramParser, DeepNestingIsRefusedNotACrash) {
   std::string deep = "n = " + std::string(200, '(') + "1" + std::string(200, ')') + "\n";
-  EXPECT_NE(error_of(deep).find("at most 64 nested parentheses"), std::string::npos);
+  EXPECT_EQ(error_of(deep), "t.prog:1:69: found '(', expected at most 64 parentheses, signs and NOTs inside one another");
+  // 250,000 signs or NOTs: refused at the 65th, not parsed into a tree that deep.
+  EXPECT_EQ(error_of("n = " + std::string(250'000, '-') + "1\n"),
+            "t.prog:1:69: found '-', expected at most 64 parentheses, signs and NOTs inside one another");
+  std::string nots = "n = ";
+  for (int i = 0; i < 250'000; ++i) nots += "not ";
+  EXPECT_EQ(error_of(nots + "1\n"),
+            "t.prog:1:261: found 'not', expected at most 64 parentheses, signs and NOTs inside one another");
   std::string blocks;
   for (int i = 0; i < 40; ++i) blocks += "if 1\n";
   EXPECT_NE(error_of(blocks).find("at most 32 IF/LOOP/WHILE inside one another"), std::string::npos);
@@ -171,6 +179,34 @@ TEST(ProgramParser, AByteOrderMarkIsNotPartOfAProgramFile) {
   EXPECT_EQ(read_program_file(path).error().message,
             path.string() + error_of("ptp home zone=5mm\n").substr(std::string("t.prog").size()));
   std::filesystem::remove(path);
+}
+
+// A sum, product or AND chain of 250,000 terms crashed the CLI and the server's check
+// endpoint (a stack overflow in the evaluator and in freeing the tree): it is refused at
+// the operator past the limit, with its place.
+TEST(ProgramParser, LongChainsAreRefusedAtTheOperatorPastTheLimit) {
+  // Written as tightly as the language allows (a program is at most 1 MiB).
+  for (const std::string op : {"+", "*"}) {
+    std::string text = "n = 1";
+    for (int i = 0; i < 250'000; ++i) text += op + "1";
+    // "n = 1" then "op1" per term: the 1001st operator is at column 6 + 2 * 1000.
+    EXPECT_EQ(error_of(text + "\n"), fmt::format("t.prog:1:2006: found '{}', expected at most 1000 operators in one "
+                                                 "expression (split it: give parts of it to variables)",
+                                                 op));
+  }
+  for (const std::string op : {"and", "or"}) {
+    std::string text = "n = 1";
+    for (int i = 0; i < 170'000; ++i) text += " " + op + " 1";
+    // " op 1" per term: the 1001st operator is 1000 terms on from column 7.
+    const std::size_t column = 7 + 1000 * (op.size() + 3);
+    EXPECT_EQ(error_of(text + "\n"), fmt::format("t.prog:1:{}: found '{}', expected at most 1000 operators in one "
+                                                 "expression (split it: give parts of it to variables)",
+                                                 column, op));
+  }
+  // At the limit it parses.
+  std::string at_limit = "n = 1";
+  for (int i = 0; i < 1000; ++i) at_limit += " + 1";
+  EXPECT_EQ(parsed(at_limit + "\n").main.size(), 1u);
 }
 
 }  // namespace

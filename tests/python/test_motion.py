@@ -75,3 +75,26 @@ def test_motion_refusals(xarm):
         xarm.path([armctl.Lin([0.16, 0.02, 0.12], speed=-1)])
     assert e.value.kind == "invalid_argument"
     assert np.array_equal(xarm.read().device, before)
+
+
+def test_extreme_targets_speeds_and_durations(xarm):
+    """1e200 crashed the planner (heap-buffer-overflow); 1e-300 speeds were accepted; a
+    duration of 0.1 s moved servo6 at twice its arm file's 180 deg/s."""
+    before = xarm.read().device
+    for x in (1e200, 1e305):
+        with pytest.raises(armctl.Error) as e:
+            xarm.move_linear([x, 0.0, 0.1])
+        assert e.value.kind == "invalid_argument" and "is beyond reach: arm 'xarm' reaches at most" in e.value.message
+        with pytest.raises(armctl.Error) as e:
+            xarm.path([armctl.Lin([0.16, x, 0.12])])
+        assert "y " in e.value.message and "is beyond reach" in e.value.message
+    with pytest.raises(armctl.Error) as e:
+        xarm.move_linear([0.16, 0.02, 0.12], speed=1e-300)
+    assert "speed: 1e-300 m/s is too slow; allowed 0.1..500 mm/s" in e.value.message
+    with pytest.raises(armctl.Error) as e:
+        xarm.joint_move({"servo6": 0.1}, speed_override=1e-300)
+    assert "speed_override: 1e-300 is too small; allowed 0.001..1 (0.1..100 %)" in e.value.message
+    assert np.array_equal(xarm.read().device, before)
+    xarm.move_joints({"servo6": -1.7}, speed=1.0, wait=True)
+    with pytest.warns(UserWarning, match="duration=0.1 is too short for joint servo6 to move 194.8"):
+        xarm.move_joints({"servo6": 1.7}, duration=0.1, wait=True)

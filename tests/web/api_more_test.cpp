@@ -173,6 +173,29 @@ TEST(WebProgram, CheckPlacesErrorsAtTheirLine) {
   EXPECT_EQ(api.post("/api/v1/program/check", {{"points", kPoints}}).status, 400);  // no source
 }
 
+// A sum of 250,000 terms (and 250,000 nested signs) sent to the check endpoint crashed
+// `armctl serve` (stack overflow): now an error at its place, and the server answers on.
+TEST(WebProgram, CheckSurvivesLongAndDeepExpressions) {
+  ApiServer api("xarm");
+  api.first_positions();
+  std::string sum = "n = 1";
+  for (int i = 0; i < 250'000; ++i) sum += "+1";
+  for (const std::string& source : {sum + "\n", "n = " + std::string(250'000, '-') + "1\n"}) {
+    const Reply r = api.post("/api/v1/program/check", {{"source", source}, {"points", kPoints}});
+    ASSERT_EQ(r.status, 200) << r.text.substr(0, 200);
+    EXPECT_EQ(r.body["ok"], false);
+    ASSERT_EQ(r.body["errors"].size(), 1u);
+    EXPECT_EQ(r.body["errors"][0]["line"], 1);
+    const std::string message = r.body["errors"][0]["message"];
+    EXPECT_TRUE(message.find("at most 1000 operators in one expression") != std::string::npos ||
+                message.find("at most 64 parentheses, signs and NOTs") != std::string::npos)
+        << message;
+  }
+  const Reply again = api.post("/api/v1/program/check", {{"source", "wait 0.1s\n"}, {"points", kPoints}});
+  EXPECT_EQ(again.status, 200);
+  EXPECT_EQ(again.body["ok"], true);
+}
+
 TEST(WebProgram, RunShowsProgressAndEnds) {
   ApiServer api("xarm");
   api.first_positions();

@@ -57,6 +57,25 @@ TEST_F(WebMoves, JointsWithADuration) {
   EXPECT_NEAR(deg(api_.worker().snapshot().positions[0]), -30.0, 0.5);
 }
 
+// A duration shorter than the arm file allows is stretched, as in every app, and the reply
+// says so; 2 s (above) is long enough and has no note.
+TEST_F(WebMoves, AJointsDurationTooShortIsStretchedAndSaysSo) {
+  const auto& j = model().joints[0];
+  const Reply r = api_.post("/api/v1/joints", {{"positions", {{j.name, 97.4}}}, {"duration", 0.1}}, "page");
+  ASSERT_EQ(r.status, 200) << r.text;
+  EXPECT_GE(r.body["duration_s"].get<double>(), 97.4 / deg(j.limits.velocity)) << r.text;
+  ASSERT_TRUE(r.body.contains("note")) << r.text;
+  EXPECT_EQ(r.body["note"].get<std::string>().rfind(
+                fmt::format("duration 0.1 s is too short for joint {} to move 97.", j.name), 0),
+            0u)
+      << r.text;
+  ASSERT_TRUE(api_.wait_idle());
+  const Reply slow = api_.post("/api/v1/joints", {{"positions", {{j.name, 90.0}}}, {"duration", 2.0}}, "page");
+  ASSERT_EQ(slow.status, 200) << slow.text;
+  EXPECT_FALSE(slow.body.contains("note")) << slow.text;
+  ASSERT_TRUE(api_.wait_idle());
+}
+
 TEST_F(WebMoves, BadJointRequestsMoveNothing) {
   const auto& j = model().joints[0];
   const double above = deg(j.limits.upper) + 10;

@@ -19,6 +19,7 @@
 #include "arm/arm_calibration.hpp"
 #include "core/error.hpp"
 #include "core/quantity.hpp"
+#include "motion/move_limits.hpp"
 
 namespace armctl::cli {
 
@@ -95,19 +96,17 @@ arm::MoveOptions move_options(const ArmArgs& a) {
     if (ec != std::errc() || !std::isfinite(v) || v < 0 || (unit != "s" && unit != "ms" && !unit.empty()))
       usage(fmt::format("--time '{}' is not allowed: a duration like 2s, 1.5s or 800ms (bare numbers are seconds)", a.time));
     const double seconds = unit == "ms" ? v / 1000 : v;
-    if (seconds > 600) usage(fmt::format("--time '{}' is longer than 600 s", a.time));
+    if (seconds > motion::kMaxMoveDuration)
+      usage(fmt::format("--time '{}' is longer than {:g} s", a.time, motion::kMaxMoveDuration));
     o.duration = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(seconds));
+    // Shorter than the arm file allows: the move is stretched (the rule of every app), and
+    // says so.
+    o.duration_words = "--time " + a.time;
+    o.on_note = [](const std::string& note) { fmt::print(stderr, "note: {}\n", note); };
   }
-  if (!a.speed.empty()) {
-    std::string t = a.speed;
-    if (!t.empty() && t.back() == '%') t.pop_back();
-    double v = 0;
-    auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v) || v <= 0 || v > 100)
-      usage(fmt::format("--speed '{}' is not allowed: a percentage of the joints' velocity limits, above 0 up to 100%",
-                        a.speed));
-    o.speed = v / 100;
-  }
+  if (!a.speed.empty())
+    o.speed = must(parse_percent(a.speed, "--speed (of the joints' velocity limits)", motion::kMinSpeedFraction,
+                                 motion::kMaxSpeedFraction));
   return o;
 }
 
@@ -246,14 +245,8 @@ void run_move_joints(const ArmArgs& a) {
 
 double parse_override(const ArmArgs& a) {
   if (a.speed_override.empty()) return 1.0;
-  std::string t = a.speed_override;
-  if (!t.empty() && t.back() == '%') t.pop_back();
-  double v = 0;
-  auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-  if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v) || v <= 0 || v > 100)
-    usage(fmt::format("--override '{}' is not allowed: a percentage of the programmed speeds, above 0 up to 100%",
-                      a.speed_override));
-  return v / 100;
+  return must(parse_percent(a.speed_override, "--override (of the programmed speeds)", motion::kMinSpeedFraction,
+                            motion::kMaxSpeedFraction));
 }
 
 MotionCliOptions motion_cli_options(const ArmArgs& a) { return MotionCliOptions{a.json, parse_override(a)}; }
@@ -268,8 +261,9 @@ void run_move_linear(const ArmArgs& a) {
   m.roll = goal.roll;
   m.pitch = goal.pitch;
   m.yaw = goal.yaw;
-  if (!a.speed.empty()) m.speed = must(parse_quantity(a.speed, Dimension::length, "--speed", 1, "mm/s"));
-  if (m.speed && !(*m.speed > 0)) usage(fmt::format("--speed '{}' is not allowed: a speed above 0 (e.g. 50mm/s)", a.speed));
+  if (!a.speed.empty())
+    m.speed = must(parse_quantity_in(a.speed, Dimension::length, "--speed", 1, "mm/s", motion::kMinToolSpeed,
+                                     motion::kMaxToolSpeed));
   if (!a.zone.empty()) m.zone = must(parse_quantity(a.zone, Dimension::length, "--zone", 0, "mm"));
   if (m.zone < 0) usage(fmt::format("--zone '{}' is not allowed: 0 or more (e.g. 5mm)", a.zone));
   const MotionCliOptions options = motion_cli_options(a);
@@ -405,8 +399,8 @@ void add_arm_command(CLI::App& app) {
   cmd->add_flag("--json", a->json, "Machine-readable output (one JSON object per line)");
 
   auto add_motion_options = [a](CLI::App* sub) {
-    sub->add_option("--time", a->time, "Move duration: 2s, 800ms (default: from --speed)");
-    sub->add_option("--speed", a->speed, "Percent of the joints' velocity limits (default 25%)");
+    sub->add_option("--time", a->time, "Move duration: 2s, 800ms, up to 600s (default: from --speed); a time shorter than the arm file's limits allow is stretched to them");
+    sub->add_option("--speed", a->speed, "Percent of the joints' velocity limits, 0.1..100% (default 25%)");
     sub->add_flag("--wait", a->wait, "Wait until every joint arrives, then print where it stands");
     sub->add_option("--timeout", a->timeout_s, "With --wait: give up after this many seconds (default 20)")
         ->check(number_in(0.1, 600, "s"));
@@ -431,12 +425,12 @@ void add_arm_command(CLI::App& app) {
   mt->add_flag("--linear", a->linear,
                "Along a straight line, planned on the host and streamed (--speed is then the tool's, e.g. 50mm/s)");
   mt->add_option("--zone", a->zone, "With --linear: fly-by radius at the end (a single move ends at rest)");
-  mt->add_option("--override", a->speed_override, "With --linear: percent of the programmed speed (default 100%)");
+  mt->add_option("--override", a->speed_override, "With --linear: percent of the programmed speed, 0.1..100% (default 100%)");
   mt->callback([a] { run_move_to(*a); });
 
   auto* path = cmd->add_subcommand("path", "Run a path file: PTP, LIN and CIRC moves with speeds and fly-by zones");
   path->add_option("file", a->path_file, "Path file (docs/paths.md)")->required();
-  path->add_option("--override", a->speed_override, "Percent of the programmed speeds (default 100%)");
+  path->add_option("--override", a->speed_override, "Percent of the programmed speeds, 0.1..100% (default 100%)");
   path->add_option("--trace", a->trace, "Write the tool's planned and measured positions to FILE (CSV, mm)")
       ->check(trace_file_check());
   path->callback([a] { run_path(*a); });

@@ -24,6 +24,7 @@
 #include "core/error.hpp"
 #include "core/printable.hpp"
 #include "core/quantity.hpp"
+#include "motion/move_limits.hpp"
 #include "program/group_compiler.hpp"
 #include "program/points_file.hpp"
 #include "program/program_flow.hpp"
@@ -66,13 +67,10 @@ Loaded load(const ProgramArgs& a) { return must(program::load_program(a.file, a.
 
 double parse_override(const std::string& text) {
   if (text.empty()) return 1.0;
-  std::string t = text;
-  if (t.back() == '%') t.pop_back();
-  double v = 0;
-  auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-  if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v) || v <= 0 || v > 100)
-    usage(fmt::format("--override '{}' is not allowed: a percentage of the programmed speeds, above 0 up to 100%", text));
-  return v / 100;
+  auto v = parse_percent(text, "--override (of the programmed speeds)", motion::kMinSpeedFraction,
+                         motion::kMaxSpeedFraction);
+  if (!v) throw ArmctlError(v.error());
+  return *v;
 }
 
 program::ProgramPlan plan(const Loaded& l, arm::Arm& arm, bool blend) {
@@ -250,7 +248,7 @@ void add_program_command(CLI::App& app) {
   check->callback([a] { run_check(*a); });
   auto* run = cmd->add_subcommand("run", "Check, then run the program");
   common(run);
-  run->add_option("--override", a->speed_override, "Percent of the programmed speeds (default 100%)");
+  run->add_option("--override", a->speed_override, "Percent of the programmed speeds, 0.1..100% (default 100%)");
   run->add_flag("--step", a->step, "Wait for Enter before each move (moves are not blended)");
   run->add_flag("--dry-run", a->dry_run, "Run on the embedded simulated arm and print what would happen");
   run->add_option("--trace", a->trace, "Write the tool's planned and measured positions to FILE (CSV, mm)")

@@ -1,0 +1,25 @@
+// What people may ask of a move, in every app (the CLI, path files, programs, Python, the
+// HTTP API): outside these a request is refused, naming the value as it was given and the
+// range (docs/motion.md "Limits of a request"). Within them the arm file's limits still
+// rule: a move is never faster than they allow (a duration too short is stretched,
+// arm/motion_planning.hpp joint_move_duration; a path is slowed where a joint needs it).
+#pragma once
+
+#include <numbers>
+
+namespace armctl::motion {
+
+// A fraction of the joints' velocity limits (a PTP's speed) or of the programmed speeds (an
+// override): 0.1 % up to 100 %. Below 0.1 % a move of one degree would take many minutes.
+inline constexpr double kMinSpeedFraction = 0.001;
+inline constexpr double kMaxSpeedFraction = 1.0;
+// The tool point's speed along a LIN or CIRC (m/s): 0.1 mm/s up to 500 mm/s.
+inline constexpr double kMinToolSpeed = 1e-4;
+inline constexpr double kMaxToolSpeed = 0.5;
+// The tool's turning speed (rad/s): 0.1 deg/s up to 720 deg/s.
+inline constexpr double kMinToolAngularSpeed = 0.1 * std::numbers::pi / 180;
+inline constexpr double kMaxToolAngularSpeed = 720 * std::numbers::pi / 180;
+// A joint move's duration (s): 0 (as fast as the limits allow) up to 600 s.
+inline constexpr double kMaxMoveDuration = 600;
+
+}  // namespace armctl::motion
