@@ -176,7 +176,9 @@ JointsRequest parse_joints_request(const arm::ArmModel& model, const json& body)
     out.targets[std::size_t(*index)] = from_display(j.dimension, shown_value);
   }
   const auto speed = r.optional_number("speed", 0, 1, "a fraction of the joints' velocity limits above 0 up to 1", true);
-  const auto duration = r.optional_number("duration", 0, kMaxMoveSeconds, "seconds, above 0 up to 600", true);
+  const auto duration = r.optional_number(
+      "duration", 0, kMaxMoveSeconds,
+      "seconds, above 0 up to 600 (a time shorter than the joints allow is stretched to it)", true);
   r.finish();
   if (speed && duration) bad_value("duration", "give speed or duration, not both");
   if (speed) out.speed = *speed;

@@ -135,17 +135,23 @@ def capture(body, *args, **kwargs):
     return None
 
 
-def test_close_while_another_thread_waits_stops_the_arm(xarm_on_a_link):
-    device, reopen = xarm_on_a_link
-    arm = armctl.Arm("xarm", device)
+def start_long_wait(arm):
+    """Another thread's 20 s device move and its wait, under way: (start, raised, thread)."""
     start = arm.read().positions[0]
     inside = threading.Event()
     raised = []
-    # A 20 s device move, then its wait: close() must not wait that long.
     mover = threading.Thread(target=lambda: raised.append(capture(
         arm.move_joints, {"servo6": Marker(start + 80 * DEG, inside)}, duration=20, wait=True, timeout=DEADLINE)))
     mover.start()
     assert inside.wait(DEADLINE)
+    return start, raised, mover
+
+
+def test_close_while_another_thread_waits_stops_the_arm(xarm_on_a_link):
+    device, reopen = xarm_on_a_link
+    arm = armctl.Arm("xarm", device)
+    # close() must not wait for the move's 20 s.
+    start, raised, mover = start_long_wait(arm)
     began = time.monotonic()
     arm.close()
     took = time.monotonic() - began
@@ -231,13 +237,7 @@ def test_a_thread_listening_for_group_events_lets_other_calls_through():
 
 def test_stop_from_another_thread_ends_a_wait_without_waiting_for_it():
     with armctl.Arm() as arm:
-        start = arm.read().positions[0]
-        inside = threading.Event()
-        raised = []
-        mover = threading.Thread(target=lambda: raised.append(capture(
-            arm.move_joints, {"servo6": Marker(start + 80 * DEG, inside)}, duration=20, wait=True, timeout=DEADLINE)))
-        mover.start()
-        assert inside.wait(DEADLINE)
+        start, raised, mover = start_long_wait(arm)
         began = time.monotonic()
         arm.stop()
         assert time.monotonic() - began < 3  # not the move's 20 s

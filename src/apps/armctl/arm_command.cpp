@@ -16,6 +16,7 @@
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/motion_trace.hpp"
 #include "apps/armctl/number_options.hpp"
+#include "apps/armctl/serve_support.hpp"
 #include "arm/arm_calibration.hpp"
 #include "core/error.hpp"
 #include "core/quantity.hpp"
@@ -197,7 +198,19 @@ void after_move(const ArmArgs& a, ArmSession& s, const std::optional<arm::Cartes
     else fmt::print("{}\n", json{{"moving", true}}.dump());
     return;
   }
-  arm::JointState state = must(s.arm->wait(wait_options(a)));
+  // Ctrl-C while waiting stops the arm (the board would otherwise finish the move alone).
+  Interrupted interrupted;
+  StopOnSignals on_signals(interrupted);
+  arm::WaitOptions w = wait_options(a);
+  w.interrupted = [&] { return bool(interrupted); };
+  Result<arm::JointState> waited = s.arm->wait(w);
+  if (!waited && interrupted) {
+    const Status halted = s.arm->stop();
+    throw ArmctlError(ErrorKind::device, halted ? "stopped by a signal: the arm halted where it was"
+                                                : "stopped by a signal; halting the arm failed: " +
+                                                      halted.error().message);
+  }
+  arm::JointState state = must(std::move(waited));
   const motion::JointVector q = s.arm->chain_of(state.positions);
   const motion::Pose pose = s.arm->forward(q);
   const motion::Rpy rpy = s.arm->tool_rpy(pose, q);
