@@ -201,19 +201,46 @@ Result<std::vector<motion::IkSolution>> Arm::inverse(const CartesianGoal& goal, 
   auto solutions = solve(rpy);
   if (!solutions && !goal.pitch && model_.family == motion::KinematicFamily::xarm) {
     // Only a position asked of the 5-joint arm: the tool's pitch is free. Keep the current
-    // one if it reaches; else the nearest pitch that does (in 1 degree steps either way).
-    for (int step = 1; step <= 180 && !solutions; ++step) {
-      for (int sign : {1, -1}) {
-        motion::Rpy o = rpy;
-        o.pitch = rpy.pitch + sign * step * std::numbers::pi / 180;
-        auto s = solve(o);
-        if (s) {
-          solutions = std::move(s);
-          break;
-        }
-      }
+    // one if it reaches; else look at every whole degree from it: the pitches that reach
+    // form runs. The nearest pitch that reaches is on the edge of its run (a joint at its
+    // limit), and that run may be a sliver a few degrees wide (from the straight-up start,
+    // x 150 y 50 z 120 mm reaches at -106..-103 deg and at 15..70 deg): a line that starts
+    // or ends there leaves what the arm reaches within millimetres. So: the nearest run at
+    // least kWideRun degrees wide (else the widest), and in it the pitch kRunMargin degrees
+    // inside its near end (its middle, if narrower).
+    constexpr int kWideRun = 10, kRunMargin = 5;
+    struct Run {
+      int from = 0, to = 0;  // degrees from the current pitch
+      int width() const { return to - from; }
+      int distance() const { return std::min(std::abs(from), std::abs(to)); }
+    };
+    std::vector<Run> runs;
+    for (int k = -180; k <= 180; ++k) {
+      motion::Rpy o = rpy;
+      o.pitch = rpy.pitch + k * std::numbers::pi / 180;
+      if (!solve(o)) continue;
+      if (!runs.empty() && runs.back().to == k - 1)
+        runs.back().to = k;
+      else
+        runs.push_back({k, k});
     }
-    if (!solutions) return solve(rpy).error();
+    const Run* chosen = nullptr;
+    for (const Run& r : runs) {
+      const bool wide = r.width() >= kWideRun;
+      if (!chosen) {
+        chosen = &r;
+        continue;
+      }
+      const bool chosen_wide = chosen->width() >= kWideRun;
+      if (wide != chosen_wide ? wide : (wide ? r.distance() < chosen->distance() : r.width() > chosen->width()))
+        chosen = &r;
+    }
+    if (!chosen) return solve(rpy).error();
+    int k = (chosen->from + chosen->to) / 2;
+    if (chosen->width() > 2 * kRunMargin) k = chosen->from > 0 ? chosen->from + kRunMargin : chosen->to - kRunMargin;
+    motion::Rpy o = rpy;
+    o.pitch = rpy.pitch + k * std::numbers::pi / 180;
+    solutions = solve(o);
   }
   if (!solutions) return solutions;
   if (!goal.elbow) return solutions;
