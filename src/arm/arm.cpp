@@ -202,13 +202,11 @@ Result<std::vector<motion::IkSolution>> Arm::inverse(const CartesianGoal& goal, 
   if (!solutions && !goal.pitch && model_.family == motion::KinematicFamily::xarm) {
     // Only a position asked of the 5-joint arm: the tool's pitch is free. Keep the current
     // one if it reaches; else look at every whole degree from it: the pitches that reach
-    // form runs. The nearest pitch that reaches is on the edge of its run (a joint at its
-    // limit), and that run may be a sliver a few degrees wide (from the straight-up start,
-    // x 150 y 50 z 120 mm reaches at -106..-103 deg and at 15..70 deg): a line that starts
-    // or ends there leaves what the arm reaches within millimetres. So: the nearest run at
-    // least kWideRun degrees wide (else the widest), and in it the pitch kRunMargin degrees
-    // inside its near end (its middle, if narrower).
-    constexpr int kWideRun = 10, kRunMargin = 5;
+    // form runs, and the middle of the widest run is taken (the nearer of two as wide). Not
+    // the nearest pitch that reaches: it lies on the edge of its run (a joint at its limit),
+    // and its run may be a sliver (from the straight-up start, x 150 y 50 z 120 mm reaches
+    // at -106..-103 deg and at 15..70 deg), so that a line starting or ending there leaves
+    // what the arm reaches within millimetres ("beyond reach by 0.0 mm at this tool pitch").
     struct Run {
       int from = 0, to = 0;  // degrees from the current pitch
       int width() const { return to - from; }
@@ -224,22 +222,13 @@ Result<std::vector<motion::IkSolution>> Arm::inverse(const CartesianGoal& goal, 
       else
         runs.push_back({k, k});
     }
-    const Run* chosen = nullptr;
-    for (const Run& r : runs) {
-      const bool wide = r.width() >= kWideRun;
-      if (!chosen) {
-        chosen = &r;
-        continue;
-      }
-      const bool chosen_wide = chosen->width() >= kWideRun;
-      if (wide != chosen_wide ? wide : (wide ? r.distance() < chosen->distance() : r.width() > chosen->width()))
-        chosen = &r;
-    }
-    if (!chosen) return solve(rpy).error();
-    int k = (chosen->from + chosen->to) / 2;
-    if (chosen->width() > 2 * kRunMargin) k = chosen->from > 0 ? chosen->from + kRunMargin : chosen->to - kRunMargin;
+    if (runs.empty()) return solve(rpy).error();
+    const Run* widest = &runs.front();
+    for (const Run& r : runs)
+      if (r.width() > widest->width() || (r.width() == widest->width() && r.distance() < widest->distance()))
+        widest = &r;
     motion::Rpy o = rpy;
-    o.pitch = rpy.pitch + k * std::numbers::pi / 180;
+    o.pitch = rpy.pitch + (widest->from + widest->to) / 2 * std::numbers::pi / 180;
     solutions = solve(o);
   }
   if (!solutions) return solutions;
