@@ -324,8 +324,8 @@ namespace {
 // The 5-joint xArm's tool pitch at a line's target when the move asks none: free, as for a
 // PTP to a position alone, and chosen the same way (Arm::inverse): the pitch the line
 // starts with if the target reaches with it (the line then keeps it exactly,
-// docs/paths.md), else the nearest that reaches, a few degrees inside the edge of what
-// reaches. `near` (every joint): the arm before the target; set to the target's solution.
+// docs/paths.md), else the middle of the widest run of pitches that reach it. `near`
+// (every joint): the arm before the target; set to the target's solution.
 // Nothing reaches: the pitch as it was, for the path check to refuse with its reason.
 double line_target_pitch(const Arm& arm, const CartesianGoal& goal, const motion::Rpy& rpy, std::vector<double>& near) {
   CartesianGoal position_alone = goal;

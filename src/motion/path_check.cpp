@@ -22,10 +22,6 @@ constexpr double kNearSingularity = 0.05;
 // A joint step that stays above its step limit as the step in s is halved down to this
 // (times the path's duration) is a jump (a change of configuration), not a fast joint.
 constexpr double kJumpWidth = 1e-12;
-// kSingularStart (path_check.hpp): a line that leaves a singular start along the lost
-// direction needs the joints to jump (the xArm's base to the line's heading) or to move
-// infinitely fast at first (the elbow bends as the square root of the distance from a
-// stretched arm): refused with what to do (refuse_singular_start).
 
 Error refuse(std::string message) { return Error{ErrorKind::invalid_argument, std::move(message)}; }
 
@@ -181,8 +177,11 @@ class Checker {
                        shown(l, qb.joints[joint]));
   }
 
-  // The path starts at a singularity and cannot leave it along the path (`why`): refused
-  // with what to do, instead of a jump at 0 % or a path slowed to a crawl over its length.
+  // The path starts at a singularity (kSingularStart) and cannot leave it along the path
+  // (`why`): leaving along the lost direction needs the joints to jump (the xArm's base to
+  // the line's heading) or to move infinitely fast at first (the elbow bends as the square
+  // root of the distance from a stretched arm). Refused with what to do, instead of a jump
+  // at 0 % or a path slowed to a crawl over its whole length.
   Error refuse_singular_start(const std::string& why) const {
     return refuse(fmt::format("{}: the path starts at a singularity ({}), where {}: a straight line cannot start "
                               "there; move the arm away from it first with a joint move (PTP: a move to a tool "
@@ -372,11 +371,6 @@ class Checker {
       out.rate_limit[i] = rate;
       out.max_rate = std::min(out.max_rate, rate);
     }
-    if (out.max_rate < kMinPathRate) {  // refused where it is slowest
-      const std::size_t i = std::size_t(std::min_element(out.rate_limit.begin(), out.rate_limit.end()) - out.rate_limit.begin());
-      const int j = limiting[i];
-      return refuse(too_fast(out.s[i], out.joints[i], j, std::abs(out.dq_ds[i][j])));
-    }
     // From a singular start, a joint's speed at the first sample is only the finite
     // difference's guess at an unbounded one (the elbow bends as the square root of the
     // distance from a stretched arm): slowed there, the path cannot start there.
@@ -386,6 +380,11 @@ class Checker {
                                                "at full speed over the first step, allowed {})",
                                                l.name, shown(l, std::abs(out.dq_ds[0][limiting[0]]), 1),
                                                shown(l, l.velocity, 1)));
+    }
+    if (out.max_rate < kMinPathRate) {  // refused where it is slowest
+      const std::size_t i = std::size_t(std::min_element(out.rate_limit.begin(), out.rate_limit.end()) - out.rate_limit.begin());
+      const int j = limiting[i];
+      return refuse(too_fast(out.s[i], out.joints[i], j, std::abs(out.dq_ds[i][j])));
     }
     // Stretches below full speed, each with its slowest point and the reason.
     for (std::size_t i = 0; i < out.s.size();) {
