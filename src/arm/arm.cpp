@@ -201,19 +201,35 @@ Result<std::vector<motion::IkSolution>> Arm::inverse(const CartesianGoal& goal, 
   auto solutions = solve(rpy);
   if (!solutions && !goal.pitch && model_.family == motion::KinematicFamily::xarm) {
     // Only a position asked of the 5-joint arm: the tool's pitch is free. Keep the current
-    // one if it reaches; else the nearest pitch that does (in 1 degree steps either way).
-    for (int step = 1; step <= 180 && !solutions; ++step) {
-      for (int sign : {1, -1}) {
-        motion::Rpy o = rpy;
-        o.pitch = rpy.pitch + sign * step * std::numbers::pi / 180;
-        auto s = solve(o);
-        if (s) {
-          solutions = std::move(s);
-          break;
-        }
-      }
+    // one if it reaches; else look at every whole degree from it: the pitches that reach
+    // form runs, and the middle of the widest run is taken (the nearer of two as wide). Not
+    // the nearest pitch that reaches: it lies on the edge of its run (a joint at its limit),
+    // and its run may be a sliver (from the straight-up start, x 150 y 50 z 120 mm reaches
+    // at -106..-103 deg and at 15..70 deg), so that a line starting or ending there leaves
+    // what the arm reaches within millimetres ("beyond reach by 0.0 mm at this tool pitch").
+    struct Run {
+      int from = 0, to = 0;  // degrees from the current pitch
+      int width() const { return to - from; }
+      int distance() const { return std::min(std::abs(from), std::abs(to)); }
+    };
+    std::vector<Run> runs;
+    for (int k = -180; k <= 180; ++k) {
+      motion::Rpy o = rpy;
+      o.pitch = rpy.pitch + k * std::numbers::pi / 180;
+      if (!solve(o)) continue;
+      if (!runs.empty() && runs.back().to == k - 1)
+        runs.back().to = k;
+      else
+        runs.push_back({k, k});
     }
-    if (!solutions) return solve(rpy).error();
+    if (runs.empty()) return solve(rpy).error();
+    const Run* widest = &runs.front();
+    for (const Run& r : runs)
+      if (r.width() > widest->width() || (r.width() == widest->width() && r.distance() < widest->distance()))
+        widest = &r;
+    motion::Rpy o = rpy;
+    o.pitch = rpy.pitch + (widest->from + widest->to) / 2 * std::numbers::pi / 180;
+    solutions = solve(o);
   }
   if (!solutions) return solutions;
   if (!goal.elbow) return solutions;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/core.h>
 
@@ -318,14 +319,41 @@ Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& fro
   return plan;
 }
 
+namespace {
+
+// The 5-joint xArm's tool pitch at a line's target when the move asks none: free, as for a
+// PTP to a position alone, and chosen the same way (Arm::inverse): the pitch the line
+// starts with if the target reaches with it (the line then keeps it exactly,
+// docs/paths.md), else the middle of the widest run of pitches that reach it. `near`
+// (every joint): the arm before the target; set to the target's solution.
+// Nothing reaches: the pitch as it was, for the path check to refuse with its reason.
+double line_target_pitch(const Arm& arm, const CartesianGoal& goal, const motion::Rpy& rpy, std::vector<double>& near) {
+  CartesianGoal position_alone = goal;
+  position_alone.roll = rpy.roll;
+  position_alone.pitch.reset();
+  position_alone.yaw.reset();  // follows the position
+  JointState now;
+  now.positions = near;
+  auto solutions = arm.inverse(position_alone, now);
+  if (!solutions) return rpy.pitch;
+  const motion::JointVector& q = solutions->front().joints;
+  for (int i = 0; i < q.size(); ++i) near[std::size_t(i)] = q[i];
+  return arm.tool_rpy(arm.forward(q), q).pitch;
+}
+
+}  // namespace
+
 std::vector<motion::PathSegment> path_segments(const Arm& arm, const std::vector<double>& from,
                                                std::span<const CartesianMove> moves) {
   const motion::JointVector q = arm.chain_of(from);
   motion::Rpy current = arm.tool_rpy(arm.forward(q), q);
+  std::vector<double> near = from;
+  const bool free_pitch = arm.model().family == motion::KinematicFamily::xarm;
   std::vector<motion::PathSegment> segments;
   segments.reserve(moves.size());
   for (const CartesianMove& m : moves) {
     current = arm.goal_rpy(m.goal, current);
+    if (free_pitch && !m.goal.pitch) current.pitch = line_target_pitch(arm, m.goal, current, near);
     motion::PathSegment seg;
     seg.kind = m.kind;
     seg.target.position = m.goal.position;

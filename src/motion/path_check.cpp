@@ -152,6 +152,17 @@ class Checker {
         return refuse(fmt::format("{}: joint {} would leave its limits at {}, allowed {}", where(a), lj.name,
                                   shown(lj, v), shown_range(lj)));
     }
+    const std::string change = same(qa.configuration, qb.configuration)
+                                   ? ""
+                                   : fmt::format(" ({} -> {})", describe(qa.configuration), describe(qb.configuration));
+    return refuse(fmt::format("{}: {}, a change of configuration{}{}; the arm cannot follow the path through there "
+                              "(move around it, or split the path with a PTP)",
+                              where(a), jump_words(qa, qb), change, singularity_note(qa.joints)));
+  }
+
+  // "the joints would jump: joint servo6 from 0.0 deg to 6.3 deg": the joint whose step is
+  // the largest for its step limit.
+  std::string jump_words(const Solved& qa, const Solved& qb) const {
     int joint = 0;
     double worst = 0;
     for (std::size_t j = 0; j < limits_.size(); ++j) {
@@ -162,13 +173,20 @@ class Checker {
       }
     }
     const PathLimits& l = limits_[std::size_t(joint)];
-    const std::string change = same(qa.configuration, qb.configuration)
-                                   ? ""
-                                   : fmt::format(" ({} -> {})", describe(qa.configuration), describe(qb.configuration));
-    return refuse(fmt::format("{}: the joints would jump: joint {} from {} to {}, a change of configuration{}{}; the "
-                              "arm cannot follow the path through there (move around it, or split the path with a PTP)",
-                              where(a), l.name, shown(l, qa.joints[joint]), shown(l, qb.joints[joint]), change,
-                              singularity_note(qa.joints)));
+    return fmt::format("the joints would jump: joint {} from {} to {}", l.name, shown(l, qa.joints[joint]),
+                       shown(l, qb.joints[joint]));
+  }
+
+  // The path starts at a singularity (kSingularStart) and cannot leave it along the path
+  // (`why`): leaving along the lost direction needs the joints to jump (the xArm's base to
+  // the line's heading) or to move infinitely fast at first (the elbow bends as the square
+  // root of the distance from a stretched arm). Refused with what to do, instead of a jump
+  // at 0 % or a path slowed to a crawl over its whole length.
+  Error refuse_singular_start(const std::string& why) const {
+    return refuse(fmt::format("{}: the path starts at a singularity ({}), where {}: a straight line cannot start "
+                              "there; move the arm away from it first with a joint move (PTP: a move to a tool "
+                              "point without a straight line, or a ptp line before the path), then start the path",
+                              where(0), to_string(start_singularity_), why));
   }
 
   // The pose at b cannot be reached, the one at a (solved as qa) can: narrows it down by
@@ -284,6 +302,7 @@ class Checker {
                                   "needs {}",
                                   l.name, shown(l, at), shown(l, want)));
     }
+    start_singularity_ = kin_.singularity(first->joints, kSingularStart);
     Solved previous = *first;
     double previous_s = 0;
     double from = 0;
@@ -318,6 +337,10 @@ class Checker {
               pending.push_back(m);
               continue;
             }
+            // Still at the singular start (the first steps may stay on the base axis).
+            if (start_singularity_ != Singularity::none && !joints_far(first->joints, previous.joints)) {
+              return refuse_singular_start(jump_words(previous, *q));
+            }
             return refuse_jump(previous_s, previous, *q);
           }
           if (auto ok = accept(b, *q); !ok) return ok.error();
@@ -347,6 +370,16 @@ class Checker {
       }
       out.rate_limit[i] = rate;
       out.max_rate = std::min(out.max_rate, rate);
+    }
+    // From a singular start, a joint's speed at the first sample is only the finite
+    // difference's guess at an unbounded one (the elbow bends as the square root of the
+    // distance from a stretched arm): slowed there, the path cannot start there.
+    if (start_singularity_ != Singularity::none && !out.rate_limit.empty() && out.rate_limit[0] < 1) {
+      const PathLimits& l = limits_[std::size_t(limiting[0])];
+      return refuse_singular_start(fmt::format("joint {} would have to move faster the closer the tool is to it ({} "
+                                               "at full speed over the first step, allowed {})",
+                                               l.name, shown(l, std::abs(out.dq_ds[0][limiting[0]]), 1),
+                                               shown(l, l.velocity, 1)));
     }
     if (out.max_rate < kMinPathRate) {  // refused where it is slowest
       const std::size_t i = std::size_t(std::min_element(out.rate_limit.begin(), out.rate_limit.end()) - out.rate_limit.begin());
@@ -390,6 +423,7 @@ class Checker {
   Pose tool_inverse_;
   std::span<const PathLimits> limits_;
   bool nearest_;
+  Singularity start_singularity_ = Singularity::none;  // of the path's first sample (kSingularStart)
 };
 
 }  // namespace

@@ -26,6 +26,9 @@ inline constexpr double kPathSampleJointLength = 1e-3;
 // The slowest the check lets a path go: a ds/dt below this (1 % of the programmed speed)
 // needed anywhere refuses the path.
 inline constexpr double kMinPathRate = 0.01;
+// A path whose first joints are this close to a singular configuration (Kinematics::
+// singularity's tolerance) starts at it; a line that cannot leave it is refused saying so.
+inline constexpr double kSingularStart = 1e-3;
 // A joint farther than this from its value at the start of the path means the path does
 // not start where the arm is (rad, or m for a prismatic joint: 1 deg and 1 mm).
 inline constexpr double kStartAngleSlack = 1.0 * 3.14159265358979323846 / 180;

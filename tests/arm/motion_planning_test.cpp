@@ -255,6 +255,45 @@ TEST_F(XarmMotion, ATargetBeyondAnyReachIsRefusedBeforePlanning) {
             "the tool target: y 1e+200 mm is beyond reach: " + reach);
 }
 
+// From the xArm's start pose (every servo centred, straight up), the README's Python lines:
+// move_to(150, 50, 120 mm), then a line to (180, 40, 100 mm). The pitch of a position alone
+// is the middle of the widest run of pitches that reach (there 15..70 deg), not the nearest
+// to the start's -90 deg (then -103 deg, servo5 at its limit, in a run 4 deg wide), from
+// which the line left the reach at 20 %. The same line from straight up is refused saying
+// to move away with a joint move first.
+TEST(XarmFreePitch, APositionAloneTakesRoomyPitchSoTheReadmeLinePlans) {
+  robot_commands::testing::EmulatedLink link;
+  robot_commands::Client client{link};
+  const Arm arm{testing::shipped("xarm"), std::make_unique<RcArmDevice>(testing::shipped("xarm"), client)};
+  JointState straight_up;
+  straight_up.positions.assign(arm.model().joints.size(), 0.0);
+  CartesianGoal goal;
+  goal.position = {0.15, 0.05, 0.12};
+  auto solutions = arm.inverse(goal, straight_up);
+  ASSERT_TRUE(solutions.ok()) << solutions.error().message;
+  const motion::JointVector q = solutions->front().joints;
+  EXPECT_NEAR(arm.tool_rpy(arm.forward(q), q).pitch / kDeg, 42.5, 1.0);
+
+  std::vector<double> there = straight_up.positions;
+  for (int i = 0; i < q.size(); ++i) there[std::size_t(i)] = q[i];
+  CartesianMove line;
+  line.goal.position = {0.18, 0.04, 0.10};
+  line.speed = 0.04;
+  const std::vector<CartesianMove> moves{line};
+  auto plan = plan_path(arm.model(), there, path_segments(arm, there, moves));
+  ASSERT_TRUE(plan.ok()) << plan.error().message;
+  EXPECT_TRUE(plan->checked->slowed.empty());
+  EXPECT_LT(plan->motion.duration, 1.5);  // 40 mm at 40 mm/s, and the ramps
+
+  auto refused = plan_path(arm.model(), straight_up.positions, path_segments(arm, straight_up.positions, moves));
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("the path starts at a singularity (arm stretched or folded)"),
+            std::string::npos)
+      << refused.error().message;
+  EXPECT_NE(refused.error().message.find("move the arm away from it first with a joint move"), std::string::npos)
+      << refused.error().message;
+}
+
 // The reach is an upper bound of where the tool can be, and not a loose one.
 TEST(ArmReach, BoundsTheToolOfBothArms) {
   for (const char* name : {"xarm", "scara"}) {

@@ -287,6 +287,44 @@ TEST(PathCheck, OverTheBaseAxisWithTheApproachUpTheXarmLeansOverWithoutTurning) 
   EXPECT_NEAR(checked->joints.back()[0], start[0], 1e-9);
 }
 
+// The xArm starts straight up, every servo centred: the arm stretched, the tool on the
+// base axis. A line sideways needs the base to jump to its heading; a line straight down
+// needs the elbow to bend as the square root of the distance (unbounded speed at first, which
+// the check's finite differences turned into a 10 mm line slowed to 56.6 s). Both are refused
+// at the start, saying to move away with a joint move first; a few degrees off the
+// singular pose, the same line straight down passes.
+TEST(PathCheck, ALineThatCannotLeaveASingularStartIsRefusedSayingWhatToDo) {
+  const TestArm arm = shipped("xarm");
+  const JointVector straight_up = JointVector::Zero(5);
+  ASSERT_EQ(arm.kinematics->singularity(straight_up, kSingularStart), Singularity::arm_stretched);
+  const Pose top = arm.kinematics->forward(straight_up);
+  const std::string what_to_do =
+      "a straight line cannot start there; move the arm away from it first with a joint move \\(PTP: a move to a "
+      "tool point without a straight line, or a ptp line before the path\\), then start the path";
+  const CartesianPath sideways = built(top, {lin_to(Eigen::Vector3d(0.18, 0.04, 0.10), top.orientation, 0.04)});
+  auto jump = check_path(sideways, *arm.kinematics, tool_identity(), straight_up, arm.limits, true);
+  ASSERT_FALSE(jump.ok());
+  EXPECT_THAT(jump.error().message,
+              MatchesRegex("segment 1 \\(LIN\\): at 0 % \\(x 0.0 y 0.0 z [0-9.]+ mm\\): the path starts at a singularity "
+                           "\\(arm stretched or folded\\), where the joints would jump: joint servo6 from 0.0 deg to "
+                           "[0-9.]+ deg: " + what_to_do));
+  const CartesianPath down = built(top, {lin_to(top.position - Eigen::Vector3d(0, 0, 0.01), top.orientation)});
+  auto crawl = check_path(down, *arm.kinematics, tool_identity(), straight_up, arm.limits, true);
+  ASSERT_FALSE(crawl.ok());
+  EXPECT_THAT(crawl.error().message,
+              MatchesRegex("segment 1 \\(LIN\\): at 0 % .*: the path starts at a singularity \\(arm stretched or "
+                           "folded\\), where joint servo[0-9] would have to move faster the closer the tool is to it "
+                           "\\([0-9.]+ deg/s at full speed over the first step, allowed 180.0 deg/s\\): " + what_to_do));
+  // Leaning over and bent by 20 deg (the wrist keeping the tool up), the same line down passes.
+  const JointVector bent = joints({0, deg(10), deg(20), deg(-30), 0});
+  ASSERT_EQ(arm.kinematics->singularity(bent, kSingularStart), Singularity::none);
+  const Pose from = arm.kinematics->forward(bent);
+  const CartesianPath down_bent = built(from, {lin_to(from.position - Eigen::Vector3d(0, 0, 0.01), from.orientation)});
+  auto passes = check_path(down_bent, *arm.kinematics, tool_identity(), bent, arm.limits, true);
+  ASSERT_TRUE(passes.ok()) << passes.error().message;
+  expect_follows(down_bent, arm, *passes, false);
+}
+
 // One joint whose only solution jumps by 2 at x = 0.05 m: a configuration change.
 class JumpingKinematics final : public Kinematics {
  public:

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -110,8 +111,10 @@ class Planner {
       t.zone = m.zone;
       targets.push_back(t);
     }
-    const std::vector<motion::PathSegment> segments = arm::path_segments(arm_, state_, targets);
+    std::vector<motion::PathSegment> segments = arm::path_segments(arm_, state_, targets);
     auto plan = arm::plan_path(model_, state_, segments);
+    if (!plan)
+      if (auto led = lead_in(moves[from], segments.front(), targets)) plan = std::move(*led);
     if (!plan) {
       // The path's errors count segments from 1 within this stretch: say which lines.
       const std::string lines = moves[from].line
@@ -124,6 +127,50 @@ class Planner {
     pieces_.push_back({moves[from].line, from + 1 == to ? where(moves[from])
                                                          : fmt::format("{} .. {}", where(moves[from]), where(moves[to - 1])),
                        std::move(plan->motion), plan->path});
+  }
+
+  // A line cannot start where the arm is singular (the xArm straight up, as it starts:
+  // motion::kSingularStart). So a joint move (PTP) first takes the tool kLeadIn along the
+  // line, with the orientation the move asks (the xArm's pitch free), and the line goes on
+  // from there: the plan of the line, with the joint move's piece before it, in the first
+  // elbow configuration from which the line plans. Empty (nothing planned) when the arm is
+  // not at a singularity, the line is too short or plans from no configuration.
+  std::optional<arm::PathPlan> lead_in(const motion::PathMove& m, const motion::PathSegment& first,
+                                       const std::vector<arm::CartesianMove>& targets) {
+    constexpr double kLeadIn = 0.03;  // m
+    const motion::JointVector q = arm_.chain_of(state_);
+    if (first.kind != motion::SegmentKind::lin ||
+        model_.kinematics->singularity(q, motion::kSingularStart) == motion::Singularity::none)
+      return std::nullopt;
+    const Eigen::Vector3d start = arm_.forward(q).position;
+    const Eigen::Vector3d line = first.target.position - start;
+    if (line.norm() < 2 * kLeadIn) return std::nullopt;
+    motion::PathMove ptp;
+    ptp.kind = motion::MoveKind::ptp;
+    ptp.line = m.line;
+    ptp.position = start + line.normalized() * kLeadIn;
+    ptp.roll = m.roll;
+    ptp.pitch = m.pitch;
+    ptp.yaw = m.yaw;
+    const std::vector<double> before = state_;
+    using motion::Elbow;
+    for (Elbow elbow : {Elbow::up, Elbow::down, Elbow::left, Elbow::right}) {
+      ptp.elbow = elbow;
+      try {
+        plan_ptp(ptp);
+      } catch (const ArmctlError&) {
+        continue;  // no solution with this elbow (or not this arm's kind of elbow)
+      }
+      auto plan = arm::plan_path(model_, state_, arm::path_segments(arm_, state_, targets));
+      if (plan) {
+        pieces_.back().label = fmt::format("{}: joint move off the singular start, {:.0f} mm along the line",
+                                           where(m), kLeadIn * 1e3);
+        return std::move(plan).value();
+      }
+      pieces_.pop_back();
+      state_ = before;
+    }
+    return std::nullopt;
   }
 
   arm::Arm& arm_;
