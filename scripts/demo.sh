@@ -96,7 +96,7 @@ tool_to() {  # name arm device x y z [orientation...]
   local name=$1 arm=$2 device=$3 x=$4 y=$5 z=$6
   shift 6
   echo "== $name: tool to x=$x y=$y z=$z mm $*"
-  "$armctl" arm --arm "$arm" --device "$device" move-to "x=$x" "y=$y" "z=$z" "$@" --time 1.5s --wait |
+  "$armctl" arm --arm "$arm" --device "$device" move-to "x=$x" "y=$y" "z=$z" "$@" --time 2s --wait |
     grep -E '^(tool|position error)'
 }
 for p in "150 0 150" "100 120 100" "180 -60 60"; do
