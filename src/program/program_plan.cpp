@@ -249,4 +249,11 @@ Result<ProgramPlan> plan_program(const arm::Arm& arm, const std::vector<double>&
   return catch_error([&]() -> Result<ProgramPlan> { return Planner(arm, start, source, options).plan(flow); });
 }
 
+double estimated_duration(const ProgramPlan& plan, double speed_override) {
+  double total = 0;
+  for (const PlannedPiece& p : plan.pieces)
+    total += p.kind == PieceKind::motion ? p.motion.duration / speed_override : p.seconds;
+  return total;
+}
+
 }  // namespace armctl::program

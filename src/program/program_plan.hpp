@@ -50,6 +50,10 @@ struct ProgramPlan {
   std::size_t moves = 0;
 };
 
+// How long the plan runs with every motion at `speed_override` (0..1] of its programmed
+// speeds: the motions take 1/override as long, the waits as long as written.
+double estimated_duration(const ProgramPlan& plan, double speed_override);
+
 // Errors (invalid_argument) start with "file:line: (KIND target): " and say why: no IK
 // solution, outside a joint's limits (which joint, where), a CIRC's three points on a line.
 Result<ProgramPlan> plan_program(const arm::Arm& arm, const std::vector<double>& start, const Flow& flow,

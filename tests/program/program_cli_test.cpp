@@ -45,6 +45,28 @@ TEST(ProgramCli, DryRunPrintsEveryLineAsJson) {
   std::filesystem::remove(points);
 }
 
+// The estimate printed before a run is at the run's --override (motions 1/override as long,
+// WAITs as written); it said 81.8 s for a run of 164.4 s at 50 %.
+TEST(ProgramCli, TheEstimateIsAtTheOverride) {
+  const std::string prog = write_temp("slow.prog", "ptp a speed=50%\nlin b speed=60mm/s\nwait 0.1s\n");
+  const std::string points = write_temp("slow.points", "a x=180mm y=-30mm z=100mm pitch=50deg\nb x=180mm y=30mm z=100mm pitch=50deg\n");
+  auto planned = [&](const std::string& override) {
+    const auto r = run_armctl("program run " + prog + " --points " + points + " --dry-run --json" + override, "2>/dev/null");
+    EXPECT_EQ(r.status, 0) << r.out;
+    std::istringstream lines(r.out);
+    std::string first;
+    std::getline(lines, first);
+    const auto event = nlohmann::json::parse(first);
+    EXPECT_EQ(event.at("event"), "planned");
+    return event.at("duration_s").get<double>();
+  };
+  const double full = planned(""), half = planned(" --override 50%");
+  // Motions twice as long, the 0.1 s WAIT the same.
+  EXPECT_NEAR(half, 2 * full - 0.1, 1e-6) << full << " " << half;
+  std::filesystem::remove(prog);
+  std::filesystem::remove(points);
+}
+
 TEST(ProgramCli, RefusesAProgramThatFailsTheCheck) {
   const std::string prog = write_temp("far.prog", "print \"start\"\nptp near\nlin far\n");
   const std::string points = write_temp("far.points", "near x=180mm y=0mm z=100mm pitch=50deg\nfar x=600mm y=0mm z=100mm pitch=50deg\n");
