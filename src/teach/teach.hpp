@@ -60,10 +60,13 @@ struct RecordOptions {
   // Asked before every sample: true ends the recording (Enter, end of input, Ctrl-C).
   std::function<bool()> done;
   std::function<void(const motion::RecordingSample&)> on_sample;
+  // Called once torque is off, just before the first sample (the CLI says "move the arm").
+  std::function<void()> on_start;
 };
 
 // Records the arm's joints at `rate` on the device's clock (torque off for the time) until
-// done() or the duration. At least one sample.
+// done() or the duration. At least one sample. A rate faster than one read of every joint
+// allows is refused before torque goes off, naming the rate the link allows.
 Result<motion::Recording> record_motion(arm::Arm& arm, const RecordOptions& options);
 
 }  // namespace armctl::teach

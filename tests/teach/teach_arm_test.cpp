@@ -308,6 +308,36 @@ class ScaraTeach : public ::testing::Test {
   }
 };
 
+// At 9600 baud a read of the seven joints takes about 58 ms: 20 Hz is refused at once with
+// the rate the link allows (it recorded at 17 Hz under a header saying 20), and a rate the
+// link keeps stops at the asked duration (5 s ran 5.83 s).
+TEST(ScaraRecording, ARateTheLinkCannotKeepIsRefusedAndTheDurationIsKept) {
+  std::unique_ptr<joint_sim::SimArm> sim = test::make_arm(9600);
+  joint_bus::BusMaster master{sim->link()};
+  arm::Arm arm{shipped("scara"),
+               std::make_unique<arm::BusArmDevice>(shipped("scara"), master, sim->link(), "simulated SCARA")};
+  RecordOptions fast;
+  fast.rate = 20;
+  fast.duration = std::chrono::seconds(2);
+  auto refused = record_motion(arm, fast);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("rate 20 Hz is faster than this link allows"), std::string::npos)
+      << refused.error().message;
+  EXPECT_NE(refused.error().message.find("Hz or less (nothing recorded, torque not switched off)"), std::string::npos);
+  for (const auto& j : arm.model().joints) EXPECT_TRUE(sim->joint(j.joint_bus->id).controller().loop_enabled());
+
+  RecordOptions kept;
+  kept.rate = 10;
+  kept.duration = std::chrono::seconds(2);
+  auto r = record_motion(arm, kept);
+  ASSERT_TRUE(r) << r.error().message;
+  // 10 Hz for 2 s: the samples span at most the duration, at the asked spacing.
+  EXPECT_GE(r->samples.size(), 20u);
+  EXPECT_LE(r->samples.size(), 21u);
+  EXPECT_LE(r->samples.back().time, 2.0 + 1e-9);
+  EXPECT_NEAR(r->samples.back().time / double(r->samples.size() - 1), 0.1, 0.005);
+}
+
 TEST_F(ScaraTeach, PointsFromAScriptLoopsOffThenHolding) {
   const std::string path = temp_file("scara.points");
   const std::vector<double> before = here();

@@ -95,9 +95,11 @@ void run_teach(const TeachArgs& a) {
     if (input.line_ready()) return true;
     return !duration && input.ended();
   };
-  say(fmt::format("torque off: move the arm by hand; recording at {:g} Hz until {}", rate,
-                  duration ? fmt::format("{:g} s have passed (or Ctrl-C)", std::chrono::duration<double>(*duration).count())
-                           : std::string("Enter, the end of input or Ctrl-C")));
+  o.on_start = [&] {
+    say(fmt::format("torque off: move the arm by hand; recording at {:g} Hz until {}", rate,
+                    duration ? fmt::format("{:g} s have passed (or Ctrl-C)", std::chrono::duration<double>(*duration).count())
+                             : std::string("Enter, the end of input or Ctrl-C")));
+  };
   auto r = teach::record_motion(arm, o);
   if (!r) throw ArmctlError(r.error());
   if (auto w = motion::write_recording(a.out, *r); !w) throw ArmctlError(w.error());
