@@ -82,6 +82,9 @@ TEST(BusCli, ReadsEveryJointOfTheEmbeddedSim) {
 }
 
 TEST(BusCli, JsonOutputIsOneDocument) {
+  // On one line, as every other --json output (it was 42 lines for `position all`).
+  const std::string all = stdout_only("bus --json position all");
+  EXPECT_EQ(std::count(all.begin(), all.end(), '\n'), 1) << all;
   const auto doc = nlohmann::json::parse(stdout_only("bus --json ping 3 -77"));
   EXPECT_EQ(doc["command"], "ping");
   EXPECT_TRUE(doc["ok"].get<bool>());

@@ -47,7 +47,7 @@ void print_report(const BusReport& report, bool json) {
       doc["joints"].push_back(std::move(j));
     }
     for (const auto& [k, v] : report.extra.items()) doc[k] = v;
-    fmt::print("{}\n", doc.dump(2));
+    fmt::print("{}\n", doc.dump());  // one line, as every other --json output
     return;
   }
   for (const auto& r : report.rows) {
