@@ -21,29 +21,30 @@ using namespace std::chrono_literals;
 
 thread_local int current_connection = -1;
 
-std::string address_of(int socket, bool peer) {
-  sockaddr_storage a{};
-  socklen_t n = sizeof a;
-  if ((peer ? ::getpeername(socket, reinterpret_cast<sockaddr*>(&a), &n)
-            : ::getsockname(socket, reinterpret_cast<sockaddr*>(&a), &n)) != 0)
-    return "";
-  char text[INET6_ADDRSTRLEN] = {};
-  if (a.ss_family == AF_INET)
-    ::inet_ntop(AF_INET, &reinterpret_cast<sockaddr_in*>(&a)->sin_addr, text, sizeof text);
-  else if (a.ss_family == AF_INET6)
-    ::inet_ntop(AF_INET6, &reinterpret_cast<sockaddr_in6*>(&a)->sin6_addr, text, sizeof text);
-  return text;
-}
+// The address and port at either end of a connected socket ("" and 0 when unknown).
+struct Endpoint {
+  std::string address;
+  int port = 0;
+};
 
-int port_of(int socket, bool peer) {
+Endpoint endpoint_of(int socket, bool peer) {
   sockaddr_storage a{};
   socklen_t n = sizeof a;
   if ((peer ? ::getpeername(socket, reinterpret_cast<sockaddr*>(&a), &n)
             : ::getsockname(socket, reinterpret_cast<sockaddr*>(&a), &n)) != 0)
-    return 0;
-  if (a.ss_family == AF_INET) return ntohs(reinterpret_cast<sockaddr_in*>(&a)->sin_port);
-  if (a.ss_family == AF_INET6) return ntohs(reinterpret_cast<sockaddr_in6*>(&a)->sin6_port);
-  return 0;
+    return {};
+  char text[INET6_ADDRSTRLEN] = {};
+  if (a.ss_family == AF_INET) {
+    const auto* v4 = reinterpret_cast<sockaddr_in*>(&a);
+    ::inet_ntop(AF_INET, &v4->sin_addr, text, sizeof text);
+    return {text, ntohs(v4->sin_port)};
+  }
+  if (a.ss_family == AF_INET6) {
+    const auto* v6 = reinterpret_cast<sockaddr_in6*>(&a);
+    ::inet_ntop(AF_INET6, &v6->sin6_addr, text, sizeof text);
+    return {text, ntohs(v6->sin6_port)};
+  }
+  return {};
 }
 
 int millis_until(Clock::time_point t) {
@@ -110,12 +111,14 @@ class GuardedStream final : public httplib::Stream {
   }
 
   void get_remote_ip_and_port(std::string& ip, int& port) const override {
-    ip = address_of(socket_, true);
-    port = port_of(socket_, true);
+    Endpoint e = endpoint_of(socket_, true);
+    ip = std::move(e.address);
+    port = e.port;
   }
   void get_local_ip_and_port(std::string& ip, int& port) const override {
-    ip = address_of(socket_, false);
-    port = port_of(socket_, false);
+    Endpoint e = endpoint_of(socket_, false);
+    ip = std::move(e.address);
+    port = e.port;
   }
   socket_t socket() const override { return socket_; }
 
@@ -208,9 +211,9 @@ std::optional<std::string> ConnectionTable::begin_stream(int socket, const std::
   return std::nullopt;
 }
 
-ConnectionTable::Counts ConnectionTable::counts() const {
+ConnectionCounts ConnectionTable::counts() const {
   std::lock_guard lock(mutex_);
-  Counts c;
+  ConnectionCounts c;
   c.connections = entries_.size();
   for (const auto& [s, e] : entries_) c.streams += e.phase == Phase::streaming;
   c.evicted = evicted_;
@@ -222,7 +225,7 @@ GuardedServer::GuardedServer(ConnectionLimits limits) : table_(limits) {}
 int GuardedServer::current_socket() { return current_connection; }
 
 bool GuardedServer::process_and_close_socket(socket_t sock) {
-  table_.open(sock, address_of(sock, true));
+  table_.open(sock, endpoint_of(sock, true).address);
   current_connection = sock;
   const auto write_timeout =
       std::chrono::seconds(write_timeout_sec_) + std::chrono::microseconds(write_timeout_usec_);

@@ -29,8 +29,6 @@ namespace armctl::web {
 class ConnectionTable {
  public:
   enum class Phase { waiting, reading, handling, streaming };
-  using Counts = ConnectionCounts;
-
   explicit ConnectionTable(ConnectionLimits limits) : limits_(limits) {}
 
   // Registers a connection, first closing (shutdown) the longest waiting or reading one of
@@ -44,7 +42,7 @@ class ConnectionTable {
   // Takes one of the event-stream budget for `client` (the connection becomes streaming),
   // or says why not (the refusal's text for the page).
   std::optional<std::string> begin_stream(int socket, const std::string& client);
-  Counts counts() const;
+  ConnectionCounts counts() const;
   const ConnectionLimits& limits() const { return limits_; }
 
  private:
