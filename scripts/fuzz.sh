@@ -9,16 +9,31 @@ seed=${3:-}
 seed_flag=()
 [ -n "$seed" ] && seed_flag=(-seed="$seed")
 shopt -s nullglob
+artifacts="$build/artifacts"
+mkdir -p "$artifacts"
 for f in "$build"/fuzz/fuzz_*; do
   [ -x "$f" ] || continue
   name=$(basename "$f")
   corpus="$build/corpus/$name"
+  log="$build/$name.log"
   mkdir -p "$corpus"
-  seeds=fuzz/corpus/$name
+  rm -f "$artifacts/$name-"*
+  dirs=("$corpus")
+  [ -d "fuzz/corpus/$name" ] && dirs+=("fuzz/corpus/$name")
   echo "== $name for ${seconds}s"
-  if [ -d "$seeds" ]; then
-    "$f" "${seed_flag[@]}" -max_total_time="$seconds" -print_final_stats=1 "$corpus" "$seeds" 2>&1 | tail -n 3
+  # The whole log stays in $log; a finding prints what the fuzzer said about it and the input
+  # that caused it (written to $artifacts), so that CI's output is enough to reproduce it.
+  if "$f" "${seed_flag[@]}" -max_total_time="$seconds" -print_final_stats=1 \
+       -artifact_prefix="$artifacts/$name-" "${dirs[@]}" > "$log" 2>&1; then
+    tail -n 3 "$log"
   else
-    "$f" "${seed_flag[@]}" -max_total_time="$seconds" -print_final_stats=1 "$corpus" 2>&1 | tail -n 3
+    status=$?
+    grep -v '^#[0-9]' "$log" | grep -v '^"' | tail -n 40
+    for a in "$artifacts/$name-"*; do
+      echo "-- input $a (reproduce: $f $a):"
+      od -c "$a" | head -n 20
+    done
+    echo "== $name FAILED (exit $status)"
+    exit "$status"
   fi
 done

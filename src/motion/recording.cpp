@@ -76,6 +76,9 @@ constexpr Unit kUnits[] = {{"deg", Dimension::angle, M_PI / 180},
                            {"mm", Dimension::length, 1e-3},
                            {"m", Dimension::length, 1}};
 
+// The unit a recording is written in: deg for angles, mm for lengths.
+const Unit& unit_of(Dimension d) { return d == Dimension::angle ? kUnits[0] : kUnits[2]; }
+
 class Parser {
  public:
   explicit Parser(std::string_view source) : source_(source) {}
@@ -226,12 +229,14 @@ std::string format_recording(const Recording& r) {
   out += "arm " + r.arm + "\n";
   out += "rate " + shortest(r.rate) + "Hz\n";
   out += "joints";
-  for (const auto& j : r.joints) out += " " + j.name + (j.dimension == Dimension::angle ? ":deg" : ":mm");
+  for (const auto& j : r.joints) out += " " + j.name + ":" + std::string(unit_of(j.dimension).name);
   out += "\n";
   for (const auto& s : r.samples) {
     out += shortest(s.time);
+    // Not to_display: that shows a value under 5e-7 as 0, and a file must read back as written.
+    // (+ 0.0 turns -0 into 0.)
     for (std::size_t i = 0; i < s.positions.size() && i < r.joints.size(); ++i)
-      out += " " + shortest(to_display(r.joints[i].dimension, s.positions[i]));
+      out += " " + shortest(s.positions[i] / unit_of(r.joints[i].dimension).to_si + 0.0);
     out += "\n";
   }
   return out;

@@ -45,6 +45,21 @@ TEST(Recording, RoundTrips) {
   }
 }
 
+// A value too small to show on a screen (under 5e-7 deg) is still written as it is: the file
+// read back is the recording (fuzz_recording found 1e-7 deg written as 0).
+TEST(Recording, TinyValuesReadBackAsWritten) {
+  auto r = parse_recording(std::string(kHead) + "0 1e-7 -3e-9\n0.05 -0 0\n", "t.rec");
+  ASSERT_TRUE(r) << r.error().message;
+  const std::string text = format_recording(*r);
+  EXPECT_EQ(text.find("-0 "), std::string::npos) << text;
+  auto back = parse_recording(text, "t.rec");
+  ASSERT_TRUE(back) << back.error().message;
+  for (std::size_t i = 0; i < 2; ++i)
+    for (std::size_t j = 0; j < 2; ++j)
+      EXPECT_NEAR(back->samples[i].positions[j], r->samples[i].positions[j], 1e-12 * 1e-7) << text;
+  EXPECT_NE(back->samples[0].positions[0], 0.0);
+}
+
 TEST(Recording, ReadsUnitsCommentsAndBlankLines) {
   auto r = parse_recording("# taught\narm scara  # the arm\n\nrate 50\njoints a:rad b:m\n0 1.5 0.25\n0.02 -1 0.5\n", "t.rec");
   ASSERT_TRUE(r) << r.error().message;
