@@ -46,7 +46,9 @@ WITH_BROWSER := -DARMCTL_BROWSER_TESTS=ON
 WITH_ROS := -DARMCTL_ROS=ON
 FUZZ_BUILD := build/fuzz
 FUZZ_SECONDS ?= 60
-TEST_FUZZ_SECONDS ?= 10
+# make test runs each fuzz target on a fixed number of inputs from its seeds with a fixed seed:
+# the same inputs on every machine (scripts/fuzz.sh), about 10 s per target here.
+TEST_FUZZ_RUNS ?= 20000
 
 .PHONY: all deps deb-deps demo-deps web-deps configure build test demo python bench fuzz firmware flash install uninstall clean format
 
@@ -114,7 +116,7 @@ build: configure
 # stays in the log; the deterministic tests fail twice just the same.
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600 -LE long --repeat until-pass:2
-	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(TEST_FUZZ_SECONDS) FUZZ_SEED=1
+	$(MAKE) --no-print-directory fuzz FUZZ_SEED=1 FUZZ_RUNS=$(TEST_FUZZ_RUNS)
 
 # The demo builds only what it runs: an optimised armctl in its own tree, no tests, no
 # sanitizers (the test build is 369 targets; this is one), then drives the simulated arms and
@@ -140,7 +142,7 @@ bench: deps
 fuzz: deps
 	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARMCTL_FUZZ=ON
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target armctl_fuzz_all
-	./scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_SEED)
+	./scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_SEED) $(FUZZ_RUNS)
 
 # Joint controller firmware into build/firmware/ (docs/firmware.md). flash programs one
 # board through its bootloader and sets its joint number in EEPROM:

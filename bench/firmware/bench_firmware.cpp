@@ -55,7 +55,8 @@ Sizes elf_sizes(const std::string& elf) {
 struct Figures {
   std::uint64_t tick = 0, tick_gross = 0, encoder = 0, turnaround = 0, rx_isr = 0, select_isr = 0, edges = 0;
   std::uint64_t contentions = 0;
-  int failures = 0;
+  int failures = 0;            // failed transactions, and joints faulted (or unread) at the end
+  std::string faulted_joints;  // " 2 5"
 };
 
 Figures run_arm(bool scara_tuning) {
@@ -93,7 +94,10 @@ Figures run_arm(bool scara_tuning) {
     f.turnaround = std::max(f.turnaround, joint.rx_to_tx().max_cycles);
     // A run that faulted would not measure the loop: every joint must have followed.
     auto d = master.read_diagnostics(j);
-    if (!d.ok() || d.value().faults != 0) ++f.failures;
+    if (!d.ok() || d.value().faults != 0) {
+      ++f.failures;
+      f.faulted_joints += " " + std::to_string(j);
+    }
   }
   f.contentions = arm.bus().stats().contentions;
   return f;
@@ -117,6 +121,12 @@ int main() {
   for (const bool scara_tuning : {true, false}) {
     const Figures f = run_arm(scara_tuning);
     failures += f.failures;
+    if (f.failures != 0)
+      std::fprintf(stderr,
+                   "bench_firmware: with %s, %d transactions failed or joints ended faulted (joints:%s): "
+                   "the figures of this run were measured on an arm that did not follow its moves\n",
+                   scara_tuning ? "config/scara.json's tuning" : "the default tuning", f.failures,
+                   f.faulted_joints.empty() ? " none" : f.faulted_joints.c_str());
     const char* suffix = scara_tuning ? "" : "_default_tuning";
     const std::string tick_name = std::string("fw_control_tick_worst") + suffix;
     bench_line(tick_name.c_str(), double(f.tick), "cycles", 1600);

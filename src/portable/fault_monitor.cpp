@@ -27,15 +27,21 @@ int16_t FaultMonitor::tick(int32_t error_q8, uint16_t count16, int16_t duty) {
     // (Re)start a run here: the loop pushes toward the setpoint and we watch what follows.
     run_active_ = drives_with_error;
     run_ticks_ = 0;
-    run_start_count_ = count16;
+    run_half_count_ = count16;
+    run_half_against_ = no_half;
     run_max_error_ = magnitude;
     return faults;
   }
   run_max_error_ = magnitude;
-  const int16_t moved = static_cast<int16_t>(count16 - run_start_count_);
-  const int16_t against = duty > 0 ? static_cast<int16_t>(-moved) : moved;
-  if (run_ticks_ < runaway_ticks) ++run_ticks_;
-  if (run_ticks_ >= runaway_ticks && against >= runaway_min_clicks) faults |= fault_runaway;
+  if (++run_ticks_ < runaway_ticks / 2) return faults;
+  // A half is complete: how far the joint moved against the drive in it, and in the one before
+  // (never more than a few thousand clicks in 50 ms, so the sum stays far inside 16 bits).
+  int16_t against = static_cast<int16_t>(count16 - run_half_count_);
+  if (duty > 0) against = static_cast<int16_t>(-against);
+  if (against >= run_half_against_ && against + run_half_against_ >= runaway_min_clicks) faults |= fault_runaway;
+  run_half_against_ = against;
+  run_half_count_ = count16;
+  run_ticks_ = 0;
   return faults;
 }
 

@@ -1,11 +1,14 @@
 // Watches the position loop for the two faults a joint must stop on by itself (the bridge
 // goes off and stays off until clear_faults; docs/joint-controller.md "Faults"):
-//   runaway          the loop drives toward its setpoint but the joint moves the other way:
-//                    for runaway_ticks in a row the error never shrank, the drive kept the
-//                    error's sign, and the joint moved at least runaway_min_clicks against
-//                    the drive. That is a motor wired with the other polarity (or a
-//                    load stronger than the bridge). Braking through an overshoot also
-//                    moves against the drive, but the error shrinks again within a few ms.
+//   runaway          the loop drives toward its setpoint but the joint moves the other way,
+//                    and not slower and slower: for runaway_ticks in a row the error never
+//                    shrank, the drive kept the error's sign, the joint moved at least
+//                    runaway_min_clicks against the drive, and no less in the second half of
+//                    that time than in the first. That is a motor wired with the other
+//                    polarity (it speeds up away from the setpoint) or a load stronger than
+//                    the bridge (it keeps its speed). Braking through an overshoot also moves
+//                    against the drive, for a heavy joint longer than runaway_ticks, but it
+//                    slows down (the default tuning on the SCARA's SHOULDER brakes for ~200 ms).
 //   following_error  |setpoint - position| above following_limit_clicks for
 //                    following_ticks in a row: a stalled or blocked joint, a dead bridge.
 // Integer only, a few 32-bit compares per tick (it runs inside the 1 ms control step).
@@ -35,9 +38,14 @@ class FaultMonitor {
   int16_t tick(int32_t error_q8, uint16_t count, int16_t duty);
 
  private:
-  uint16_t run_start_count_ = 0;  // low 16 bits of the count when the run began
+  // The run is watched in halves of runaway_ticks / 2: the low 16 bits of the count where the
+  // current half began, and how far the joint moved against the drive in the half before
+  // (no_half before a whole one).
+  static const int16_t no_half = 32767;
+  uint16_t run_half_count_ = 0;
+  int16_t run_half_against_ = no_half;
   int16_t run_max_error_ = 0;
-  uint16_t run_ticks_ = 0;
+  uint8_t run_ticks_ = 0;  // in the current half
   uint16_t follow_ticks_ = 0;
   bool run_active_ = false;
 };

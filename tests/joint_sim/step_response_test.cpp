@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "devices/joint_sim/arm_config.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
+#include "portable/joint_tuning.hpp"
 #include "bus_bytes.hpp"
 
 namespace armctl::joint_sim {
@@ -118,6 +120,27 @@ TEST(VelocityLimit, HalfSpeedPeakStaysWithinHalfTheMaximum) {
     EXPECT_LE(peak_instant, 0.5 * max_cps * 1.06);
     EXPECT_GE(peak_window, 0.5 * max_cps * 0.95);  // and it does move at about that speed
     EXPECT_EQ(arm->joint(j).controller().position(), 20000);
+  }
+}
+
+// A board flashed with `make flash` and no tuning written has the portable default_tuning()
+// (docs/firmware.md). On every simulated joint, the heaviest (SHOULDER) included, it must
+// follow the steps the bench drives (3000 clicks out, 4000 back) without a false runaway
+// fault: braking a heavy joint through its overshoot moves it against the drive for longer
+// than the runaway window, but slower and slower, which a runaway (motor leads swapped) never
+// does. (bench_firmware found joint 2 faulted as a runaway with these steps.)
+TEST(StepResponse, TheDefaultTuningFollowsStepsOnEveryJointWithoutAFault) {
+  ArmConfig config = load_arm_config(default_arm_config_path());
+  for (auto& joint : config.joints) joint.tuning = joint_bus::default_tuning();
+  SimArm arm(config);
+  for (int j = 1; j <= 7; ++j) {
+    SCOPED_TRACE("joint " + std::to_string(j));
+    for (std::int16_t distance : {std::int16_t{3000}, std::int16_t{-4000}, std::int16_t{1000}}) {
+      const StepResult r = step(arm, j, distance, 10, 100, std::chrono::seconds(2));
+      EXPECT_EQ(arm.joint(j).controller().faults(), 0) << "after a step of " << distance;
+      std::printf("joint %d default tuning, step %d: overshoot %.1f clicks, settle %.0f ms\n", j, distance,
+                  r.overshoot_clicks, r.settle_ms);
+    }
   }
 }
 

@@ -2,6 +2,8 @@
 // element and what is allowed.
 #include "motion/urdf_chain.hpp"
 
+#include <algorithm>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -84,6 +86,22 @@ TEST(UrdfChain, RefusesTextThatIsNotUtf8) {
   expect_refused(edited(text, "xArm", std::string("x\0rm", 4)), "base_link", "tool", {"is not UTF-8"});
   // Real UTF-8 is fine.
   EXPECT_TRUE(read_urdf_chain(edited(text, "xArm", "x\xC3\xA4rm \xE2\x80\x94 \xF0\x9F\xA4\x96"), "base_link", "tool").ok());
+}
+
+// urdfdom logs a number it cannot read with that text as the printf format: rpy="0 1%n 0"
+// made it write through a pointer it never had (found by fuzz_urdf_chain). A '%' outside a
+// comment never reaches it; in a comment it is fine (and never logged).
+TEST(UrdfChain, RefusesAPercentSignOutsideComments) {
+  const std::string text = urdf_text("xarm");
+  const std::string bad = edited(text, "<origin xyz=\"0 0 0.05\" rpy=\"0 -1.5707963267948966 0\"/>",
+                                 "<origin xyz=\"0 0 0.05\" rpy=\"0 -1.57r%111111n 0\"/>");
+  ASSERT_NE(bad, text);
+  const auto line = 1 + std::count(bad.begin(), bad.begin() + bad.find('%'), '\n');
+  expect_refused(bad, "base_link", "tool", {"a '%' at line " + std::to_string(line) + ", column ", "<!-- comments -->"});
+  expect_refused(edited(text, "name=\"servo2\"", "name=\"servo%s\""), "base_link", "tool", {"a '%' at line"});
+  auto c = read_urdf_chain(edited(text, "<robot name=\"xarm\">", "<!-- 100 % kinematics --><robot name=\"xarm\">"),
+                           "base_link", "tool");
+  EXPECT_TRUE(c.ok()) << c.error().message;
 }
 
 TEST(UrdfChain, RefusesMissingLinks) {
