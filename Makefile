@@ -17,7 +17,8 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
   libcpp-httplib-dev \
   libroscpp-dev libactionlib-dev libactionlib-msgs-dev libsensor-msgs-dev libtrajectory-msgs-dev \
   libgeometry-msgs-dev libdiagnostic-msgs-dev libstd-msgs-dev libstd-srvs-dev libtf2-ros-dev \
-  python3-genmsg python3-gencpp python3-rosmaster ros-robot-state-publisher python3-roslaunch
+  python3-genmsg python3-gencpp python3-genpy python3-rosmaster ros-robot-state-publisher python3-roslaunch \
+  python3-rospy python3-actionlib python3-rosservice python3-sensor-msgs python3-trajectory-msgs
 
 # What `make demo` installs: only what configuring and building the armctl CLI (Release)
 # needs, and python3 for the demo's picture (scripts/demo_picture.py). Not the test, benchmark,

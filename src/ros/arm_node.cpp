@@ -24,8 +24,8 @@
 #include <std_srvs/Trigger.h>
 #include <trajectory_msgs/JointTrajectory.h>
 
-#include "armctl/RunActionGroup.h"
-#include "armctl/SetGripper.h"
+#include "armctl_msgs/RunActionGroup.h"
+#include "armctl_msgs/SetGripper.h"
 
 namespace armctl::ros_node {
 
@@ -444,11 +444,11 @@ struct ArmNode::Impl {
     return answer(res, arm.set_torque(on), on ? "torque on: holding where it stands" : "torque off: the arm can be moved by hand");
   }
 
-  bool on_gripper(armctl::SetGripper::Request& req, armctl::SetGripper::Response& res) {
+  bool on_gripper(armctl_msgs::SetGripper::Request& req, armctl_msgs::SetGripper::Response& res) {
     return answer(res, arm.gripper(req.closed_fraction), fmt::format("gripper at {:.2f} closed", req.closed_fraction));
   }
 
-  bool on_run_group(armctl::RunActionGroup::Request& req, armctl::RunActionGroup::Response& res) {
+  bool on_run_group(armctl_msgs::RunActionGroup::Request& req, armctl_msgs::RunActionGroup::Response& res) {
     return answer(res, arm.run_action_group(req.group, req.times),
                   fmt::format("action group {} started ({} times; 0: until stopped)", req.group, req.times));
   }

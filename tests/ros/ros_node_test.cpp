@@ -22,8 +22,8 @@
 #include <std_srvs/Trigger.h>
 #include <trajectory_msgs/JointTrajectory.h>
 
-#include "armctl/RunActionGroup.h"
-#include "armctl/SetGripper.h"
+#include "armctl_msgs/RunActionGroup.h"
+#include "armctl_msgs/SetGripper.h"
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -462,8 +462,8 @@ TEST_P(RosNode, ServicesStopTorqueGripperAndActionGroups) {
   ros::NodeHandle nh;
   auto stop = nh.serviceClient<std_srvs::Trigger>("/armctl_ros/stop");
   auto torque = nh.serviceClient<std_srvs::SetBool>("/armctl_ros/set_torque");
-  auto gripper = nh.serviceClient<armctl::SetGripper>("/armctl_ros/gripper");
-  auto group = nh.serviceClient<armctl::RunActionGroup>("/armctl_ros/run_action_group");
+  auto gripper = nh.serviceClient<armctl_msgs::SetGripper>("/armctl_ros/gripper");
+  auto group = nh.serviceClient<armctl_msgs::RunActionGroup>("/armctl_ros/run_action_group");
   ASSERT_TRUE(gripper.waitForExistence(ros::Duration(10)));
   std_srvs::Trigger t;
   ASSERT_TRUE(stop.call(t));
@@ -473,7 +473,7 @@ TEST_P(RosNode, ServicesStopTorqueGripperAndActionGroups) {
   ASSERT_TRUE(torque.call(b));
   EXPECT_TRUE(b.response.success) << b.response.message;
 
-  armctl::SetGripper g;
+  armctl_msgs::SetGripper g;
   g.request.closed_fraction = 1.5;
   ASSERT_TRUE(gripper.call(g));
   EXPECT_FALSE(g.response.success);
@@ -485,7 +485,7 @@ TEST_P(RosNode, ServicesStopTorqueGripperAndActionGroups) {
   EXPECT_TRUE(g.response.success) << g.response.message;
   EXPECT_GT(std::abs(states_->last().position[finger] - from), 1e-3) << "the gripper moved";
 
-  armctl::RunActionGroup r;
+  armctl_msgs::RunActionGroup r;
   r.request.group = 255;
   ASSERT_TRUE(group.call(r));
   EXPECT_FALSE(r.response.success);
