@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include "apps/armctl/cli_reference.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "core/error.hpp"
@@ -102,6 +103,7 @@ int main(int argc, char** argv) {
   armctl::cli::add_emulate_command(app);
   armctl::cli::add_list_command(app);
   armctl::cli::add_controller_command(app);
+  armctl::cli::add_reference_commands(app);
   name_missing_subcommands(app);
   // Messages go to stderr even when it is closed or full: a failed write of a message must
   // not turn an exit status 1 into an abort.
