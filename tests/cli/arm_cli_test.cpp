@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -101,7 +102,10 @@ TEST_F(ArmCli, PathFilesRunAsJsonEventsAndBadOnesMoveNothing) {
     auto refused = run_armctl("arm --json path " + bad.string(), "2>&1");
     EXPECT_NE(refused.status, 0) << text;
     EXPECT_TRUE(contains(refused.out, says)) << refused.out;
-    EXPECT_FALSE(contains(refused.out, "\"event\"")) << "nothing planned, nothing moved: " << refused.out;
+    // Nothing planned, nothing moved: the one event is the error.
+    EXPECT_FALSE(contains(refused.out, "\"event\":\"planned\"")) << refused.out;
+    EXPECT_FALSE(contains(refused.out, "\"event\":\"progress\"")) << refused.out;
+    EXPECT_TRUE(contains(refused.out, "{\"event\":\"error\",\"exit_status\":1,")) << refused.out;
   }
   auto stop = run_armctl("arm stop");
   EXPECT_EQ(stop.status, 0) << stop.out;
@@ -194,6 +198,36 @@ TEST_F(ArmCli, BadValuesAreRefusedClearly) {
     EXPECT_NE(r.status, 0) << c.args;
     EXPECT_TRUE(contains(r.out, c.says)) << c.args << ": " << r.out;
   }
+}
+
+// --json output: one line per document, numbers as people read them (the SCARA's tool roll is
+// 180 deg, once printed as 179.99999999999997), and under --json a failure is a JSON line on
+// stdout too, with its kind and exit status (the message stays on stderr).
+TEST_F(ArmCli, JsonOutputIsTidyAndFailuresAreJsonToo) {
+  auto pose = run_armctl("arm --arm scara --json pose", "2>/dev/null");
+  ASSERT_EQ(pose.status, 0) << pose.out;
+  EXPECT_TRUE(contains(pose.out, "\"roll_deg\":180.0,")) << pose.out;
+  EXPECT_EQ(std::count(pose.out.begin(), pose.out.end(), '\n'), 1) << pose.out;
+
+  auto stop = run_armctl("stop --json", "2>/dev/null");
+  ASSERT_EQ(stop.status, 0) << stop.out;
+  EXPECT_EQ(nlohmann::json::parse(stop.out)["event"], "stopped") << stop.out;
+
+  auto refused = run_armctl("arm --json move-joints servo6=200deg", "2>/dev/null");
+  EXPECT_EQ(refused.status, 1);
+  const auto error = nlohmann::json::parse(refused.out);
+  EXPECT_EQ(error["event"], "error");
+  EXPECT_EQ(error["kind"], "invalid argument");  // as `bus --json` names kinds
+  EXPECT_EQ(error["exit_status"], 1);
+  EXPECT_TRUE(contains(error["message"].get<std::string>(), "outside its limits")) << refused.out;
+  auto on_stderr = run_armctl("arm --json move-joints servo6=200deg", "2>&1 >/dev/null");
+  EXPECT_TRUE(contains(on_stderr.out, "outside its limits")) << on_stderr.out;
+
+  auto usage = run_armctl("arm --json frobnicate", "2>/dev/null");
+  EXPECT_EQ(usage.status, 2);
+  EXPECT_EQ(nlohmann::json::parse(usage.out)["kind"], "usage") << usage.out;
+  // Without --json, nothing on stdout.
+  EXPECT_EQ(run_armctl("arm move-joints servo6=200deg", "2>/dev/null").out, "");
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -101,7 +102,13 @@ TEST(BusCli, ADeadJointIsShownPerJointAndFailsTheCommand) {
   for (int j : {1, 2, 3, 4, 5, 7}) {
     EXPECT_NE(r.out.find("joint " + std::to_string(j) + ": position 0"), std::string::npos) << r.out;
   }
-  const auto doc = nlohmann::json::parse(stdout_only("bus --device 'sim?dead=2,6' --json position all"));
+  // One line of results, then (the command failed) the error line every --json command ends with.
+  const std::string out = stdout_only("bus --device 'sim?dead=2,6' --json position all");
+  ASSERT_EQ(std::count(out.begin(), out.end(), '\n'), 2) << out;
+  const auto doc = nlohmann::json::parse(out.substr(0, out.find('\n')));
+  const auto error = nlohmann::json::parse(out.substr(out.find('\n') + 1));
+  EXPECT_EQ(error["event"], "error") << out;
+  EXPECT_EQ(error["exit_status"], 1) << out;
   EXPECT_FALSE(doc["ok"].get<bool>());
   ASSERT_EQ(doc["joints"].size(), 7u);
   for (const auto& row : doc["joints"]) {

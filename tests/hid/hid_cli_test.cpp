@@ -151,7 +151,9 @@ TEST_F(HidCli, WatchRidesOutMissedRepliesAndStopsAfterSeveralInARow) {
                          "drop=3+5+6+7+8+9+10");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   const auto docs = json_lines(r.out);
-  ASSERT_EQ(docs.size(), 5u) << r.out;
+  ASSERT_EQ(docs.size(), 6u) << r.out;  // the last: the error line of a failed --json command
+  EXPECT_EQ(docs[5]["event"], "error");
+  EXPECT_EQ(docs[5]["exit_status"], 1);
   EXPECT_TRUE(docs[0].contains("positions"));
   EXPECT_EQ(docs[1]["resent"], 1);
   EXPECT_EQ(docs[1]["missed_total"], 1);

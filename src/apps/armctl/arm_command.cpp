@@ -14,6 +14,7 @@
 #include "apps/armctl/arm_motion.hpp"
 #include "apps/armctl/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/json_output.hpp"
 #include "apps/armctl/motion_trace.hpp"
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
@@ -133,7 +134,7 @@ json joints_json(const arm::ArmModel& m, const arm::JointState& s) {
 
 void print_joints(const ArmArgs& a, const arm::ArmModel& m, const arm::JointState& s) {
   if (a.json) {
-    fmt::print("{}\n", json{{"joints", joints_json(m, s)}}.dump());
+    print_json_line(json{{"joints", joints_json(m, s)}});
     return;
   }
   for (int i = 0; i < m.joint_count(); ++i) {
@@ -195,7 +196,7 @@ arm::CartesianGoal parse_goal(const ArmArgs& a) {
 void after_move(const ArmArgs& a, ArmSession& s, const std::optional<arm::CartesianGoal>& goal) {
   if (!a.wait) {
     if (!a.json) fmt::print("moving\n");
-    else fmt::print("{}\n", json{{"moving", true}}.dump());
+    else print_json_line(json{{"moving", true}});
     return;
   }
   // Ctrl-C while waiting stops the arm (the board would otherwise finish the move alone).
@@ -217,7 +218,7 @@ void after_move(const ArmArgs& a, ArmSession& s, const std::optional<arm::Cartes
   if (a.json) {
     json out{{"joints", joints_json(s.arm->model(), state)}, {"pose", pose_json(pose, rpy)}};
     if (goal) out["position_error_mm"] = (pose.position - goal->position).norm() * 1e3;
-    fmt::print("{}\n", out.dump());
+    print_json_line(out);
     return;
   }
   print_joints(a, s.arm->model(), state);
@@ -235,7 +236,7 @@ void run_pose(const ArmArgs& a) {
   const motion::JointVector q = s->arm->chain_of(must(s->arm->read()).positions);
   const motion::Pose p = s->arm->forward(q);
   const motion::Rpy rpy = s->arm->tool_rpy(p, q);
-  if (a.json) fmt::print("{}\n", json{{"pose", pose_json(p, rpy)}}.dump());
+  if (a.json) print_json_line(json{{"pose", pose_json(p, rpy)}});
   else fmt::print("{}\n", pose_text(p, rpy));
 }
 
@@ -304,7 +305,7 @@ void run_path(const ArmArgs& a) {
 void run_stop(const ArmArgs& a) {
   auto s = open_arm_session(a.arm, a.device);
   must(s->arm->stop());
-  if (a.json) fmt::print("{}\n", json{{"stopped", true}}.dump());
+  if (a.json) print_json_line(json{{"stopped", true}});
   else fmt::print("stopped\n");
 }
 
@@ -341,14 +342,14 @@ void run_ik(const ArmArgs& a) {
     all.push_back({{"joints", js}, {"configuration", config}});
     if (!a.json) fmt::print("solution {}{}: {}{}\n", k + 1, k == 0 ? " (nearest)" : "", text, config.empty() ? "" : "(" + config + ")");
   }
-  if (a.json) fmt::print("{}\n", json{{"solutions", all}}.dump());
+  if (a.json) print_json_line(json{{"solutions", all}});
 }
 
 void run_torque(const ArmArgs& a) {
   if (a.onoff != "on" && a.onoff != "off") usage(fmt::format("torque: '{}' is not allowed: on or off", a.onoff));
   auto s = open_arm_session(a.arm, a.device);
   must(s->arm->set_torque(a.onoff == "on"));
-  if (a.json) fmt::print("{}\n", json{{"torque", a.onoff}}.dump());
+  if (a.json) print_json_line(json{{"torque", a.onoff}});
   else fmt::print("torque {}\n", a.onoff);
 }
 
@@ -385,7 +386,7 @@ void run_calibrate_zero(const ArmArgs& a) {
   for (const auto& c : changes) {
     const auto& j = m.joints[std::size_t(c.joint)];
     if (a.json)
-      fmt::print("{}\n", json{{"joint", j.name}, {"zero_moved_by", c.shift}, {"file", m.file.string()}}.dump());
+      print_json_line(json{{"joint", j.name}, {"zero_moved_by", c.shift}, {"file", m.file.string()}});
     else
       fmt::print("{}: zero moved by {} (now where it stands), saved in {}\n", j.name, format_quantity(j.dimension, c.shift),
                  m.file.string());

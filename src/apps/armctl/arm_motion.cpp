@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "apps/armctl/json_output.hpp"
 #include "apps/armctl/motion_trace.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "arm/motion_executor.hpp"
@@ -220,9 +221,8 @@ void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& mo
   double total = 0;
   for (const auto& p : pieces) total += p.motion.duration;
   if (options.json)
-    fmt::print("{}\n", json{{"event", "planned"}, {"moves", moves.size()}, {"pieces", pieces.size()},
-                            {"duration_s", total / options.speed_override}}
-                           .dump());
+    print_json_line(json{{"event", "planned"}, {"moves", moves.size()}, {"pieces", pieces.size()},
+                            {"duration_s", total / options.speed_override}});
   else
     fmt::print("planned {} move{} ({} piece{}), {:.1f} s\n", moves.size(), moves.size() == 1 ? "" : "s",
                pieces.size(), pieces.size() == 1 ? "" : "s", total / options.speed_override);
@@ -244,9 +244,8 @@ void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& mo
       last_shown = p.elapsed;
       const double left = (total - done_before - p.t) / options.speed_override;
       if (options.json)
-        fmt::print("{}\n", json{{"event", "progress"}, {"line", piece.line}, {"t", done_before + p.t},
-                                {"left_s", left}}
-                               .dump());
+        print_json_line(json{{"event", "progress"}, {"line", piece.line}, {"t", done_before + p.t},
+                                {"left_s", left}});
       else if (progress_line)
         fmt::print(stderr, "\r{}: {:3.0f} %, {:.1f} s left   ", piece.label, 100 * (done_before + p.t) / total, left);
     };
@@ -267,7 +266,7 @@ void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& mo
                  {"following_error_mm", following_mm}};
       event["held_s"] = std::chrono::duration<double>(report->held).count();
       if (piece.path) event["path_error_mm"] = path_mm;
-      fmt::print("{}\n", event.dump());
+      print_json_line(event);
     } else {
       // A host late beyond the points' lead held the motion (docs/motion.md): say so when it
       // was more than a period, so a slow run on a busy machine explains itself.

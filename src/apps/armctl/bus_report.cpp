@@ -2,6 +2,8 @@
 
 #include <fmt/core.h>
 
+#include "apps/armctl/json_output.hpp"
+
 namespace armctl::cli {
 
 namespace {
@@ -47,7 +49,7 @@ void print_report(const BusReport& report, bool json) {
       doc["joints"].push_back(std::move(j));
     }
     for (const auto& [k, v] : report.extra.items()) doc[k] = v;
-    fmt::print("{}\n", doc.dump());  // one line, as every other --json output
+    print_json_line(doc);  // one line, as every other --json output
     return;
   }
   for (const auto& r : report.rows) {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/json_output.hpp"
 #include "core/error.hpp"
 #include "core/printable.hpp"
 #include "devices/robot_commands/hid_link.hpp"
@@ -109,7 +110,7 @@ void run_list(bool json) {
                                                 {"hidraw", u.hidraw},
                                                 {"problem", u.problem}});
     }
-    fmt::print("{}\n", j.dump());
+    print_json_line(j);
     return;
   }
   fmt::print("xArm boards (USB HID 0483:5750 \"LOBOT\"):\n");

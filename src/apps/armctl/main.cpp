@@ -13,6 +13,7 @@
 
 #include "apps/armctl/cli_reference.hpp"
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/json_output.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "core/error.hpp"
 #include "core/printable.hpp"
@@ -81,6 +82,29 @@ int failure_status() {
   return signal != 0 ? 128 + signal : 1;
 }
 
+// Asked for --json (anywhere before a "--"): a failure is also one JSON line on standard
+// output, {"event": "error", "kind": ..., "message": ..., "exit_status": N}, so that a script
+// reading the command's JSON reads its failure there too. The message stays on stderr.
+bool json_asked(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view word = argv[i];
+    if (word == "--") return false;
+    if (word == "--json") return true;
+  }
+  return false;
+}
+
+int report_json_error(bool asked, std::string_view kind, const std::string& message, int status) {
+  if (asked) {
+    try {
+      armctl::cli::print_json_line({{"event", "error"}, {"kind", kind}, {"message", message}, {"exit_status", status}});
+      std::fflush(stdout);
+    } catch (const std::exception&) {
+    }
+  }
+  return status;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -118,6 +142,7 @@ int main(int argc, char** argv) {
     } catch (const std::exception&) {
     }
   };
+  const bool json = json_asked(argc, argv);
   try {
     check_command_words(app, argc, argv);
     app.parse(argc, argv);
@@ -131,16 +156,17 @@ int main(int argc, char** argv) {
       std::string text = message.str();
       if (!text.empty() && text.back() == '\n') text.pop_back();
       if (!text.empty()) report(text);
-      return status == 0 ? 0 : kUsageError;
+      if (status == 0) return 0;
+      return report_json_error(json, "usage", text, kUsageError);
     } catch (const std::exception&) {
       return 2;
     }
   } catch (const armctl::ArmctlError& e) {
     report(fmt::format("armctl: {}: {}", armctl::to_string(e.error().kind), e.what()));
-    return failure_status();
+    return report_json_error(json, armctl::to_string(e.error().kind), e.what(), failure_status());
   } catch (const std::exception& e) {
     report(fmt::format("armctl: error: {}", e.what()));
-    return failure_status();
+    return report_json_error(json, "error", e.what(), failure_status());
   }
   // Output that did not reach stdout (a full disk, /dev/full, a closed pipe) is a failure:
   // a script must not read "0" as "printed".

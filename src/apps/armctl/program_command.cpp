@@ -18,6 +18,7 @@
 
 #include "apps/armctl/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/json_output.hpp"
 #include "apps/armctl/motion_trace.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/xarm_args.hpp"
@@ -88,9 +89,8 @@ void print_check(const ProgramArgs& a, const Loaded& l, const program::ProgramPl
                         {"last_line", piece.last_line},
                         {"what", piece.label},
                         {"seconds", piece.kind == program::PieceKind::motion ? piece.motion.duration : piece.seconds}});
-    fmt::print("{}\n", json{{"event", "checked"}, {"arm", arm.model().name}, {"moves", p.moves},
-                            {"pieces", pieces}, {"statements", l.flow.statements}, {"duration_s", p.duration}}
-                           .dump());
+    print_json_line(json{{"event", "checked"}, {"arm", arm.model().name}, {"moves", p.moves},
+                            {"pieces", pieces}, {"statements", l.flow.statements}, {"duration_s", p.duration}});
     return;
   }
   for (const auto& piece : p.pieces) {
@@ -123,9 +123,8 @@ void run_run(const ProgramArgs& a) {
   // The estimate at the override the run uses (it said 81.8 s for a run of 164.4 s at 50 %).
   const double estimate = program::estimated_duration(p, speed_override);
   if (a.json)
-    fmt::print("{}\n", json{{"event", "planned"}, {"moves", p.moves}, {"pieces", p.pieces.size()},
-                            {"duration_s", estimate}, {"dry_run", a.dry_run}}
-                           .dump());
+    print_json_line(json{{"event", "planned"}, {"moves", p.moves}, {"pieces", p.pieces.size()},
+                            {"duration_s", estimate}, {"dry_run", a.dry_run}});
   else
     fmt::print("{}planned {} move{} ({} piece{}), about {:.1f} s{}\n", a.dry_run ? "dry run on the simulated arm: " : "",
                p.moves, p.moves == 1 ? "" : "s", p.pieces.size(), p.pieces.size() == 1 ? "" : "s", estimate,
@@ -165,7 +164,7 @@ void run_run(const ProgramArgs& a) {
           }
           break;
       }
-      fmt::print("{}\n", j.dump());
+      print_json_line(j);
       std::fflush(stdout);
       return;
     }
@@ -190,9 +189,8 @@ void run_run(const ProgramArgs& a) {
   if (progress_line) fmt::print(stderr, "\r\033[K");
   const double elapsed = std::chrono::duration<double>(report.elapsed).count();
   if (a.json)
-    fmt::print("{}\n", json{{"event", report.completed ? "finished" : "stopped"}, {"elapsed_s", elapsed},
-                            {"pieces", report.pieces}}
-                           .dump());
+    print_json_line(json{{"event", report.completed ? "finished" : "stopped"}, {"elapsed_s", elapsed},
+                            {"pieces", report.pieces}});
   else if (report.completed)
     fmt::print("finished in {:.1f} s\n", elapsed);
   std::fflush(stdout);
@@ -220,10 +218,9 @@ void run_compile(const ProgramArgs& a) {
   if (auto ok = s->rc->client->download_group(group, g.actions); !ok) throw ArmctlError(ok.error());
   for (const auto& n : g.notes) fmt::print(stderr, "note: {}\n", n);
   if (a.json)
-    fmt::print("{}\n", json{{"event", "compiled"}, {"group", group}, {"actions", g.actions.size()},
+    print_json_line(json{{"event", "compiled"}, {"group", group}, {"actions", g.actions.size()},
                             {"duration_s", g.duration}, {"path_error_mm", co.path_error * 1e3},
-                            {"sampling_error_mm", g.sampling_error * 1e3}}
-                           .dump());
+                            {"sampling_error_mm", g.sampling_error * 1e3}});
   else
     fmt::print("group {}: {} actions downloaded, {:.1f} s; sampled within {:.2f} mm of the plan (allowed {:.2f} mm), "
                "replay with: armctl xarm group run {}\n",

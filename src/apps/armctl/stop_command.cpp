@@ -8,6 +8,7 @@
 
 #include "apps/armctl/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/json_output.hpp"
 #include "core/printable.hpp"
 
 namespace armctl::cli {
@@ -16,6 +17,7 @@ void add_stop_command(CLI::App& app) {
   struct Args {
     std::string device;
     std::string arm;
+    bool json = false;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("stop", "Stop every joint at once and hold (any device)");
@@ -23,12 +25,16 @@ void add_stop_command(CLI::App& app) {
   cmd->add_option("--arm", a->arm,
                   "xarm | scara | FILE (default: scara on a joint-bus URI, else xarm; use scara for "
                   "the arm controller)");
+  cmd->add_flag("--json", a->json, "Machine-readable output: {\"event\": \"stopped\", \"device\": ...}");
   cmd->callback([a] {
     const std::string arm = !a->arm.empty() ? a->arm : (device_is_joint_bus(a->device) ? "scara" : "xarm");
     auto s = open_arm_session(arm, a->device);
     const auto stopped = s->arm->stop();
     if (!stopped) throw ArmctlError(stopped.error());
-    fmt::print("stopped: {}\n", printable(s->arm->device().description()));
+    if (a->json)
+      print_json_line({{"event", "stopped"}, {"device", s->arm->device().description()}});
+    else
+      fmt::print("stopped: {}\n", printable(s->arm->device().description()));
   });
 }
 

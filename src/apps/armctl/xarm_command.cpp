@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/json_output.hpp"
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/xarm_args.hpp"
 #include "apps/armctl/serve_support.hpp"
@@ -55,7 +56,7 @@ T check(Result<T> r) {
   return std::move(r).value();  // throws ArmctlError with the SDK's message
 }
 
-void print_json(const nlohmann::json& j) { fmt::print("{}\n", j.dump()); }
+void print_json(const nlohmann::json& j) { print_json_line(j); }
 
 nlohmann::json positions_json(const std::vector<robot_commands::ServoPosition>& ps) {
   nlohmann::json a = nlohmann::json::array();
