@@ -6,10 +6,13 @@ Python lines must run in order in one interpreter without raising.
 Each `armctl` command starts its own embedded simulator: the xArm in its start pose, every
 servo centred (the arm straight up, a singular pose), as a user's first command finds it."""
 
+import atexit
 import os
 import re
 import shlex
+import shutil
 import subprocess
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -17,11 +20,21 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 CLI = os.environ.get("ARMCTL_CLI", str(ROOT / "build" / "armctl"))
 
+# Where the commands run, in order: a folder of their own that sees the source tree's
+# examples/ and config/ as a user's checkout does, so that what they write (teach's wave.rec,
+# read by the replay after it) stays out of the tree.
+WORK = Path(tempfile.mkdtemp(prefix="armctl-readme-"))
+atexit.register(shutil.rmtree, WORK, ignore_errors=True)
+for folder in ("examples", "config"):
+    (WORK / folder).symlink_to(ROOT / folder)
+
 # (file, section heading): the sections whose examples are run.
 SECTIONS = [
     ("README.md", "Move the tool to a point in millimetres"),
     ("README.md", "Follow a line, blend corners, stop on the path"),
     ("README.md", "Python"),
+    ("README.md", "Write robot programs"),
+    ("README.md", "Teach by hand, record and replay"),
     ("docs/motion.md", "From the command line"),
 ]
 
@@ -51,8 +64,12 @@ def command_lines(file, heading):
 
 
 def argv_of(line):
-    """The line's words (its comment dropped), with this build's CLI for the program."""
+    """The line's words (its comment dropped), with this build's CLI for the program; a
+    pipeline into armctl (`printf 'home\\n' | build/armctl teach ...`) runs in bash as printed."""
     words = shlex.split(line, comments=True)
+    if words[0] not in ("build/armctl", "armctl") and "|" in words:
+        assert words[words.index("|") + 1] in ("build/armctl", "armctl"), f"not a pipe into armctl: {line}"
+        return ["bash", "-o", "pipefail", "-c", re.sub(r"(^|\| )(build/)?armctl ", rf"\1{shlex.quote(CLI)} ", line)]
     assert words[0] in ("build/armctl", "armctl"), f"not an armctl command: {line}"
     return [CLI] + words[1:]
 
@@ -64,14 +81,15 @@ def test_every_section_has_examples():
     for file, heading in SECTIONS:
         blocks = fenced_blocks(file, heading)
         assert blocks, f"{file}: '## {heading}' has no fenced block"
-    assert len(COMMANDS) >= 12  # the three sections' 7 + 3 commands and motion.md's 4
+    assert len(COMMANDS) >= 18  # README: 8 + 3 + 3 + 3 commands; motion.md's 4
 
 
 @pytest.mark.parametrize("file,line", COMMANDS, ids=[line.split("#")[0].strip() for _, line in COMMANDS])
 def test_command_runs_as_printed(file, line):
     if line in SKIPPED:
         pytest.skip(SKIPPED[line])
-    run = subprocess.run(argv_of(line), cwd=ROOT, capture_output=True, text=True, timeout=120)
+    run = subprocess.run(argv_of(line), cwd=WORK, stdin=subprocess.DEVNULL, capture_output=True, text=True,
+                         timeout=180)
     assert run.returncode == 0, f"{file}: {line}\nexit {run.returncode}\n{run.stdout}\n{run.stderr}"
 
 
