@@ -6,7 +6,7 @@
 
 #include <fmt/core.h>
 
-#include "apps/armctl/arm_session.hpp"
+#include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
 #include "core/printable.hpp"
 
@@ -24,8 +24,8 @@ void add_stop_command(CLI::App& app) {
                   "xarm | scara | FILE (default: scara on a joint-bus URI, else xarm; use scara for "
                   "the arm controller)");
   cmd->callback([a] {
-    const std::string arm = !a->arm.empty() ? a->arm : (device_is_joint_bus(a->device) ? "scara" : "xarm");
-    auto s = open_arm_session(arm, a->device);
+    const std::string arm = !a->arm.empty() ? a->arm : (session::device_is_joint_bus(a->device) ? "scara" : "xarm");
+    auto s = session::open_arm_session(arm, a->device).value();
     const auto stopped = s->arm->stop();
     if (!stopped) throw ArmctlError(stopped.error());
     fmt::print("stopped: {}\n", printable(s->arm->device().description()));
