@@ -148,7 +148,7 @@ void xarm_board(std::uint32_t baud) {
   arm::MoveOptions mo;
   mo.duration = 3s;
   (void)a.move_joints(t, mo).value();
-  client.pump_events(link.clock().now() + 500ms);
+  (void)client.pump_events(link.clock().now() + 500ms).value();  // lets the move get under way (a failure throws)
   const TimePoint t0 = link.clock().now();
   (void)a.stop().value();
   const Duration took = link.clock().now() - t0;

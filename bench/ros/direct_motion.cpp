@@ -14,7 +14,7 @@ namespace {
 std::unique_ptr<session::ArmSession> open(const std::string& arm) {
   session::SessionOptions o;
   o.wall_clock = true;
-  return session::open_arm_session(arm, "", o);
+  return session::open_arm_session(arm, "", o).value();
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
-#include "devices/rc_board/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 
 namespace armctl::arm {
 
@@ -138,7 +138,7 @@ Status save_calibration(const ArmModel& model, Protocol protocol, const std::vec
     if (!done) return Error{ErrorKind::invalid_config, fmt::format("{}: joint {} not found", model.file.string(), j.name)};
   }
   const std::string text = doc.dump(2) + "\n";
-  return rc_board::write_file_atomically(
+  return write_file_atomically(
       model.file, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 

@@ -253,14 +253,15 @@ class Execution {
         report_.largest_following_error = err;
         report_.largest_following_joint = int(i);
       }
-      if (err > threshold(model_, i, options_))
+      if (const double limit = threshold(model_, i, options_); err > limit)
         return Error{ErrorKind::device,
                      fmt::format("{}: following error on joint {}: it is at {} but should be at {} ({} behind the "
                                  "plan, the limit is {}); the arm was halted",
                                  motion_.what, model_.joints[i].name,
                                  format_joint_value(model_, int(i), s->positions[i]),
                                  format_joint_value(model_, int(i), pos_[i]), format_joint_value(model_, int(i), err),
-                                 format_joint_value(model_, int(i), threshold(model_, i, options_)))};
+                                 format_joint_value(model_, int(i), limit)),
+                     FollowingError{int(i), model_.joints[i].name, s->positions[i], pos_[i], limit, t_read}};
     }
     return Ok{};
   }

@@ -87,9 +87,23 @@ struct MotionReport {
   std::vector<FollowingSample> reads_log;  // every read-back
 };
 
+// The detail of execute_motion's error when a joint fell behind the plan by more than its
+// threshold (kind device; the arm was halted): which joint, where it was, where it should
+// have been, SI. Apps map it to their own form (ROS PATH_TOLERANCE_VIOLATED).
+struct FollowingError {
+  int joint = 0;         // index in the arm's joints
+  std::string name;      // the joint's name
+  double measured = 0;   // where it was
+  double planned = 0;    // where it should have been
+  double limit = 0;      // the threshold it exceeded
+  double t = 0;          // nominal time in the motion
+};
+inline const FollowingError* following_error_of(const Error& error) { return error.detail_as<FollowingError>(); }
+
 // Runs `motion` on `arm` from its current position (which must be the motion's start: the
 // caller planned it from a fresh read). Errors: the device's (the arm is halted first), or
-// device "following error" naming the joint, where it is and where it should be.
+// device "following error" naming the joint, where it is and where it should be (detail
+// FollowingError).
 Result<MotionReport> execute_motion(Arm& arm, const PlannedMotion& motion, const ExecutorOptions& options = {});
 
 // The smallest stop (or pause) ramp length, s of device time, that keeps every joint's extra

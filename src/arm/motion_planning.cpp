@@ -234,18 +234,24 @@ Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& fro
   // first; this holds for every caller).
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const motion::PathSegment& seg = segments[i];
-    const std::string what = fmt::format("segment {} ({})", i + 1, motion::to_string(seg.kind));
-    if (auto ok = check_quantity_in(seg.speed, Dimension::length, what + ": speed", 1, motion::kMinToolSpeed,
+    auto fail = [&](const Error& e) {
+      motion::PathRefusal r;
+      r.segment = int(i);
+      r.kind = seg.kind;
+      r.reason = e.message;
+      return motion::path_refusal(std::move(r));
+    };
+    if (auto ok = check_quantity_in(seg.speed, Dimension::length, "speed", 1, motion::kMinToolSpeed,
                                     motion::kMaxToolSpeed);
         !ok)
-      return ok.error();
-    if (auto ok = check_quantity_in(seg.angular_speed, Dimension::angle, what + ": angular speed", 1,
+      return fail(ok.error());
+    if (auto ok = check_quantity_in(seg.angular_speed, Dimension::angle, "angular speed", 1,
                                     motion::kMinToolAngularSpeed, motion::kMaxToolAngularSpeed);
         !ok)
-      return ok.error();
-    if (auto ok = within_reach(model, seg.target.position, what + ": target"); !ok) return ok.error();
+      return fail(ok.error());
+    if (auto ok = within_reach(model, seg.target.position, "target"); !ok) return fail(ok.error());
     if (seg.kind == motion::SegmentKind::circ)
-      if (auto ok = within_reach(model, seg.via, what + ": via point"); !ok) return ok.error();
+      if (auto ok = within_reach(model, seg.via, "via point"); !ok) return fail(ok.error());
   }
   const int chain = model.chain_joints();
   motion::JointVector start(chain);

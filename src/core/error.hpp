@@ -56,8 +56,10 @@ class ArmctlError : public std::runtime_error {
 };
 
 // A value or an error (std::expected is C++23; this is the small subset we need).
+// [[nodiscard]]: a call that can fail is looked at; where ignoring the outcome is right, the
+// caller says so with (void) and a comment why.
 template <typename T>
-class Result {
+class [[nodiscard]] Result {
  public:
   Result(T value) : v_(std::move(value)) {}  // NOLINT: implicit by design
   Result(Error error) : v_(std::move(error)) {}  // NOLINT

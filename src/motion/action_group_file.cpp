@@ -7,6 +7,7 @@
 
 #include <fmt/core.h>
 
+#include "core/source_place.hpp"
 #include "core/printable.hpp"
 #include "core/regular_file.hpp"
 #include "core/text_fields.hpp"
@@ -64,10 +65,8 @@ class Parser {
              const std::string& what) const {
     // The file's name and fields are outside text: printable() keeps control sequences in
     // them from reaching a terminal.
-    std::string where = column ? fmt::format("{}:{}:{}", printable(source_), line, column)
-                               : fmt::format("{}:{}", printable(source_), line);
-    std::string quoted = field.empty() ? "" : fmt::format(" '{}'", printable(field));
-    return Error{ErrorKind::invalid_config, fmt::format("{}:{} {}", where, quoted, what)};
+    std::string quoted = field.empty() ? "" : fmt::format("'{}' ", printable(field));
+    return source_error(ErrorKind::invalid_config, {printable(source_), line, column, quoted + what});
   }
 
   std::optional<Error> parse_line(std::size_t line, const std::vector<Field>& fields) {

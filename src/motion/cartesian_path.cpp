@@ -20,8 +20,13 @@ constexpr double kCircPointGap = 1e-6;     // m: CIRC points closer than this co
 
 Error refuse(std::string message) { return Error{ErrorKind::invalid_argument, std::move(message)}; }
 
-std::string segment_name(std::size_t index, SegmentKind kind) {
-  return fmt::format("segment {} ({})", index + 1, to_string(kind));
+// An error of segment `index` (its message the reason) as that segment's refusal.
+Error at_segment(std::size_t index, SegmentKind kind, const Error& e) {
+  PathRefusal r;
+  r.segment = int(index);
+  r.kind = kind;
+  r.reason = e.message;
+  return path_refusal(std::move(r));
 }
 
 bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
@@ -124,30 +129,27 @@ Result<Pose> checked_pose(const Pose& pose, const std::string& what) {
   return out;
 }
 
-Status check_rate(double value, const std::string& what, const char* name, const char* unit) {
+Status check_rate(double value, const char* name, const char* unit) {
   if (!std::isfinite(value) || value <= 0)
-    return refuse(fmt::format("{}: {} {} is not allowed; it must be a finite number > 0 ({})", what, name, value, unit));
+    return refuse(fmt::format("{} {} is not allowed; it must be a finite number > 0 ({})", name, value, unit));
   return Ok{};
 }
 
 // Circle through a, b (via) and c: fills centre, radius, e1, e2 and arc of `g`.
-Status build_circle(BuiltSegment& g, const Eigen::Vector3d& via, const std::string& what) {
+Status build_circle(BuiltSegment& g, const Eigen::Vector3d& via) {
   const Eigen::Vector3d a = g.start.position, c = g.target.position;
   if ((via - a).norm() < kCircPointGap)
-    return refuse(fmt::format("{}: the via point is at the segment's start; it must lie on the arc between start "
-                              "and target",
-                              what));
+    return refuse("the via point is at the segment's start; it must lie on the arc between start and target");
   if ((c - via).norm() < kCircPointGap)
-    return refuse(fmt::format("{}: the via point is at the target; it must lie on the arc between start and target",
-                              what));
+    return refuse("the via point is at the target; it must lie on the arc between start and target");
   if ((c - a).norm() < kCircPointGap)
-    return refuse(fmt::format("{}: the target is at the segment's start; a full circle needs two CIRC segments", what));
+    return refuse("the target is at the segment's start; a full circle needs two CIRC segments");
   const Eigen::Vector3d chord = (c - a).normalized();
   const Eigen::Vector3d off = (via - a) - (via - a).dot(chord) * chord;
   if (off.norm() < kCircPointGap)
-    return refuse(fmt::format("{}: start, via and target lie on one line (the via point is {:.6f} mm from the line "
+    return refuse(fmt::format("start, via and target lie on one line (the via point is {:.6f} mm from the line "
                               "through start and target); a circle needs it at least {} mm off it",
-                              what, off.norm() * 1e3, kCircPointGap * 1e3));
+                              off.norm() * 1e3, kCircPointGap * 1e3));
   const Eigen::Vector3d u = via - a, w = c - a, n = u.cross(w);
   g.centre = a + (u.squaredNorm() * w - w.squaredNorm() * u).cross(n) / (2 * n.squaredNorm());
   g.radius = (a - g.centre).norm();
@@ -161,7 +163,7 @@ Status build_circle(BuiltSegment& g, const Eigen::Vector3d& via, const std::stri
   // With the plane's normal taken from start -> via -> target, the via always comes first:
   // this holds by construction, checked so that a numeric corner case cannot pass unseen.
   if (!(angle_of(via) < g.arc))
-    return refuse(fmt::format("{}: the via point is not between start and target along the arc", what));
+    return refuse("the via point is not between start and target along the arc");
   g.length = g.radius * g.arc;
   return Ok{};
 }
@@ -197,17 +199,17 @@ Result<CartesianPath> build_cartesian_path(const Pose& start, std::span<const Pa
   double s = 0;
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const PathSegment& in = segments[i];
-    const std::string what = segment_name(i, in.kind);
+    auto fail = [&](const Error& e) { return at_segment(i, in.kind, e); };
     if (in.kind != SegmentKind::lin && in.kind != SegmentKind::circ)
       return refuse(fmt::format("segment {}: unknown kind; allowed: LIN, CIRC", i + 1));
-    auto target = checked_pose(in.target, what + ": target");
-    if (!target) return target.error();
-    if (auto ok = check_rate(in.speed, what, "speed", "m/s of the tool point"); !ok) return ok.error();
-    if (auto ok = check_rate(in.angular_speed, what, "angular speed", "rad/s of the tool"); !ok) return ok.error();
+    auto target = checked_pose(in.target, "target");
+    if (!target) return fail(target.error());
+    if (auto ok = check_rate(in.speed, "speed", "m/s of the tool point"); !ok) return fail(ok.error());
+    if (auto ok = check_rate(in.angular_speed, "angular speed", "rad/s of the tool"); !ok) return fail(ok.error());
     if (!std::isfinite(in.zone) || in.zone < 0)
-      return refuse(fmt::format("{}: zone {} is not allowed; it must be a finite number >= 0 (m; 0 = stop exactly at "
-                                "the segment's end)",
-                                what, in.zone));
+      return fail(refuse(fmt::format("zone {} is not allowed; it must be a finite number >= 0 (m; 0 = stop exactly "
+                                     "at the segment's end)",
+                                     in.zone)));
     BuiltSegment g;
     g.kind = in.kind;
     g.start = here;
@@ -218,25 +220,24 @@ Result<CartesianPath> build_cartesian_path(const Pose& start, std::span<const Pa
     if (in.kind == SegmentKind::lin) {
       g.length = (g.target.position - g.start.position).norm();
       if (g.length < kNoMotion && g.angle < kNoMotion)
-        return refuse(fmt::format("{}: the target is where the segment starts (it neither moves nor turns the tool); "
-                                  "remove it or change its target",
-                                  what));
+        return fail(refuse("the target is where the segment starts (it neither moves nor turns the tool); "
+                           "remove it or change its target"));
       if (g.length < kNoMotion) g.target.position = g.start.position;  // a pure turn
     } else {
-      if (!finite(in.via)) return refuse(fmt::format("{}: the via point is not a finite number", what));
-      if (auto ok = build_circle(g, in.via, what); !ok) return ok.error();
+      if (!finite(in.via)) return fail(refuse("the via point is not a finite number"));
+      if (auto ok = build_circle(g, in.via); !ok) return fail(ok.error());
     }
     // Coordinates of 1e200 m are finite, their distance is not; and a speed of 1e300 m/s
     // makes a segment take no time at all: either would leave nothing to sample.
     const double nominal = std::max(g.length / g.speed, g.angle / g.angular_speed);
     if (!std::isfinite(g.length) || !std::isfinite(nominal))
-      return refuse(fmt::format("{}: the target is {:.6g} m from the segment's start, taking {:.6g} s at {:.6g} m/s; "
+      return fail(refuse(fmt::format("the target is {:.6g} m from the segment's start, taking {:.6g} s at {:.6g} m/s; "
                                 "a segment's length and time must be finite numbers",
-                                what, g.length, nominal, g.speed));
+                                g.length, nominal, g.speed)));
     if (!(s + nominal > s))
-      return refuse(fmt::format("{}: at {:.6g} m/s and {:.6g} rad/s its {:.6g} m and {:.6g} rad take no time after the "
+      return fail(refuse(fmt::format("at {:.6g} m/s and {:.6g} rad/s its {:.6g} m and {:.6g} rad take no time after the "
                                 "{:.6g} s of path before it; lower its speed",
-                                what, g.speed, g.angular_speed, g.length, g.angle, s));
+                                g.speed, g.angular_speed, g.length, g.angle, s)));
     g.start_s = s;
     g.end_s = s + nominal;
     s = g.end_s;
@@ -248,6 +249,11 @@ Result<CartesianPath> build_cartesian_path(const Pose& start, std::span<const Pa
     if (zone > 0) path.segments_[i].blend = blend_half_width(path.segments_[i], path.segments_[i + 1], zone);
   }
   return path;
+}
+
+Error path_refusal(PathRefusal r) {
+  std::string message = fmt::format("segment {} ({}): {}", r.segment + 1, to_string(r.kind), r.reason);
+  return Error{ErrorKind::invalid_argument, std::move(message), std::move(r)};
 }
 
 double CartesianPath::duration() const { return segments_.empty() ? 0 : segments_.back().end_s; }

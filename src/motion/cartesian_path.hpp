@@ -8,7 +8,9 @@
 // a change of ds/dt: the executor times s, the path stays the same.
 #pragma once
 
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -20,6 +22,24 @@ namespace armctl::motion {
 
 enum class SegmentKind { lin, circ };
 const char* to_string(SegmentKind kind);  // "LIN", "CIRC" (as people write them)
+
+// The detail of an error that refuses a path at one of its segments (build_cartesian_path,
+// check_path, arm::plan_path; kind invalid_argument): which segment, and where on it when the
+// refusal is at a point along it (the tool point there and the joint that refused). Its
+// message is "segment N (KIND): " + reason. Apps map it to their own places (a program's
+// line, a path file's move).
+struct PathRefusal {
+  int segment = 0;                         // 0-based, in the segments given
+  SegmentKind kind = SegmentKind::lin;
+  std::optional<double> fraction;          // where along the segment, 0..1
+  std::optional<Eigen::Vector3d> point;    // the tool point there, base frame, m
+  int joint = -1;                          // the chain joint that refused; -1: none named
+  std::string joint_name;
+  std::string reason;                      // the message without "segment N (KIND): "
+};
+// The Error for `refusal`, with its message built from it.
+Error path_refusal(PathRefusal refusal);
+inline const PathRefusal* path_refusal_of(const Error& error) { return error.detail_as<PathRefusal>(); }
 
 struct PathSegment {
   SegmentKind kind = SegmentKind::lin;

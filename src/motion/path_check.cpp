@@ -101,10 +101,26 @@ class Checker {
   // "segment 3 (LIN): at 42 % (x 212.0 y -30.5 z 88.0 mm)"
   std::string where(double s) const {
     const int k = path_.segment_at(s);
+    return fmt::format("segment {} ({}): {}", k + 1, to_string(path_.segments()[std::size_t(k)].kind), where_on(s));
+  }
+  // "at 42 % (x 212.0 y -30.5 z 88.0 mm)"
+  std::string where_on(double s) const {
     const Eigen::Vector3d p = path_.at(s).position * 1e3;
-    return fmt::format("segment {} ({}): at {:.0f} % (x {:.1f} y {:.1f} z {:.1f} mm)", k + 1,
-                       to_string(path_.segments()[std::size_t(k)].kind), path_.segment_fraction(s) * 100, p.x() + 0.0,
+    return fmt::format("at {:.0f} % (x {:.1f} y {:.1f} z {:.1f} mm)", path_.segment_fraction(s) * 100, p.x() + 0.0,
                        p.y() + 0.0, p.z() + 0.0);
+  }
+  // The refusal at s ("segment 3 (LIN): at 42 % (...): " + why), naming chain joint `joint`
+  // (-1: none).
+  Error refuse_at(double s, const std::string& why, int joint = -1) const {
+    PathRefusal r;
+    r.segment = path_.segment_at(s);
+    r.kind = path_.segments()[std::size_t(r.segment)].kind;
+    r.fraction = path_.segment_fraction(s);
+    r.point = path_.at(s).position;
+    r.joint = joint;
+    if (joint >= 0) r.joint_name = limits_[std::size_t(joint)].name;
+    r.reason = fmt::format("{}: {}", where_on(s), why);
+    return path_refusal(std::move(r));
   }
 
   Result<Solved> solve(double s, const JointVector& near) const {
@@ -113,7 +129,7 @@ class Checker {
     if (nearest_) request.target = facing_the_position(request.target);
     request.nearest_orientation = nearest_;
     auto solutions = kin_.inverse(request, near);
-    if (!solutions) return refuse(fmt::format("{}: {}", where(s), solutions.error().message));
+    if (!solutions) return refuse_at(s, solutions.error().message);
     const IkSolution& best = solutions->front();
     return Solved{best.joints, best.configuration};
   }
@@ -123,8 +139,8 @@ class Checker {
       const PathLimits& l = limits_[j];
       const double v = q[Eigen::Index(j)];
       if (v < l.lower - 1e-9 || v > l.upper + 1e-9)
-        return refuse(fmt::format("{}: joint {} would be at {}, allowed {}", where(s), l.name, shown(l, v),
-                                  shown_range(l)));
+        return refuse_at(s, fmt::format("joint {} would be at {}, allowed {}", l.name, shown(l, v), shown_range(l)),
+                         int(j));
     }
     return Ok{};
   }
@@ -134,11 +150,13 @@ class Checker {
     return s == Singularity::none ? "" : fmt::format(" near a singularity ({})", to_string(s));
   }
 
-  std::string too_fast(double s, const JointVector& q, int joint, double per_s) const {
+  Error too_fast(double s, const JointVector& q, int joint, double per_s) const {
     const PathLimits& l = limits_[std::size_t(joint)];
-    return fmt::format("{}: joint {} would need {} at {:.0f} % of the programmed speed, allowed {}{}", where(s), l.name,
-                       shown(l, per_s * kMinPathRate, 1), kMinPathRate * 100, shown(l, l.velocity, 1),
-                       singularity_note(q));
+    return refuse_at(s,
+                     fmt::format("joint {} would need {} at {:.0f} % of the programmed speed, allowed {}{}", l.name,
+                                 shown(l, per_s * kMinPathRate, 1), kMinPathRate * 100, shown(l, l.velocity, 1),
+                                 singularity_note(q)),
+                     joint);
   }
 
   // The step a..b could not be made small in the joints by making it small in s: the
@@ -149,20 +167,24 @@ class Checker {
       const PathLimits& lj = limits_[j];
       const double v = qa.joints[Eigen::Index(j)];
       if (std::min(std::abs(v - lj.lower), std::abs(v - lj.upper)) < 1e-3)
-        return refuse(fmt::format("{}: joint {} would leave its limits at {}, allowed {}", where(a), lj.name,
-                                  shown(lj, v), shown_range(lj)));
+        return refuse_at(a, fmt::format("joint {} would leave its limits at {}, allowed {}", lj.name, shown(lj, v),
+                                        shown_range(lj)),
+                         int(j));
     }
     const std::string change = same(qa.configuration, qb.configuration)
                                    ? ""
                                    : fmt::format(" ({} -> {})", describe(qa.configuration), describe(qb.configuration));
-    return refuse(fmt::format("{}: {}, a change of configuration{}{}; the arm cannot follow the path through there "
-                              "(move around it, or split the path with a PTP)",
-                              where(a), jump_words(qa, qb), change, singularity_note(qa.joints)));
+    const int joint = jumping_joint(qa, qb);
+    return refuse_at(a,
+                     fmt::format("{}, a change of configuration{}{}; the arm cannot follow the path through there "
+                                 "(move around it, or split the path with a PTP)",
+                                 jump_words(qa, qb, joint), change, singularity_note(qa.joints)),
+                     joint);
   }
 
   // "the joints would jump: joint servo6 from 0.0 deg to 6.3 deg": the joint whose step is
   // the largest for its step limit.
-  std::string jump_words(const Solved& qa, const Solved& qb) const {
+  int jumping_joint(const Solved& qa, const Solved& qb) const {
     int joint = 0;
     double worst = 0;
     for (std::size_t j = 0; j < limits_.size(); ++j) {
@@ -172,6 +194,9 @@ class Checker {
         joint = int(j);
       }
     }
+    return joint;
+  }
+  std::string jump_words(const Solved& qa, const Solved& qb, int joint) const {
     const PathLimits& l = limits_[std::size_t(joint)];
     return fmt::format("the joints would jump: joint {} from {} to {}", l.name, shown(l, qa.joints[joint]),
                        shown(l, qb.joints[joint]));
@@ -182,11 +207,13 @@ class Checker {
   // the line's heading) or to move infinitely fast at first (the elbow bends as the square
   // root of the distance from a stretched arm). Refused with what to do, instead of a jump
   // at 0 % or a path slowed to a crawl over its whole length.
-  Error refuse_singular_start(const std::string& why) const {
-    return refuse(fmt::format("{}: the path starts at a singularity ({}), where {}: a straight line cannot start "
-                              "there; move the arm away from it first with a joint move (PTP: a move to a tool "
-                              "point without a straight line, or a ptp line before the path), then start the path",
-                              where(0), to_string(start_singularity_), why));
+  Error refuse_singular_start(const std::string& why, int joint) const {
+    return refuse_at(0, fmt::format("the path starts at a singularity ({}), where {}: a straight line cannot start "
+                                    "there; move the arm away from it first with a joint move (PTP: a move to a "
+                                    "tool point without a straight line, or a ptp line before the path), then start "
+                                    "the path",
+                                    to_string(start_singularity_), why),
+                     joint);
   }
 
   // The pose at b cannot be reached, the one at a (solved as qa) can: narrows it down by
@@ -339,7 +366,8 @@ class Checker {
             }
             // Still at the singular start (the first steps may stay on the base axis).
             if (start_singularity_ != Singularity::none && !joints_far(first->joints, previous.joints)) {
-              return refuse_singular_start(jump_words(previous, *q));
+              const int joint = jumping_joint(previous, *q);
+              return refuse_singular_start(jump_words(previous, *q, joint), joint);
             }
             return refuse_jump(previous_s, previous, *q);
           }
@@ -379,12 +407,13 @@ class Checker {
       return refuse_singular_start(fmt::format("joint {} would have to move faster the closer the tool is to it ({} "
                                                "at full speed over the first step, allowed {})",
                                                l.name, shown(l, std::abs(out.dq_ds[0][limiting[0]]), 1),
-                                               shown(l, l.velocity, 1)));
+                                               shown(l, l.velocity, 1)),
+                                   limiting[0]);
     }
     if (out.max_rate < kMinPathRate) {  // refused where it is slowest
       const std::size_t i = std::size_t(std::min_element(out.rate_limit.begin(), out.rate_limit.end()) - out.rate_limit.begin());
       const int j = limiting[i];
-      return refuse(too_fast(out.s[i], out.joints[i], j, std::abs(out.dq_ds[i][j])));
+      return too_fast(out.s[i], out.joints[i], j, std::abs(out.dq_ds[i][j]));
     }
     // Stretches below full speed, each with its slowest point and the reason.
     for (std::size_t i = 0; i < out.s.size();) {

@@ -9,6 +9,7 @@
 
 #include <fmt/core.h>
 
+#include "core/source_place.hpp"
 #include "core/ascii.hpp"
 #include "core/json_reader.hpp"
 #include "core/printable.hpp"
@@ -85,12 +86,12 @@ class Parser {
 
  private:
   Error fail(std::size_t line, std::size_t column, std::string_view found, const std::string& expected) const {
-    return Error{ErrorKind::invalid_config, fmt::format("{}:{}:{}: found '{}', expected {}", source_, line, column,
-                                                        quoted(found), expected)};
+    return source_error(ErrorKind::invalid_config,
+                        {source_, line, column, fmt::format("found '{}', expected {}", quoted(found), expected)});
   }
   // An error from a value parser (parse_quantity's message names the key, the text and the units).
   Error fail_value(std::size_t line, std::size_t column, const Error& e) const {
-    return Error{ErrorKind::invalid_config, fmt::format("{}:{}:{}: {}", source_, line, column, quoted(e.message, 400))};
+    return source_error(ErrorKind::invalid_config, {source_, line, column, quoted(e.message, 400)});
   }
 
   Result<double> quantity(std::size_t line, const Field& f, std::string_view key, std::string_view value,

@@ -1,5 +1,6 @@
 #include "motion/recording.hpp"
 
+#include "core/source_place.hpp"
 #include "core/atomic_file.hpp"
 #include "core/regular_file.hpp"
 
@@ -108,8 +109,8 @@ class Parser {
   static constexpr const char* kStageWord[] = {"arm", "rate", "joints", ""};
 
   Error fail(std::size_t line, std::size_t column, const std::string& found, const std::string& expected) const {
-    return Error{ErrorKind::invalid_config,
-                 fmt::format("{}:{}:{}: found {}; expected {}", source_, line, column, found, expected)};
+    return source_error(ErrorKind::invalid_config,
+                        {std::string(source_), line, column, fmt::format("found {}; expected {}", found, expected)});
   }
   static std::string quoted(const Token& t) { return "'" + printable(t.text) + "'"; }
 

@@ -19,32 +19,12 @@ inline uint32_t abs32(int32_t v) {
   return v < 0 ? static_cast<uint32_t>(0) - static_cast<uint32_t>(v) : static_cast<uint32_t>(v);
 }
 
-// floor(sqrt(v)), bit by bit: 16 iterations of shifts and adds, no division.
-inline uint32_t isqrt32(uint32_t v) {
-  uint32_t result = 0;
-  uint32_t bit = static_cast<uint32_t>(1) << 30;
-  while (bit > v) bit >>= 2;
-  while (bit != 0) {
-    if (v >= result + bit) {
-      v -= result + bit;
-      result = (result >> 1) + bit;
-    } else {
-      result >>= 1;
-    }
-    bit >>= 2;
-  }
-  return result;
-}
-
 // Q16 -> integer, rounding half away from zero. Shifts of unsigned values only: no division
 // (a 32-bit division is a ~600-cycle library call on the AVR) and no shift of a negative.
 inline int32_t round_q16(int32_t v) {
   if (v >= 0) return static_cast<int32_t>((static_cast<uint32_t>(v) + UINT32_C(32768)) >> 16);
   return -static_cast<int32_t>((abs32(v) + UINT32_C(32768)) >> 16);
 }
-
-// Negate when `negative`, without a multiplication (sign * v is a library call on the AVR).
-inline int32_t with_sign(int32_t v, bool negative) { return negative ? -v : v; }
 
 }  // namespace joint_bus
 }  // namespace armctl

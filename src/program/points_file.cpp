@@ -1,5 +1,6 @@
 #include "program/points_file.hpp"
 
+#include "core/source_place.hpp"
 #include "core/ascii.hpp"
 #include "core/atomic_file.hpp"
 
@@ -33,31 +34,21 @@ constexpr std::string_view kPointKeys = "joints=..., or x, y, z with roll, pitch
 
 Error fail(std::string_view source, std::size_t line, std::size_t column, std::string_view found,
            const std::string& expected) {
-  return Error{ErrorKind::invalid_config,
-               fmt::format("{}:{}:{}: found '{}', expected {}", source, line, column, shown(found), expected)};
+  return source_error(ErrorKind::invalid_config,
+                      {std::string(source), line, column, fmt::format("found '{}', expected {}", shown(found), expected)});
 }
 
-// The path file's parser reads a point's fields (they are a ptp's target): its message
-// has the column of the rewritten line ("ptp" in place of the name) and speaks of a ptp.
+// The path file's parser reads a point's fields (they are a ptp's target): its place is a
+// column of the rewritten line ("ptp" in place of the name) and its words speak of a ptp.
 Error from_path_error(const Error& e, std::string_view source, std::size_t shift) {
-  std::string m = e.message;
-  const std::string prefix = std::string(source) + ":";
-  if (m.rfind(prefix, 0) == 0) {
-    std::size_t line = 0, column = 0;
-    const char* p = m.data() + prefix.size();
-    const char* end = m.data() + m.size();
-    auto r1 = std::from_chars(p, end, line);
-    if (r1.ec == std::errc() && r1.ptr < end && *r1.ptr == ':') {
-      auto r2 = std::from_chars(r1.ptr + 1, end, column);
-      if (r2.ec == std::errc()) {
-        m = fmt::format("{}{}:{}{}", prefix, line, column + shift - 3, std::string_view(r2.ptr, std::size_t(end - r2.ptr)));
-      }
-    }
-  }
+  const SourcePlace* where = source_place(e);
+  if (!where) return Error{ErrorKind::invalid_config, e.message};
+  SourcePlace place{std::string(source), where->line, where->column ? where->column + shift - 3 : 0, where->reason};
+  std::string& m = place.reason;
   for (auto [from, to] : {std::pair<std::string_view, std::string_view>{"a ptp", "a point"}, {"the ptp's", "the point's"}}) {
     for (auto at = m.find(from); at != std::string::npos; at = m.find(from, at + to.size())) m.replace(at, from.size(), to);
   }
-  return Error{ErrorKind::invalid_config, m};
+  return source_error(ErrorKind::invalid_config, std::move(place));
 }
 
 // Shortest digits that read back as the same double.

@@ -6,6 +6,7 @@
 
 #include <fmt/core.h>
 
+#include "core/source_place.hpp"
 #include "motion/move_limits.hpp"
 
 namespace armctl::program {
@@ -23,7 +24,7 @@ class NameCheck {
 
  private:
   [[noreturn]] void fail(Place at, const std::string& m) const {
-    throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}:{}:{}: {}", p_.source, at.line, at.column, m));
+    throw ArmctlError(source_error(ErrorKind::invalid_config, {std::string(p_.source), at.line, at.column, m}));
   }
   void target(const Target& t) const {
     if (t.kind != TargetKind::point || points_.find(t.point)) return;
@@ -82,7 +83,7 @@ class Runner {
   using Frame = std::map<std::string, Value, std::less<>>;
 
   [[noreturn]] void fail(Place at, const std::string& m) const {
-    throw ArmctlError(ErrorKind::invalid_argument, fmt::format("{}:{}:{}: {}", p_.source, at.line, at.column, m));
+    throw ArmctlError(source_error(ErrorKind::invalid_argument, {std::string(p_.source), at.line, at.column, m}));
   }
 
   // ---- expressions

@@ -6,6 +6,7 @@
 
 #include <fmt/core.h>
 
+#include "core/source_place.hpp"
 #include "core/printable.hpp"
 
 namespace armctl::program {
@@ -36,8 +37,8 @@ Result<std::vector<Token>> lex_program(std::string_view text, std::string_view s
   std::size_t i = 0, line = 1, line_start = 0;
   auto place = [&](std::size_t at) { return Place{line, at - line_start + 1}; };
   auto fail = [&](std::size_t at, std::string_view found, std::string_view expected) {
-    return Error{ErrorKind::invalid_config, fmt::format("{}:{}:{}: found '{}', expected {}", source, line,
-                                                        at - line_start + 1, shown(found), expected)};
+    return source_error(ErrorKind::invalid_config, {std::string(source), line, at - line_start + 1,
+                                                    fmt::format("found '{}', expected {}", shown(found), expected)});
   };
   while (i < text.size()) {
     const char c = text[i];

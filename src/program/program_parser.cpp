@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "core/source_place.hpp"
 #include "core/ascii.hpp"
 #include "core/json_reader.hpp"
 #include "program/language_words.hpp"
@@ -59,12 +60,12 @@ class Parser {
   }
 
   [[noreturn]] void fail(const Token& t, std::string_view expected) const {
-    throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}:{}:{}: found {}, expected {}", source_, t.at.line,
-                                                             t.at.column, describe(t), expected));
+    throw ArmctlError(source_error(ErrorKind::invalid_config, {std::string(source_), t.at.line, t.at.column,
+                                                               fmt::format("found {}, expected {}", describe(t), expected)}));
   }
   [[noreturn]] void fail_at(Place at, std::string_view found, std::string_view expected) const {
-    throw ArmctlError(ErrorKind::invalid_config,
-                      fmt::format("{}:{}:{}: found '{}', expected {}", source_, at.line, at.column, found, expected));
+    throw ArmctlError(source_error(ErrorKind::invalid_config, {std::string(source_), at.line, at.column,
+                                                               fmt::format("found '{}', expected {}", found, expected)}));
   }
   void expect_symbol(std::string_view s, std::string_view expected) {
     if (!symbol_is(peek(), s)) fail(peek(), expected);

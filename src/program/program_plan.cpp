@@ -1,10 +1,11 @@
 #include "program/program_plan.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 
 #include <fmt/core.h>
+
+#include "core/source_place.hpp"
 
 namespace armctl::program {
 
@@ -65,8 +66,9 @@ class Planner {
     return fmt::format("line {} ({} {})", a.at.line, to_string(a.move.kind), a.move.target.label);
   }
   [[noreturn]] void refuse(const Action& a, const std::string& why) const {
-    throw ArmctlError(ErrorKind::invalid_argument, fmt::format("{}:{}: ({} {}): {}", source_, a.at.line,
-                                                               to_string(a.move.kind), a.move.target.label, why));
+    throw ArmctlError(source_error(ErrorKind::invalid_argument,
+                                   {std::string(source_), a.at.line, 0,
+                                    fmt::format("({} {}): {}", to_string(a.move.kind), a.move.target.label, why)}));
   }
   motion::JointVector chain(const std::vector<double>& q) const { return arm_.chain_of(q); }
 
@@ -161,8 +163,8 @@ class Planner {
 
   void gripper(const Action& a) {
     if (!model_.gripper)
-      throw ArmctlError(ErrorKind::invalid_argument,
-                        fmt::format("{}:{}: GRIPPER: arm '{}' has no gripper", source_, a.at.line, model_.name));
+      throw ArmctlError(source_error(ErrorKind::invalid_argument, {std::string(source_), a.at.line, 0,
+                                                                   fmt::format("GRIPPER: arm '{}' has no gripper", model_.name)}));
     std::vector<double> target = state_;
     target[std::size_t(model_.gripper->joint)] = model_.gripper->at(a.closed_fraction);
     Action as_move = a;
@@ -212,23 +214,17 @@ class Planner {
     pieces_.push_back(std::move(p));
   }
 
-  // The path's errors count segments from 1 within the stretch ("segment 2 (LIN): ..."):
-  // say which line of the program that is.
+  // A path's refusal names the segment within the stretch (motion::PathRefusal): say which
+  // line of the program that is.
   [[noreturn]] void refuse_path(const std::vector<Action>& a, std::size_t from, std::size_t to, const Error& e) const {
-    std::string m = e.message;
-    std::size_t line = a[from].at.line;
-    const std::string_view prefix = "segment ";
-    if (m.rfind(prefix, 0) == 0) {
-      std::size_t n = 0;
-      auto [ptr, ec] = std::from_chars(m.data() + prefix.size(), m.data() + m.size(), n);
-      if (ec == std::errc() && n >= 1 && n <= to - from) {
-        line = a[from + n - 1].at.line;
-        m = fmt::format("({} {}){}", to_string(a[from + n - 1].move.kind), a[from + n - 1].move.target.label,
-                        std::string_view(ptr, std::size_t(m.data() + m.size() - ptr)).substr(
-                            std::string_view(ptr).find(')') == std::string_view::npos ? 0 : std::string_view(ptr).find(')') + 1));
-      }
+    const motion::PathRefusal* r = motion::path_refusal_of(e);
+    if (r && r->segment >= 0 && std::size_t(r->segment) < to - from) {
+      const Action& at = a[from + std::size_t(r->segment)];
+      throw ArmctlError(source_error(e.kind, {std::string(source_), at.at.line, 0,
+                                              fmt::format("({} {}): {}", to_string(at.move.kind),
+                                                          at.move.target.label, r->reason)}));
     }
-    throw ArmctlError(e.kind, fmt::format("{}:{}: {}", source_, line, m));
+    throw ArmctlError(source_error(e.kind, {std::string(source_), a[from].at.line, 0, e.message}));
   }
 
   const arm::Arm& arm_;

@@ -106,8 +106,8 @@ std::optional<motion::Elbow> elbow_of(const std::optional<std::string>& e) {
 class PyArm {
  public:
   PyArm(const std::string& arm, const std::string& device) {
-    py::gil_scoped_release nogil;  // the embedded simulators start, HID boards answer
-    session_ = session::open_arm_session(arm, device);
+    // The GIL released while the embedded simulators start and HID boards answer.
+    session_ = must(released([&] { return session::open_arm_session(arm, device); }));
   }
 
   // Stops what another thread runs on this arm (a wait ends, a streamed motion stops on its

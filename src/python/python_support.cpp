@@ -2,6 +2,11 @@
 
 #include <fmt/core.h>
 
+#include "arm/motion_executor.hpp"
+#include "core/source_place.hpp"
+#include "devices/joint_bus/reconnecting_link.hpp"
+#include "motion/cartesian_path.hpp"
+
 namespace armctl::python {
 
 namespace {
@@ -30,7 +35,10 @@ void define_error(py::module_& m) {
       "Every failure armctl reports: a refused value, a device that does not answer, a move that\n"
       "did not arrive. A subclass of RuntimeError; str(e) is the message, e.kind armctl's error\n"
       "kind: 'invalid_argument', 'invalid_config', 'io', 'timeout', 'protocol', 'device' or\n"
-      "'unsupported', e.message the message.",
+      "'unsupported', e.message the message. e.detail names what more it carries (None, or\n"
+      "'following_error' with e.joint, e.measured, e.planned, e.limit; 'path_refusal' with\n"
+      "e.segment, e.fraction, e.point, e.joint; 'source_place' with e.file, e.line, e.column;\n"
+      "'device_lost').",
       PyExc_RuntimeError, nullptr);
   if (!error_type) throw py::error_already_set();
   m.add_object("Error", py::handle(error_type));
@@ -47,10 +55,41 @@ void define_error(py::module_& m) {
   });
 }
 
+namespace {
+
+// The error's typed detail as attributes (docs/python.md "Errors"): e.detail names which
+// detail it carried (None: none), and its fields follow.
+void set_detail(py::object& e, const Error& error) {
+  e.attr("detail") = py::none();
+  if (const auto* f = arm::following_error_of(error)) {
+    e.attr("detail") = "following_error";
+    e.attr("joint") = f->name;
+    e.attr("measured") = f->measured;
+    e.attr("planned") = f->planned;
+    e.attr("limit") = f->limit;
+  } else if (const auto* r = motion::path_refusal_of(error)) {
+    e.attr("detail") = "path_refusal";
+    e.attr("segment") = r->segment;
+    e.attr("fraction") = r->fraction ? py::object(py::float_(*r->fraction)) : py::none();
+    e.attr("point") = r->point ? py::object(py::make_tuple(r->point->x(), r->point->y(), r->point->z())) : py::none();
+    e.attr("joint") = r->joint >= 0 ? py::object(py::str(r->joint_name)) : py::none();
+  } else if (const auto* at = source_place(error)) {
+    e.attr("detail") = "source_place";
+    e.attr("file") = at->file;
+    e.attr("line") = at->line;
+    e.attr("column") = at->column;
+  } else if (joint_bus::device_lost(error)) {
+    e.attr("detail") = "device_lost";
+  }
+}
+
+}  // namespace
+
 void raise(const Error& error) {
   py::object e = py::reinterpret_borrow<py::object>(error_type)(error.message);
   e.attr("kind") = kind_name(error.kind);
   e.attr("message") = error.message;
+  set_detail(e, error);
   PyErr_SetObject(error_type, e.ptr());
   throw py::error_already_set();
 }

@@ -39,7 +39,7 @@ class PyRobotCommands {
   PyRobotCommands(const std::string& device, int servo_count, double timeout) {
     if (!(timeout >= 0 && timeout <= 60))
       raise(ErrorKind::invalid_argument, fmt::format("timeout {} s is not allowed: 0 (the link's default) .. 60 s", timeout));
-    session_ = released([&] { return session::open_xarm_session(device, servo_count, static_cast<int>(timeout * 1000)); });
+    session_ = must(released([&] { return session::open_xarm_session(device, servo_count, static_cast<int>(timeout * 1000)); }));
   }
 
   // Waits for the call another thread runs (a group_events between two of its turns), then

@@ -60,7 +60,11 @@ ArmState state_of(const session::ArmSnapshot& s) {
   return out;
 }
 
-bool is_stopped(const Status& s) { return !s && s.error().message.find("stopped") != std::string::npos; }
+// A job the lane's stop dropped before it ran (a newer motion replaced it, or stop()).
+bool is_stopped(const Status& s) {
+  const auto* refused = s ? nullptr : session::job_refusal(s.error());
+  return refused && refused->reason == session::JobRefused::Reason::dropped;
+}
 
 MotionOutcome refusal_outcome(const Error& e) {
   const GoalRefusal r = refusal_of(e);
@@ -114,7 +118,7 @@ namespace {
 std::unique_ptr<session::ArmSession> open_session(const BridgeOptions& o) {
   session::SessionOptions so;
   so.wall_clock = true;
-  return session::open_arm_session(o.arm, o.device, so);
+  return session::open_arm_session(o.arm, o.device, so).value();  // the bridge's constructor throws it
 }
 
 }  // namespace

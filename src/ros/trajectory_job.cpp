@@ -68,7 +68,7 @@ Status run_trajectory(arm::Arm& arm, session::JobContext& ctx, const TrajectoryR
   };
   auto report = arm::execute_motion(arm, plan->motion, ctx.executor_options(eo));
   if (!report) {
-    const bool following = report.error().message.find("following error") != std::string::npos;
+    const bool following = arm::following_error_of(report.error()) != nullptr;
     return fail(outcome, following ? GoalError::path_tolerance_violated : GoalError::invalid_goal, report.error());
   }
   {

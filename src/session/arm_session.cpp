@@ -21,20 +21,21 @@ bool device_is_joint_bus(const std::string& device) {
          (parts->kind == "serial" && parts->options.contains("select"));
 }
 
-arm::ArmModel load_arm(const std::string& arm) {
-  auto model = arm::load_arm_model(arm::arm_file_path(arm));
-  if (!model) throw ArmctlError(model.error());
-  return std::move(model.value());
-}
+Result<arm::ArmModel> load_arm(const std::string& arm) { return arm::load_arm_model(arm::arm_file_path(arm)); }
 
-std::unique_ptr<ArmSession> open_arm_session(const std::string& arm_name, const std::string& device,
-                                             const SessionOptions& options) {
-  arm::ArmModel model = load_arm(arm_name);
+namespace {
+
+// The device for `model`; may throw (the reconnecting link's first open, a device's
+// constructor): open_arm_session turns that into its error.
+Result<std::unique_ptr<ArmSession>> open_device(arm::ArmModel model, const std::string& device,
+                                                const SessionOptions& options) {
   auto s = std::make_unique<ArmSession>();
   const bool bus = model.supports(arm::Protocol::joint_bus) &&
                    (device.empty() || device_is_joint_bus(device) || !model.supports(arm::Protocol::robot_commands));
   if (bus) {
-    s->bus = devices::open_joint_bus(device.empty() ? "sim" : device).value();
+    auto opened = devices::open_joint_bus(device.empty() ? "sim" : device);
+    if (!opened) return opened.error();
+    s->bus = std::move(opened).value();
     transport::JointBusLink* link = &s->bus->link();
     if (options.wall_clock && transport::runs_on_simulated_time(*link)) {
       s->paced = std::make_unique<transport::PacedLink>(*link);
@@ -58,11 +59,22 @@ std::unique_ptr<ArmSession> open_arm_session(const std::string& arm_name, const 
   } else {
     int servos = 0;
     for (const auto& j : model.joints) servos = std::max(servos, j.robot_commands->id);
-    s->rc = open_xarm_session(device, servos, 0);  // 0: the link's reply timeout (HID: 1.5 s)
+    auto rc = open_xarm_session(device, servos, 0);  // 0: the link's reply timeout (HID: 1.5 s)
+    if (!rc) return rc.error();
+    s->rc = std::move(rc).value();
     auto dev = std::make_unique<arm::RcArmDevice>(model, *s->rc->client);
     s->arm = std::make_unique<arm::Arm>(std::move(model), std::move(dev));
   }
   return s;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<ArmSession>> open_arm_session(const std::string& arm_name, const std::string& device,
+                                                     const SessionOptions& options) {
+  auto model = load_arm(arm_name);
+  if (!model) return model.error();
+  return catch_error([&] { return open_device(std::move(model).value(), device, options); });
 }
 
 }  // namespace armctl::session

@@ -32,8 +32,9 @@ struct ArmSession {
 // Commands board.
 bool device_is_joint_bus(const std::string& device);
 
-// Throws ArmctlError naming what was wrong (arm file, URI, device).
-arm::ArmModel load_arm(const std::string& arm);
+// The arm model `arm` names (shipped xarm/scara or an arm file), or the error naming what
+// was wrong with it.
+Result<arm::ArmModel> load_arm(const std::string& arm);
 
 struct SessionOptions {
   // The embedded simulated joint bus runs on simulated time, as fast as the host goes (what
@@ -46,7 +47,8 @@ struct SessionOptions {
   // ...; reconnecting"). Robot Commands devices are not reopened (docs/http-api.md).
   bool reconnect = false;
 };
-std::unique_ptr<ArmSession> open_arm_session(const std::string& arm, const std::string& device,
-                                             const SessionOptions& options = {});
+// The arm and its device, or the error naming what was wrong (arm file, URI, device).
+Result<std::unique_ptr<ArmSession>> open_arm_session(const std::string& arm, const std::string& device,
+                                                     const SessionOptions& options = {});
 
 }  // namespace armctl::session

@@ -16,6 +16,10 @@ constexpr Duration kIdleSlice = std::chrono::milliseconds(10);
 
 bool ends_job(arm::MotionCommand c) { return c == arm::MotionCommand::stop || c == arm::MotionCommand::abort; }
 
+Error closing(const std::string& job) {
+  return Error{ErrorKind::device, "the arm is closing", JobRefused{JobRefused::Reason::closing, job, ""}};
+}
+
 }  // namespace
 
 arm::MotionCommand JobContext::command() {
@@ -98,12 +102,13 @@ std::future<Status> ArmWorker::run(std::string what, Job job, bool queue_behind)
   {
     std::lock_guard lock(mutex_);
     if (quit_) {
-      done.set_value(Error{ErrorKind::device, "the arm is closing"});
+      done.set_value(closing(what));
       return result;
     }
     if (!queue_behind && (running_job_ || !queue_.empty())) {
       const std::string& busy_with = running_job_ ? snapshot_.job : queue_.back().what;
-      done.set_value(Error{ErrorKind::device, fmt::format("busy: {} (stop it first)", busy_with)});
+      done.set_value(Error{ErrorKind::device, fmt::format("busy: {} (stop it first)", busy_with),
+                           JobRefused{JobRefused::Reason::busy, what, busy_with}});
       return result;
     }
     queue_.push_back(Queued{std::move(what), std::move(job), std::move(done)});
@@ -129,7 +134,9 @@ void ArmWorker::command(arm::MotionCommand command) {
       pending_ = command;
     }
   }
-  for (auto& q : dropped) q.done.set_value(Error{ErrorKind::device, fmt::format("{}: stopped before it started", q.what)});
+  for (auto& q : dropped)
+    q.done.set_value(Error{ErrorKind::device, fmt::format("{}: stopped before it started", q.what),
+                           JobRefused{JobRefused::Reason::dropped, q.what, ""}});
   work_.notify_all();
 }
 
@@ -266,7 +273,7 @@ void ArmWorker::loop() {
     std::lock_guard lock(mutex_);
     left.swap(queue_);
   }
-  for (auto& q : left) q.done.set_value(Error{ErrorKind::device, "the arm is closing"});
+  for (auto& q : left) q.done.set_value(closing(q.what));
 }
 
 ArmStatus read_arm_status(ArmSession& session) {

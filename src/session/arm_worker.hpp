@@ -47,6 +47,19 @@ struct ArmSnapshot {
   std::string last_error;          // of the last job that failed ("" after a success)
 };
 
+// The detail of an error from ArmWorker::run's future when the job never ran: refused at
+// once because another job runs or waits (busy), dropped from the queue by a stop or an
+// abort (dropped), or refused because the worker is shutting down (closing). Apps map it to
+// their own form (HTTP 409, a ROS "stopped" outcome) with job_refusal(error).
+struct JobRefused {
+  enum class Reason { busy, dropped, closing };
+  Reason reason = Reason::busy;
+  std::string job;      // the job that was refused or dropped
+  std::string running;  // busy: the job that runs (or waits) instead
+};
+// The JobRefused behind an error, or nullptr.
+inline const JobRefused* job_refusal(const Error& error) { return error.detail_as<JobRefused>(); }
+
 class ArmWorker;
 
 // Handed to a job: the commands sent to it, and publishing what it learns.
@@ -98,11 +111,11 @@ class ArmWorker {
   // clock); returns the newest either way.
   ArmSnapshot wait_for_update(std::uint64_t after, std::chrono::milliseconds timeout) const;
 
-  // Queues `job`; its result arrives in the future. Refused at once (device, "busy: <job>")
-  // when a job runs or waits and `queue_behind` is false.
+  // Queues `job`; its result arrives in the future. Refused at once (device, "busy: <job>",
+  // detail JobRefused::busy) when a job runs or waits and `queue_behind` is false.
   std::future<Status> run(std::string what, Job job, bool queue_behind = false);
   // For the running job (pause, resume, stop, abort). stop and abort drop queued jobs
-  // (their futures get "stopped") and halt the arm once the running job returns, or at
+  // (their futures get "stopped before it started", detail JobRefused::dropped) and halt the arm once the running job returns, or at
   // once when none runs.
   void command(arm::MotionCommand command);
   bool busy() const;

@@ -17,19 +17,19 @@ struct XarmSession {
 
   // Robot Commands cannot carry a refusal: a board ignores a frame it refuses (a save to a
   // read-only state dir, say) and at most logs why. For a request without a reply, with the
-  // embedded board: waits until the board handled it (one battery read) and throws
-  // ArmctlError(device) with what the board logged, if it refused. True when the outcome is
-  // known (embedded board, accepted); false for a device that cannot confirm it.
-  bool confirm_accepted(const std::string& what);
+  // embedded board: waits until the board handled it (one battery read) and returns a device
+  // error with what the board logged, if it refused. True when the outcome is known
+  // (embedded board, accepted); false for a device that cannot confirm it.
+  Result<bool> confirm_accepted(const std::string& what);
   // `status`, its error with what the embedded board logged added (e.g. why it sent no reply).
-  void check(Status status);
+  Status check(Status status);
 };
 
-// Throws ArmctlError for a bad URI or a device that cannot be opened (the CLI prints it).
+// The session, or the error for a bad URI or a device that cannot be opened.
 // `timeout_ms` 0 = the link's default reply timeout (1.5 s on HID, 500 ms otherwise). On
 // HID, warnings found while opening go to stderr and the board must answer a first battery
 // read.
-std::unique_ptr<XarmSession> open_xarm_session(const std::string& device, int servo_count,
-                                               int timeout_ms);
+Result<std::unique_ptr<XarmSession>> open_xarm_session(const std::string& device, int servo_count,
+                                                       int timeout_ms);
 
 }  // namespace armctl::session

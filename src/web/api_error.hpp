@@ -4,40 +4,49 @@
 // thrown before anything is sent to the arm.
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "core/error.hpp"
+#include "devices/robot_commands/group_start.hpp"
+#include "session/arm_worker.hpp"
 
 namespace armctl::web {
 
 class ApiError : public std::runtime_error {
  public:
   ApiError(int status, const std::string& message) : std::runtime_error(message), status_(status) {}
+  // A refusal that is an armctl error: its message, and the error kept for its detail.
+  ApiError(int status, Error error) : std::runtime_error(error.message), status_(status), error_(std::move(error)) {}
   int status() const { return status_; }
+  // The armctl error behind it (with its typed detail), or nullptr.
+  const Error* error() const { return error_ ? &*error_ : nullptr; }
 
  private:
   int status_;
+  std::optional<Error> error_;
 };
 
-// The status of an armctl error: a bad value 400; the worker busy, an unsupported feature
-// 409; anything the device or the operating system said 500.
+// The status of an armctl error, from its kind and typed detail (never its text): a bad
+// value 400; an unsupported feature, the worker busy or a stop that dropped the job
+// (session::JobRefused busy/dropped), a group the board did not start
+// (robot_commands::GroupNotStarted) 409; anything else the device or the operating system
+// said 500.
 inline int status_of(const Error& e) {
   switch (e.kind) {
     case ErrorKind::invalid_argument:
     case ErrorKind::invalid_config: return 400;
     case ErrorKind::unsupported: return 409;
-    default:
-      // The worker's refusals: a job runs ("busy: ..."), a stop dropped this one; the board's:
-      // a group that did not start (empty or erased).
-      return e.message.rfind("busy", 0) == 0 || e.message.find("stopped before it started") != std::string::npos ||
-                     e.message.find("did not start") != std::string::npos
-                 ? 409
-                 : 500;
+    default: break;
   }
+  if (const auto* refused = session::job_refusal(e); refused && refused->reason != session::JobRefused::Reason::closing)
+    return 409;
+  if (robot_commands::group_not_started(e)) return 409;
+  return 500;
 }
 
-[[noreturn]] inline void fail(const Error& e) { throw ApiError(status_of(e), e.message); }
+[[noreturn]] inline void fail(const Error& e) { throw ApiError(status_of(e), e); }
 
 template <typename T>
 T must(Result<T> r) {

@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include "core/quantity.hpp"
+#include "devices/robot_commands/group_start.hpp"
 #include "web/display_value.hpp"
 #include "web/api_error.hpp"
 #include "web/group_frames.hpp"
@@ -61,22 +62,8 @@ void add_group_routes(WebServer::State& s) {
     s.lease.require(c.client);
     const auto n = parse_group_number(c.params[0]);
     const auto times = parse_group_run(c.body());
-    board(fmt::format("run group {}", n), [n, times](robot_commands::Client& client) -> Status {
-      if (auto st = client.run_group(n, times); !st) return st;
-      // A board answers nothing to a run it refuses (an empty or erased group): only its
-      // 'started' notification says the group runs. Waited for as long as a reply may take.
-      const TimePoint deadline = client.clock().now() + client.options().reply_timeout;
-      for (;;) {
-        auto e = client.wait_event(deadline);
-        if (!e) {
-          if (e.error().kind != ErrorKind::timeout) return e.error();
-          return Error{ErrorKind::device,
-                       fmt::format("group {} did not start: the board sent no 'started' notification within {} ms "
-                                   "(is group {} empty on this board? download it first)",
-                                   n, std::chrono::duration_cast<std::chrono::milliseconds>(client.options().reply_timeout).count(), n)};
-        }
-        if (e->kind == robot_commands::GroupEventKind::started) return Ok{};
-      }
+    board(fmt::format("run group {}", n), [n, times](robot_commands::Client& client) {
+      return robot_commands::run_group_started(client, n, times);
     });
     c.reply({{"running", n}, {"times", times}, {"continuous", times == 0}});
   });

@@ -26,8 +26,9 @@ struct PlacedError {
   std::string message;  // without the place
 };
 
-// "program:12:5: found ..." -> {program, 12, 5, "found ..."}; other texts keep line 0.
-PlacedError place_error(const std::string& message);
+// An error's place from its SourcePlace detail ({program, 12, 5, "found ..."}); an error
+// without one is placed in the program at line 0.
+PlacedError place_error(const Error& error);
 
 struct CheckedProgram {
   std::vector<PlacedError> errors;  // empty: ok

@@ -2,6 +2,7 @@
 // (on the worker, progress in state.program), pause, resume, stop.
 #include <fmt/core.h>
 
+#include "core/source_place.hpp"
 #include "program/program_runner.hpp"
 #include "web/api_error.hpp"
 #include "web/program_check.hpp"
@@ -12,6 +13,13 @@ namespace armctl::web {
 
 namespace {
 
+// A placed error as the Error a refusal returns: "file:line:column: message" ("file:line:"
+// without a column), the place its detail; an error at line 0 is the message alone.
+Error placed_error(const PlacedError& e) {
+  if (!e.line) return Error{ErrorKind::invalid_argument, e.message};
+  return source_error(ErrorKind::invalid_argument, {e.file, e.line, e.column, e.message});
+}
+
 // The program run as a worker job: planned from a fresh read (accepted or refused with
 // placed errors), then run with the job's context so that pause, resume and stop reach it.
 MotionJob program_job(WebServer::State& s, ProgramRequest request) {
@@ -20,9 +28,7 @@ MotionJob program_job(WebServer::State& s, ProgramRequest request) {
     if (!here) return here.error();
     CheckedProgram checked = check_program(request, &arm, here->positions);
     if (!checked.plan) {
-      const PlacedError& e = checked.errors.front();
-      return Error{ErrorKind::invalid_argument,
-                   e.line ? fmt::format("{}:{}:{}: {}", e.file, e.line, e.column, e.message) : e.message};
+      return placed_error(checked.errors.front());
     }
     const program::ProgramPlan& plan = *checked.plan;
     s.program.started();
@@ -73,17 +79,15 @@ void add_program_routes(WebServer::State& s) {
     // The text's own errors before the arm is asked anything.
     const CheckedProgram text = check_program(r, nullptr, {});
     if (!text.errors.empty()) {
-      const auto& e = text.errors.front();
-      c.reply({{"error", e.line ? fmt::format("{}:{}:{}: {}", e.file, e.line, e.column, e.message) : e.message},
-               {"errors", errors_json(text.errors)}},
-              400);
+      c.reply({{"error", placed_error(text.errors.front()).message}, {"errors", errors_json(text.errors)}}, 400);
       return;
     }
     try {
       c.reply(s.start_motion("program", program_job(s, r)), 202);
     } catch (const ApiError& e) {
       if (e.status() != 400) throw;
-      c.reply({{"error", e.what()}, {"errors", errors_json({place_error(e.what())})}}, 400);
+      const PlacedError placed = e.error() ? place_error(*e.error()) : PlacedError{kProgramSource, 0, 0, e.what()};
+      c.reply({{"error", e.what()}, {"errors", errors_json({placed})}}, 400);
     }
   });
   s.router.add("POST", "/api/v1/program/pause", [&s](Call& c) {

@@ -72,7 +72,7 @@ TEST_F(BusArm, MoveToReachesTheToolPose) {
   auto moved = arm.move_to(g);
   ASSERT_TRUE(moved) << moved.error().message;
   ASSERT_TRUE(arm.wait());
-  arm.device().idle(std::chrono::milliseconds(500));  // the position loops settle
+  EXPECT_TRUE(arm.device().idle(std::chrono::milliseconds(500)));  // the position loops settle
   auto p = arm.pose();
   ASSERT_TRUE(p);
   EXPECT_LT((p->position - want.position).norm(), 0.002) << (p->position - want.position).transpose();
@@ -84,11 +84,11 @@ TEST_F(BusArm, StopBrakesAndHolds) {
   MoveOptions o;
   o.duration = std::chrono::seconds(4);
   ASSERT_TRUE(arm.move_joints(t, o));
-  arm.device().idle(std::chrono::milliseconds(1500));
+  EXPECT_TRUE(arm.device().idle(std::chrono::milliseconds(1500)));
   ASSERT_TRUE(arm.stop());
-  arm.device().idle(std::chrono::milliseconds(1000));
+  EXPECT_TRUE(arm.device().idle(std::chrono::milliseconds(1000)));
   const double held = arm.read()->positions[2];
-  arm.device().idle(std::chrono::milliseconds(1000));
+  EXPECT_TRUE(arm.device().idle(std::chrono::milliseconds(1000)));
   EXPECT_NEAR(arm.read()->positions[2], held, 0.2 * kDeg);
   EXPECT_LT(held, 100 * kDeg);
   EXPECT_GT(held, 10 * kDeg);

@@ -213,6 +213,14 @@ TEST_F(RcStream, FollowingErrorHaltsAndNamesTheJoint) {
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().kind, ErrorKind::device);
   EXPECT_NE(r.error().message.find("following error on joint servo4"), std::string::npos) << r.error().message;
+  // The detail apps branch on: the joint, where it was and where it should have been.
+  const FollowingError* f = following_error_of(r.error());
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->joint, 2);
+  EXPECT_EQ(f->name, "servo4");
+  EXPECT_GT(std::abs(f->planned - f->measured), f->limit);
+  EXPECT_GT(f->t, 0);
+  EXPECT_LE(f->t, 2.0);
 }
 
 TEST_F(RcStream, RefusesAMotionThatDoesNotStartWhereTheArmIs) {
@@ -323,6 +331,9 @@ TEST_F(BusStream, AJointsOwnFollowingErrorLimitReplacesItsKinds) {
   ASSERT_FALSE(halted);
   EXPECT_NE(halted.error().message.find("following error on joint UAE"), std::string::npos)
       << halted.error().message;
+  ASSERT_NE(following_error_of(halted.error()), nullptr);
+  EXPECT_EQ(following_error_of(halted.error())->name, "UAE");
+  EXPECT_DOUBLE_EQ(following_error_of(halted.error())->limit, 0.5 * kDeg);
   o.following_error[2] = 0;
   auto within_default = execute_motion(arm, cosine_motion(here(), to, 1.0), o);
   EXPECT_TRUE(within_default) << within_default.error().message;

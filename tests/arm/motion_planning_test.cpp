@@ -239,6 +239,8 @@ TEST_F(XarmMotion, ATargetBeyondAnyReachIsRefusedBeforePlanning) {
     auto plan = plan_path(arm.model(), from, std::span(&seg, 1));
     ASSERT_FALSE(plan);
     EXPECT_EQ(plan.error().message, fmt::format("segment 1 (LIN): target: x {} mm is beyond reach: {}", shown, reach));
+    ASSERT_NE(motion::path_refusal_of(plan.error()), nullptr);
+    EXPECT_EQ(motion::path_refusal_of(plan.error())->segment, 0);
     seg.kind = motion::SegmentKind::circ;
     seg.target.position.x() = start.position.x();
     seg.via = start.position + Eigen::Vector3d(0, 0, x);

@@ -185,10 +185,10 @@ TEST_F(RcArm, StopHoldsWhereTheServosAre) {
   MoveOptions o;
   o.duration = std::chrono::milliseconds(3000);
   ASSERT_TRUE(arm.move_joints(t, o));
-  arm.device().idle(std::chrono::milliseconds(1000));
+  EXPECT_TRUE(arm.device().idle(std::chrono::milliseconds(1000)));
   ASSERT_TRUE(arm.stop());
   const double at_stop = arm.read()->positions[0];
-  arm.device().idle(std::chrono::milliseconds(2000));
+  EXPECT_TRUE(arm.device().idle(std::chrono::milliseconds(2000)));
   EXPECT_NEAR(arm.read()->positions[0], at_stop, 0.5 * kDeg);
   EXPECT_LT(at_stop, 60 * kDeg);
 }

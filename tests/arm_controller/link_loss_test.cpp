@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "controller_rig.hpp"
+#include "devices/joint_bus/bus_master.hpp"
 #include "devices/joint_bus/reconnecting_link.hpp"
 
 namespace armctl::arm_controller::testing {
@@ -89,6 +90,44 @@ struct LinkLossRig {
   std::unique_ptr<robot_commands::Client> client;
   std::vector<std::string> log;
 };
+
+// A host's link (WhileLost::refuse): the loss and every call after it carry LinkLost, and the
+// master's errors on it say link_lost; an error of the joint itself does not.
+TEST(LinkLoss, ARefusingLinkSaysTheDeviceIsLostByItsDetail) {
+  auto sim_config = joint_sim::load_arm_config(joint_sim::default_arm_config_path());
+  joint_sim::SimArm arm(std::move(sim_config));
+  std::shared_ptr<BreakableLink> current;
+  bool peer_down = false;
+  joint_bus::ReconnectOptions options;
+  options.while_lost = joint_bus::ReconnectOptions::WhileLost::refuse;
+  ReconnectingLink link(
+      [&]() -> std::shared_ptr<transport::JointBusLink> {
+        if (peer_down) throw ArmctlError(ErrorKind::io, "connect: the arm is not running");
+        current = std::make_shared<BreakableLink>(arm.link());
+        return current;
+      },
+      arm.link().clock(), [&](TimePoint t) { arm.run_until(t); }, nullptr, options);
+  joint_bus::BusMaster master(link);
+  auto fine = master.ping(1, 0x1234);
+  ASSERT_TRUE(fine) << fine.error().message;
+  auto unplugged = master.ping(9, 0x1234);  // no joint 9 answers: a joint's failure, not a loss
+  ASSERT_FALSE(unplugged);
+  EXPECT_FALSE(joint_bus::device_lost(unplugged.error()));
+  peer_down = true;
+  current->broken = true;
+  try {
+    link.flush();
+    FAIL() << "a broken link did not throw";
+  } catch (const ArmctlError& e) {
+    ASSERT_TRUE(joint_bus::device_lost(e.error())) << e.what();
+    EXPECT_EQ(e.error().detail_as<joint_bus::LinkLost>()->why, "simulated arm closed the connection");
+  }
+  auto lost = master.ping(1, 0x1234);
+  ASSERT_FALSE(lost);
+  EXPECT_TRUE(joint_bus::device_lost(lost.error())) << lost.error().message;
+  ASSERT_NE(joint_bus::joint_failure(lost.error()), nullptr);
+  EXPECT_TRUE(joint_bus::joint_failure(lost.error())->link_lost);
+}
 
 TEST(LinkLoss, ReconnectsWithBackOffAndReportsEachAttemptAndTheRecovery) {
   LinkLossRig rig;

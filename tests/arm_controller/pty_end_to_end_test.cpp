@@ -36,7 +36,7 @@ TEST(PtyEndToEnd, SdkDrivesTheSimulatedArmThroughTheController) {
     ASSERT_TRUE(mv.ok()) << mv.error().message;
     EXPECT_EQ(*mv, 24000);
     ASSERT_TRUE(client.move({{1, 550}, {3, 450}, {7, 600}}, 600).ok());
-    client.pump_events(client.clock().now() + 1000ms);  // the move takes 0.6 s of wall time
+    EXPECT_TRUE(client.pump_events(client.clock().now() + 1000ms));  // the move takes 0.6 s of wall time
     auto p = client.read_positions({1, 3, 7});
     ASSERT_TRUE(p.ok()) << p.error().message;
     EXPECT_NEAR((*p)[0].position, 550, 1);

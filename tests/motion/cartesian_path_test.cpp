@@ -265,6 +265,11 @@ TEST(CartesianPath, ValidationNamesTheSegmentAndWhatIsAllowed) {
     PathSegment s = ok;
     s.target.position.y() = nan;
     EXPECT_THAT(refused(start, {ok, s}).message, HasSubstr("segment 2 (LIN): target: the position is not a finite"));
+    const Error e = refused(start, {ok, s});
+    ASSERT_NE(path_refusal_of(e), nullptr);
+    EXPECT_EQ(path_refusal_of(e)->segment, 1);
+    EXPECT_FALSE(path_refusal_of(e)->fraction);  // the segment as a whole
+    EXPECT_EQ(path_refusal_of(e)->joint, -1);
   }
   {
     PathSegment s = ok;

@@ -204,6 +204,18 @@ TEST(PathCheck, JointLeavingItsLimitsIsRefusedNamingTheJoint) {
   EXPECT_THAT(checked.error().message,
               MatchesRegex("segment 1 \\(LIN\\): at [0-9]+ % \\(x [-0-9.]+ y [-0-9.]+ z [-0-9.]+ mm\\): joint servo6 "
                            "would be at 20\\.[0-9] deg, allowed -20\\.0\\.\\.20\\.0 deg"));
+  // The same, typed: the segment, where on it (fraction and tool point), the joint.
+  const PathRefusal* r = path_refusal_of(checked.error());
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->segment, 0);
+  EXPECT_EQ(r->kind, SegmentKind::lin);
+  ASSERT_TRUE(r->fraction && r->point);
+  EXPECT_GT(*r->fraction, 0);
+  EXPECT_LT(*r->fraction, 1);
+  EXPECT_NEAR((*r->point - path.at(*r->fraction * path.duration()).position).norm(), 0, 1e-9);
+  EXPECT_EQ(r->joint, 0);
+  EXPECT_EQ(r->joint_name, "servo6");
+  EXPECT_EQ("segment 1 (LIN): " + r->reason, checked.error().message);
 }
 
 TEST(PathCheck, JointAtTheKinematicsLimitIsRefusedNamingTheJoint) {

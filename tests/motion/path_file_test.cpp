@@ -9,6 +9,8 @@
 #include <string>
 
 #include <gmock/gmock.h>
+
+#include "core/source_place.hpp"
 #include <gtest/gtest.h>
 
 namespace armctl::motion {
@@ -29,6 +31,13 @@ std::string refused(const std::string& text) {
   EXPECT_FALSE(f.ok()) << text;
   if (f) return "";
   EXPECT_EQ(f.error().kind, ErrorKind::invalid_config);
+  // An error at a line carries its place (SourcePlace), rendered as its message.
+  if (const SourcePlace* at = source_place(f.error())) {
+    EXPECT_EQ(at->file, "t.path");
+    EXPECT_EQ(source_error(f.error().kind, *at).message, f.error().message);
+  } else {
+    EXPECT_EQ(f.error().message.rfind("t.path: ", 0), 0u) << "a line's error without its place: " << f.error().message;
+  }
   return f.error().message;
 }
 

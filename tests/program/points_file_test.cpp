@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include "core/source_place.hpp"
 #include "motion/path_file.hpp"
 #include "program/points_file.hpp"
 
@@ -18,9 +19,17 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
 
+// Every such error carries its place (SourcePlace) and its message is that place's rendering.
+void expect_placed(const Error& e) {
+  const SourcePlace* at = source_place(e);
+  ASSERT_NE(at, nullptr) << e.message;
+  EXPECT_EQ(source_error(e.kind, *at).message, e.message);
+}
+
 std::string error_of(std::string_view text) {
   auto r = parse_points_file(text, "p.points");
   EXPECT_FALSE(r.ok()) << text;
+  if (!r) expect_placed(r.error());
   return r ? std::string() : r.error().message;
 }
 

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "arm/arm.hpp"
+#include "core/source_place.hpp"
 #include "arm/bus_arm_device.hpp"
 #include "arm/rc_arm_device.hpp"
 #include "arm/arm_files.hpp"
@@ -144,6 +145,12 @@ TEST_F(XarmProgram, CheckRefusesAnUnreachableMoveBeforeAnyByteIsSent) {
   EXPECT_EQ(plan.error().kind, ErrorKind::invalid_argument);
   // The line of the move that fails, its kind and target, and the path check's reason.
   EXPECT_EQ(plan.error().message.rfind("t.prog:3: (LIN far): at ", 0), 0u) << plan.error().message;
+  // Placed by its detail: the program's file and the line of the segment the path check named.
+  const SourcePlace* at = source_place(plan.error());
+  ASSERT_NE(at, nullptr);
+  EXPECT_EQ(at->file, "t.prog");
+  EXPECT_EQ(at->line, 3u);
+  EXPECT_EQ(at->reason.rfind("(LIN far): at ", 0), 0u) << at->reason;
   EXPECT_EQ(link.sent.size(), sent);
   // Beyond any reach: refused before planning, with the coordinate and the reach.
   const Flow beyond = flow_of("lin far speed=40mm/s\n", "far x=600mm y=0mm z=100mm pitch=50deg\n");

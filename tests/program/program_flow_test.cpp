@@ -4,6 +4,7 @@
 
 #include <numbers>
 
+#include "core/source_place.hpp"
 #include "program/program_flow.hpp"
 #include "program/program_parser.hpp"
 
@@ -26,9 +27,17 @@ Flow flow(std::string_view text) {
   return f ? std::move(f).value() : Flow{};
 }
 
+// Every such error carries its place (SourcePlace) and its message is that place's rendering.
+void expect_placed(const Error& e) {
+  const SourcePlace* at = source_place(e);
+  ASSERT_NE(at, nullptr) << e.message;
+  EXPECT_EQ(source_error(e.kind, *at).message, e.message);
+}
+
 std::string error_of(std::string_view text, const FlowLimits& limits = {}) {
   auto f = flow_of(text, limits);
   EXPECT_FALSE(f.ok()) << text;
+  if (!f) expect_placed(f.error());
   return f ? "" : f.error().message;
 }
 

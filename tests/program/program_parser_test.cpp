@@ -11,6 +11,7 @@
 #include <unistd.h>
 #include <fmt/core.h>
 
+#include "core/source_place.hpp"
 #include "program/program_parser.hpp"
 
 namespace armctl::program {
@@ -22,11 +23,19 @@ Program parsed(std::string_view text) {
   return p ? std::move(p).value() : Program{};
 }
 
+// Every such error carries its place (SourcePlace) and its message is that place's rendering.
+void expect_placed(const Error& e) {
+  const SourcePlace* at = source_place(e);
+  ASSERT_NE(at, nullptr) << e.message;
+  EXPECT_EQ(source_error(e.kind, *at).message, e.message);
+}
+
 std::string error_of(std::string_view text) {
   auto p = parse_program(text, "t.prog");
   EXPECT_FALSE(p.ok()) << text;
   if (p) return "";
   EXPECT_EQ(p.error().kind, ErrorKind::invalid_config);
+  expect_placed(p.error());
   return p.error().message;
 }
 

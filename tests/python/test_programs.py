@@ -28,6 +28,8 @@ def test_an_unreachable_point_is_refused_naming_the_line(xarm, tmp_path):
         xarm.check_program(str(prog), str(points))
     assert e.value.kind == "invalid_argument"
     assert "far.prog:1" in str(e.value)
+    assert e.value.detail == "source_place"
+    assert (e.value.file, e.value.line) == (str(prog), 1)
 
 
 def test_a_syntax_error_names_line_and_column(xarm, tmp_path):
@@ -36,6 +38,8 @@ def test_a_syntax_error_names_line_and_column(xarm, tmp_path):
     with pytest.raises(armctl.Error) as e:
         xarm.check_program(str(prog))
     assert "bad.prog:2:" in str(e.value)
+    assert e.value.detail == "source_place"
+    assert (e.value.file, e.value.line, e.value.column) == (str(prog), 2, 4)
 
 
 def test_run_moves_the_arm_and_reports_what_it_printed(xarm, tmp_path):

@@ -160,7 +160,7 @@ TEST(ClientEvents, RealBoardVariants) {
   Client c(link);
   link.inject(rc::Frame{6, {}}, 1ms);   // started, no DATA
   link.inject(rc::Frame{7, {}}, 2ms);   // no GroupStop sent: this means finished
-  c.pump_events(link.sim_clock().now() + 10ms);
+  ASSERT_TRUE(c.pump_events(link.sim_clock().now() + 10ms));
   auto a = c.next_event();
   auto b = c.next_event();
   ASSERT_TRUE(a && b);
@@ -284,7 +284,7 @@ TEST(ClientOnEmulator, EveryCommand) {
   auto& servos = link.emulator().servos();
 
   ASSERT_TRUE(c.move({{1, 300}, {2, std::nullopt}, {6, 700}}, 1000));
-  c.pump_events(link.sim_clock().now() + 1100ms);
+  ASSERT_TRUE(c.pump_events(link.sim_clock().now() + 1100ms));
   auto pos = c.read_all_positions();
   ASSERT_TRUE(pos) << pos.error().message;
   ASSERT_EQ(pos->size(), 6u);
@@ -293,7 +293,7 @@ TEST(ClientOnEmulator, EveryCommand) {
   EXPECT_EQ((*pos)[5].position, 700);
 
   ASSERT_TRUE(c.servos_off({1, 6}));
-  c.pump_events(link.sim_clock().now() + 1ms);
+  ASSERT_TRUE(c.pump_events(link.sim_clock().now() + 1ms));
   EXPECT_FALSE(servos.torque(1));
   EXPECT_TRUE(servos.torque(2));
 
@@ -307,17 +307,17 @@ TEST(ClientOnEmulator, EveryCommand) {
   EXPECT_EQ((*off)[0].offset, -20);
   EXPECT_EQ((*off)[1].offset, 0);
   ASSERT_TRUE(c.save_offsets({3}));
-  c.pump_events(link.sim_clock().now() + 1ms);
+  ASSERT_TRUE(c.pump_events(link.sim_clock().now() + 1ms));
   EXPECT_EQ(servos.saved_offset(3), -20);
 
   ASSERT_TRUE(c.set_mode(2, ServoMode::motor, 500));
-  c.pump_events(link.sim_clock().now() + 1ms);
+  ASSERT_TRUE(c.pump_events(link.sim_clock().now() + 1ms));
   EXPECT_EQ(servos.mode(2), rc_board::ServoMode::motor);
   // Full speed in reverse travels as two's complement (-1000 = FC18) and the board obeys it.
   ASSERT_TRUE(c.set_mode(5, ServoMode::motor, -1000));
   EXPECT_EQ(link.sent.back().data, (std::vector<std::uint8_t>{5, 1, 0x18, 0xFC}));
   const double before = servos.commanded_position(5);
-  c.pump_events(link.sim_clock().now() + 100ms);
+  ASSERT_TRUE(c.pump_events(link.sim_clock().now() + 100ms));
   EXPECT_EQ(servos.mode(5), rc_board::ServoMode::motor);
   EXPECT_NEAR(servos.commanded_position(5), before - 150.0, 2.0);  // 1.5 units/s per speed unit
 

@@ -174,7 +174,7 @@ TEST(ClientOverPty, EmulatedXarmEveryCommand) {
   auto link = open_link(parse_device_uri(runner.device_path() + "?baud=115200").value()).value();
   Client c(*link, ClientOptions{.reply_timeout = 2s, .download_timeout = 2s});
   ASSERT_TRUE(c.move({{1, 200}, {4, 800}}, 0));
-  c.pump_events(c.clock().now() + 300ms);  // the emulator's fastest move is not instant
+  ASSERT_TRUE(c.pump_events(c.clock().now() + 300ms));  // the emulator's fastest move is not instant
   auto p = c.read_positions({1, 4});
   ASSERT_TRUE(p) << p.error().message;
   EXPECT_EQ((*p)[0].position, 200);

@@ -42,7 +42,7 @@ std::vector<double> reference_tool_pose(const std::string& arm, const std::vecto
 double reference_read_seconds(const std::string& arm, int reads) {
   session::SessionOptions o;
   o.wall_clock = true;
-  auto s = session::open_arm_session(arm, "", o);
+  auto s = session::open_arm_session(arm, "", o).value();
   (void)s->arm->read().value();  // the first read may wake the link up
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < reads; ++i) (void)s->arm->read().value();

@@ -16,7 +16,7 @@ using namespace std::chrono_literals;
 // SHOULDER: revolute, +-150 deg, starts near 0.
 constexpr std::size_t kJoint = 1;
 
-std::unique_ptr<ArmWorker> scara_worker() { return std::make_unique<ArmWorker>(open_arm_session("scara", "")); }
+std::unique_ptr<ArmWorker> scara_worker() { return std::make_unique<ArmWorker>(open_arm_session("scara", "").value()); }
 
 // The first snapshot with positions.
 ArmSnapshot first_reading(const ArmWorker& w) {
@@ -108,6 +108,12 @@ TEST(ArmWorker, RefusesASecondJobWhileOneRunsUnlessQueued) {
   const Status refused = second.get();
   ASSERT_FALSE(refused);
   EXPECT_EQ(refused.error().message, "busy: hold (stop it first)");
+  // What apps branch on: the typed detail.
+  const JobRefused* why = job_refusal(refused.error());
+  ASSERT_NE(why, nullptr);
+  EXPECT_EQ(why->reason, JobRefused::Reason::busy);
+  EXPECT_EQ(why->job, "other");
+  EXPECT_EQ(why->running, "hold");
   auto queued = w->run("after", [](arm::Arm&, JobContext&) -> Status { return Ok{}; }, true);
   release.count_down();
   EXPECT_TRUE(first.get());
@@ -143,6 +149,11 @@ TEST(ArmWorker, StopSlowsTheMotionDownOnItsPathAndDropsQueuedJobs) {
   const Status dropped = queued.get();
   ASSERT_FALSE(dropped);
   EXPECT_EQ(dropped.error().message, "next: stopped before it started");
+  ASSERT_NE(job_refusal(dropped.error()), nullptr);
+  EXPECT_EQ(job_refusal(dropped.error())->reason, JobRefused::Reason::dropped);
+  EXPECT_EQ(job_refusal(dropped.error())->job, "next");
+  // A job's own error carries no refusal.
+  EXPECT_TRUE(st);
   // The arm stays where it stopped: short of the target.
   ArmSnapshot s = w->wait_for_update(w->snapshot().sequence, 5s);
   EXPECT_LT(s.positions[kJoint], start.positions[kJoint] + 1.4);
@@ -229,14 +240,14 @@ namespace {
 // The servers' option: the embedded simulated bus in step with the wall clock, as a real
 // arm would be (a lower bound only: a loaded machine may run it later, never sooner).
 TEST(ArmSession, WallClockOptionPacesTheEmbeddedSimulatedBus) {
-  auto s = open_arm_session("scara", "", SessionOptions{.wall_clock = true});
+  auto s = open_arm_session("scara", "", SessionOptions{.wall_clock = true}).value();
   ASSERT_TRUE(s->paced);
   const auto wall_start = std::chrono::steady_clock::now();
   const TimePoint sim_start = s->arm->clock().now();
   ASSERT_TRUE(s->arm->device().idle(std::chrono::milliseconds(300)));
   EXPECT_GE(s->arm->clock().now() - sim_start, std::chrono::milliseconds(300));
   EXPECT_GE(std::chrono::steady_clock::now() - wall_start, std::chrono::milliseconds(290));
-  EXPECT_FALSE(open_arm_session("scara", "")->paced);  // the CLI's: as fast as the host goes
+  EXPECT_FALSE(open_arm_session("scara", "").value()->paced);  // the CLI's: as fast as the host goes
 }
 
 }  // namespace

@@ -355,7 +355,7 @@ TEST_F(ScaraTeach, PointsFromAScriptLoopsOffThenHolding) {
   EXPECT_NEAR(file->points[0].joints[0].value, before[0] + 0.2, 0.002);
   EXPECT_NEAR(file->points[1].joints[1].value, before[1] + sweep(1, -0.3), 0.002);
   const std::vector<double> held = here();
-  arm.device().idle(std::chrono::seconds(1));
+  EXPECT_TRUE(arm.device().idle(std::chrono::seconds(1)));
   for (std::size_t j = 0; j < held.size(); ++j) EXPECT_NEAR(here()[j], held[j], 0.002);
 }
 

@@ -35,7 +35,7 @@ class ApiServer {
   explicit ApiServer(const std::string& arm_name = "xarm", ServerOptions options = {}, const std::string& device = "") {
     session::SessionOptions session_options;
     session_options.reconnect = true;  // as `armctl serve` opens it
-    auto session = session::open_arm_session(arm_name, device, session_options);
+    auto session = armctl::session::open_arm_session(arm_name, device, session_options).value();
     options.port = 0;
     if (options.host.empty()) options.host = "127.0.0.1";
     options.device = describe_device(*session, device);

@@ -184,7 +184,7 @@ TEST(WebApi, TokenOffTheLoopbackOrWhenGiven) {
 }
 
 TEST(WebApi, NoTokenNoNonLoopbackListen) {
-  auto session = session::open_arm_session("xarm", "");
+  auto session = session::open_arm_session("xarm", "").value();
   session::ArmWorker worker(std::move(session));
   ServerOptions o;
   o.host = "0.0.0.0";
@@ -193,7 +193,7 @@ TEST(WebApi, NoTokenNoNonLoopbackListen) {
 
 TEST(WebApi, APortInUseIsRefused) {
   ApiServer api;
-  auto session = session::open_arm_session("xarm", "");
+  auto session = session::open_arm_session("xarm", "").value();
   session::ArmWorker worker(std::move(session));
   ServerOptions o;
   o.port = api.port();

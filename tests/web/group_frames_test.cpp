@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include "core/source_place.hpp"
+#include "devices/robot_commands/group_start.hpp"
 #include "motion/rob_file.hpp"
+#include "session/arm_worker.hpp"
 #include "web/api_error.hpp"
 #include "refusal.hpp"
 #include "web/base64.hpp"
@@ -164,18 +167,49 @@ TEST(ControlLease, EndsWhenItsPageGoesAwayOrAfterIdleTime) {
   EXPECT_TRUE(lease.view("script").you);
 }
 
+// 409 or 500 follows the error's typed detail, whatever its message says.
+TEST(ApiStatus, RefusalsAreTheirDetailsNotTheirWords) {
+  using session::JobRefused;
+  const std::string words = "busy: stopped before it started; group 1 did not start";
+  EXPECT_EQ(status_of(Error{ErrorKind::device, words}), 500);
+  EXPECT_EQ(status_of(Error{ErrorKind::device, "x", JobRefused{JobRefused::Reason::busy, "move", "program"}}), 409);
+  EXPECT_EQ(status_of(Error{ErrorKind::device, "x", JobRefused{JobRefused::Reason::dropped, "move", ""}}), 409);
+  EXPECT_EQ(status_of(Error{ErrorKind::device, "x", JobRefused{JobRefused::Reason::closing, "move", ""}}), 500);
+  EXPECT_EQ(status_of(Error{ErrorKind::device, "x", robot_commands::GroupNotStarted{3, {}}}), 409);
+  EXPECT_EQ(status_of(Error{ErrorKind::timeout, "x", robot_commands::GroupNotStarted{3, {}}}), 409);
+  EXPECT_EQ(status_of(Error{ErrorKind::invalid_argument, words}), 400);
+  EXPECT_EQ(status_of(Error{ErrorKind::unsupported, "x"}), 409);
+  // The router's refusal keeps the error, detail and all.
+  try {
+    fail(Error{ErrorKind::device, "x", JobRefused{JobRefused::Reason::busy, "move", "program"}});
+    FAIL() << "fail() returned";
+  } catch (const ApiError& e) {
+    EXPECT_EQ(e.status(), 409);
+    ASSERT_NE(e.error(), nullptr);
+    ASSERT_NE(session::job_refusal(*e.error()), nullptr);
+    EXPECT_EQ(session::job_refusal(*e.error())->running, "program");
+  }
+}
+
 TEST(ProgramCheck, ErrorsArePlacedAtTheirLine) {
-  const PlacedError e = place_error("program:12:5: found 'x', expected a move");
+  // Placed by the error's SourcePlace, never by its text: a message that looks like a place
+  // is not one, and a place is found whatever the message says.
+  const PlacedError e = place_error(source_error(ErrorKind::invalid_config, {"program", 12, 5, "found 'x', expected a move"}));
   EXPECT_EQ(e.file, "program");
   EXPECT_EQ(e.line, 12u);
   EXPECT_EQ(e.column, 5u);
   EXPECT_EQ(e.message, "found 'x', expected a move");
-  const PlacedError l = place_error("program:3: (LIN pick): no IK solution");
+  const PlacedError l = place_error(source_error(ErrorKind::invalid_argument, {"program", 3, 0, "(LIN pick): no IK solution"}));
   EXPECT_EQ(l.line, 3u);
   EXPECT_EQ(l.column, 0u);
   EXPECT_EQ(l.message, "(LIN pick): no IK solution");
-  EXPECT_EQ(place_error("points:2:1: found '1', expected a name").file, "points");
-  EXPECT_EQ(place_error("the device is gone").line, 0u);
+  const PlacedError other = place_error(Error{ErrorKind::invalid_config, "anything", SourcePlace{"points", 2, 1, "found '1'"}});
+  EXPECT_EQ(other.file, "points");
+  EXPECT_EQ(other.line, 2u);
+  EXPECT_EQ(other.message, "found '1'");
+  const PlacedError text_only = place_error(Error{ErrorKind::invalid_config, "program:12:5: found 'x'"});
+  EXPECT_EQ(text_only.line, 0u);
+  EXPECT_EQ(text_only.message, "program:12:5: found 'x'");
   ProgramRequest unknown_point;
   unknown_point.source = "wait 1s\nptp home\n";
   CheckedProgram c = check_program(unknown_point, nullptr, {});

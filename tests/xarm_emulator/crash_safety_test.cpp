@@ -10,7 +10,7 @@
 
 #include <iostream>
 
-#include "devices/rc_board/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "devices/rc_board/group_store.hpp"
 
 namespace armctl::xarm::test {

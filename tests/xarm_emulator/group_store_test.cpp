@@ -10,7 +10,7 @@
 #include <fstream>
 #include <memory>
 
-#include "devices/rc_board/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "devices/rc_board/group_file_format.hpp"
 #include "devices/rc_board/group_store.hpp"
 
@@ -126,7 +126,7 @@ TEST(GroupStore, FailedSaveLeavesGroupUnchanged) {
   EXPECT_NE(status.error().message.find("group-005.grp"), std::string::npos);
   EXPECT_EQ(*store.find(5), sample(1));
   for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
-    EXPECT_FALSE(rc_board::is_temporary_name(entry.path().filename().string()));
+    EXPECT_FALSE(is_temporary_name(entry.path().filename().string()));
 }
 
 // A temporary file that cannot be removed (a read-only state dir; as root a non-empty
@@ -190,21 +190,21 @@ TEST(GroupStore, OddEntriesAreReportedAndSkippedUnread) {
 TEST(Atomic, ReadWholeFileChecksTypeAndSizeFirst) {
   TempDir dir;
   std::ofstream(dir.path() / "small") << "12345";
-  auto small = rc_board::read_whole_file(dir.path() / "small", 5);
+  auto small = read_whole_file(dir.path() / "small", 5);
   ASSERT_TRUE(small.ok()) << small.error().message;
   EXPECT_EQ((*small)->size(), 5u);
-  auto large = rc_board::read_whole_file(dir.path() / "small", 4);
+  auto large = read_whole_file(dir.path() / "small", 4);
   ASSERT_FALSE(large.ok());
   EXPECT_NE(large.error().message.find("is 5 bytes"), std::string::npos) << large.error().message;
-  auto missing = rc_board::read_whole_file(dir.path() / "none", 4);
+  auto missing = read_whole_file(dir.path() / "none", 4);
   ASSERT_TRUE(missing.ok());
   EXPECT_FALSE(missing->has_value());
-  EXPECT_FALSE(rc_board::read_whole_file(dir.path(), 4).ok());
+  EXPECT_FALSE(read_whole_file(dir.path(), 4).ok());
 }
 
 TEST(Atomic, TemporaryNamesAreRecognised) {
-  EXPECT_TRUE(rc_board::is_temporary_name("group-001.grp.tmp-77"));
-  EXPECT_FALSE(rc_board::is_temporary_name("group-001.grp"));
+  EXPECT_TRUE(is_temporary_name("group-001.grp.tmp-77"));
+  EXPECT_FALSE(is_temporary_name("group-001.grp"));
 }
 
 }  // namespace

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/armctl/arm_motion.hpp"
-#include "apps/armctl/arm_session.hpp"
+#include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/json_output.hpp"
 #include "apps/armctl/motion_trace.hpp"
@@ -193,7 +193,7 @@ arm::CartesianGoal parse_goal(const ArmArgs& a) {
   return g;
 }
 
-void after_move(const ArmArgs& a, ArmSession& s, const std::optional<arm::CartesianGoal>& goal) {
+void after_move(const ArmArgs& a, session::ArmSession& s, const std::optional<arm::CartesianGoal>& goal) {
   if (!a.wait) {
     if (!a.json) fmt::print("moving\n");
     else print_json_line(json{{"moving", true}});
@@ -227,12 +227,12 @@ void after_move(const ArmArgs& a, ArmSession& s, const std::optional<arm::Cartes
 }
 
 void run_joints(const ArmArgs& a) {
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   print_joints(a, s->arm->model(), must(s->arm->read()));
 }
 
 void run_pose(const ArmArgs& a) {
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   const motion::JointVector q = s->arm->chain_of(must(s->arm->read()).positions);
   const motion::Pose p = s->arm->forward(q);
   const motion::Rpy rpy = s->arm->tool_rpy(p, q);
@@ -241,7 +241,7 @@ void run_pose(const ArmArgs& a) {
 }
 
 void run_move_joints(const ArmArgs& a) {
-  const arm::ArmModel model = load_arm(a.arm);  // refuse bad words before opening anything
+  const arm::ArmModel model = session::load_arm(a.arm).value();  // refuse bad words before opening anything
   std::vector<std::optional<double>> targets(std::size_t(model.joint_count()));
   for (const auto& w : a.words) {
     auto [name, value] = split_assignment(w, "JOINT=VALUE (e.g. 2=30deg, SHOULDER=-0.5rad, Z=120mm)");
@@ -251,7 +251,7 @@ void run_move_joints(const ArmArgs& a) {
     targets[std::size_t(i)] = must(parse_quantity(value, j.dimension, "joint " + j.name));
   }
   const arm::MoveOptions options = move_options(a);
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   must(s->arm->check_targets(targets));
   must(s->arm->move_joints(targets, options));
   after_move(a, *s, std::nullopt);
@@ -281,7 +281,7 @@ void run_move_linear(const ArmArgs& a) {
   if (!a.zone.empty()) m.zone = must(parse_quantity(a.zone, Dimension::length, "--zone", 0, "mm"));
   if (m.zone < 0) usage(fmt::format("--zone '{}' is not allowed: 0 or more (e.g. 5mm)", a.zone));
   const MotionCliOptions options = motion_cli_options(a);
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   run_path_moves(*s, {m}, options);
   ArmArgs waited = a;
   waited.wait = true;  // run_path_moves waited: print where the arm stands
@@ -294,7 +294,7 @@ void run_path(const ArmArgs& a) {
   MotionCliOptions options = motion_cli_options(a);
   std::optional<MotionTrace> trace;  // opened before anything moves: a bad path is refused first
   if (!a.trace.empty()) options.trace = &trace.emplace(a.trace);
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   run_path_moves(*s, file.moves, options);
   if (trace) trace->finish();
   ArmArgs waited = a;
@@ -303,7 +303,7 @@ void run_path(const ArmArgs& a) {
 }
 
 void run_stop(const ArmArgs& a) {
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   must(s->arm->stop());
   if (a.json) print_json_line(json{{"stopped", true}});
   else fmt::print("stopped\n");
@@ -314,14 +314,14 @@ void run_move_to(const ArmArgs& a) {
   if (!a.zone.empty()) usage("--zone needs --linear (a fly-by zone belongs to a Cartesian move)");
   const arm::CartesianGoal goal = parse_goal(a);
   const arm::MoveOptions options = move_options(a);
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   must(s->arm->move_to(goal, options));
   after_move(a, *s, goal);
 }
 
 void run_ik(const ArmArgs& a) {
   const arm::CartesianGoal goal = parse_goal(a);
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   const arm::JointState now = must(s->arm->read());
   const auto solutions = must(s->arm->inverse(goal, now));
   const arm::ArmModel& m = s->arm->model();
@@ -347,7 +347,7 @@ void run_ik(const ArmArgs& a) {
 
 void run_torque(const ArmArgs& a) {
   if (a.onoff != "on" && a.onoff != "off") usage(fmt::format("torque: '{}' is not allowed: on or off", a.onoff));
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   must(s->arm->set_torque(a.onoff == "on"));
   if (a.json) print_json_line(json{{"torque", a.onoff}});
   else fmt::print("torque {}\n", a.onoff);
@@ -368,13 +368,13 @@ void run_gripper(const ArmArgs& a) {
     fraction = v / 100;
   }
   const arm::MoveOptions options = move_options(a);
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   must(s->arm->gripper(fraction, options));
   after_move(a, *s, std::nullopt);
 }
 
 void run_calibrate_zero(const ArmArgs& a) {
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   const arm::ArmModel& m = s->arm->model();
   std::vector<int> joints;
   for (const auto& w : a.words) joints.push_back(find_joint(m, w));

@@ -212,7 +212,7 @@ double tool_path_error(const arm::Arm& arm, const arm::MotionReport& r, const mo
 
 }  // namespace
 
-void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& moves, const MotionCliOptions& options) {
+void run_path_moves(session::ArmSession& session, const std::vector<motion::PathMove>& moves, const MotionCliOptions& options) {
   arm::Arm& arm = *session.arm;
   auto here = arm.read();
   if (!here) throw ArmctlError(here.error());

@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "apps/armctl/arm_session.hpp"
+#include "session/arm_session.hpp"
 #include "motion/path_file.hpp"
 
 namespace armctl::cli {
@@ -23,6 +23,6 @@ struct MotionCliOptions {
 
 // A path file's moves, or one move from the command line (line 0). Throws ArmctlError
 // naming the line and what was wrong (nothing has moved then).
-void run_path_moves(ArmSession& session, const std::vector<motion::PathMove>& moves, const MotionCliOptions& options);
+void run_path_moves(session::ArmSession& session, const std::vector<motion::PathMove>& moves, const MotionCliOptions& options);
 
 }  // namespace armctl::cli

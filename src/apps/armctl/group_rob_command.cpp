@@ -11,7 +11,7 @@
 
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/xarm_args.hpp"
-#include "apps/armctl/xarm_session.hpp"
+#include "session/xarm_session.hpp"
 #include "core/error.hpp"
 #include "motion/action_group_file.hpp"
 #include "motion/rob_file.hpp"
@@ -50,7 +50,7 @@ void run_import(const RobArgs& a, const XarmDeviceOptions& d) {
   }
   if (!a.group.empty()) {
     const auto number = xarm_args::parse_group(a.group, false);
-    auto s = open_xarm_session(*d.device, *d.servo_count, *d.timeout_ms);
+    auto s = session::open_xarm_session(*d.device, *d.servo_count, *d.timeout_ms).value();
     if (auto st = s->client->download_group(number, group.actions); !st) throw ArmctlError(st.error());
     fmt::print("group {}: {} actions downloaded\n", number, group.actions.size());
   }

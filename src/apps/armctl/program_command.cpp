@@ -16,7 +16,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
-#include "apps/armctl/arm_session.hpp"
+#include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/json_output.hpp"
 #include "apps/armctl/motion_trace.hpp"
@@ -105,7 +105,7 @@ void print_check(const ProgramArgs& a, const Loaded& l, const program::ProgramPl
 
 void run_check(const ProgramArgs& a) {
   const Loaded l = load(a);
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   const auto p = plan(l, *s->arm, true);
   print_check(a, l, p, *s->arm);
 }
@@ -117,7 +117,7 @@ void run_run(const ProgramArgs& a) {
   const Loaded l = load(a);
   std::optional<MotionTrace> trace;  // opened before anything moves: a bad path is refused first
   if (!a.trace.empty()) trace.emplace(a.trace);
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   arm::Arm& arm = *s->arm;
   const auto p = plan(l, arm, !a.step);  // refuses before anything moves
   // The estimate at the override the run uses (it said 81.8 s for a run of 164.4 s at 50 %).
@@ -208,7 +208,7 @@ void run_compile(const ProgramArgs& a) {
       usage(fmt::format("--path-error '{}' is not allowed: 0.1mm up to 50mm", a.path_error));
   }
   const Loaded l = load(a);
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   if (!s->rc)
     usage(fmt::format("arm '{}' on device '{}' is driven over the joint bus: action groups need a Robot Commands "
                       "board (an xArm, or armctl's arm controller)",

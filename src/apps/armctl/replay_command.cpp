@@ -8,7 +8,7 @@
 
 #include <fmt/core.h>
 
-#include "apps/armctl/arm_session.hpp"
+#include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "arm/motion_executor.hpp"
@@ -44,7 +44,7 @@ void run_replay(const ReplayArgs& a) {
   auto recording = motion::read_recording(a.file);
   if (!recording) throw ArmctlError(recording.error());
   // The recording names its arm: the shipped model of that name unless --arm says otherwise.
-  auto s = open_arm_session(a.arm.empty() ? recording->arm : a.arm, a.device);
+  auto s = session::open_arm_session(a.arm.empty() ? recording->arm : a.arm, a.device).value();
   arm::Arm& arm = *s->arm;
   auto here = arm.read();
   if (!here) throw ArmctlError(here.error());

@@ -10,7 +10,7 @@
 
 #include <fmt/core.h>
 
-#include "apps/armctl/arm_session.hpp"
+#include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "core/printable.hpp"
@@ -75,7 +75,7 @@ void run_serve(const ServeArgs& a) {
   session::SessionOptions session_options;
   session_options.wall_clock = true;
   session_options.reconnect = true;  // a restarted simulator or a replugged adapter is picked up again
-  auto session = open_arm_session(a.arm, a.device, session_options);
+  auto session = armctl::session::open_arm_session(a.arm, a.device, session_options).value();
   const arm::ArmModel& model = session->arm->model();
   options.urdf = read_regular_file(model.urdf, "the arm's URDF", 1 << 20).value();
   options.device = web::describe_device(*session, a.device);

@@ -6,10 +6,10 @@
 
 #include <fmt/core.h>
 
-#include "apps/armctl/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/json_output.hpp"
 #include "core/printable.hpp"
+#include "session/arm_session.hpp"
 
 namespace armctl::cli {
 
@@ -27,8 +27,8 @@ void add_stop_command(CLI::App& app) {
                   "the arm controller)");
   cmd->add_flag("--json", a->json, "Machine-readable output: {\"event\": \"stopped\", \"device\": ...}");
   cmd->callback([a] {
-    const std::string arm = !a->arm.empty() ? a->arm : (device_is_joint_bus(a->device) ? "scara" : "xarm");
-    auto s = open_arm_session(arm, a->device);
+    const std::string arm = !a->arm.empty() ? a->arm : (session::device_is_joint_bus(a->device) ? "scara" : "xarm");
+    auto s = session::open_arm_session(arm, a->device).value();
     const auto stopped = s->arm->stop();
     if (!stopped) throw ArmctlError(stopped.error());
     if (a->json)

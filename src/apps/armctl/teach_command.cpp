@@ -7,7 +7,7 @@
 
 #include <fmt/core.h>
 
-#include "apps/armctl/arm_session.hpp"
+#include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/stdin_lines.hpp"
@@ -70,7 +70,7 @@ void run_teach(const TeachArgs& a) {
   if (recording)
     if (auto w = check_writable(a.out); !w)
       throw ArmctlError(w.error().kind, w.error().message + "; nothing recorded, torque not switched off");
-  auto s = open_arm_session(a.arm, a.device);
+  auto s = session::open_arm_session(a.arm, a.device).value();
   arm::Arm& arm = *s->arm;
   Interrupted interrupted;
   StopOnSignals on_signals(interrupted);

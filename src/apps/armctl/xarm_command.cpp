@@ -12,7 +12,7 @@
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/xarm_args.hpp"
 #include "apps/armctl/serve_support.hpp"
-#include "apps/armctl/xarm_session.hpp"
+#include "session/xarm_session.hpp"
 #include "devices/robot_commands/arrival.hpp"
 #include "motion/action_group_file.hpp"
 #include "protocol/robot_commands/units.hpp"
@@ -101,8 +101,8 @@ void done(const XarmCli& o, const std::string& text) {
   else fmt::print("{}\n", text);
 }
 
-std::unique_ptr<XarmSession> open(const XarmCli& o) {
-  return open_xarm_session(o.device, o.servo_count, o.timeout_ms);
+std::unique_ptr<session::XarmSession> open(const XarmCli& o) {
+  return check(session::open_xarm_session(o.device, o.servo_count, o.timeout_ms));
 }
 
 void run_move(const XarmCli& o) {
@@ -183,9 +183,9 @@ void run_offset_adjust(const XarmCli& o) {
 void run_offset_save(const XarmCli& o) {
   const auto ids = xarm_args::parse_servos(o.servos, o.servo_count);
   auto s = open(o);
-  s->check(s->client->save_offsets(ids));
+  check(s->check(s->client->save_offsets(ids)));
   // ServoOffsetWrite has no reply: only the embedded board can say whether it stored them.
-  if (s->confirm_accepted("ServoOffsetWrite")) return done(o, fmt::format("offsets saved for {} servos", ids.size()));
+  if (check(s->confirm_accepted("ServoOffsetWrite"))) return done(o, fmt::format("offsets saved for {} servos", ids.size()));
   done(o, fmt::format("offset save sent for {} servos (not confirmed: Robot Commands has no reply to it; a board "
                       "that cannot store them says so only in its own log)",
                       ids.size()));
@@ -228,8 +228,8 @@ void run_info_read(const XarmCli& o) {
 
 void run_info_write(const XarmCli& o) {
   auto s = open(o);
-  s->check(s->client->write_bus_servo_info(o.info));
-  if (s->confirm_accepted("BusServoInfoWrite")) return done(o, fmt::format("bus servo info written (ID {})", o.info.servo));
+  check(s->check(s->client->write_bus_servo_info(o.info)));
+  if (check(s->confirm_accepted("BusServoInfoWrite"))) return done(o, fmt::format("bus servo info written (ID {})", o.info.servo));
   done(o, fmt::format("bus servo info sent (ID {}; not confirmed: Robot Commands has no reply to it)", o.info.servo));
 }
 
@@ -237,7 +237,7 @@ void run_group_download(const XarmCli& o) {
   const auto group = xarm_args::parse_group(o.group, false);
   const auto file = check(motion::read_action_group_file(o.file));
   auto s = open(o);
-  s->check(s->client->download_group(group, file.actions));
+  check(s->check(s->client->download_group(group, file.actions)));
   done(o, fmt::format("group {}: {} actions downloaded", group, file.actions.size()));
 }
 
@@ -301,7 +301,7 @@ void run_group_stop(const XarmCli& o) {
 void run_group_erase(const XarmCli& o) {
   const auto group = xarm_args::parse_group(o.group, true);
   auto s = open(o);
-  s->check(s->client->erase_group(group));
+  check(s->check(s->client->erase_group(group)));
   done(o, group == 255 ? std::string("all groups erased") : fmt::format("group {} erased", group));
 }
 

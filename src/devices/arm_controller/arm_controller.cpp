@@ -366,7 +366,10 @@ void ArmController::note_success(Joint& j) {
 
 void ArmController::note_fault(Joint& j, const Error& f, const char* doing) {
   ++j.status.faults;
-  const bool changed = j.status.answering || j.status.last_fault != f.message || j.status.faults == 1;
+  const joint_bus::JointFailure* failure = joint_bus::joint_failure(f);
+  const auto now = failure ? std::optional(std::pair(failure->kind, failure->stage)) : std::nullopt;
+  const bool changed = j.status.answering || j.last_failure != now || j.status.faults == 1;
+  j.last_failure = now;
   j.status.answering = false;
   j.status.last_fault = f.message;
   if (changed || j.status.faults % kFaultLogEvery == 0)

@@ -20,6 +20,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "devices/arm_controller/controller_config.hpp"
@@ -154,6 +155,9 @@ class ArmController final : public rc_board::ArmBackend {
     motion::JointMotionModel model{motion::JointProfile{}};  // its setpoint, replayed from what was sent
     std::int8_t offset = 0;
     JointStatus status;
+    // The last failure's kind and stage (the master's JointFailure; empty when the error had
+    // none): a fault is logged when it changes, not on every repeat.
+    std::optional<std::pair<joint_bus::FailureKind, joint_bus::Stage>> last_failure;
   };
 
   Joint& at(int joint);

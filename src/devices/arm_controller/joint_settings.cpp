@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/strict_json.hpp"
-#include "devices/rc_board/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "protocol/robot_commands/messages.hpp"
 
 namespace armctl::arm_controller {
@@ -167,7 +167,7 @@ Result<ControllerSettings> load_settings(const std::filesystem::path& state_dir,
                                          const ControllerSettings& defaults) {
   const auto path = settings_path(state_dir);
   // A few hundred bytes for seven joints; 64 KiB is far above any real one.
-  auto bytes = rc_board::read_whole_file(path, 64 * 1024);
+  auto bytes = read_whole_file(path, 64 * 1024);
   if (!bytes) return bytes.error();
   if (!bytes->has_value()) return defaults;
   const auto& data = **bytes;
@@ -191,7 +191,7 @@ Status save_settings(const std::filesystem::path& state_dir, const ControllerSet
   }
   doc["joints"] = joints;
   std::string text = doc.dump(2) + "\n";
-  return rc_board::write_file_atomically(
+  return write_file_atomically(
       settings_path(state_dir),
       std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }

@@ -1,7 +1,7 @@
 // What the controller keeps per joint across restarts: the saved zero offset
 // (ServoOffsetWrite) and the limits set with BusServoInfoWrite, plus which joint
 // BusServoInfoRead/Write address. Stored as <state dir>/controller-settings.json, replaced
-// crash-safely (rc_board/atomic_file.hpp). A corrupt file is an error naming what is wrong,
+// crash-safely (core/atomic_file.hpp). A corrupt file is an error naming what is wrong,
 // never silently replaced by defaults.
 #pragma once
 

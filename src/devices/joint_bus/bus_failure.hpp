@@ -40,6 +40,9 @@ struct JointFailure {
   int joint;
   std::optional<std::int16_t> status_word;  // raw STATUS, if one was received
   bool command_sent;                        // the COMMAND word went out on the wire
+  // FailureKind::link on a link that is lost and being reopened (its error carried a
+  // ReconnectingLink's LinkLost): the device is gone for now, not this joint.
+  bool link_lost = false;
 
   int code() const { return spec_code(kind); }
 };

@@ -6,6 +6,7 @@
 
 #include <fmt/core.h>
 
+#include "devices/joint_bus/reconnecting_link.hpp"
 #include "portable/joint_bus_codes.hpp"
 
 namespace armctl::joint_bus {
@@ -55,7 +56,7 @@ Duration BusMaster::word_timeout() const { return options_.timing.word_timeout(l
 Error BusMaster::fail(FailureKind kind, Stage stage, int joint, bool command_sent,
                       std::optional<std::int16_t> status, std::string message) {
   ++counters_.failures;
-  return bus_error(JointFailure{kind, stage, joint, status, command_sent}, std::move(message));
+  return bus_error(JointFailure{kind, stage, joint, status, command_sent, false}, std::move(message));
 }
 
 std::optional<std::int16_t> BusMaster::read_word(TimePoint deadline) {
@@ -102,6 +103,7 @@ Result<std::optional<std::int16_t>> BusMaster::attempt(int joint, std::int16_t c
                        fmt::format("joint {}: {} failed on the link: {}", joint,
                                    command_name(command), e.error().message));
     error.kind = e.error().kind;  // io, timeout or protocol, as the link said
+    if (e.error().detail_as<LinkLost>()) std::any_cast<JointFailure>(&error.detail)->link_lost = true;
     return error;
   }
 }
@@ -384,7 +386,7 @@ PerJoint<Ok> BusMaster::drive_all(Drive kind, std::span<const std::int16_t> valu
   if (values.size() != n) {
     for (int j = 1; j <= joint_count(); ++j) {
       out.push_back({j, bus_error(JointFailure{FailureKind::invalid_argument, Stage::before_command,
-                                               j, std::nullopt, false},
+                                               j, std::nullopt, false, false},
                                   fmt::format("{} values given for {} joints", values.size(), n))});
     }
     return out;

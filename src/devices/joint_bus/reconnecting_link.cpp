@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 
 #include "core/error.hpp"
+#include "devices/joint_bus/bus_failure.hpp"
 
 namespace armctl::joint_bus {
 namespace {
@@ -13,6 +14,12 @@ namespace {
 double seconds(Duration d) { return std::chrono::duration<double>(d).count(); }
 
 }  // namespace
+
+bool device_lost(const Error& error) {
+  if (error.detail_as<LinkLost>()) return true;
+  const JointFailure* failure = joint_failure(error);
+  return failure && failure->link_lost;
+}
 
 ReconnectingLink::ReconnectingLink(Opener open, const Clock& clock, WaitUntil wait_until, Log log,
                                    ReconnectOptions options)
@@ -34,8 +41,9 @@ bool ReconnectingLink::with_link(Use&& use) {
     return true;
   } catch (const ArmctlError& e) {
     if (e.error().kind == ErrorKind::invalid_argument) throw;  // a caller's mistake, not the link's
-    lose(e.what());
-    if (options_.while_lost == ReconnectOptions::WhileLost::refuse) throw;
+    lose(e.error().message);
+    if (options_.while_lost == ReconnectOptions::WhileLost::refuse)
+      throw ArmctlError(Error{e.error().kind, e.error().message, LinkLost{lost_why_, 0}});
     return false;
   }
 }
@@ -88,11 +96,12 @@ bool ReconnectingLink::try_reconnect() {
 
 void ReconnectingLink::refuse_if_lost() {
   if (options_.while_lost != ReconnectOptions::WhileLost::refuse || link_ || try_reconnect()) return;
-  throw ArmctlError(ErrorKind::io,
-                    fmt::format("the joint bus link is lost ({}); reconnecting: {} attempt{} so far, the next in "
-                                "{:.1f} s",
-                                lost_why_, attempts_in_outage_, attempts_in_outage_ == 1 ? "" : "s",
-                                std::max(0.0, seconds(next_attempt_ - clock_.now()))));
+  throw ArmctlError(Error{ErrorKind::io,
+                          fmt::format("the joint bus link is lost ({}); reconnecting: {} attempt{} so far, the next "
+                                      "in {:.1f} s",
+                                      lost_why_, attempts_in_outage_, attempts_in_outage_ == 1 ? "" : "s",
+                                      std::max(0.0, seconds(next_attempt_ - clock_.now()))),
+                          LinkLost{lost_why_, attempts_in_outage_}});
 }
 
 void ReconnectingLink::set_select(int joint, bool high) {

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "core/clock.hpp"
+#include "core/error.hpp"
 #include "transport/joint_bus_link.hpp"
 
 namespace armctl::joint_bus {
@@ -28,6 +29,17 @@ struct ReconnectOptions {
   // reconnecting" from every call until it is back.
   enum class WhileLost { unplugged, refuse } while_lost = WhileLost::unplugged;
 };
+
+// The detail of what a ReconnectingLink in WhileLost::refuse throws once its link is lost
+// (the error that ended it, then "the joint bus link is lost ...; reconnecting" from every
+// call until it is back): the device is lost and being reopened. The joint-bus master keeps
+// it as JointFailure::link_lost; device_lost() reads either.
+struct LinkLost {
+  std::string why;             // the error that ended the link
+  std::uint64_t attempts = 0;  // reconnection attempts so far in this outage
+};
+// True when `error` says the device's link is lost and being reopened.
+bool device_lost(const Error& error);
 
 class ReconnectingLink final : public transport::JointBusLink {
  public:

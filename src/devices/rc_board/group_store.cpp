@@ -5,7 +5,7 @@
 #include <fmt/core.h>
 
 #include "core/printable.hpp"
-#include "devices/rc_board/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "devices/rc_board/group_file_format.hpp"
 
 namespace armctl::rc_board {

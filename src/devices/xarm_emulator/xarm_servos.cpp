@@ -8,7 +8,7 @@
 #include <fmt/core.h>
 
 #include "core/error.hpp"
-#include "devices/rc_board/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "devices/rc_board/crc32.hpp"
 
 namespace armctl::xarm {
@@ -199,7 +199,7 @@ bool XarmServos::save_settings() {
   for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::uint8_t>(crc >> (8 * i)));
   std::error_code ec;
   std::filesystem::create_directories(*options_.state_dir, ec);
-  auto status = rc_board::write_file_atomically(*options_.state_dir / kSettingsFile, out);
+  auto status = write_file_atomically(*options_.state_dir / kSettingsFile, out);
   last_save_error_ = status ? std::string() : status.error().message;
   return status.ok();
 }
@@ -208,7 +208,7 @@ void XarmServos::load_settings() {
   auto path = *options_.state_dir / kSettingsFile;
   // Exactly this long when valid: anything larger (or not a regular file) is refused unread.
   constexpr std::size_t kSettingsFileBytes = sizeof kMagic + 1 + kServoCount * kPerServo + 4;
-  auto bytes = rc_board::read_whole_file(path, kSettingsFileBytes);
+  auto bytes = read_whole_file(path, kSettingsFileBytes);
   if (!bytes) throw ArmctlError(bytes.error());
   if (!*bytes) return;  // nothing saved yet: factory settings
   const auto& b = **bytes;

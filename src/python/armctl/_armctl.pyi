@@ -1,6 +1,6 @@
 """Type stubs of armctl's native module (src/python/*.cpp). Units are SI: rad, m, s."""
 
-from typing import Any, Dict, Literal, Mapping, Optional, Sequence, Union
+from typing import Any, Dict, Literal, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -12,10 +12,24 @@ Targets = Union[Sequence[Optional[float]], npt.NDArray[np.float64], Mapping[Join
 ErrorKindName = Literal["invalid_argument", "invalid_config", "io", "timeout", "protocol", "device", "unsupported"]
 
 class Error(RuntimeError):
-    """Every failure armctl reports; ``kind`` is armctl's error kind, ``message`` the message."""
+    """Every failure armctl reports; ``kind`` is armctl's error kind, ``message`` the message,
+    ``detail`` what more it carries (None, or the name of a typed detail whose fields follow)."""
 
     kind: ErrorKindName
     message: str
+    detail: Optional[Literal["following_error", "path_refusal", "source_place", "device_lost"]]
+    # following_error: joint, measured, planned, limit; path_refusal: segment (0-based),
+    # fraction, point (m), joint; source_place: file, line, column.
+    joint: Optional[str]
+    measured: float
+    planned: float
+    limit: float
+    segment: int
+    fraction: Optional[float]
+    point: Optional[Tuple[float, float, float]]
+    file: str
+    line: int
+    column: int
 
 class JointState:
     """Every joint's position as read."""
