@@ -11,6 +11,7 @@ PYBIND11_MODULE(_armctl, m) {
       "armctl.Arm is the Arm API in SI units on any device URI (the embedded simulators by default);\n"
       "armctl.RobotCommands speaks to a Robot Commands board in device units; armctl.xarm is a drop-in\n"
       "for scripts written for the `xarm` package. Every failure raises armctl.Error (.kind, .message).";
+  m.attr("__version__") = ARMCTL_VERSION;  // the project's version, as `armctl --version` says it
   armctl::python::define_error(m);
   armctl::python::define_arm(m);
   armctl::python::define_robot_commands(m);

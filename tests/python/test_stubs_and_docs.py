@@ -57,3 +57,14 @@ def test_the_drop_in_is_documented():
         assert obj.__doc__
     for name in public(dir(xarm.Controller)):
         assert getattr(xarm.Controller, name).__doc__, name
+
+
+def test_the_version_is_the_clis():
+    """armctl.__version__ is the version `armctl --version` prints (one project version)."""
+    import os
+    import subprocess
+
+    cli = os.environ["ARMCTL_CLI"]
+    printed = subprocess.run([cli, "--version"], capture_output=True, text=True, check=True).stdout.split()
+    assert printed == ["armctl", armctl.__version__]
+    assert armctl.__version__.count(".") == 2

@@ -24,6 +24,7 @@ from ._armctl import (  # noqa: F401  (the package's API)
     Pose,
     RobotCommands,
     Segment,
+    __version__,
 )
 
 __all__ = [

@@ -9,6 +9,8 @@ Vector = Sequence[float] | npt.NDArray[np.float64]
 JointKey = Union[str, int]
 # One value per joint (None keeps it), or {joint name or index: value}.
 Targets = Union[Sequence[Optional[float]], npt.NDArray[np.float64], Mapping[JointKey, Optional[float]]]
+__version__: str  # the project version, as `armctl --version` prints it
+
 ErrorKindName = Literal["invalid_argument", "invalid_config", "io", "timeout", "protocol", "device", "unsupported"]
 
 class Error(RuntimeError):
