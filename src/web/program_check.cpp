@@ -39,7 +39,7 @@ PlacedError place_error(const std::string& message) {
   return {kProgramSource, 0, 0, message};
 }
 
-CheckedProgram check_program(const ProgramRequest& r, const arm::Arm* arm, const std::vector<double>& start) {
+CheckedProgram check_program(const ProgramRequest& r, const arm::ArmKinematics* arm, const std::vector<double>& start) {
   CheckedProgram out;
   auto fail = [&](const Error& e) {
     out.errors.push_back(place_error(e.message));
