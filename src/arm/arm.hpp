@@ -15,12 +15,16 @@
 #include <vector>
 
 #include "arm/arm_device.hpp"
+#include "arm/arm_kinematics.hpp"
 #include "arm/arm_model.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 #include "motion/kinematics.hpp"
+#include "motion/move_limits.hpp"
 
 namespace armctl::arm {
+
+struct PtpMove;  // arm/plan_moves.hpp
 
 struct JointState {
   TimePoint time{};              // on the device's clock, when the positions were read
@@ -34,28 +38,24 @@ struct MoveOptions {
   // (arm/motion_planning.hpp joint_move_duration, the rule of every app). Without it, the
   // slowest joint moves at `speed` times its velocity limit with its acceleration limit.
   std::optional<Duration> duration;
-  double speed = 0.25;  // fraction of the velocity limits, 0.001..1 (motion/move_limits.hpp)
+  double speed = motion::kDefaultJointSpeed;  // fraction of the velocity limits (motion/move_limits.hpp)
   // The duration in the user's words, for the note ("--time 0.1s"), and where the note
   // goes when the duration is stretched (called before the move is sent).
   std::string duration_words = "the duration";
   std::function<void(const std::string&)> on_note = nullptr;
 };
 
-// A tool target. Orientation components left empty keep the tool's current ones (the
-// xArm's yaw is set by where the tool is: left empty it follows the position).
-struct CartesianGoal {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  std::optional<double> roll, pitch, yaw;
-  std::optional<motion::Elbow> elbow;  // only solutions in this configuration
-  bool nearest_orientation = false;     // 5-joint arm: the nearest reachable orientation
-};
+// How close and how soon a joint must arrive at its target, in every app (Arm::wait).
+inline constexpr Duration kArrivalTimeout = std::chrono::seconds(10);
+inline constexpr double kArrivalAngleTolerance = 0.0087;   // rad (0.5 deg: two xArm servo units)
+inline constexpr double kArrivalLengthTolerance = 0.0005;  // m
 
 struct WaitOptions {
-  Duration timeout = std::chrono::seconds(10);
+  Duration timeout = kArrivalTimeout;
   // Between position reads; empty: the device's own (500 ms on HID, 200 ms on serial).
   std::optional<Duration> poll;
-  double angle_tolerance = 0.0087;  // rad (0.5 deg: two xArm servo units)
-  double length_tolerance = 0.0005;  // m
+  double angle_tolerance = kArrivalAngleTolerance;
+  double length_tolerance = kArrivalLengthTolerance;
   // Per joint (SI, the model's order): where given and above 0, it replaces the one above.
   std::vector<double> joint_tolerance;
   // Asked between reads (a Ctrl-C flag, e.g. Python's KeyboardInterrupt): true ends the wait
@@ -69,28 +69,37 @@ class Arm {
  public:
   Arm(ArmModel model, std::unique_ptr<ArmDevice> device);
 
-  const ArmModel& model() const { return model_; }
+  const ArmModel& model() const { return kinematics_->model(); }
+  // The arm's kinematics (model, FK/IK, target checks with this device's range): an
+  // immutable value other threads and the planner may hold and use while the arm moves.
+  const std::shared_ptr<const ArmKinematics>& kinematics() const { return kinematics_; }
   ArmDevice& device() { return *device_; }
   const Clock& clock() const { return device_->clock(); }
 
   Result<JointState> read();
   // The tool pose where the arm stands now.
   Result<motion::Pose> pose();
-  // Kinematics with the arm file's tool frame applied (chain joints only).
-  motion::Pose forward(const motion::JointVector& chain) const;
-  Result<std::vector<motion::IkSolution>> inverse(const CartesianGoal& goal, const JointState& now) const;
-  // Roll, pitch and yaw of a tool pose as people read them on this arm: on the 5-joint
-  // xArm the form whose yaw is where the arm points (roll = the wrist's roll).
-  motion::Rpy tool_rpy(const motion::Pose& pose, const motion::JointVector& chain) const;
-  // The orientation `goal` asks for when the tool's is `current` (as tool_rpy gives it):
-  // components left empty keep the current ones; on the xArm an empty yaw follows the position.
-  motion::Rpy goal_rpy(const CartesianGoal& goal, const motion::Rpy& current) const;
-  motion::JointVector chain_of(const std::vector<double>& positions) const;
+  // The kinematics' (ArmKinematics), for callers that hold an Arm.
+  motion::Pose forward(const motion::JointVector& chain) const { return kinematics_->forward(chain); }
+  Result<std::vector<motion::IkSolution>> inverse(const CartesianGoal& goal, const JointState& now) const {
+    return kinematics_->inverse(goal, now.positions);
+  }
+  motion::Rpy tool_rpy(const motion::Pose& pose, const motion::JointVector& chain) const {
+    return kinematics_->tool_rpy(pose, chain);
+  }
+  motion::Rpy goal_rpy(const CartesianGoal& goal, const motion::Rpy& current) const {
+    return kinematics_->goal_rpy(goal, current);
+  }
+  motion::JointVector chain_of(const std::vector<double>& positions) const { return kinematics_->chain_of(positions); }
 
-  // Moves the joints that have a target (SI; the vector has one entry per joint).
+  // Moves the joints that have a target (SI; the vector has one entry per joint): a board
+  // move (the device interpolates) planned by arm::plan_moves, then sent (send()).
   Status move_joints(const std::vector<std::optional<double>>& targets, const MoveOptions& options = {});
   // Moves the tool (PTP: joint-space move to the IK solution nearest the current joints).
   Status move_to(const CartesianGoal& goal, const MoveOptions& options = {});
+  // Sends targets already checked and timed (a board move of a plan, arm/plan_moves.hpp):
+  // the device interpolates to them over `duration`; wait() then waits for them.
+  Status send(const std::vector<std::optional<double>>& targets, Duration duration);
   // Gripper: 0 = open, 1 = closed.
   Status gripper(double closed_fraction, const MoveOptions& options = {});
   // Closed loop: reads positions until every joint of the last move is within tolerance of
@@ -104,20 +113,23 @@ class Arm {
   // arrive there, as after move_joints.
   void expect_at(const std::vector<double>& positions) { last_targets_.assign(positions.begin(), positions.end()); }
 
-  // The time a move from `from` to `to` takes at `speed` of the limits (rest to rest).
+  // The time a board move from `from` to `to` takes at `speed` of the limits (rest to rest).
   Duration move_time(const std::vector<double>& from, const std::vector<std::optional<double>>& to,
-                     double speed) const;
-  // Checks targets against the joint limits and the device's range; the error names the
-  // joint, the value and what is allowed.
-  Status check_targets(const std::vector<std::optional<double>>& targets) const;
+                     double speed) const {
+    return kinematics_->board_move_time(from, to, speed);
+  }
+  // Checks targets against the joint limits and the device's range (ArmKinematics); the
+  // error names the joint, the value and what is allowed.
+  Status check_targets(const std::vector<std::optional<double>>& targets) const {
+    return kinematics_->check_targets(targets);
+  }
 
  private:
-  ArmModel model_;
+  Status move_board(PtpMove move, const MoveOptions& options);
+
+  std::shared_ptr<const ArmKinematics> kinematics_;
   std::unique_ptr<ArmDevice> device_;
   std::vector<std::optional<double>> last_targets_;  // SI, of the last move
 };
-
-// "30.000 deg" / "120.000 mm" for joint `index` of `model`.
-std::string format_joint_value(const ArmModel& model, int index, double si);
 
 }  // namespace armctl::arm

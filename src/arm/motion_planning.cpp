@@ -41,18 +41,31 @@ Status within_limits(const ArmModel& model, std::size_t joint, double lowest, do
 
 }  // namespace
 
-Result<std::vector<double>> joint_values_target(const ArmModel& model, const std::vector<double>& from,
-                                                const std::vector<motion::JointValue>& values) {
-  if (values.size() > from.size())
-    return refuse(fmt::format("{} joint values given; arm '{}' has {} joints", values.size(), model.name, from.size()));
+Result<std::vector<std::optional<double>>> joint_values_targets(const ArmModel& model,
+                                                                const std::vector<motion::JointValue>& values) {
+  if (values.size() > model.joints.size())
+    return refuse(fmt::format("{} joint values given; arm '{}' has {} joints", values.size(), model.name,
+                              model.joints.size()));
   auto kind = [](Dimension d) { return d == Dimension::angle ? "an angle" : "a length"; };
-  std::vector<double> target = from;
+  std::vector<std::optional<double>> targets(model.joints.size());
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (values[i].dimension != model.joints[i].dimension)
       return refuse(fmt::format("joint {} takes {}, not {}", model.joints[i].name, kind(model.joints[i].dimension),
                                 kind(values[i].dimension)));
-    target[i] = values[i].value;
+    targets[i] = values[i].value;
   }
+  return targets;
+}
+
+Result<std::vector<double>> joint_values_target(const ArmModel& model, const std::vector<double>& from,
+                                                const std::vector<motion::JointValue>& values) {
+  if (values.size() > from.size())
+    return refuse(fmt::format("{} joint values given; arm '{}' has {} joints", values.size(), model.name, from.size()));
+  auto targets = joint_values_targets(model, values);
+  if (!targets) return targets.error();
+  std::vector<double> target = from;
+  for (std::size_t i = 0; i < target.size() && i < targets->size(); ++i)
+    if ((*targets)[i]) target[i] = *(*targets)[i];
   return target;
 }
 
@@ -224,6 +237,12 @@ motion::JerkLimits run_limits(const ArmModel& model, const motion::CartesianPath
 
 Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& from,
                            std::span<const motion::PathSegment> segments, const PathTiming& timing) {
+  return plan_path(ArmKinematics(model), from, segments, timing);
+}
+
+Result<PathPlan> plan_path(const ArmKinematics& kinematics, const std::vector<double>& from,
+                           std::span<const motion::PathSegment> segments, const PathTiming& timing) {
+  const ArmModel& model = kinematics.model();
   if (auto s = check_joint_count(model, from, "the start"); !s) return s.error();
   if (!(timing.acceleration > 0) || !(timing.angular_acceleration > 0) || !std::isfinite(timing.acceleration) ||
       !std::isfinite(timing.angular_acceleration))
@@ -262,7 +281,7 @@ Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& fro
   if (!path) return path.error();
   const auto limits = path_limits(model);
   auto checked = motion::check_path(*path, *model.kinematics, model.tool, start, limits,
-                                    model.family == motion::KinematicFamily::xarm);
+                                    kinematics.reaches_nearest_orientation());
   if (!checked) return checked.error();
 
   PathPlan plan;
@@ -328,19 +347,18 @@ Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& fro
 namespace {
 
 // The 5-joint xArm's tool pitch at a line's target when the move asks none: free, as for a
-// PTP to a position alone, and chosen the same way (Arm::inverse): the pitch the line
+// PTP to a position alone, and chosen the same way (ArmKinematics::inverse): the pitch the line
 // starts with if the target reaches with it (the line then keeps it exactly,
 // docs/paths.md), else the middle of the widest run of pitches that reach it. `near`
 // (every joint): the arm before the target; set to the target's solution.
 // Nothing reaches: the pitch as it was, for the path check to refuse with its reason.
-double line_target_pitch(const Arm& arm, const CartesianGoal& goal, const motion::Rpy& rpy, std::vector<double>& near) {
+double line_target_pitch(const ArmKinematics& arm, const CartesianGoal& goal, const motion::Rpy& rpy,
+                         std::vector<double>& near) {
   CartesianGoal position_alone = goal;
   position_alone.roll = rpy.roll;
   position_alone.pitch.reset();
   position_alone.yaw.reset();  // follows the position
-  JointState now;
-  now.positions = near;
-  auto solutions = arm.inverse(position_alone, now);
+  auto solutions = arm.inverse(position_alone, near);
   if (!solutions) return rpy.pitch;
   const motion::JointVector& q = solutions->front().joints;
   for (int i = 0; i < q.size(); ++i) near[std::size_t(i)] = q[i];
@@ -349,12 +367,12 @@ double line_target_pitch(const Arm& arm, const CartesianGoal& goal, const motion
 
 }  // namespace
 
-std::vector<motion::PathSegment> path_segments(const Arm& arm, const std::vector<double>& from,
+std::vector<motion::PathSegment> path_segments(const ArmKinematics& arm, const std::vector<double>& from,
                                                std::span<const CartesianMove> moves) {
   const motion::JointVector q = arm.chain_of(from);
   motion::Rpy current = arm.tool_rpy(arm.forward(q), q);
   std::vector<double> near = from;
-  const bool free_pitch = arm.model().family == motion::KinematicFamily::xarm;
+  const bool free_pitch = arm.pitch_free();
   std::vector<motion::PathSegment> segments;
   segments.reserve(moves.size());
   for (const CartesianMove& m : moves) {

@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "arm/arm.hpp"
+#include "arm/arm_kinematics.hpp"
 #include "arm/arm_model.hpp"
 #include "arm/motion_executor.hpp"
 #include "core/error.hpp"
@@ -31,7 +31,7 @@ namespace armctl::arm {
 struct JointMove {
   std::vector<std::vector<double>> waypoints;
   std::vector<double> target;
-  double speed = 0.25;  // (0, 1]
+  double speed = motion::kDefaultJointSpeed;  // (0, 1]
   double min_duration = 0;  // s
 };
 Result<PlannedMotion> plan_joint_move(const ArmModel& model, const std::vector<double>& from, const JointMove& move);
@@ -60,12 +60,15 @@ Result<MoveDuration> joint_move_duration(const ArmModel& model, const std::vecto
 // target (SI, every joint), or why not (too many values, a value of the wrong kind).
 Result<std::vector<double>> joint_values_target(const ArmModel& model, const std::vector<double>& from,
                                                 const std::vector<motion::JointValue>& values);
+// The same as targets (one per joint; the joints not given are empty: a PtpMove keeps them).
+Result<std::vector<std::optional<double>>> joint_values_targets(const ArmModel& model,
+                                                                const std::vector<motion::JointValue>& values);
 
 // The timing of a Cartesian path along its length: how fast the tool may speed up and slow
 // down (the speed of each segment is in the segment).
 struct PathTiming {
-  double acceleration = 0.5;   // m/s^2 of the tool point
-  double angular_acceleration = 3.0;  // rad/s^2 of the tool
+  double acceleration = motion::kDefaultToolAcceleration;                 // m/s^2 of the tool point
+  double angular_acceleration = motion::kDefaultToolAngularAcceleration;  // rad/s^2 of the tool
 };
 
 // What a Cartesian plan knows besides the motion: the path and its check (where it was
@@ -75,27 +78,28 @@ struct PathPlan {
   std::shared_ptr<const motion::CartesianPath> path;
   std::shared_ptr<const motion::CheckedPath> checked;
 };
+Result<PathPlan> plan_path(const ArmKinematics& kinematics, const std::vector<double>& from,
+                           std::span<const motion::PathSegment> segments, const PathTiming& timing = {});
+// The same without a device (the joint limits only).
 Result<PathPlan> plan_path(const ArmModel& model, const std::vector<double>& from,
                            std::span<const motion::PathSegment> segments, const PathTiming& timing = {});
 
-// The speeds of a Cartesian move that names none (the CLI, programs, Python, the dashboard).
-inline constexpr double kDefaultPathSpeed = 0.05;                 // m/s of the tool point
-inline constexpr double kDefaultAngularSpeed = 45 * M_PI / 180;    // rad/s of the tool
-
 // A LIN or CIRC target as people give it: orientation components left empty keep the ones
-// the tool has at the end of the move before (Arm::goal_rpy; on the xArm an empty yaw
-// follows the position).
+// the tool has at the end of the move before (ArmKinematics::goal_rpy; on the xArm an empty
+// yaw follows the position). Speeds that are not given: motion/move_limits.hpp's defaults.
 struct CartesianMove {
   motion::SegmentKind kind = motion::SegmentKind::lin;
   CartesianGoal goal;
   Eigen::Vector3d via = Eigen::Vector3d::Zero();  // circ: a point on the arc (m)
-  double speed = kDefaultPathSpeed;
-  double angular_speed = kDefaultAngularSpeed;
+  double speed = motion::kDefaultToolSpeed;
+  double angular_speed = motion::kDefaultToolAngularSpeed;
   double zone = 0;  // m
+  // m/s^2 of the tool point (a program's ACCEL): the run's smallest times the whole path.
+  std::optional<double> acceleration;
 };
 // The path segments of `moves` made one after the other from the joints `from` (SI, every
 // joint): each target's orientation filled in from the one before, the first from the tool's.
-std::vector<motion::PathSegment> path_segments(const Arm& arm, const std::vector<double>& from,
+std::vector<motion::PathSegment> path_segments(const ArmKinematics& kinematics, const std::vector<double>& from,
                                                std::span<const CartesianMove> moves);
 
 // How far the tool point can be from where it is asked to be only because each chain joint

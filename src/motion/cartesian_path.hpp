@@ -17,6 +17,7 @@
 
 #include "core/error.hpp"
 #include "motion/kinematics.hpp"
+#include "motion/move_limits.hpp"
 
 namespace armctl::motion {
 
@@ -45,8 +46,8 @@ struct PathSegment {
   SegmentKind kind = SegmentKind::lin;
   Pose target;                 // end pose of the tool (base frame, m)
   Eigen::Vector3d via{0, 0, 0};  // circ: a point on the arc between start and target
-  double speed = 0.05;         // m/s of the tool point, > 0
-  double angular_speed = 0.5;  // rad/s of the tool orientation, > 0
+  double speed = kDefaultToolSpeed;                 // m/s of the tool point, > 0
+  double angular_speed = kDefaultToolAngularSpeed;  // rad/s of the tool orientation, > 0
   double zone = 0;             // m: fly-by radius at this segment's end; 0 = stop exactly there
 };
 

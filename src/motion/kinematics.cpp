@@ -49,6 +49,12 @@ const char* to_string(Elbow elbow) {
   return "?";
 }
 
+std::optional<Elbow> parse_elbow(std::string_view word) {
+  for (Elbow e : {Elbow::left, Elbow::right, Elbow::up, Elbow::down})
+    if (word == to_string(e)) return e;
+  return std::nullopt;
+}
+
 const char* to_string(Singularity s) {
   switch (s) {
     case Singularity::none: return "none";

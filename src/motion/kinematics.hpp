@@ -14,6 +14,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -54,6 +55,9 @@ struct PositionLimits {
 // that has no such choice.
 enum class Elbow { left, right, up, down };  // scara: left/right; xarm: up/down
 const char* to_string(Elbow elbow);
+// The elbow word as people write it ("left", "right", "up", "down", as to_string gives
+// them), or nothing. The one reading of the word: the CLI, path files, programs, Python.
+std::optional<Elbow> parse_elbow(std::string_view word);
 struct Configuration {
   std::optional<Elbow> elbow;
   std::optional<bool> wrist_flipped;  // scara: the wrist's second solution

@@ -22,4 +22,13 @@ inline constexpr double kMaxToolAngularSpeed = 720 * std::numbers::pi / 180;
 // A joint move's duration (s): 0 (as fast as the limits allow) up to 600 s.
 inline constexpr double kMaxMoveDuration = 600;
 
+// What a move that names none gets, in every app (defined here once: the CLI, path files,
+// programs, Python, the HTTP API, ROS and the planner use these).
+inline constexpr double kDefaultJointSpeed = 0.25;   // PTP: of the joints' velocity limits
+inline constexpr double kDefaultGripperSpeed = 0.5;  // of the gripper's velocity limit
+inline constexpr double kDefaultToolSpeed = 0.05;    // LIN/CIRC: m/s of the tool point
+inline constexpr double kDefaultToolAngularSpeed = 45 * std::numbers::pi / 180;  // rad/s of the tool
+inline constexpr double kDefaultToolAcceleration = 0.5;         // m/s^2 of the tool point along a path
+inline constexpr double kDefaultToolAngularAcceleration = 3.0;  // rad/s^2 of the tool along a path
+
 }  // namespace armctl::motion

@@ -30,7 +30,7 @@ class Compiler {
     action(plan.start, options_.first_move_seconds);
     std::vector<double> here = plan.start;
     for (const auto& piece : plan.pieces) {
-      if (piece.kind == PieceKind::print) {
+      if (piece.kind == PieceKind::message) {
         out_.notes.push_back(fmt::format("line {}: PRINT is not replayed (the board has no output)", piece.first_line));
       } else if (piece.kind == PieceKind::wait) {
         for (double left = piece.seconds; left > 1e-9;) {

@@ -213,8 +213,7 @@ class Runner {
       v.label = "pose(";
       for (const auto& f : t.pose) {
         if (f.name == "elbow") {
-          v.elbow = f.word == "up" ? motion::Elbow::up : f.word == "down" ? motion::Elbow::down
-                    : f.word == "left" ? motion::Elbow::left : motion::Elbow::right;
+          v.elbow = motion::parse_elbow(f.word);  // the parser let only elbow words through
           continue;
         }
         const bool length = f.name.size() == 1;

@@ -8,6 +8,7 @@
 #include "core/source_place.hpp"
 #include "core/ascii.hpp"
 #include "core/json_reader.hpp"
+#include "motion/kinematics.hpp"
 #include "program/language_words.hpp"
 #include "program/points_file.hpp"
 #include "program/program_lexer.hpp"
@@ -317,7 +318,7 @@ class Parser {
       if (f.name == "elbow") {
         const Token& e = peek();
         const std::string v = e.kind == TokenKind::name ? ascii_lower(e.text) : "";
-        if (v != "up" && v != "down" && v != "left" && v != "right") fail(e, "elbow up or down (xArm), left or right (SCARA)");
+        if (!motion::parse_elbow(v)) fail(e, "elbow up or down (xArm), left or right (SCARA)");
         f.word = v;
         next();
       } else {

@@ -1,26 +1,25 @@
 // The check of a program before anything moves: every action of its flow placed on the
 // arm from where the previous one ends (the first from where the arm stands), every move
-// planned by the motion layer (arm::plan_joint_move, arm::plan_path: reachable and inside
-// the joint limits along its whole path) and timed. Consecutive LIN/CIRC moves with
+// planned by the one planner (arm::plan_moves: reachable and inside the joint limits and
+// the device's range along its whole path) and timed. Consecutive LIN/CIRC moves with
 // nothing else between them are one Cartesian path (their zones blend the corners); a
-// PTP, WAIT, GRIPPER or PRINT ends it. Pure planning on the Arm API's const calls: no I/O.
+// PTP, WAIT, GRIPPER or PRINT ends it. Pure planning on the arm's kinematics: no device.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "arm/arm.hpp"
-#include "arm/motion_planning.hpp"
+#include "arm/arm_kinematics.hpp"
+#include "arm/plan_moves.hpp"
 #include "core/error.hpp"
 #include "program/program_flow.hpp"
 
 namespace armctl::program {
 
-// LIN and CIRC without SPEED: arm::kDefaultPathSpeed and kDefaultAngularSpeed.
-inline constexpr double kDefaultPtpSpeed = 0.25;                   // of the joints' velocity limits
-inline constexpr double kDefaultPathAcceleration = 0.5;            // m/s^2
-inline constexpr double kGripperSpeed = 0.5;                       // of the gripper's velocity limit
+// A GRIPPER statement's speed; PTP, LIN and CIRC without SPEED and ACCEL take the motion
+// layer's defaults (motion/move_limits.hpp).
+inline constexpr double kGripperSpeed = motion::kDefaultGripperSpeed;  // of the gripper's velocity limit
 
 struct PlanOptions {
   // Blend consecutive LIN/CIRC moves into one path. Off (--step): every move is its own
@@ -28,35 +27,21 @@ struct PlanOptions {
   bool blend = true;
 };
 
-enum class PieceKind { motion, wait, print };
-
-struct PlannedPiece {
-  PieceKind kind = PieceKind::motion;
-  std::size_t first_line = 0, last_line = 0;
-  std::size_t first_column = 0;  // of the statement on first_line (1-based)
-  std::string label;  // "line 12 (LIN pick + tool(...))", "line 12 (LIN) .. line 14 (CIRC)"
-  arm::PlannedMotion motion;  // motion
-  std::shared_ptr<const motion::CartesianPath> path;  // Cartesian pieces
-  std::size_t moves = 0;      // program moves in this piece (gripper moves count)
-  double seconds = 0;         // wait
-  std::string text;           // print
-  std::vector<double> end;    // every joint (SI) when the piece ends
-};
-
-struct ProgramPlan {
-  std::vector<PlannedPiece> pieces;
-  std::vector<double> start;  // every joint, SI: where the plan starts
-  double duration = 0;        // s at 100 %: motions and waits
-  std::size_t moves = 0;
-};
+// A program's plan is the planner's (arm/plan_moves.hpp): its pieces' lines are the
+// statements', WAIT is a wait piece and PRINT a message piece.
+using PieceKind = arm::PieceKind;
+using PlannedPiece = arm::PlannedPiece;
+using ProgramPlan = arm::Plan;
 
 // How long the plan runs with every motion at `speed_override` (0..1] of its programmed
 // speeds: the motions take 1/override as long, the waits as long as written.
-double estimated_duration(const ProgramPlan& plan, double speed_override);
+inline double estimated_duration(const ProgramPlan& plan, double speed_override) {
+  return arm::run_duration(plan, speed_override);
+}
 
 // Errors (invalid_argument) start with "file:line: (KIND target): " and say why: no IK
 // solution, outside a joint's limits (which joint, where), a CIRC's three points on a line.
-Result<ProgramPlan> plan_program(const arm::Arm& arm, const std::vector<double>& start, const Flow& flow,
-                                 std::string_view source, const PlanOptions& options = {});
+Result<ProgramPlan> plan_program(const arm::ArmKinematics& kinematics, const std::vector<double>& start,
+                                 const Flow& flow, std::string_view source, const PlanOptions& options = {});
 
 }  // namespace armctl::program

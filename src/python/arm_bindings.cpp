@@ -15,8 +15,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include "arm/motion_executor.hpp"
-#include "arm/motion_planning.hpp"
+#include "arm/plan_moves.hpp"
+#include "arm/run_motion.hpp"
 #include "program/program_load.hpp"
 #include "program/program_plan.hpp"
 #include "program/program_runner.hpp"
@@ -98,8 +98,7 @@ Eigen::Vector3d vec3(const std::vector<double>& v, const char* what) {
 
 std::optional<motion::Elbow> elbow_of(const std::optional<std::string>& e) {
   if (!e) return std::nullopt;
-  for (auto v : {motion::Elbow::left, motion::Elbow::right, motion::Elbow::up, motion::Elbow::down})
-    if (*e == motion::to_string(v)) return v;
+  if (auto v = motion::parse_elbow(*e)) return v;
   raise(ErrorKind::invalid_argument, fmt::format("elbow '{}' is not allowed: 'left', 'right' (SCARA), 'up', 'down' (xArm)", *e));
 }
 
@@ -293,15 +292,18 @@ class PyArm {
     return out;
   }
 
-  // A duration shorter than the arm file allows is stretched (arm::joint_move_duration);
-  // the note lands in `note` (the move runs without the GIL) for warn_note.
-  static arm::MoveOptions move_options(std::optional<double> duration, double speed, std::string* note = nullptr) {
-    arm::MoveOptions o;
-    if (duration) o.duration = duration_of(*duration, "duration");
-    o.duration_words = fmt::format("duration={:g}", duration.value_or(0));
-    if (note) o.on_note = [note](const std::string& n) { *note = n; };
-    o.speed = speed;
-    return o;
+  // A PTP as Python asks it: at `speed` of the velocity limits, or all joints arriving after
+  // `duration` s (stretched to what the arm file allows: arm::joint_move_duration, the note
+  // is a UserWarning).
+  static arm::PtpMove ptp_move(std::optional<double> duration, double speed) {
+    arm::PtpMove m;
+    if (duration) {
+      (void)duration_of(*duration, "duration");
+      m.duration = *duration;
+    }
+    m.duration_words = fmt::format("duration={:g}", duration.value_or(0));
+    m.speed = speed;
+    return m;
   }
   static void warn_note(const std::string& note) {
     if (!note.empty() && PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1) != 0) throw py::error_already_set();
@@ -356,36 +358,48 @@ class PyArm {
     must(s);
   }
 
-  void after_move(bool wait_for_it, double timeout) {
-    if (wait_for_it) wait_with(wait_options(timeout, std::nullopt, 0.0087, 0.0005));
+  // A board move (the device interpolates; arm::PtpRun::board) from where the arm stands,
+  // then, with wait=True, until it arrives (as wait(timeout)).
+  void board_move(const arm::PtpMove& move, bool wait_for_it, double timeout) {
+    const std::vector<double> from = here();
+    arm::PlanOptions board;
+    board.ptp = arm::PtpRun::board;
+    auto plan = must(arm::plan_moves(*arm().kinematics(), from, std::vector<arm::Move>{{move}}, board));
+    std::optional<arm::WaitOptions> wait;
+    if (wait_for_it) wait = wait_options(timeout, std::nullopt, arm::kArrivalAngleTolerance, arm::kArrivalLengthTolerance);
+    const Ran ran = run(plan, 1.0, wait, "a wait (the arm was stopped)");
+    warn_note(plan.notes());
+    if (ran.stop_called && ran.report.stopped)
+      raise(ErrorKind::device, "the wait ended: stop() was called during it (the arm was stopped)");
   }
 
   void move_joints(const py::object& targets, std::optional<double> duration, double speed, bool wait_for_it,
                    double timeout) {
-    const auto t = targets_of(targets);
-    std::string note;
-    const auto o = move_options(duration, speed, &note);
-    command([&](arm::Arm& a) { return a.move_joints(t, o); });
-    warn_note(note);
-    after_move(wait_for_it, timeout);
+    arm::PtpMove m = ptp_move(duration, speed);
+    m.target = targets_of(targets);
+    board_move(m, wait_for_it, timeout);
   }
 
   void move_to(const std::vector<double>& position, std::optional<double> roll, std::optional<double> pitch,
                std::optional<double> yaw, const std::optional<std::string>& elbow, bool nearest,
                std::optional<double> duration, double speed, bool wait_for_it, double timeout) {
-    const auto g = goal_of(position, roll, pitch, yaw, elbow, nearest);
-    std::string note;
-    const auto o = move_options(duration, speed, &note);
-    command([&](arm::Arm& a) { return a.move_to(g, o); });
-    warn_note(note);
-    after_move(wait_for_it, timeout);
+    arm::PtpMove m = ptp_move(duration, speed);
+    m.target = goal_of(position, roll, pitch, yaw, elbow, nearest);
+    board_move(m, wait_for_it, timeout);
   }
 
   void gripper(double closed_fraction, std::optional<double> duration, double speed, bool wait_for_it,
                double timeout) {
-    const auto o = move_options(duration, speed);
-    command([&](arm::Arm& a) { return a.gripper(closed_fraction, o); });
-    after_move(wait_for_it, timeout);
+    if (!model().gripper)
+      raise(ErrorKind::unsupported, fmt::format("arm '{}' has no gripper", model().name));
+    if (!std::isfinite(closed_fraction) || closed_fraction < 0 || closed_fraction > 1)
+      raise(ErrorKind::invalid_argument,
+            fmt::format("gripper: {} is outside 0..1 (0 = open, 1 = closed)", closed_fraction));
+    arm::PtpMove m = ptp_move(duration, speed);
+    std::vector<std::optional<double>> targets(std::size_t(model().joint_count()));
+    targets[std::size_t(model().gripper->joint)] = model().gripper->at(closed_fraction);
+    m.target = targets;
+    board_move(m, wait_for_it, timeout);
   }
 
   void stop() {
@@ -401,50 +415,58 @@ class PyArm {
     command([on](arm::Arm& a) { return a.set_torque(on); });
   }
 
-  // Streams a planned motion through the executor; Ctrl-C: the executor's stop (the arm
-  // decelerates on the path), then KeyboardInterrupt; close() from another thread: the same
-  // stop, then armctl.Error; stop() from another thread: the same stop, and the report says
-  // so (stopped, not completed).
-  PyReport execute(const arm::PlannedMotion& motion, double speed_override) {
+  // Runs a plan (arm::run_motion) with the GIL released; `wait`: the wait for arrival at its
+  // end (none: a board move returns once sent). Ctrl-C: the runner's stop (a streamed motion
+  // decelerates on its path, a board move is halted), then KeyboardInterrupt; close() from
+  // another thread: the same stop, then armctl.Error naming `during`; stop() from another
+  // thread: the same stop, and the report says so (stopped, not completed).
+  struct Ran {
+    arm::RunReport report;
+    bool stop_called = false;  // by stop() from another thread
+  };
+  Ran run(const arm::Plan& plan, double speed_override, const std::optional<arm::WaitOptions>& wait,
+          const char* during) {
     must(check_fraction_in(speed_override, "speed_override", motion::kMinSpeedFraction, motion::kMaxSpeedFraction));
     arm::Arm& a = arm();
     InterruptWatch watch;
-    bool closed = false;
+    bool closed = false, stopped = false;
     auto stop_asked = [&] {
       closed = closed || gate_.closing();
-      return closed || gate_.stop_asked() || watch.check();
+      stopped = stopped || gate_.stop_asked();
+      return closed || stopped || watch.check();
     };
-    arm::ExecutorOptions eo;
-    eo.speed_override = speed_override;
-    eo.command = [&](const arm::MotionProgress&) {
-      return stop_asked() ? arm::MotionCommand::stop : arm::MotionCommand::none;
-    };
+    arm::RunHooks hooks;
+    hooks.speed_override = speed_override;
+    hooks.command = [&] { return stop_asked() ? arm::MotionCommand::stop : arm::MotionCommand::none; };
+    if (wait) hooks.wait = *wait;
+    hooks.wait_for_arrival = wait.has_value();
+    hooks.wait.interrupted = stop_asked;
     auto r = [&] {
       py::gil_scoped_release nogil;
-      auto report = arm::execute_motion(a, motion, eo);
-      // The last point is due when the motion ends: let the arm get there.
-      if (report && report->completed) {
-        arm::WaitOptions w;
-        w.interrupted = stop_asked;
-        if (auto s = a.wait(w); !s && !watch.tripped() && !closed) return Result<arm::MotionReport>(s.error());
-      }
+      auto report = arm::run_motion(a, plan, hooks);
       if (watch.tripped() || closed) (void)a.stop();
       return report;
     }();
     if (watch.tripped()) watch.rethrow();
-    if (closed) gate_.raise_closed("a streamed motion (the arm stopped on its path)");
-    const auto& m = must(std::move(r));
+    if (closed) gate_.raise_closed(during);
+    return {must(std::move(r)), stopped};
+  }
+
+  // Streams a planned motion (arm::run_motion, then the wait for arrival at its end).
+  PyReport execute(const arm::Plan& plan, double speed_override) {
+    const arm::RunReport m = run(plan, speed_override, arm::WaitOptions{}, "a streamed motion (the arm stopped on its path)").report;
     PyReport p;
+    const arm::MotionReport last = m.last_motion.value_or(arm::MotionReport{});
     p.elapsed = seconds(m.elapsed);
     p.t_reached = m.t_reached;
-    p.duration = motion.duration;
-    p.period = seconds(m.period);
+    p.duration = plan.duration;
+    p.period = seconds(last.period);
     p.completed = m.completed;
     p.stopped = m.stopped;
-    p.points = m.points;
-    p.reads = m.reads;
+    p.points = last.points;
+    p.reads = last.reads;
     p.largest_following_error = m.largest_following_error;
-    p.held = seconds(m.held);
+    p.held = seconds(last.held);
     if (m.largest_following_joint >= 0)
       p.largest_following_joint = model().joints[std::size_t(m.largest_following_joint)].name;
     return p;
@@ -467,27 +489,27 @@ class PyArm {
       std::vector<double> q = from;
       for (std::size_t i = 0; i < q.size(); ++i)
         if (targets[i]) q[i] = *targets[i];
-      must(arm().check_targets(std::vector<std::optional<double>>(q.begin(), q.end())));
       return q;
     };
-    arm::JointMove move;
+    arm::PtpMove move;
     for (const auto& w : waypoints) move.waypoints.push_back(full(w));
-    move.target = full(target);
+    const std::vector<double> to = full(target);
+    move.target = std::vector<std::optional<double>>(to.begin(), to.end());
     move.speed = speed;
     move.min_duration = min_duration;
-    return execute(must(arm::plan_joint_move(model(), from, move)), speed_override);
+    return execute(must(arm::plan_moves(*arm().kinematics(), from, std::vector<arm::Move>{{move}})), speed_override);
   }
 
   PyReport path(const std::vector<PySegment>& segments, double speed_override, double acceleration,
                 double angular_acceleration) {
     if (segments.empty()) raise(ErrorKind::invalid_argument, "path: give at least one segment (armctl.Lin, armctl.Circ)");
     const std::vector<double> from = here();
-    const std::vector<motion::PathSegment> built = arm::path_segments(arm(), from, segments);
-    arm::PathTiming timing;
-    timing.acceleration = acceleration;
-    timing.angular_acceleration = angular_acceleration;
-    auto plan = must(arm::plan_path(model(), from, built, timing));
-    return execute(plan.motion, speed_override);
+    std::vector<arm::Move> moves;
+    for (const auto& s : segments) moves.push_back({s});
+    arm::PlanOptions o;
+    o.timing.acceleration = acceleration;
+    o.timing.angular_acceleration = angular_acceleration;
+    return execute(must(arm::plan_moves(*arm().kinematics(), from, moves, o)), speed_override);
   }
 
   PyReport move_linear(const std::vector<double>& position, std::optional<double> roll, std::optional<double> pitch,
@@ -499,7 +521,7 @@ class PyArm {
     s.goal.yaw = yaw;
     s.speed = speed;
     s.angular_speed = angular_speed;
-    return path({s}, speed_override, arm::PathTiming{}.acceleration, arm::PathTiming{}.angular_acceleration);
+    return path({s}, speed_override, motion::kDefaultToolAcceleration, motion::kDefaultToolAngularAcceleration);
   }
 
   // ---- programs (docs/programs.md): the CLI's `program check` and `program run`
@@ -507,7 +529,7 @@ class PyArm {
   program::ProgramPlan plan_program_file(const std::string& file, const std::string& points) {
     const program::LoadedProgram l = must(program::load_program(file, points));
     const std::vector<double> from = here();
-    return must(program::plan_program(arm(), from, l.flow, l.program.source));
+    return must(program::plan_program(*arm().kinematics(), from, l.flow, l.program.source));
   }
 
   py::dict check_program(const std::string& file, const std::string& points) {
@@ -537,7 +559,7 @@ class PyArm {
       o.command = [&] { return stop_asked() ? arm::MotionCommand::stop : arm::MotionCommand::none; };
       o.wait.interrupted = stop_asked;  // the final wait, too
       o.on_event = [&](const program::RunEvent& e) {
-        if (e.kind == program::RunEventKind::print && e.piece) printed.push_back(e.piece->text);
+        if (e.kind == program::RunEventKind::message && e.piece) printed.push_back(e.piece->text);
       };
       return program::run_plan(a, plan, o);
     }();
@@ -684,8 +706,8 @@ void define_arm(py::module_& m) {
          std::optional<double> yaw, double speed, double angular_speed, double zone) {
         return segment(motion::SegmentKind::lin, position, {}, roll, pitch, yaw, speed, angular_speed, zone);
       },
-      "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(), "yaw"_a = py::none(), "speed"_a = 0.05,
-      "angular_speed"_a = M_PI / 4, "zone"_a = 0.0,
+      "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(), "yaw"_a = py::none(), "speed"_a = motion::kDefaultToolSpeed,
+      "angular_speed"_a = motion::kDefaultToolAngularSpeed, "zone"_a = 0.0,
       "A straight line of the tool to `position` (x, y, z in m) at `speed` m/s (orientation turning at most\n"
       "`angular_speed` rad/s); roll, pitch, yaw (rad) left out keep the tool's; `zone` (m) blends the corner at\n"
       "its end (0: stop there).");
@@ -695,8 +717,8 @@ void define_arm(py::module_& m) {
          std::optional<double> pitch, std::optional<double> yaw, double speed, double angular_speed, double zone) {
         return segment(motion::SegmentKind::circ, position, via, roll, pitch, yaw, speed, angular_speed, zone);
       },
-      "via"_a, "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(), "yaw"_a = py::none(), "speed"_a = 0.05,
-      "angular_speed"_a = M_PI / 4, "zone"_a = 0.0,
+      "via"_a, "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(), "yaw"_a = py::none(), "speed"_a = motion::kDefaultToolSpeed,
+      "angular_speed"_a = motion::kDefaultToolAngularSpeed, "zone"_a = 0.0,
       "A circular arc of the tool through `via` to `position` (m); the rest as for Lin.");
 
   py::class_<PyArm>(m, "Arm",
@@ -739,17 +761,17 @@ void define_arm(py::module_& m) {
            "roll, pitch, yaw (rad) left out keep the tool's (xArm: yaw follows the position); elbow keeps one\n"
            "configuration; nearest_orientation lets the 5-joint xArm reach the position with the nearest orientation.\n"
            "Unreachable: armctl.Error saying why (beyond reach by N mm, joint outside its limits). Nothing moves.")
-      .def("move_joints", in_turn(&PyArm::move_joints), "targets"_a, "duration"_a = py::none(), "speed"_a = 0.25,
-           "wait"_a = false, "timeout"_a = 10.0,
+      .def("move_joints", in_turn(&PyArm::move_joints), "targets"_a, "duration"_a = py::none(), "speed"_a = motion::kDefaultJointSpeed,
+           "wait"_a = false, "timeout"_a = seconds(arm::kArrivalTimeout),
            "Moves the joints that have a target: a sequence with one value per joint (None keeps it) or a dict\n"
            "{name or index: value}, SI. All arrive together after `duration` s, or with the slowest at `speed` (0..1]\n"
            "of its velocity limit. wait=True: wait(timeout) afterwards.")
       .def("move_to", in_turn(&PyArm::move_to), "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
            "yaw"_a = py::none(), "elbow"_a = py::none(), "nearest_orientation"_a = false, "duration"_a = py::none(),
-           "speed"_a = 0.25, "wait"_a = false, "timeout"_a = 10.0,
+           "speed"_a = motion::kDefaultJointSpeed, "wait"_a = false, "timeout"_a = seconds(arm::kArrivalTimeout),
            "PTP: moves the tool to `position` (m) through the IK solution nearest the current joints (as move_joints).")
       .def("move_linear", in_turn(&PyArm::move_linear), "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
-           "yaw"_a = py::none(), "speed"_a = 0.05, "angular_speed"_a = M_PI / 4, "speed_override"_a = 1.0,
+           "yaw"_a = py::none(), "speed"_a = motion::kDefaultToolSpeed, "angular_speed"_a = motion::kDefaultToolAngularSpeed, "speed_override"_a = 1.0,
            "LIN: the tool along a straight line to `position` (m) at `speed` m/s, planned and checked on the host and\n"
            "streamed; returns when it is there (MotionReport). Ctrl-C stops on the line, then KeyboardInterrupt.")
       .def("check_program", in_turn(&PyArm::check_program), "file"_a, "points"_a = "",
@@ -759,25 +781,25 @@ void define_arm(py::module_& m) {
       .def("run_program", in_turn(&PyArm::run_program), "file"_a, "points"_a = "", "speed_override"_a = 1.0,
            "Checks, then runs a robot program on the arm. Returns {'completed', 'pieces', 'elapsed', \n"
            "'largest_following_error', 'printed'}. Ctrl-C stops on the path, then KeyboardInterrupt.")
-      .def("path", in_turn(&PyArm::path), "segments"_a, "speed_override"_a = 1.0, "acceleration"_a = 0.5,
-           "angular_acceleration"_a = 3.0,
+      .def("path", in_turn(&PyArm::path), "segments"_a, "speed_override"_a = 1.0, "acceleration"_a = motion::kDefaultToolAcceleration,
+           "angular_acceleration"_a = motion::kDefaultToolAngularAcceleration,
            "Runs a Cartesian path: a list of armctl.Lin / armctl.Circ, corners blended by their zones, timed with\n"
            "the tool's `acceleration` (m/s^2) and `angular_acceleration` (rad/s^2). The whole path is checked first.\n"
            "Ctrl-C stops on the path, then KeyboardInterrupt.")
-      .def("joint_move", in_turn(&PyArm::joint_move), "target"_a, "waypoints"_a = std::vector<py::object>{}, "speed"_a = 0.25,
+      .def("joint_move", in_turn(&PyArm::joint_move), "target"_a, "waypoints"_a = std::vector<py::object>{}, "speed"_a = motion::kDefaultJointSpeed,
            "min_duration"_a = 0.0, "speed_override"_a = 1.0,
            "A jerk-limited joint move (plan_joint_move), streamed: through `waypoints` without stopping to `target`\n"
            "(each as for move_joints), at `speed` of the velocity limits, taking at least `min_duration` s.")
-      .def("wait", in_turn(&PyArm::wait), "timeout"_a = 10.0, "poll"_a = py::none(), "angle_tolerance"_a = 0.0087,
-           "length_tolerance"_a = 0.0005,
+      .def("wait", in_turn(&PyArm::wait), "timeout"_a = seconds(arm::kArrivalTimeout), "poll"_a = py::none(), "angle_tolerance"_a = arm::kArrivalAngleTolerance,
+           "length_tolerance"_a = arm::kArrivalLengthTolerance,
            "Until every joint of the last move is within tolerance (rad, m) of its target and at rest; returns the\n"
            "JointState. Not arrived in `timeout` s: armctl.Error (kind 'timeout') naming every late joint.")
       .def("stop", &PyArm::stop_now,
            "Stops every joint where it is and holds it. A wait another thread runs ends (armctl.Error), a\n"
            "streamed motion stops on its path (its MotionReport: stopped), before the stop is sent.")
       .def("set_torque", in_turn(&PyArm::set_torque), "on"_a, "off: the arm can be moved by hand; on: hold where it stands.")
-      .def("gripper", in_turn(&PyArm::gripper), "closed_fraction"_a, "duration"_a = py::none(), "speed"_a = 0.25,
-           "wait"_a = false, "timeout"_a = 10.0, "The gripper: 0 = open, 1 = closed, anything between.")
+      .def("gripper", in_turn(&PyArm::gripper), "closed_fraction"_a, "duration"_a = py::none(), "speed"_a = motion::kDefaultJointSpeed,
+           "wait"_a = false, "timeout"_a = seconds(arm::kArrivalTimeout), "The gripper: 0 = open, 1 = closed, anything between.")
       .def(
           "download_group",
           [](PyArm& a, int group, const std::string& text) {

@@ -7,6 +7,8 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "arm/plan_moves.hpp"
+#include "arm/run_motion.hpp"
 #include "motion/kinematics.hpp"
 #include "ros/motion_lane.hpp"
 #include "ros/trajectory_goal.hpp"
@@ -64,6 +66,25 @@ ArmState state_of(const session::ArmSnapshot& s) {
 bool is_stopped(const Status& s) {
   const auto* refused = s ? nullptr : session::job_refusal(s.error());
   return refused && refused->reason == session::JobRefused::Reason::dropped;
+}
+
+// A PTP sent as one board move from where the arm stands, then waited for (the one planner
+// and runner: arm::plan_moves, arm::run_motion). A stop meanwhile halts the arm and ends
+// the job with an error that says so.
+Status board_move(arm::Arm& a, session::JobContext& ctx, const arm::PtpMove& move) {
+  auto here = a.read();
+  if (!here) return here.error();
+  arm::PlanOptions o;
+  o.ptp = arm::PtpRun::board;
+  auto plan = arm::plan_moves(*a.kinematics(), here->positions, std::vector<arm::Move>{{move}}, o);
+  if (!plan) return plan.error();
+  arm::RunHooks hooks;
+  hooks.command = [&ctx] { return ctx.stopping() ? arm::MotionCommand::stop : arm::MotionCommand::none; };
+  hooks.wait = ctx.wait_options();
+  auto report = arm::run_motion(a, *plan, hooks);
+  if (!report) return report.error();
+  if (report->stopped) return Error{ErrorKind::device, "stopped before the arm arrived"};
+  return Ok{};
 }
 
 MotionOutcome refusal_outcome(const Error& e) {
@@ -218,14 +239,11 @@ MotionOutcome ArmBridge::move_to(const std::vector<double>& position, const std:
   goal.pitch = r.pitch;
   goal.yaw = r.yaw;
   goal.nearest_orientation = true;  // the 5-joint xArm: the nearest orientation it can reach
-  arm::MoveOptions mo;
-  mo.speed = impl_->options.move_speed;
-  return impl_->run("pose goal", [goal, mo](arm::Arm& a, session::JobContext& ctx) -> Status {
-    if (auto moved = a.move_to(goal, mo); !moved) return moved;
-    auto w = a.wait(ctx.wait_options());
-    if (!w) return w.error();
-    return Ok{};
-  });
+  arm::PtpMove move;
+  move.target = goal;
+  move.speed = impl_->options.move_speed;
+  return impl_->run("pose goal",
+                    [move](arm::Arm& a, session::JobContext& ctx) -> Status { return board_move(a, ctx, move); });
 }
 
 MotionOutcome ArmBridge::set_torque(bool on) {
@@ -237,13 +255,16 @@ MotionOutcome ArmBridge::gripper(double closed_fraction) {
   if (!std::isfinite(closed_fraction) || closed_fraction < 0 || closed_fraction > 1)
     return refusal_outcome(Error{ErrorKind::invalid_argument,
                                  fmt::format("closed_fraction {} is not allowed: 0 (open) to 1 (closed)", closed_fraction)});
-  arm::MoveOptions mo;
-  mo.speed = impl_->options.move_speed;
-  return impl_->run("gripper", [closed_fraction, mo](arm::Arm& a, session::JobContext& ctx) -> Status {
-    if (auto s = a.gripper(closed_fraction, mo); !s) return s;
-    auto w = a.wait(ctx.wait_options());
-    if (!w) return w.error();
-    return Ok{};
+  const double speed = impl_->options.move_speed;
+  return impl_->run("gripper", [closed_fraction, speed](arm::Arm& a, session::JobContext& ctx) -> Status {
+    const arm::ArmModel& model = a.model();
+    if (!model.gripper) return Error{ErrorKind::unsupported, fmt::format("arm '{}' has no gripper", model.name)};
+    std::vector<std::optional<double>> targets(std::size_t(model.joint_count()));
+    targets[std::size_t(model.gripper->joint)] = model.gripper->at(closed_fraction);
+    arm::PtpMove move;
+    move.target = targets;
+    move.speed = speed;
+    return board_move(a, ctx, move);
   });
 }
 

@@ -1,14 +1,9 @@
 // A joint trajectory as ROS sends it (FollowJointTrajectory goals, the JointTrajectory
-// topic), checked against the arm and turned into an arm::PlannedMotion for the motion
-// executor. Free of ROS types, so that it is tested without a roscore
-// (tests/ros/trajectory_goal_test.cpp). Docs: docs/ros.md "Trajectories".
-//
-// Between points every joint follows a quintic (positions, velocities and accelerations
-// given), a cubic (positions and velocities) or, with positions only, a cubic whose
-// velocities at the inner points are estimated from the neighbouring slopes (0 where the
-// joint turns back). The motion starts where the arm stands, at rest, at time 0, and ends at
-// rest at the last point. Joints the trajectory does not name (only the gripper may be left
-// out) hold where they are.
+// topic): its joint names mapped to the arm's, its points put in the model's order, and
+// planned by the one planner (arm::plan_moves, a TrajectoryMove: the spline of
+// arm/spline_motion.hpp) for the runner. Free of ROS types, so that it is tested without a
+// roscore (tests/ros/trajectory_goal_test.cpp). Docs: docs/ros.md "Trajectories". Joints
+// the trajectory does not name (only the gripper may be left out) hold where they are.
 #pragma once
 
 #include <optional>
@@ -17,6 +12,7 @@
 
 #include "arm/arm_model.hpp"
 #include "arm/motion_executor.hpp"
+#include "arm/plan_moves.hpp"
 #include "core/error.hpp"
 #include "ros/trajectory_types.hpp"
 
@@ -30,7 +26,8 @@ struct GoalTolerances {
 };
 
 struct TrajectoryPlan {
-  arm::PlannedMotion motion;
+  arm::Plan plan;              // for the runner (arm::run_motion): one motion piece
+  arm::PlannedMotion motion;   // that piece's motion
   std::vector<double> target;  // every joint at the end (SI, the model's order)
   std::vector<int> joints;     // for each of the request's joint names, its model index
 };

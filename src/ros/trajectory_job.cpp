@@ -8,6 +8,8 @@
 
 #include <fmt/core.h>
 
+#include "arm/run_motion.hpp"
+
 namespace armctl::ros_node {
 
 namespace {
@@ -66,39 +68,35 @@ Status run_trajectory(arm::Arm& arm, session::JobContext& ctx, const TrajectoryR
     r.positions = s.positions;
     ++r.count;
   };
-  auto report = arm::execute_motion(arm, plan->motion, ctx.executor_options(eo));
-  if (!report) {
-    const bool following = arm::following_error_of(report.error()) != nullptr;
-    return fail(outcome, following ? GoalError::path_tolerance_violated : GoalError::invalid_goal, report.error());
-  }
-  {
-    std::lock_guard<std::mutex> lock(outcome.mutex);
-    outcome.report = *report;
-    outcome.stopped = report->stopped;
-  }
-  if (report->stopped || ctx.stopping()) {
-    std::lock_guard<std::mutex> lock(outcome.mutex);
-    outcome.stopped = true;
-    return Ok{};
-  }
-
-  // The end: every joint within its goal tolerance by goal_time_tolerance after the end.
-  arm::WaitOptions w;
+  // The runner: streamed, then every joint within its goal tolerance by
+  // goal_time_tolerance after the end.
+  arm::RunHooks hooks;
+  hooks.executor = ctx.executor_options(eo);
   const double goal_time = tolerances.goal_time.value_or(defaults.goal_time);
+  arm::WaitOptions w;
   w.timeout = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(goal_time));
   w.joint_tolerance = per_joint(tolerances.goal);
-  auto arrived = arm.wait(ctx.wait_options(w));
-  if (!arrived) {
+  hooks.wait = ctx.wait_options(w);
+  bool late = false;
+  hooks.not_arrived = [&](const Error& e) {
+    late = true;
+    return Error{e.kind, fmt::format("not within the goal tolerance {:.3f} s after the trajectory's end: {}", goal_time,
+                                     e.message)};
+  };
+  auto report = arm::run_motion(arm, plan->plan, hooks);
+  if (!report) {
     if (ctx.stopping()) {
       std::lock_guard<std::mutex> lock(outcome.mutex);
       outcome.stopped = true;
       return Ok{};
     }
-    return fail(outcome, GoalError::goal_tolerance_violated,
-                Error{arrived.error().kind,
-                      fmt::format("not within the goal tolerance {:.3f} s after the trajectory's end: {}", goal_time,
-                                  arrived.error().message)});
+    if (late) return fail(outcome, GoalError::goal_tolerance_violated, report.error());
+    const bool following = arm::following_error_of(report.error()) != nullptr;
+    return fail(outcome, following ? GoalError::path_tolerance_violated : GoalError::invalid_goal, report.error());
   }
+  std::lock_guard<std::mutex> lock(outcome.mutex);
+  if (report->last_motion) outcome.report = *report->last_motion;
+  outcome.stopped = report->stopped || ctx.stopping();
   return Ok{};
 }
 

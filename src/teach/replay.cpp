@@ -5,7 +5,7 @@
 #include <fmt/core.h>
 
 #include "arm/arm.hpp"
-#include "arm/motion_planning.hpp"
+#include "arm/plan_moves.hpp"
 
 namespace armctl::teach {
 
@@ -57,24 +57,25 @@ Result<ReplayPlan> plan_replay(const arm::ArmModel& model, const std::vector<dou
   }
   for (std::size_t k = 1; k + 1 < kept.size(); ++k) plan.waypoints.push_back(smoothed[kept[k]].positions);
 
-  arm::JointMove to_start;
-  to_start.target = smoothed.front().positions;
+  // To the first sample, then through the waypoints to the last: one plan (arm::plan_moves).
+  arm::PtpMove to_start;
+  to_start.target = std::vector<std::optional<double>>(smoothed.front().positions.begin(),
+                                                       smoothed.front().positions.end());
   to_start.speed = options.speed;
-  auto start = arm::plan_joint_move(model, from, to_start);
-  if (!start) return start.error();
-  plan.to_start = std::move(start).value();
-  plan.to_start.what = "to the recording's start";
-
-  arm::JointMove move;
-  move.waypoints = plan.waypoints;
-  move.target = smoothed.back().positions;
-  move.speed = options.speed;
+  arm::PtpMove replay;
+  replay.waypoints = plan.waypoints;
+  replay.target = std::vector<std::optional<double>>(smoothed.back().positions.begin(), smoothed.back().positions.end());
+  replay.speed = options.speed;
   // Never faster than it was recorded: a hand's motion stays a hand's pace.
-  move.min_duration = plan.recorded_seconds / options.speed;
-  auto motion = arm::plan_joint_move(model, smoothed.front().positions, move);
-  if (!motion) return motion.error();
-  plan.motion = std::move(motion).value();
-  plan.motion.what = fmt::format("replay through {} waypoints", plan.waypoints.size());
+  replay.min_duration = plan.recorded_seconds / options.speed;
+  const std::vector<arm::Move> moves{{to_start, "to the recording's start"},
+                                     {replay, fmt::format("replay through {} waypoints", plan.waypoints.size())}};
+  auto planned = arm::plan_moves(arm::ArmKinematics(model), from, moves);
+  if (!planned) return planned.error();
+  plan.plan = std::move(planned).value();
+  for (auto& piece : plan.plan.pieces) piece.motion.what = piece.label;
+  plan.to_start = plan.plan.pieces[0].motion;
+  plan.motion = plan.plan.pieces[1].motion;
   return plan;
 }
 

@@ -1,6 +1,6 @@
 // Replaying a recording (motion/recording.hpp) through the motion layer: the samples
 // smoothed, decimated into waypoints, and one jerk-limited joint move planned through them
-// (arm::plan_joint_move), within the arm's limits. Pure planning. Docs: docs/teach.md "Replay".
+// (arm::plan_moves), within the arm's limits. Pure planning. Docs: docs/teach.md "Replay".
 #pragma once
 
 #include <cstddef>
@@ -8,6 +8,7 @@
 
 #include "arm/arm_model.hpp"
 #include "arm/motion_executor.hpp"
+#include "arm/plan_moves.hpp"
 #include "core/error.hpp"
 #include "motion/recording.hpp"
 
@@ -22,6 +23,7 @@ struct ReplayOptions {
 };
 
 struct ReplayPlan {
+  arm::Plan plan;  // for the runner (arm::run_motion): the two motions below
   arm::PlannedMotion to_start;  // from where the arm stands to the first sample (rest to rest)
   arm::PlannedMotion motion;    // through the waypoints to the last sample
   std::vector<std::vector<double>> waypoints;  // SI, every joint, the first and last sample excluded

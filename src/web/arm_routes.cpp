@@ -77,7 +77,7 @@ void add_arm_routes(WebServer::State& s) {
   s.router.add("POST", "/api/v1/joints", [&s](Call& c) {
     s.lease.require(c.client);
     const JointsRequest r = parse_joints_request(s.worker.model(), c.body());
-    if (auto ok = s.arm().check_targets(r.targets); !ok) fail(ok.error());
+    if (auto ok = s.kinematics().check_targets(r.targets); !ok) fail(ok.error());
     c.reply(s.start_motion("joints move", joint_move_job(r)));
   });
   s.router.add("POST", "/api/v1/tool", [&s](Call& c) {

@@ -43,7 +43,7 @@ void add_group_routes(WebServer::State& s) {
     r.finish();
     const GroupFrames g = frames_to_group(s.worker.model(), frames);
     for (std::size_t k = 0; k < g.targets.size(); ++k)
-      if (auto ok = s.arm().check_targets(g.targets[k]); !ok)
+      if (auto ok = s.kinematics().check_targets(g.targets[k]); !ok)
         throw ApiError(400, fmt::format("frames[{}]: {}", k, ok.error().message));
     board(fmt::format("download group {}", n),
           [n, actions = g.group.actions](robot_commands::Client& client) { return client.download_group(n, actions); });

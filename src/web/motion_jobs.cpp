@@ -4,8 +4,8 @@
 
 #include <fmt/core.h>
 
-#include "arm/motion_executor.hpp"
-#include "arm/motion_planning.hpp"
+#include "arm/plan_moves.hpp"
+#include "arm/run_motion.hpp"
 #include "core/quantity.hpp"
 #include "motion/move_limits.hpp"
 
@@ -16,58 +16,39 @@ namespace {
 using nlohmann::json;
 
 
-// Runs a planned motion on the worker: through the executor with the job's context (stop
-// slows down on the path, pause holds on it, positions are published), then waits until
-// the arm stands at the end.
-Status run_planned(arm::Arm& arm, session::JobContext& ctx, const arm::PlannedMotion& motion) {
-  auto report = arm::execute_motion(arm, motion, ctx.executor_options());
-  if (!report) return report.error();
-  if (!report->completed || ctx.stopping()) return Ok{};  // stopped on request: not an error
-  arm::WaitOptions wait;
-  wait.timeout = std::chrono::seconds(10);
-  if (auto s = arm.wait(ctx.wait_options(wait)); !s && !ctx.stopping()) return s.error();
+// The hooks of a web job: the job's context (stop slows down on the path, pause holds on
+// it, positions and progress are published); a stop is not an error.
+arm::RunHooks job_hooks(session::JobContext& ctx) {
+  arm::RunHooks hooks;
+  // Stop (pause and resume are the executor's: they hold a motion on its path).
+  hooks.command = [&ctx] { return ctx.stopping() ? arm::MotionCommand::stop : arm::MotionCommand::none; };
+  hooks.executor = ctx.executor_options();
+  hooks.wait = ctx.wait_options();
+  return hooks;
+}
+
+// Plans `moves` from where the arm stands (arm::plan_moves), answers the request (the plan's
+// duration, and a note when it takes longer than asked), then runs it (arm::run_motion).
+Status plan_and_run(arm::Arm& arm, session::JobContext& ctx, const Accept& accept, const arm::JointState& here,
+                    const std::vector<arm::Move>& moves) {
+  auto plan = arm::plan_moves(*arm.kinematics(), here.positions, moves);
+  if (!plan) return plan.error();
+  json answer{{"moving", true}, {"duration_s", plan->duration}};
+  if (const std::string note = plan->notes(); !note.empty()) answer["note"] = note;
+  accept(answer);
+  auto report = arm::run_motion(arm, *plan, job_hooks(ctx));
+  if (!report && !ctx.stopping()) return report.error();
   return Ok{};
-}
-
-// `note`: why the move takes longer than asked (a duration below the arm file's limits).
-json moving(const arm::PlannedMotion& m, const std::string& note = {}) {
-  json out{{"moving", true}, {"duration_s", m.duration}};
-  if (!note.empty()) out["note"] = note;
-  return out;
-}
-
-// A joint-space move to `target` (SI, every joint): planned, accepted, run. With a
-// `duration`, the rule of every app: stretched to the arm file's limits, and the reply says so.
-Status joint_move(arm::Arm& arm, session::JobContext& ctx, const Accept& accept, const std::vector<double>& from,
-                  const std::vector<double>& target, double speed, std::optional<double> duration) {
-  std::vector<std::optional<double>> check(target.begin(), target.end());
-  if (auto ok = arm.check_targets(check); !ok) return ok.error();
-  arm::JointMove move;
-  move.target = target;
-  move.speed = duration ? 1.0 : speed;
-  std::string note;
-  if (duration) {
-    auto timed = arm::joint_move_duration(arm.model(), from, target, *duration, fmt::format("duration {:g} s", *duration));
-    if (!timed) return timed.error();
-    move.min_duration = timed->seconds;
-    note = timed->note;
-  }
-  auto planned = arm::plan_joint_move(arm.model(), from, move);
-  if (!planned) return planned.error();
-  accept(moving(*planned, note));
-  return run_planned(arm, ctx, *planned);
 }
 
 // The tool to `goal`: PTP to the IK solution nearest where the arm stands, or a straight line.
 Status tool_move(arm::Arm& arm, session::JobContext& ctx, const Accept& accept, const arm::JointState& here,
                  const arm::CartesianGoal& goal, bool linear, double speed) {
   if (!linear) {
-    auto solutions = arm.inverse(goal, here);
-    if (!solutions) return solutions.error();
-    std::vector<double> target = here.positions;
-    const motion::JointVector& q = solutions->front().joints;
-    for (int i = 0; i < q.size(); ++i) target[std::size_t(i)] = q[i];
-    return joint_move(arm, ctx, accept, here.positions, target, speed, std::nullopt);
+    arm::PtpMove ptp;
+    ptp.target = goal;
+    ptp.speed = speed;
+    return plan_and_run(arm, ctx, accept, here, {arm::Move{ptp}});
   }
   // The request's speed, a fraction, checked as given (not as the m/s it becomes).
   if (auto ok = check_fraction_in(speed, "speed", motion::kMinSpeedFraction, motion::kMaxSpeedFraction); !ok)
@@ -75,12 +56,7 @@ Status tool_move(arm::Arm& arm, session::JobContext& ctx, const Accept& accept, 
   arm::CartesianMove line;
   line.goal = goal;
   line.speed = speed * kMaxLinearSpeed;
-  const std::vector<arm::CartesianMove> moves{line};
-  const std::vector<motion::PathSegment> segments = arm::path_segments(arm, here.positions, moves);
-  auto plan = arm::plan_path(arm.model(), here.positions, segments);
-  if (!plan) return plan.error();
-  accept(moving(plan->motion));
-  return run_planned(arm, ctx, plan->motion);
+  return plan_and_run(arm, ctx, accept, here, {arm::Move{line}});
 }
 
 }  // namespace
@@ -90,10 +66,12 @@ MotionJob joint_move_job(JointsRequest r) {
     if (auto ok = arm.check_targets(r.targets); !ok) return ok.error();
     auto here = arm.read();
     if (!here) return here.error();
-    std::vector<double> target = here->positions;
-    for (std::size_t i = 0; i < target.size() && i < r.targets.size(); ++i)
-      if (r.targets[i]) target[i] = *r.targets[i];
-    return joint_move(arm, ctx, accept, here->positions, target, r.speed, r.duration);
+    arm::PtpMove ptp;
+    ptp.target = r.targets;
+    ptp.speed = r.speed;
+    ptp.duration = r.duration;
+    if (r.duration) ptp.duration_words = fmt::format("duration {:g} s", *r.duration);
+    return plan_and_run(arm, ctx, accept, *here, {arm::Move{ptp}});
   };
 }
 
@@ -114,17 +92,16 @@ MotionJob jog_job(JogRequest r) {
   return [r](arm::Arm& arm, session::JobContext& ctx, const Accept& accept) -> Status {
     auto here = arm.read();
     if (!here) return here.error();
-    const motion::JointVector q = arm.chain_of(here->positions);
-    const motion::Pose pose = arm.forward(q);
-    const motion::Rpy rpy = arm.tool_rpy(pose, q);
-    arm::CartesianGoal goal;
-    goal.position = pose.position;
-    if (r.axis < 3) goal.position[r.axis] += r.step;
-    goal.roll = rpy.roll + (r.axis == 3 ? r.step : 0);
-    goal.pitch = rpy.pitch + (r.axis == 4 ? r.step : 0);
-    // The 5-joint xArm's yaw is where it points: it follows the position unless jogged.
+    const arm::ArmKinematics& kin = *arm.kinematics();
+    const motion::Pose pose = kin.pose_at(here->positions);
+    const motion::Rpy rpy = kin.tool_rpy_at(here->positions);
+    Eigen::Vector3d position = pose.position;
+    if (r.axis < 3) position[r.axis] += r.step;
+    // The orientation kept (where the yaw follows the position, it follows it unless jogged).
+    arm::CartesianGoal goal = kin.keeping_orientation(position, rpy);
+    if (r.axis == 3) goal.roll = rpy.roll + r.step;
+    if (r.axis == 4) goal.pitch = rpy.pitch + r.step;
     if (r.axis == 5) goal.yaw = rpy.yaw + r.step;
-    else if (arm.model().family != motion::KinematicFamily::xarm) goal.yaw = rpy.yaw;
     return tool_move(arm, ctx, accept, *here, goal, r.linear, r.speed);
   };
 }
@@ -133,12 +110,23 @@ MotionJob gripper_job(double closed) {
   return [closed](arm::Arm& arm, session::JobContext& ctx, const Accept& accept) -> Status {
     if (!arm.model().gripper)
       return Error{ErrorKind::unsupported, fmt::format("arm {} has no gripper", arm.model().name)};
-    arm::MoveOptions o;
-    o.speed = 0.5;
-    if (auto s = arm.gripper(closed, o); !s) return s.error();
+    if (!std::isfinite(closed) || closed < 0 || closed > 1)
+      return Error{ErrorKind::invalid_argument,
+                   fmt::format("gripper: {} is outside 0..1 (0 = open, 1 = closed)", closed)};
+    auto here = arm.read();
+    if (!here) return here.error();
+    std::vector<std::optional<double>> targets(here->positions.size());
+    targets[std::size_t(arm.model().gripper->joint)] = arm.model().gripper->at(closed);
+    arm::PtpMove ptp;
+    ptp.target = targets;
+    ptp.speed = motion::kDefaultGripperSpeed;
+    arm::PlanOptions board;
+    board.ptp = arm::PtpRun::board;
+    auto plan = arm::plan_moves(*arm.kinematics(), here->positions, std::vector<arm::Move>{{ptp}}, board);
+    if (!plan) return plan.error();
     accept(json{{"moving", true}});
-    arm::WaitOptions wait;
-    if (auto s = arm.wait(ctx.wait_options(wait)); !s && !ctx.stopping()) return s.error();
+    auto report = arm::run_motion(arm, *plan, job_hooks(ctx));
+    if (!report && !ctx.stopping()) return report.error();
     return Ok{};
   };
 }

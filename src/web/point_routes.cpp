@@ -14,7 +14,7 @@ namespace armctl::web {
 
 namespace {
 
-json point_json(const arm::Arm& arm, const program::Point& p) {
+json point_json(const arm::ArmKinematics& arm, const program::Point& p) {
   const arm::ArmModel& model = arm.model();
   json out{{"name", p.name}};
   if (p.is_joints()) {
@@ -42,7 +42,7 @@ json point_json(const arm::Arm& arm, const program::Point& p) {
 // The points as the API shows them; the caller holds points_mutex.
 json points_json(WebServer::State& s) {
   json list = json::array();
-  for (const auto& p : s.points.points) list.push_back(point_json(s.arm(), p));
+  for (const auto& p : s.points.points) list.push_back(point_json(s.kinematics(), p));
   return {{"file", s.options.points_file.empty() ? json(nullptr) : json(s.options.points_file.string())},
           {"points", std::move(list)}};
 }
@@ -89,7 +89,7 @@ void add_point_routes(WebServer::State& s) {
       next.points.push_back(point);
     }
     commit(s, std::move(next));
-    c.reply({{"point", point_json(s.arm(), point)}, {"replaced", replaced}});
+    c.reply({{"point", point_json(s.kinematics(), point)}, {"replaced", replaced}});
   });
   s.router.add("DELETE", "/api/v1/points/([^/]*)", [&s](Call& c) {
     s.lease.require(c.client);

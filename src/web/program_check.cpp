@@ -12,7 +12,7 @@ PlacedError place_error(const Error& e) {
   return {kProgramSource, 0, 0, e.message};
 }
 
-CheckedProgram check_program(const ProgramRequest& r, const arm::Arm* arm, const std::vector<double>& start) {
+CheckedProgram check_program(const ProgramRequest& r, const arm::ArmKinematics* arm, const std::vector<double>& start) {
   CheckedProgram out;
   auto fail = [&](const Error& e) {
     out.errors.push_back(place_error(e));

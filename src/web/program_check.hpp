@@ -36,7 +36,7 @@ struct CheckedProgram {
 };
 
 // Parse, flow, and (with `arm` and `start`) plan.
-CheckedProgram check_program(const ProgramRequest& request, const arm::Arm* arm, const std::vector<double>& start);
+CheckedProgram check_program(const ProgramRequest& request, const arm::ArmKinematics* arm, const std::vector<double>& start);
 
 nlohmann::json errors_json(const std::vector<PlacedError>& errors);
 

@@ -26,7 +26,7 @@ MotionJob program_job(WebServer::State& s, ProgramRequest request) {
   return [&s, request](arm::Arm& arm, session::JobContext& ctx, const Accept& accept) -> Status {
     auto here = arm.read();
     if (!here) return here.error();
-    CheckedProgram checked = check_program(request, &arm, here->positions);
+    CheckedProgram checked = check_program(request, arm.kinematics().get(), here->positions);
     if (!checked.plan) {
       return placed_error(checked.errors.front());
     }
@@ -43,7 +43,7 @@ MotionJob program_job(WebServer::State& s, ProgramRequest request) {
     // executor's: they hold a motion on its path).
     o.command = [&ctx] { return ctx.stopping() ? arm::MotionCommand::stop : arm::MotionCommand::none; };
     o.on_event = [&s](const program::RunEvent& e) {
-      if (e.kind == program::RunEventKind::print) s.program.print(e.piece->text);
+      if (e.kind == program::RunEventKind::message) s.program.print(e.piece->text);
       s.program.at(e.piece->first_line, e.piece->first_column, e.left);
     };
     auto report = program::run_plan(arm, plan, o);
@@ -68,7 +68,7 @@ void add_program_routes(WebServer::State& s) {
       throw ApiError(500, fmt::format("no positions read from the arm yet{}",
                                       snapshot.link_error.empty() ? "" : ": " + snapshot.link_error));
     // Planned from the last positions the worker published (a check moves nothing).
-    const CheckedProgram checked = check_program(r, &s.arm(), snapshot.positions);
+    const CheckedProgram checked = check_program(r, &s.kinematics(), snapshot.positions);
     json out{{"ok", checked.errors.empty()}, {"errors", errors_json(checked.errors)}};
     out["duration_s"] = checked.plan ? json(checked.plan->duration) : json(nullptr);
     c.reply(out);

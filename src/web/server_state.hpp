@@ -36,9 +36,9 @@ struct WebServer::State {
   std::mutex points_mutex;
   program::PointsFile points;
 
-  // The arm, for its calls that read only the model (check_targets, forward, tool_rpy):
-  // the model never changes once the arm exists, so these are safe off the worker thread.
-  const arm::Arm& arm() { return *worker.session().arm; }
+  // The arm's kinematics (check_targets, forward, tool_rpy, planning): an immutable value,
+  // safe on the HTTP threads while the worker thread drives the arm.
+  const arm::ArmKinematics& kinematics() { return *worker.session().arm->kinematics(); }
 
   // Queues a motion job and waits until it has accepted (planned, checked, started) or
   // refused: its answer, or an ApiError (400 a bad value, 409 busy, 500 the device).

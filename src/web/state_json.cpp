@@ -67,13 +67,13 @@ json model_json(const arm::ArmModel& model, const DeviceInfo& device) {
           {"groups_supported", device.groups_supported}};
 }
 
-json tool_json(const arm::Arm& arm, const motion::Pose& pose, const std::vector<double>& positions) {
+json tool_json(const arm::ArmKinematics& arm, const motion::Pose& pose, const std::vector<double>& positions) {
   const motion::Rpy rpy = arm.tool_rpy(pose, arm.chain_of(positions));
   return {{"x", mm(pose.position.x())}, {"y", mm(pose.position.y())}, {"z", mm(pose.position.z())},
           {"roll", deg(rpy.roll)},      {"pitch", deg(rpy.pitch)},    {"yaw", deg(rpy.yaw)}};
 }
 
-json state_json(const arm::Arm& arm, const DeviceInfo& device, const session::ArmSnapshot& s,
+json state_json(const arm::ArmKinematics& arm, const DeviceInfo& device, const session::ArmSnapshot& s,
                 const ControlView& control, const std::optional<ProgramView>& program) {
   const arm::ArmModel& model = arm.model();
   json joints = json::array();

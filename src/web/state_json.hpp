@@ -34,10 +34,10 @@ DeviceInfo describe_device(session::ArmSession& session, const std::string& uri)
 json model_json(const arm::ArmModel& model, const DeviceInfo& device);
 
 // `arm` for its model-only calls (tool_rpy); nothing is read from the device.
-json state_json(const arm::Arm& arm, const DeviceInfo& device, const session::ArmSnapshot& snapshot,
+json state_json(const arm::ArmKinematics& arm, const DeviceInfo& device, const session::ArmSnapshot& snapshot,
                 const ControlView& control, const std::optional<ProgramView>& program);
 
 // The tool pose as {"x","y","z" (mm), "roll","pitch","yaw" (deg)}.
-json tool_json(const arm::Arm& arm, const motion::Pose& pose, const std::vector<double>& positions);
+json tool_json(const arm::ArmKinematics& arm, const motion::Pose& pose, const std::vector<double>& positions);
 
 }  // namespace armctl::web

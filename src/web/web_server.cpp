@@ -136,7 +136,7 @@ void WebServer::State::run_to_end(const std::string& what, session::ArmWorker::J
 }
 
 json WebServer::State::state_for(const std::string& client, const session::ArmSnapshot& snapshot) {
-  return state_json(arm(), options.device, snapshot, lease.view(client), program.view());
+  return state_json(kinematics(), options.device, snapshot, lease.view(client), program.view());
 }
 
 WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)

@@ -282,12 +282,12 @@ TEST(XarmFreePitch, APositionAloneTakesRoomyPitchSoTheReadmeLinePlans) {
   line.goal.position = {0.18, 0.04, 0.10};
   line.speed = 0.04;
   const std::vector<CartesianMove> moves{line};
-  auto plan = plan_path(arm.model(), there, path_segments(arm, there, moves));
+  auto plan = plan_path(arm.model(), there, path_segments(*arm.kinematics(), there, moves));
   ASSERT_TRUE(plan.ok()) << plan.error().message;
   EXPECT_TRUE(plan->checked->slowed.empty());
   EXPECT_LT(plan->motion.duration, 1.5);  // 40 mm at 40 mm/s, and the ramps
 
-  auto refused = plan_path(arm.model(), straight_up.positions, path_segments(arm, straight_up.positions, moves));
+  auto refused = plan_path(arm.model(), straight_up.positions, path_segments(*arm.kinematics(), straight_up.positions, moves));
   ASSERT_FALSE(refused.ok());
   EXPECT_NE(refused.error().message.find("the path starts at a singularity (arm stretched or folded)"),
             std::string::npos)

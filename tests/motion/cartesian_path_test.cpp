@@ -86,7 +86,7 @@ TEST(CartesianPath, TheSlowerOfLengthAndTurnSetsTheNominalTime) {
   EXPECT_NEAR(path.duration(), 1.0 / 0.25, 1e-12);  // 4 s for the turn, 0.02 s for the 1 mm
   // A pure turn (no motion of the tool point) is a segment too.
   const CartesianPath spin = built(start, {lin(pose(0.2, 0, 0.1, {0.5, 0, 0}))});
-  EXPECT_NEAR(spin.duration(), 0.5 / 0.5, 1e-12);
+  EXPECT_NEAR(spin.duration(), 0.5 / kDefaultToolAngularSpeed, 1e-12);  // at the default 45 deg/s
   EXPECT_LT((spin.at(0.5).position - start.position).norm(), 1e-15);
 }
 
@@ -317,6 +317,7 @@ TEST(CartesianPath, LengthsAndTimesThatAreNotFiniteAreRefused) {
         << x;
   }
   PathSegment fast = lin(pose(0.3, 0, 0.1), 1e300);
+  fast.angular_speed = 0.5;
   EXPECT_THAT(refused(start, {lin(pose(0.25, 0, 0.1)), fast}).message,
               HasSubstr("segment 2 (LIN): at 1e+300 m/s and 0.5 rad/s its 0.05 m and 0 rad take no time after "
                         "the 1 s of path before it; lower its speed"));

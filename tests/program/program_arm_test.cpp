@@ -97,7 +97,7 @@ class ScaraProgram : public ::testing::Test {
 template <typename Rig>
 void run_example(Rig& rig, const std::string& name, double tolerance) {
   const Flow flow = example_flow(name);
-  auto plan = plan_program(rig.arm, rig.here(), flow, name);
+  auto plan = plan_program(*rig.arm.kinematics(), rig.here(), flow, name);
   ASSERT_TRUE(plan) << plan.error().message;
   EXPECT_GT(plan->duration, 5.0);
   auto points = read_points_file(example(name + "-pick-place.points")).value();
@@ -106,7 +106,7 @@ void run_example(Rig& rig, const std::string& name, double tolerance) {
   std::vector<std::string> printed;
   RunOptions o;
   o.on_event = [&](const RunEvent& e) {
-    if (e.kind == RunEventKind::print) printed.push_back(e.piece->text);
+    if (e.kind == RunEventKind::message) printed.push_back(e.piece->text);
     const Eigen::Vector3d t = rig.true_tool();
     nearest_pick = std::min(nearest_pick, (t - pick).norm());
     // The first part is placed at the point's own height, the others above it.
@@ -140,7 +140,7 @@ TEST_F(XarmProgram, CheckRefusesAnUnreachableMoveBeforeAnyByteIsSent) {
       "home x=180mm y=0mm z=100mm pitch=50deg\nfar x=340mm y=0mm z=100mm pitch=50deg\n");
   const auto start = here();
   const std::size_t sent = link.sent.size();
-  auto plan = plan_program(arm, start, flow, "t.prog");
+  auto plan = plan_program(*arm.kinematics(), start, flow, "t.prog");
   ASSERT_FALSE(plan);
   EXPECT_EQ(plan.error().kind, ErrorKind::invalid_argument);
   // The line of the move that fails, its kind and target, and the path check's reason.
@@ -154,24 +154,24 @@ TEST_F(XarmProgram, CheckRefusesAnUnreachableMoveBeforeAnyByteIsSent) {
   EXPECT_EQ(link.sent.size(), sent);
   // Beyond any reach: refused before planning, with the coordinate and the reach.
   const Flow beyond = flow_of("lin far speed=40mm/s\n", "far x=600mm y=0mm z=100mm pitch=50deg\n");
-  EXPECT_EQ(plan_program(arm, start, beyond, "t.prog").error().message,
+  EXPECT_EQ(plan_program(*arm.kinematics(), start, beyond, "t.prog").error().message,
             "t.prog:1: (LIN far): target: x 600 mm is beyond reach: arm 'xarm' reaches at most 366 mm from its base");
   // A PTP to a point out of reach: the IK's reason.
   const Flow ptp = flow_of("ptp far\n", "far x=600mm y=0mm z=100mm\n");
-  auto refused = plan_program(arm, start, ptp, "t.prog");
+  auto refused = plan_program(*arm.kinematics(), start, ptp, "t.prog");
   ASSERT_FALSE(refused);
   EXPECT_EQ(refused.error().message.rfind("t.prog:1: (PTP far): ", 0), 0u) << refused.error().message;
   // Joint values outside the limits, with the joint named.
   const Flow joints = flow_of("ptp joints(150deg)\n", "");
-  auto outside = plan_program(arm, start, joints, "t.prog");
+  auto outside = plan_program(*arm.kinematics(), start, joints, "t.prog");
   ASSERT_FALSE(outside);
   EXPECT_NE(outside.error().message.find("servo6"), std::string::npos) << outside.error().message;
   // A length for a revolute joint, and more values than the arm has joints.
-  auto wrong_kind = plan_program(arm, start, flow_of("ptp joints(10deg, 20mm)\n", ""), "t.prog");
+  auto wrong_kind = plan_program(*arm.kinematics(), start, flow_of("ptp joints(10deg, 20mm)\n", ""), "t.prog");
   ASSERT_FALSE(wrong_kind);
   EXPECT_NE(wrong_kind.error().message.find("joint servo5 takes an angle, not a length"), std::string::npos)
       << wrong_kind.error().message;
-  auto too_many = plan_program(arm, start, flow_of("ptp joints(0deg, 0deg, 0deg, 0deg, 0deg, 0deg, 0deg)\n", ""),
+  auto too_many = plan_program(*arm.kinematics(), start, flow_of("ptp joints(0deg, 0deg, 0deg, 0deg, 0deg, 0deg, 0deg)\n", ""),
                                "t.prog");
   ASSERT_FALSE(too_many);
   EXPECT_NE(too_many.error().message.find("7 joint values given; arm 'xarm' has 6 joints"), std::string::npos)
@@ -187,7 +187,7 @@ TEST_F(XarmProgram, ConsecutiveCartesianMovesBlendAndEverythingElseBreaksTheBlen
   auto count = [&](const std::string& text, bool blend) {
     PlanOptions o;
     o.blend = blend;
-    auto plan = plan_program(arm, start, flow_of(text, points), "t.prog", o);
+    auto plan = plan_program(*arm.kinematics(), start, flow_of(text, points), "t.prog", o);
     EXPECT_TRUE(plan) << plan.error().message;
     std::size_t motions = 0;
     for (const auto& p : plan->pieces) motions += p.kind == PieceKind::motion;
@@ -204,16 +204,16 @@ TEST_F(XarmProgram, ConsecutiveCartesianMovesBlendAndEverythingElseBreaksTheBlen
   // --step: every move on its own.
   EXPECT_EQ(count("ptp a\n" + moves, false), 4u);
   // A blended path is faster than the same moves stopping at every corner.
-  auto blended = plan_program(arm, start, flow_of("ptp a\n" + moves, points), "t.prog").value();
+  auto blended = plan_program(*arm.kinematics(), start, flow_of("ptp a\n" + moves, points), "t.prog").value();
   PlanOptions stepwise;
   stepwise.blend = false;
-  auto stopped = plan_program(arm, start, flow_of("ptp a\n" + moves, points), "t.prog", stepwise).value();
+  auto stopped = plan_program(*arm.kinematics(), start, flow_of("ptp a\n" + moves, points), "t.prog", stepwise).value();
   EXPECT_LT(blended.duration, stopped.duration - 0.2);
 }
 
 TEST_F(XarmProgram, WaitTakesItsTimeOnTheDeviceClock) {
   const Flow flow = flow_of("wait 1.5s\nwait 250ms\n", "");
-  auto plan = plan_program(arm, here(), flow, "t.prog").value();
+  auto plan = plan_program(*arm.kinematics(), here(), flow, "t.prog").value();
   EXPECT_DOUBLE_EQ(plan.duration, 1.75);
   const double before = seconds();
   auto r = run_plan(arm, plan);
@@ -226,14 +226,14 @@ TEST_F(XarmProgram, WaitTakesItsTimeOnTheDeviceClock) {
 TEST_F(XarmProgram, OverrideSlowsTheMotionsAndStopComesToRest) {
   const std::string points = "a x=180mm y=-40mm z=100mm pitch=50deg\nb x=180mm y=40mm z=100mm pitch=50deg\n";
   const Flow flow = flow_of("ptp a\nlin b speed=40mm/s\n", points);
-  auto plan = plan_program(arm, here(), flow, "t.prog").value();
+  auto plan = plan_program(*arm.kinematics(), here(), flow, "t.prog").value();
   RunOptions half;
   half.speed_override = 0.5;
   auto r = run_plan(arm, plan, half);
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_GT(std::chrono::duration<double>(r->elapsed).count(), 1.8 * plan.duration);
   // Back to a, then stop half way along the LIN: the arm rests on the line, short of b.
-  auto back = plan_program(arm, here(), flow_of("ptp a\nlin b speed=40mm/s\n", points), "t.prog").value();
+  auto back = plan_program(*arm.kinematics(), here(), flow_of("ptp a\nlin b speed=40mm/s\n", points), "t.prog").value();
   const double stop_at = seconds() + back.pieces[0].motion.duration + 1.0;
   RunOptions o;
   o.command = [&] { return seconds() > stop_at ? arm::MotionCommand::stop : arm::MotionCommand::none; };
@@ -253,7 +253,7 @@ TEST_F(ScaraProgram, ToolOffsetsAreInTheToolFrame) {
   // The SCARA's tool points down (roll 180 deg): +z of the tool is -z of the base.
   const Flow flow = flow_of("ptp p\nlin p + tool(z=30mm) speed=50mm/s\n",
                             "p x=420mm y=0mm z=300mm roll=180deg pitch=0deg yaw=0deg\n");
-  auto plan = plan_program(arm, here(), flow, "t.prog");
+  auto plan = plan_program(*arm.kinematics(), here(), flow, "t.prog");
   ASSERT_TRUE(plan) << plan.error().message;
   auto r = run_plan(arm, *plan);
   ASSERT_TRUE(r) << r.error().message;
@@ -262,7 +262,7 @@ TEST_F(ScaraProgram, ToolOffsetsAreInTheToolFrame) {
 
 TEST_F(XarmProgram, CompiledGroupReplaysOnTheBoardWithinThePathError) {
   const Flow flow = example_flow("xarm");
-  auto plan = plan_program(arm, here(), flow, "xarm").value();
+  auto plan = plan_program(*arm.kinematics(), here(), flow, "xarm").value();
   CompileOptions co;
   co.path_error = 0.001;
   auto group = compile_to_group(arm, plan, co);

@@ -19,6 +19,8 @@
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "arm/arm_calibration.hpp"
+#include "arm/plan_moves.hpp"
+#include "arm/run_motion.hpp"
 #include "core/error.hpp"
 #include "core/quantity.hpp"
 #include "motion/move_limits.hpp"
@@ -88,8 +90,10 @@ std::pair<std::string, std::string> split_assignment(const std::string& word, co
   return {word.substr(0, eq), word.substr(eq + 1)};
 }
 
-arm::MoveOptions move_options(const ArmArgs& a) {
-  arm::MoveOptions o;
+// A PTP as the command line asks it: --time (the one duration rule: stretched to what the
+// arm file allows, with a note) or --speed.
+arm::PtpMove ptp_move(const ArmArgs& a) {
+  arm::PtpMove m;
   if (!a.time.empty() && !a.speed.empty()) usage("--time and --speed cannot be used together");
   if (!a.time.empty()) {
     double v = 0;
@@ -100,16 +104,13 @@ arm::MoveOptions move_options(const ArmArgs& a) {
     const double seconds = unit == "ms" ? v / 1000 : v;
     if (seconds > motion::kMaxMoveDuration)
       usage(fmt::format("--time '{}' is longer than {:g} s", a.time, motion::kMaxMoveDuration));
-    o.duration = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(seconds));
-    // Shorter than the arm file allows: the move is stretched (the rule of every app), and
-    // says so.
-    o.duration_words = "--time " + a.time;
-    o.on_note = [](const std::string& note) { fmt::print(stderr, "note: {}\n", note); };
+    m.duration = seconds;
+    m.duration_words = "--time " + a.time;
   }
   if (!a.speed.empty())
-    o.speed = must(parse_percent(a.speed, "--speed (of the joints' velocity limits)", motion::kMinSpeedFraction,
+    m.speed = must(parse_percent(a.speed, "--speed (of the joints' velocity limits)", motion::kMinSpeedFraction,
                                  motion::kMaxSpeedFraction));
-  return o;
+  return m;
 }
 
 arm::WaitOptions wait_options(const ArmArgs& a) {
@@ -179,39 +180,17 @@ arm::CartesianGoal parse_goal(const ArmArgs& a) {
     if (!xyz[k]) usage(fmt::format("the tool position needs x, y and z ({} is missing)", "xyz"[k]));
   g.position = {*xyz[0], *xyz[1], *xyz[2]};
   if (!a.elbow.empty()) {
-    static const std::pair<const char*, motion::Elbow> kElbows[] = {
-        {"left", motion::Elbow::left}, {"right", motion::Elbow::right}, {"up", motion::Elbow::up}, {"down", motion::Elbow::down}};
-    bool found = false;
-    for (auto [name, e] : kElbows)
-      if (a.elbow == name) {
-        g.elbow = e;
-        found = true;
-      }
-    if (!found) usage(fmt::format("--elbow '{}' is not allowed: left or right (scara), up or down (xarm)", a.elbow));
+    g.elbow = motion::parse_elbow(a.elbow);
+    if (!g.elbow) usage(fmt::format("--elbow '{}' is not allowed: left or right (scara), up or down (xarm)", a.elbow));
   }
   g.nearest_orientation = a.nearest;
   return g;
 }
 
-void after_move(const ArmArgs& a, session::ArmSession& s, const std::optional<arm::CartesianGoal>& goal) {
-  if (!a.wait) {
-    if (!a.json) fmt::print("moving\n");
-    else print_json_line(json{{"moving", true}});
-    return;
-  }
-  // Ctrl-C while waiting stops the arm (the board would otherwise finish the move alone).
-  Interrupted interrupted;
-  StopOnSignals on_signals(interrupted);
-  arm::WaitOptions w = wait_options(a);
-  w.interrupted = [&] { return bool(interrupted); };
-  Result<arm::JointState> waited = s.arm->wait(w);
-  if (!waited && interrupted) {
-    const Status halted = s.arm->stop();
-    throw ArmctlError(ErrorKind::device, halted ? "stopped by a signal: the arm halted where it was"
-                                                : "stopped by a signal; halting the arm failed: " +
-                                                      halted.error().message);
-  }
-  arm::JointState state = must(std::move(waited));
+// Where the arm stands after a move (the read that found it arrived), and how far the tool
+// is from `goal`.
+void print_arrived(const ArmArgs& a, session::ArmSession& s, const std::optional<arm::CartesianGoal>& goal,
+                   arm::JointState state) {
   const motion::JointVector q = s.arm->chain_of(state.positions);
   const motion::Pose pose = s.arm->forward(q);
   const motion::Rpy rpy = s.arm->tool_rpy(pose, q);
@@ -224,6 +203,32 @@ void after_move(const ArmArgs& a, session::ArmSession& s, const std::optional<ar
   print_joints(a, s.arm->model(), state);
   fmt::print("tool: {}\n", pose_text(pose, rpy));
   if (goal) fmt::print("position error: {:.2f} mm\n", (pose.position - goal->position).norm() * 1e3);
+}
+
+// A PTP as one board move (the device interpolates), planned and run by the one planner and
+// runner (arm::plan_moves, arm::run_motion); with --wait, until the arm arrives. Ctrl-C
+// while waiting halts the arm (the board would otherwise finish the move alone).
+void run_board_move(const ArmArgs& a, session::ArmSession& s, const arm::PtpMove& move,
+                    const std::optional<arm::CartesianGoal>& goal) {
+  const arm::JointState here = must(s.arm->read());
+  arm::PlanOptions o;
+  o.ptp = arm::PtpRun::board;
+  const arm::Plan plan = must(arm::plan_moves(*s.arm->kinematics(), here.positions, std::vector<arm::Move>{{move}}, o));
+  if (const std::string note = plan.notes(); !note.empty()) fmt::print(stderr, "note: {}\n", note);
+  Interrupted interrupted;
+  StopOnSignals on_signals(interrupted);
+  arm::RunHooks hooks;
+  hooks.command = [&] { return interrupted ? arm::MotionCommand::stop : arm::MotionCommand::none; };
+  hooks.wait = wait_options(a);
+  hooks.wait_for_arrival = a.wait;
+  const arm::RunReport report = must(arm::run_motion(*s.arm, plan, hooks));
+  if (report.stopped) throw ArmctlError(ErrorKind::device, "stopped by a signal: the arm halted where it was");
+  if (!a.wait) {
+    if (!a.json) fmt::print("moving\n");
+    else print_json_line(json{{"moving", true}});
+    return;
+  }
+  print_arrived(a, s, goal, *report.arrived);
 }
 
 void run_joints(const ArmArgs& a) {
@@ -250,11 +255,11 @@ void run_move_joints(const ArmArgs& a) {
     if (targets[std::size_t(i)]) usage(fmt::format("joint {} is given twice", j.name));
     targets[std::size_t(i)] = must(parse_quantity(value, j.dimension, "joint " + j.name));
   }
-  const arm::MoveOptions options = move_options(a);
+  arm::PtpMove move = ptp_move(a);
+  move.target = targets;
   auto s = session::open_arm_session(a.arm, a.device).value();
   must(s->arm->check_targets(targets));
-  must(s->arm->move_joints(targets, options));
-  after_move(a, *s, std::nullopt);
+  run_board_move(a, *s, move, std::nullopt);
 }
 
 double parse_override(const ArmArgs& a) {
@@ -282,10 +287,7 @@ void run_move_linear(const ArmArgs& a) {
   if (m.zone < 0) usage(fmt::format("--zone '{}' is not allowed: 0 or more (e.g. 5mm)", a.zone));
   const MotionCliOptions options = motion_cli_options(a);
   auto s = session::open_arm_session(a.arm, a.device).value();
-  run_path_moves(*s, {m}, options);
-  ArmArgs waited = a;
-  waited.wait = true;  // run_path_moves waited: print where the arm stands
-  after_move(waited, *s, goal);
+  print_arrived(a, *s, goal, run_path_moves(*s, {m}, options));
 }
 
 void run_path(const ArmArgs& a) {
@@ -295,11 +297,9 @@ void run_path(const ArmArgs& a) {
   std::optional<MotionTrace> trace;  // opened before anything moves: a bad path is refused first
   if (!a.trace.empty()) options.trace = &trace.emplace(a.trace);
   auto s = session::open_arm_session(a.arm, a.device).value();
-  run_path_moves(*s, file.moves, options);
+  const arm::JointState arrived = run_path_moves(*s, file.moves, options);
   if (trace) trace->finish();
-  ArmArgs waited = a;
-  waited.wait = true;
-  after_move(waited, *s, std::nullopt);
+  print_arrived(a, *s, std::nullopt, arrived);
 }
 
 void run_stop(const ArmArgs& a) {
@@ -313,10 +313,10 @@ void run_move_to(const ArmArgs& a) {
   if (a.linear) return run_move_linear(a);
   if (!a.zone.empty()) usage("--zone needs --linear (a fly-by zone belongs to a Cartesian move)");
   const arm::CartesianGoal goal = parse_goal(a);
-  const arm::MoveOptions options = move_options(a);
+  arm::PtpMove move = ptp_move(a);
+  move.target = goal;
   auto s = session::open_arm_session(a.arm, a.device).value();
-  must(s->arm->move_to(goal, options));
-  after_move(a, *s, goal);
+  run_board_move(a, *s, move, goal);
 }
 
 void run_ik(const ArmArgs& a) {
@@ -367,10 +367,14 @@ void run_gripper(const ArmArgs& a) {
       usage(fmt::format("gripper: '{}' is not allowed: open, close, or how far closed as 0%..100%", a.gripper));
     fraction = v / 100;
   }
-  const arm::MoveOptions options = move_options(a);
+  arm::PtpMove move = ptp_move(a);
   auto s = session::open_arm_session(a.arm, a.device).value();
-  must(s->arm->gripper(fraction, options));
-  after_move(a, *s, std::nullopt);
+  const arm::ArmModel& model = s->arm->model();
+  if (!model.gripper) throw ArmctlError(ErrorKind::unsupported, fmt::format("arm '{}' has no gripper", model.name));
+  std::vector<std::optional<double>> targets(std::size_t(model.joint_count()));
+  targets[std::size_t(model.gripper->joint)] = model.gripper->at(fraction);
+  move.target = targets;
+  run_board_move(a, *s, move, std::nullopt);
 }
 
 void run_calibrate_zero(const ArmArgs& a) {

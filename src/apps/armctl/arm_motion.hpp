@@ -21,8 +21,9 @@ struct MotionCliOptions {
   MotionTrace* trace = nullptr;  // --trace FILE: every piece's plan and read-backs
 };
 
-// A path file's moves, or one move from the command line (line 0). Throws ArmctlError
-// naming the line and what was wrong (nothing has moved then).
-void run_path_moves(session::ArmSession& session, const std::vector<motion::PathMove>& moves, const MotionCliOptions& options);
+// A path file's moves, or one move from the command line (line 0), planned by arm::plan_moves
+// and run by arm::run_motion; returns the read that found the arm arrived at the end.
+// Throws ArmctlError naming the line and what was wrong (nothing has moved then).
+arm::JointState run_path_moves(session::ArmSession& session, const std::vector<motion::PathMove>& moves, const MotionCliOptions& options);
 
 }  // namespace armctl::cli

@@ -78,7 +78,7 @@ program::ProgramPlan plan(const Loaded& l, arm::Arm& arm, bool blend) {
   const auto here = must(arm.read());
   program::PlanOptions o;
   o.blend = blend;
-  return must(program::plan_program(arm, here.positions, l.flow, l.program.source, o));
+  return must(program::plan_program(*arm.kinematics(), here.positions, l.flow, l.program.source, o));
 }
 
 void print_check(const ProgramArgs& a, const Loaded& l, const program::ProgramPlan& p, const arm::Arm& arm) {
@@ -94,7 +94,7 @@ void print_check(const ProgramArgs& a, const Loaded& l, const program::ProgramPl
     return;
   }
   for (const auto& piece : p.pieces) {
-    if (piece.kind == program::PieceKind::print) continue;
+    if (piece.kind == program::PieceKind::message) continue;
     fmt::print("  {:<60} {:7.2f} s\n", piece.label,
                piece.kind == program::PieceKind::motion ? piece.motion.duration : piece.seconds);
   }
@@ -138,7 +138,7 @@ void run_run(const ProgramArgs& a) {
   o.speed_override = speed_override;
   o.command = [&] { return interrupted ? arm::MotionCommand::stop : arm::MotionCommand::none; };
   if (a.step)
-    o.before_motion = [&](const program::PlannedPiece& piece) {
+    o.before_piece = [&](const program::PlannedPiece& piece) {
       fmt::print(stderr, "{}: Enter to run it, q then Enter to stop: ", piece.label);
       std::fflush(stderr);
       std::string line;
@@ -154,7 +154,7 @@ void run_run(const ProgramArgs& a) {
       switch (e.kind) {
         case program::RunEventKind::piece_started: j["event"] = "line"; break;
         case program::RunEventKind::progress: j["event"] = "progress"; break;
-        case program::RunEventKind::print: j["event"] = "print"; j["text"] = piece.text; break;
+        case program::RunEventKind::message: j["event"] = "print"; j["text"] = piece.text; break;
         case program::RunEventKind::piece_done:
           j["event"] = e.report && !e.report->completed ? "stopped" : "done";
           if (e.report) {
@@ -168,7 +168,7 @@ void run_run(const ProgramArgs& a) {
       std::fflush(stdout);
       return;
     }
-    if (e.kind == program::RunEventKind::print) {
+    if (e.kind == program::RunEventKind::message) {
       if (progress_line) fmt::print(stderr, "\r\033[K");
       fmt::print("line {}: {}\n", piece.first_line, printable(piece.text));
       std::fflush(stdout);

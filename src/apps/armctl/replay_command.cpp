@@ -11,7 +11,7 @@
 #include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/serve_support.hpp"
-#include "arm/motion_executor.hpp"
+#include "arm/run_motion.hpp"
 #include "core/error.hpp"
 #include "motion/recording.hpp"
 #include "teach/replay.hpp"
@@ -59,21 +59,24 @@ void run_replay(const ReplayArgs& a) {
 
   Interrupted interrupted;
   StopOnSignals on_signals(interrupted);
-  arm::ExecutorOptions eo;
-  eo.command = [&](const arm::MotionProgress&) { return interrupted ? arm::MotionCommand::stop : arm::MotionCommand::none; };
-  for (const arm::PlannedMotion* m : {&plan->to_start, &plan->motion}) {
-    auto report = arm::execute_motion(arm, *m, eo);
-    if (!report) throw ArmctlError(report.error());
-    if (report->stopped) {
-      fmt::print("stopped by a signal at {:.2f} of {:.2f} s ({})\n", report->t_reached, m->duration, m->what);
+  arm::RunHooks hooks;
+  hooks.command = [&] { return interrupted ? arm::MotionCommand::stop : arm::MotionCommand::none; };
+  hooks.on_event = [&](const arm::RunEvent& e) {
+    if (e.kind != arm::RunEventKind::piece_done || !e.report) return;
+    const arm::MotionReport& report = *e.report;
+    const arm::PlannedMotion& m = e.piece->motion;
+    if (report.stopped) {
+      fmt::print("stopped by a signal at {:.2f} of {:.2f} s ({})\n", report.t_reached, m.duration, m.what);
       return;
     }
-    fmt::print("{}: done in {:.2f} s, largest following error {}\n", m->what,
-               std::chrono::duration<double>(report->elapsed).count(),
-               report->largest_following_joint >= 0
-                   ? arm::format_joint_value(arm.model(), report->largest_following_joint, report->largest_following_error)
+    fmt::print("{}: done in {:.2f} s, largest following error {}\n", m.what,
+               std::chrono::duration<double>(report.elapsed).count(),
+               report.largest_following_joint >= 0
+                   ? arm::format_joint_value(arm.model(), report.largest_following_joint, report.largest_following_error)
                    : std::string("none measured"));
-  }
+  };
+  auto report = arm::run_motion(arm, plan->plan, hooks);
+  if (!report) throw ArmctlError(report.error());
 }
 
 }  // namespace

@@ -1,0 +1,299 @@
+#include "arm/plan_moves.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/core.h>
+
+#include "core/quantity.hpp"
+#include "motion/move_limits.hpp"
+
+namespace armctl::arm {
+
+namespace {
+
+// A LIN from a singular start first takes the tool this far along the line (m).
+constexpr double kLeadIn = 0.03;
+
+// Thrown inside the planner, caught by plan_moves.
+struct Refused {
+  Error error;
+  MoveRefusal moves;
+};
+
+class Planner {
+ public:
+  Planner(const ArmKinematics& kinematics, std::vector<double> from, std::span<const Move> moves,
+          const PlanOptions& options)
+      : kin_(kinematics), model_(kinematics.model()), moves_(moves), options_(options), state_(std::move(from)) {}
+
+  Plan plan() {
+    Plan out;
+    out.start = state_;
+    for (std::size_t k = 0; k < moves_.size();) {
+      const Move& m = moves_[k];
+      if (std::holds_alternative<CartesianMove>(m.what)) {
+        std::size_t end = k + 1;
+        if (options_.blend)
+          while (end < moves_.size() && std::holds_alternative<CartesianMove>(moves_[end].what)) ++end;
+        cartesian(k, end);
+        k = end;
+        continue;
+      }
+      if (const auto* p = std::get_if<PtpMove>(&m.what)) ptp(k, *p);
+      else if (const auto* t = std::get_if<TrajectoryMove>(&m.what)) trajectory(k, *t);
+      else if (const auto* w = std::get_if<WaitMove>(&m.what)) wait(k, *w);
+      else message(k, std::get<MessageMove>(m.what));
+      ++k;
+    }
+    for (const auto& p : pieces_) {
+      out.duration += p.duration();
+      out.moves += p.moves;
+    }
+    out.pieces = std::move(pieces_);
+    return out;
+  }
+
+ private:
+  std::string label(std::size_t k) const {
+    return moves_[k].label.empty() ? fmt::format("move {}", k + 1) : moves_[k].label;
+  }
+
+  [[noreturn]] void refuse(std::size_t first, std::size_t last, const Error& e) const {
+    throw Refused{e, MoveRefusal{first, last}};
+  }
+  [[noreturn]] void refuse(std::size_t k, std::string message) const {
+    refuse(k, k, Error{ErrorKind::invalid_argument, std::move(message)});
+  }
+
+  PlannedPiece piece(PieceKind kind, std::size_t first, std::size_t last) const {
+    PlannedPiece p;
+    p.kind = kind;
+    p.first_move = first;
+    p.last_move = last;
+    p.first_line = moves_[first].line;
+    p.first_column = moves_[first].column;
+    p.last_line = moves_[last].line;
+    p.label = first == last ? label(first) : fmt::format("{} .. {}", label(first), label(last));
+    return p;
+  }
+
+  // Every joint of a PTP's target: joint values over where the move before leaves the arm,
+  // or the IK solution nearest there.
+  std::vector<double> ptp_target(std::size_t k, const PtpMove& m, std::vector<bool>& given) const {
+    std::vector<double> target = state_;
+    given.assign(target.size(), false);
+    if (const auto* joints = std::get_if<std::vector<std::optional<double>>>(&m.target)) {
+      if (joints->size() != target.size())
+        refuse(k, fmt::format("{} targets given for an arm with {} joints", joints->size(), target.size()));
+      for (std::size_t i = 0; i < target.size(); ++i)
+        if ((*joints)[i]) {
+          target[i] = *(*joints)[i];
+          given[i] = true;
+        }
+      return target;
+    }
+    auto solved = kin_.nearest_joints(std::get<CartesianGoal>(m.target), state_);
+    if (!solved) refuse(k, k, solved.error());
+    for (int i = 0; i < model_.chain_joints(); ++i) given[std::size_t(i)] = true;
+    return std::move(solved).value();
+  }
+
+  void ptp(std::size_t k, const PtpMove& m) {
+    std::vector<bool> given;
+    const std::vector<double> target = ptp_target(k, m, given);
+    // The joints the move sets (a joint it leaves keeps where it is, even a hair past a
+    // limit as a servo reads back): the limits and the device's range.
+    std::vector<std::optional<double>> set(target.size());
+    for (std::size_t i = 0; i < target.size(); ++i)
+      if (given[i]) set[i] = target[i];
+    if (auto ok = kin_.check_targets(set, &state_); !ok) refuse(k, k, ok.error());
+    for (const auto& w : m.waypoints)
+      if (auto ok = kin_.check_targets(w); !ok) refuse(k, k, ok.error().prefixed("a waypoint: "));
+    if (!(m.acceleration_scale > 0 && m.acceleration_scale <= 1))
+      refuse(k, fmt::format("acceleration {:g} of the limits is not allowed: above 0 up to 1", m.acceleration_scale));
+    const double speed = m.speed.value_or(motion::kDefaultJointSpeed);
+    if (!m.duration)
+      if (auto ok = check_fraction_in(speed, "speed (of the joints' velocity limits)", motion::kMinSpeedFraction,
+                                      motion::kMaxSpeedFraction);
+          !ok)
+        refuse(k, k, ok.error());
+    std::optional<MoveDuration> timed;
+    if (m.duration) {
+      auto t = joint_move_duration(model_, state_, target, *m.duration, m.duration_words);
+      if (!t) refuse(k, k, t.error());
+      timed = *t;
+    }
+    PlannedPiece p = piece(options_.ptp == PtpRun::board && m.waypoints.empty() ? PieceKind::board_move
+                                                                                  : PieceKind::motion,
+                           k, k);
+    if (timed && timed->stretched) p.note = timed->note;
+    p.moves = 1;
+    p.end = target;
+    if (p.kind == PieceKind::board_move) {
+      // The joints that move, and the partner of a coupled one (its actuator value depends on both).
+      p.targets.assign(target.size(), std::nullopt);
+      for (std::size_t i = 0; i < target.size(); ++i)
+        if (given[i]) p.targets[i] = target[i];
+      for (const Coupling& c : model_.couplings)
+        if (given[std::size_t(c.first)] || given[std::size_t(c.second)])
+          for (int j : {c.first, c.second}) p.targets[std::size_t(j)] = target[std::size_t(j)];
+      if (auto ok = kin_.check_targets(p.targets, &state_); !ok) refuse(k, k, ok.error());
+      p.seconds = timed ? timed->seconds
+                        : std::chrono::duration<double>(kin_.board_move_time(state_, p.targets, speed)).count();
+    } else {
+      ArmModel scaled;
+      const ArmModel* model = &model_;
+      if (m.acceleration_scale != 1) {
+        scaled = model_;
+        for (auto& j : scaled.joints) j.limits.acceleration *= m.acceleration_scale;
+        model = &scaled;
+      }
+      JointMove move;
+      move.waypoints = m.waypoints;
+      move.target = target;
+      move.speed = timed ? 1.0 : speed;
+      move.min_duration = timed ? std::max(timed->seconds, m.min_duration) : m.min_duration;
+      auto planned = plan_joint_move(*model, state_, move);
+      if (!planned) refuse(k, k, planned.error());
+      p.motion = std::move(planned).value();
+    }
+    pieces_.push_back(std::move(p));
+    state_ = target;
+  }
+
+  void cartesian(std::size_t from, std::size_t to) {
+    std::vector<CartesianMove> targets;
+    PathTiming timing = options_.timing;
+    for (std::size_t k = from; k < to; ++k) {
+      targets.push_back(std::get<CartesianMove>(moves_[k].what));
+      if (targets.back().acceleration) timing.acceleration = std::min(timing.acceleration, *targets.back().acceleration);
+    }
+    const std::vector<motion::PathSegment> segments = path_segments(kin_, state_, targets);
+    auto plan = plan_path(kin_, state_, segments, timing);
+    if (!plan && options_.lead_in)
+      if (auto led = lead_in(from, segments.front(), targets, timing)) plan = std::move(*led);
+    if (!plan) refuse(from, to - 1, plan.error());
+    const motion::JointVector& end = plan->checked->joints.back();
+    for (int i = 0; i < end.size(); ++i) state_[std::size_t(i)] = end[i];
+    PlannedPiece p = piece(PieceKind::motion, from, to - 1);
+    p.motion = std::move(plan->motion);
+    p.path = plan->path;
+    p.checked = plan->checked;
+    p.moves = to - from;
+    p.end = state_;
+    pieces_.push_back(std::move(p));
+  }
+
+  // A line cannot start where the arm is singular (the xArm straight up, as it starts:
+  // motion::kSingularStart). So a joint move (PTP) first takes the tool kLeadIn along the
+  // line, with the orientation the move asks (the xArm's pitch free), and the line goes on
+  // from there: the plan of the line, with the joint move's piece before it, in the first
+  // elbow configuration from which the line plans. Empty (nothing planned) when the arm is
+  // not at a singularity, the line is too short or plans from no configuration.
+  std::optional<PathPlan> lead_in(std::size_t k, const motion::PathSegment& first,
+                                  const std::vector<CartesianMove>& targets, const PathTiming& timing) {
+    const motion::JointVector q = kin_.chain_of(state_);
+    if (first.kind != motion::SegmentKind::lin ||
+        model_.kinematics->singularity(q, motion::kSingularStart) == motion::Singularity::none)
+      return std::nullopt;
+    const Eigen::Vector3d start = kin_.forward(q).position;
+    const Eigen::Vector3d line = first.target.position - start;
+    if (line.norm() < 2 * kLeadIn) return std::nullopt;
+    CartesianGoal goal = targets.front().goal;
+    goal.position = start + line.normalized() * kLeadIn;
+    PtpMove ptp_move;
+    const std::vector<double> before = state_;
+    using motion::Elbow;
+    for (Elbow elbow : {Elbow::up, Elbow::down, Elbow::left, Elbow::right}) {
+      goal.elbow = elbow;
+      ptp_move.target = goal;
+      try {
+        ptp(k, ptp_move);
+      } catch (const Refused&) {
+        continue;  // no solution with this elbow (or not this arm's kind of elbow)
+      }
+      auto plan = plan_path(kin_, state_, path_segments(kin_, state_, targets), timing);
+      if (plan) {
+        PlannedPiece& led = pieces_.back();
+        led.label = fmt::format("{}: joint move off the singular start, {:.0f} mm along the line", label(k),
+                                kLeadIn * 1e3);
+        led.moves = 0;  // the line's move is counted with the line
+        return std::move(plan).value();
+      }
+      pieces_.pop_back();
+      state_ = before;
+    }
+    return std::nullopt;
+  }
+
+  void trajectory(std::size_t k, const TrajectoryMove& t) {
+    auto planned = plan_spline(model_, state_, t.spline);
+    if (!planned) refuse(k, k, planned.error());
+    PlannedPiece p = piece(PieceKind::motion, k, k);
+    p.motion = std::move(planned->motion);
+    p.moves = 1;
+    p.end = planned->target;
+    pieces_.push_back(std::move(p));
+    state_ = planned->target;
+  }
+
+  void wait(std::size_t k, const WaitMove& w) {
+    if (!(w.seconds >= 0 && std::isfinite(w.seconds)))
+      refuse(k, fmt::format("a wait of {:g} s is not allowed: 0 s or more", w.seconds));
+    PlannedPiece p = piece(PieceKind::wait, k, k);
+    p.seconds = w.seconds;
+    p.end = state_;
+    pieces_.push_back(std::move(p));
+  }
+
+  void message(std::size_t k, const MessageMove& m) {
+    PlannedPiece p = piece(PieceKind::message, k, k);
+    p.text = m.text;
+    p.end = state_;
+    pieces_.push_back(std::move(p));
+  }
+
+  const ArmKinematics& kin_;
+  const ArmModel& model_;
+  std::span<const Move> moves_;
+  PlanOptions options_;
+  std::vector<double> state_;
+  std::vector<PlannedPiece> pieces_;
+};
+
+}  // namespace
+
+std::string Plan::notes() const {
+  std::string out;
+  for (const auto& p : pieces)
+    if (!p.note.empty()) out += (out.empty() ? "" : "; ") + p.note;
+  return out;
+}
+
+Result<Plan> plan_moves(const ArmKinematics& kinematics, const std::vector<double>& from, std::span<const Move> moves,
+                        const PlanOptions& options, MoveRefusal* refused) {
+  if (from.size() != std::size_t(kinematics.joint_count()))
+    return Error{ErrorKind::invalid_argument, fmt::format("the start has {} joint values; arm '{}' has {} joints",
+                                                          from.size(), kinematics.model().name,
+                                                          kinematics.joint_count())};
+  for (std::size_t i = 0; i < from.size(); ++i)
+    if (!std::isfinite(from[i]))
+      return Error{ErrorKind::invalid_argument,
+                   fmt::format("the start: joint {} is not a finite number", kinematics.model().joints[i].name)};
+  try {
+    return Planner(kinematics, from, moves, options).plan();
+  } catch (const Refused& r) {
+    if (refused) *refused = r.moves;
+    return r.error;
+  }
+}
+
+double run_duration(const Plan& plan, double speed_override) {
+  double total = 0;
+  for (const PlannedPiece& p : plan.pieces)
+    total += p.kind == PieceKind::motion ? p.motion.duration / speed_override : p.duration();
+  return total;
+}
+
+}  // namespace armctl::arm
