@@ -36,8 +36,8 @@ bool RcFrameReader::on_byte(uint8_t byte, uint32_t now_us) {
     case State::length:
       if (byte < 2 || byte > max_length) {
         discard(3);
-        // `55 55 55 ...`: the third 0x55 may begin the real header.
-        state_ = byte == 0x55 ? State::hunt_second : State::hunt_first;
+        // `55 55 55 ...`: the second and third 0x55 may be the real header.
+        state_ = byte == 0x55 ? State::length : State::hunt_first;
         return false;
       }
       length_ = byte;

@@ -206,7 +206,7 @@ TEST(ControllerCore, PositionReadAnswersFromThePolls) {
   ASSERT_EQ(rig.upstream.frames.size(), 1u);
   const Reply& r = rig.upstream.frames[0];
   EXPECT_EQ(r.command, rc_servo_position_read);
-  EXPECT_EQ(r.data, (std::vector<std::uint8_t>{2, 2, 0x26, 0x02, 7, 0, 0}));  // 550, 0
+  EXPECT_EQ(r.data, (std::vector<std::uint8_t>{2, 2, 0x58, 0x02, 7, 0, 0}));  // 600, 0
   rig.request(rc_servo_position_read, {2, 2, 8});  // no joint 8: ignored
   EXPECT_EQ(rig.upstream.frames.size(), 1u);
 }
