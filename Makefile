@@ -4,6 +4,7 @@
 #   make bench  build optimised and run the benchmarks (BENCH lines)
 #   make fuzz   run the libFuzzer targets for longer (FUZZ_SECONDS=60)
 #   make firmware / make flash PORT=/dev/ttyUSB0 JOINT=3
+#   make flash-controller PORT=/dev/ttyACM0   the Mega arm controller (docs/mega-controller.md)
 
 # Debian packages and why they are here: see README.md "Dependencies".
 DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
@@ -51,7 +52,7 @@ FUZZ_SECONDS ?= 60
 # the same inputs on every machine (scripts/fuzz.sh), about 10 s per target here.
 TEST_FUZZ_RUNS ?= 20000
 
-.PHONY: all deps deb-deps demo-deps web-deps configure build test demo python bench fuzz firmware flash install uninstall clean format
+.PHONY: all deps deb-deps demo-deps web-deps configure build test demo python bench fuzz firmware flash flash-controller install uninstall clean format
 
 all: build
 
@@ -154,6 +155,11 @@ firmware: deps
 
 flash: deps
 	$(MAKE) -C firmware flash BUILD_DIR=$(CURDIR)/$(BUILD)/firmware
+
+# The Mega 2560 as the SCARA's arm controller (docs/mega-controller.md). PORT is the Mega's
+# USB serial port; RC_BAUD=115200 / JOINT_BAUD=115200 select the faster links.
+flash-controller: deps
+	$(MAKE) -C firmware flash-controller BUILD_DIR=$(CURDIR)/$(BUILD)/firmware PORT=$(or $(PORT),/dev/ttyACM0)
 
 # A Release build (no sanitizers, no tests, no firmware: the SDK and CLI need neither avr-gcc
 # nor simavr) installed into $(PREFIX): bin/armctl, the static libraries, their headers

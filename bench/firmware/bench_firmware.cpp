@@ -17,40 +17,12 @@
 #include "devices/joint_avr/avr_arm.hpp"
 #include "devices/joint_bus/bus_master.hpp"
 #include "devices/joint_sim/arm_config.hpp"
+#include "elf_sizes.hpp"
 
 namespace {
 
 using namespace armctl;
 namespace m = joint_avr::atmega328p;
-
-void bench_line(const char* name, double value, const char* unit, double limit) {
-  std::printf("BENCH %s %.0f %s limit %.0f ratio %.3f\n", name, value, unit, limit, value / limit);
-}
-
-struct Sizes {
-  unsigned long text = 0, data = 0, bss = 0, noinit = 0;
-  bool ok = false;
-};
-
-Sizes elf_sizes(const std::string& elf) {
-  Sizes s;
-  const std::string cmd = "avr-size -A '" + elf + "'";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return s;
-  char name[64];
-  unsigned long size = 0, addr = 0;
-  char line[256];
-  while (std::fgets(line, sizeof line, p) != nullptr) {
-    if (std::sscanf(line, "%63s %lu %lu", name, &size, &addr) != 3) continue;
-    const std::string n = name;
-    if (n == ".text") s.text = size;
-    if (n == ".data") s.data = size;
-    if (n == ".bss") s.bss = size;
-    if (n == ".noinit") s.noinit = size;
-  }
-  s.ok = pclose(p) == 0 && s.text > 0;
-  return s;
-}
 
 struct Figures {
   std::uint64_t tick = 0, tick_gross = 0, encoder = 0, turnaround = 0, rx_isr = 0, select_isr = 0, edges = 0;
@@ -107,13 +79,13 @@ Figures run_arm(bool scara_tuning) {
 
 int main() {
   const std::string elf = joint_avr::default_firmware_elf();
-  const Sizes sizes = elf_sizes(elf);
+  const bench::Sizes sizes = bench::elf_sizes(elf);
   if (!sizes.ok) {
     std::fprintf(stderr, "bench_firmware: cannot read sizes of %s with avr-size\n", elf.c_str());
     return 1;
   }
-  bench_line("fw_flash", double(sizes.text + sizes.data), "bytes", 8192);
-  bench_line("fw_static_ram", double(sizes.data + sizes.bss + sizes.noinit), "bytes", 512);
+  bench::bench_line("fw_flash", double(sizes.text + sizes.data), "bytes", 8192);
+  bench::bench_line("fw_static_ram", double(sizes.data + sizes.bss + sizes.noinit), "bytes", 512);
 
   // Twice: with config/scara.json's tuning in every joint's EEPROM, and with none (the
   // portable default_tuning(), what a board gets from `make flash`).
@@ -129,12 +101,12 @@ int main() {
                    f.faulted_joints.empty() ? " none" : f.faulted_joints.c_str());
     const char* suffix = scara_tuning ? "" : "_default_tuning";
     const std::string tick_name = std::string("fw_control_tick_worst") + suffix;
-    bench_line(tick_name.c_str(), double(f.tick), "cycles", 1600);
+    bench::bench_line(tick_name.c_str(), double(f.tick), "cycles", 1600);
     if (!scara_tuning) continue;
     // One word (2 bytes of 10 bits) at 115200 baud, in CPU cycles at 16 MHz.
     const double word_cycles = 20.0 * m::clock_hz / 115200.0;
-    bench_line("fw_encoder_isr_worst", double(f.encoder), "cycles", 100);
-    bench_line("fw_turnaround_worst", double(f.turnaround), "cycles", word_cycles);
+    bench::bench_line("fw_encoder_isr_worst", double(f.encoder), "cycles", 100);
+    bench::bench_line("fw_turnaround_worst", double(f.turnaround), "cycles", word_cycles);
     std::printf("# also: control tick with nested ISRs %llu cycles, uart rx isr %llu cycles, "
                 "select isr %llu cycles, %llu encoder edges, %d failed transactions, %llu bus "
                 "contentions\n",

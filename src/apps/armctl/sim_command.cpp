@@ -2,9 +2,15 @@
 // Runs the simulated SCARA arm as a long-lived process, paced to the wall clock, serving its
 // joint bus on a unix socket so that `armctl bus --device unix:PATH ...` keeps the arm's
 // state between invocations. SIGINT/SIGTERM stop it cleanly (socket file removed).
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <fmt/core.h>
 
@@ -31,9 +37,44 @@ struct SimArgs {
   bool robot_commands = false;
   std::string arm;  // controller's arm config (default config/scara-arm.json)
   ControllerServeArgs serve{"pty", "", "", "sim scara", {}};
+  // --controller mega: the Mega controller firmware and the joint firmware on emulated
+  // chips, in the test tool armctl-mega-sim (libsimavr is GPL: armctl never links it).
+  std::string controller;
 };
 
+// Replaces this process with armctl-mega-sim from armctl's own directory (build trees with
+// ARMCTL_HIL only); returns only by throwing.
+[[noreturn]] void exec_mega_sim(const SimArgs& args) {
+  std::error_code ec;
+  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const auto tool = (ec ? std::filesystem::path(".") : self.parent_path()) / "armctl-mega-sim";
+  if (!std::filesystem::exists(tool))
+    throw ArmctlError(ErrorKind::unsupported,
+                      fmt::format("--controller mega needs {} (a test tool built with -DARMCTL_HIL=ON, "
+                                  "never installed: docs/mega-controller.md)", tool.string()));
+  std::vector<std::string> words{tool.string()};
+  if (args.baud != 0) words.insert(words.end(), {"--baud", std::to_string(args.baud)});
+  if (!args.serve.link.empty()) words.insert(words.end(), {"--link", args.serve.link});
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  ::execv(tool.c_str(), argv.data());
+  throw ArmctlError(ErrorKind::io, fmt::format("cannot start {}: {}", tool.string(), std::strerror(errno)));
+}
+
 void run_sim_scara(const SimArgs& args) {
+  if (!args.controller.empty()) {
+    if (args.controller != "mega")
+      throw ArmctlError(ErrorKind::invalid_argument,
+                        fmt::format("--controller {}: allowed is mega (the Mega controller firmware on emulated "
+                                    "silicon); without --controller, --robot-commands runs the Linux one",
+                                    args.controller));
+    if (args.robot_commands || !args.arm.empty() || !args.serve.state_dir.empty() || !args.config.empty())
+      throw ArmctlError(ErrorKind::invalid_argument,
+                        "--controller mega takes only --baud and --link (the firmware has the arm built in)");
+    exec_mega_sim(args);
+  }
   if (!args.robot_commands && (!args.serve.link.empty() || !args.serve.state_dir.empty()))
     throw ArmctlError(ErrorKind::invalid_argument,
                       "--link and --state-dir belong to --robot-commands (the arm controller's pty); without it "
@@ -78,9 +119,13 @@ void add_sim_command(CLI::App& app) {
   scara->add_option("--config", args->config, "Arm config file (default config/scara.json)");
   scara->add_flag("--robot-commands", args->robot_commands,
                   "Serve the whole arm as a Robot Commands device on a pty (arm controller inside; prints the pty path)");
-  scara->add_option("--link", args->serve.link, "With --robot-commands: also create this symlink to the pty");
+  scara->add_option("--link", args->serve.link,
+                    "With --robot-commands or --controller: also create this symlink to the pty");
   scara->add_option("--arm", args->arm, "With --robot-commands: controller arm config (default config/scara-arm.json)");
   scara->add_option("--state-dir", args->serve.state_dir, "With --robot-commands: keep groups, offsets, limits here");
+  scara->add_option("--controller", args->controller,
+                    "mega: the Mega controller firmware driving the joint firmware, all on emulated chips, with "
+                    "Robot Commands on a pty (test builds; docs/mega-controller.md)");
   scara->callback([args] { run_sim_scara(*args); });
 }
 

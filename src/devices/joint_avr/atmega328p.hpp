@@ -14,6 +14,8 @@ inline constexpr std::uint16_t pind = 0x29, ddrd = 0x2A, portd = 0x2B;
 inline constexpr std::uint16_t tccr1a = 0x80, tccr1b = 0x81, ocr1bl = 0x8A;
 inline constexpr std::uint16_t tccr2a = 0xB0, tccr2b = 0xB1, ocr2a = 0xB3;
 inline constexpr std::uint16_t ucsr0a = 0xC0, ucsr0b = 0xC1, ucsr0c = 0xC2;
+// The ATmega2560 has UART0 at the same addresses and UART1 8 bytes above (UCSR1A 0xC8).
+inline constexpr std::uint16_t uart1_offset = 8;
 
 // Bits.
 inline constexpr std::uint8_t com1b1 = 5, com1b0 = 4;  // TCCR1A

@@ -63,7 +63,7 @@ int port_index(char port) {
 
 }  // namespace
 
-AvrChip::AvrChip(const std::string& elf_path) {
+AvrChip::AvrChip(const std::string& elf_path, const ChipModel& model) : model_(model) {
   static std::once_flag logger_installed;
   std::call_once(logger_installed, [] { avr_global_logger_set(quiet_logger); });
   elf_firmware_t firmware;
@@ -73,10 +73,10 @@ AvrChip::AvrChip(const std::string& elf_path) {
     throw ArmctlError(ErrorKind::io, "cannot read the firmware ELF '" + elf_path +
                                          "' (build it: cmake --build <dir> --target armctl_firmware)");
   }
-  avr_ = avr_make_mcu_by_name("atmega328p");
+  avr_ = avr_make_mcu_by_name(model_.mcu);
   if (avr_ == nullptr) {
     free_firmware(firmware);
-    throw ArmctlError(ErrorKind::unsupported, "this libsimavr has no atmega328p core");
+    throw ArmctlError(ErrorKind::unsupported, std::string("this libsimavr has no ") + model_.mcu + " core");
   }
   avr_init(avr_);
   avr_->log = LOG_ERROR;
@@ -102,15 +102,28 @@ AvrChip::~AvrChip() {
 
 void AvrChip::connect() {
   // No console dump of UART bytes, and no usleep() when the firmware polls the UART.
-  std::uint32_t flags = 0;
-  avr_ioctl(avr_, AVR_IOCTL_UART_SET_FLAGS('0'), &flags);
-  for (avr_io_t* io = avr_->io_port; io != nullptr; io = io->next) {
-    if (std::strcmp(io->kind, "uart") == 0) uart_ = reinterpret_cast<avr_uart_t*>(io);
+  for (int u = 0; u < model_.uart_count; ++u) {
+    std::uint32_t flags = 0;
+    avr_ioctl(avr_, AVR_IOCTL_UART_SET_FLAGS(static_cast<char>('0' + u)), &flags);
   }
-  if (uart_ == nullptr) throw ArmctlError(ErrorKind::unsupported, "simavr atmega328p without UART");
+  for (avr_io_t* io = avr_->io_port; io != nullptr; io = io->next) {
+    if (std::strcmp(io->kind, "uart") != 0) continue;
+    auto* uart = reinterpret_cast<avr_uart_t*>(io);
+    const int index = uart->name - '0';
+    if (index >= 0 && index < model_.uart_count) uarts_[static_cast<std::size_t>(index)] = uart;
+  }
+  for (int u = 0; u < model_.uart_count; ++u) {
+    if (uarts_[static_cast<std::size_t>(u)] == nullptr)
+      throw ArmctlError(ErrorKind::unsupported, std::string("simavr ") + model_.mcu + " without UART" + char('0' + u));
+  }
+  uart_ = uarts_[0];
   avr_irq_register_notify(avr_io_getirq(avr_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT),
                           &AvrChip::on_uart_output_irq, this);
-  for (int v = 1; v < m::vector_count; ++v) {
+  if (model_.uart_count > 1) {
+    avr_irq_register_notify(avr_io_getirq(avr_, AVR_IOCTL_UART_GETIRQ('1'), UART_IRQ_OUTPUT),
+                            &AvrChip::on_uart1_output_irq, this);
+  }
+  for (int v = 1; v < model_.vector_count; ++v) {
     avr_irq_t* irq = avr_get_interrupt_irq(avr_, static_cast<std::uint8_t>(v));
     if (irq == nullptr) continue;
     probes_[static_cast<std::size_t>(v)] = VectorProbe{this, v, 0, 0};
@@ -121,7 +134,27 @@ void AvrChip::connect() {
 
 void AvrChip::on_uart_output_irq(avr_irq_t*, std::uint32_t value, void* param) {
   auto* self = static_cast<AvrChip*>(param);
-  if (self->uart_output_) self->uart_output_(static_cast<std::uint8_t>(value), self->avr_->cycle);
+  if (self->uart_output_[0]) self->uart_output_[0](static_cast<std::uint8_t>(value), self->avr_->cycle);
+}
+
+void AvrChip::on_uart1_output_irq(avr_irq_t*, std::uint32_t value, void* param) {
+  auto* self = static_cast<AvrChip*>(param);
+  if (self->uart_output_[1]) self->uart_output_[1](static_cast<std::uint8_t>(value), self->avr_->cycle);
+}
+
+void AvrChip::watch_output_port(char port, std::function<void(int, bool, std::uint64_t)> sink) {
+  port_output_ = std::move(sink);
+  for (int bit = 0; bit < 8; ++bit) {
+    pin_probes_[static_cast<std::size_t>(bit)] = PinProbe{this, bit};
+    avr_irq_register_notify(avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(port), bit), &AvrChip::on_port_pin_irq,
+                            &pin_probes_[static_cast<std::size_t>(bit)]);
+  }
+}
+
+void AvrChip::on_port_pin_irq(avr_irq_t*, std::uint32_t value, void* param) {
+  auto* probe = static_cast<PinProbe*>(param);
+  AvrChip* self = probe->chip;
+  if (self->port_output_) self->port_output_(probe->bit, value != 0, self->avr_->cycle);
 }
 
 void AvrChip::on_isr_running_irq(avr_irq_t*, std::uint32_t value, void* param) {
@@ -151,10 +184,11 @@ void AvrChip::on_isr_running_irq(avr_irq_t*, std::uint32_t value, void* param) {
 void AvrChip::clear_isr_stats() { isr_stats_ = {}; }
 
 void AvrChip::write_eeprom(std::uint16_t address, std::span<const std::uint8_t> bytes) {
-  constexpr std::size_t eeprom_bytes = 1024;
+  const std::size_t eeprom_bytes = model_.eeprom_bytes;
   if (bytes.empty()) return;
   if (address + bytes.size() > eeprom_bytes) {
-    throw ArmctlError(ErrorKind::invalid_argument, "AvrChip: EEPROM write outside 0..1023");
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      "AvrChip: EEPROM write outside 0.." + std::to_string(eeprom_bytes - 1));
   }
   std::vector<std::uint8_t> copy(bytes.begin(), bytes.end());
   avr_eeprom_desc_t desc;
@@ -168,8 +202,9 @@ void AvrChip::write_eeprom(std::uint16_t address, std::span<const std::uint8_t> 
 
 void AvrChip::apply_reset_values() {
   // simavr 1.6 sets TXEN0 at reset so that debug printf works without UART set-up; on the
-  // real chip UCSR0B resets to 0 (TX pin high-Z until the firmware enables it).
+  // real chip UCSRnB resets to 0 (TX pin high-Z until the firmware enables it).
   avr_->data[m::ucsr0b] = 0;
+  if (model_.uart_count > 1) avr_->data[m::ucsr0b + m::uart1_offset] = 0;
 }
 
 void AvrChip::reset() {
@@ -194,12 +229,16 @@ void AvrChip::correct_uart_frame_time() {
   // simavr 1.6 times a frame as start + data + parity + stop bits even when parity is off:
   // 11 bit times for 8N1 instead of 10. Real UDRE/TXC timing matters here (the firmware
   // releases TX on TXC), so bring it back to 10 bits whenever the firmware has set a baud.
-  const std::uint8_t ucsr0c = avr_->data[m::ucsr0c];
-  const bool parity_on = (ucsr0c & 0x30u) != 0;
-  if (parity_on || uart_->cycles_per_byte == corrected_cycles_per_byte_) return;
-  if (uart_->cycles_per_byte % 11 != 0) return;
-  corrected_cycles_per_byte_ = uart_->cycles_per_byte / 11 * 10;
-  uart_->cycles_per_byte = corrected_cycles_per_byte_;
+  for (int u = 0; u < model_.uart_count; ++u) {
+    avr_uart_t* uart = uarts_[static_cast<std::size_t>(u)];
+    std::uint64_t& corrected = corrected_cycles_per_byte_[static_cast<std::size_t>(u)];
+    const std::uint8_t ucsrc = avr_->data[m::ucsr0c + u * m::uart1_offset];
+    const bool parity_on = (ucsrc & 0x30u) != 0;
+    if (parity_on || uart->cycles_per_byte == corrected) continue;
+    if (uart->cycles_per_byte % 11 != 0) continue;
+    corrected = uart->cycles_per_byte / 11 * 10;
+    uart->cycles_per_byte = corrected;
+  }
 }
 
 std::uint64_t AvrChip::cycle() const { return avr_->cycle; }
@@ -266,15 +305,19 @@ void AvrChip::reapply_pins() {
   }
 }
 
-void AvrChip::uart_receive(std::uint8_t byte) {
-  if (held_in_reset_ || !uart_receiver_enabled()) return;  // a disabled receiver sees nothing
-  avr_raise_irq(avr_io_getirq(avr_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT), byte);
+void AvrChip::uart_receive(std::uint8_t byte, int index) {
+  if (index < 0 || index >= model_.uart_count)
+    throw ArmctlError(ErrorKind::invalid_argument, std::string("AvrChip: ") + model_.mcu + " has no UART" + std::to_string(index));
+  const bool receiver_on = (avr_->data[m::ucsr0b + index * m::uart1_offset] & (1u << m::rxen0)) != 0;
+  if (held_in_reset_ || !receiver_on) return;  // a disabled receiver sees nothing
+  avr_uart_t* uart = uarts_[static_cast<std::size_t>(index)];
+  avr_raise_irq(avr_io_getirq(avr_, AVR_IOCTL_UART_GETIRQ(static_cast<char>('0' + index)), UART_IRQ_INPUT), byte);
   // simavr would flag the byte one byte time after it was handed over; the bus hands it
   // over when its stop bit ends, which is when real hardware sets RXC.
-  if (!avr_regbit_get(avr_, uart_->rxc.raised)) {
-    uart_->rxc_raise_time = avr_->cycle;
-    uart_->rx_cnt = 0;
-    avr_raise_interrupt(avr_, &uart_->rxc);
+  if (!avr_regbit_get(avr_, uart->rxc.raised)) {
+    uart->rxc_raise_time = avr_->cycle;
+    uart->rx_cnt = 0;
+    avr_raise_interrupt(avr_, &uart->rxc);
   }
 }
 

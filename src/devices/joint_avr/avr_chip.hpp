@@ -1,6 +1,7 @@
-// One emulated ATmega328P (libsimavr, GPL: a test tool only, never linked into armctl's
-// product code) running a firmware ELF at 16 MHz, with the pins, UART and cycle counts the
-// HIL harness needs. Time is in CPU cycles; the chip runs only inside run_to_cycle().
+// One emulated AVR (libsimavr, GPL: a test tool only, never linked into armctl's product
+// code) running a firmware ELF at 16 MHz, with the pins, UARTs and cycle counts the HIL
+// harness needs: the joint controllers' ATmega328P, and the Mega controller's ATmega2560
+// (ChipModel). Time is in CPU cycles; the chip runs only inside run_to_cycle().
 #pragma once
 
 #include <array>
@@ -33,10 +34,20 @@ struct BridgeInputs {
   bool enable = false;
 };
 
+// The chip a firmware runs on.
+struct ChipModel {
+  const char* mcu;
+  std::uint16_t eeprom_bytes;
+  int vector_count;  // interrupt vectors, reset included
+  int uart_count;
+};
+inline constexpr ChipModel atmega328p_model{"atmega328p", 1024, 26, 1};
+inline constexpr ChipModel atmega2560_model{"atmega2560", 4096, 57, 2};
+
 class AvrChip {
  public:
   // Loads the ELF; throws ArmctlError(io) if it cannot be read.
-  explicit AvrChip(const std::string& elf_path);
+  explicit AvrChip(const std::string& elf_path, const ChipModel& model = atmega328p_model);
   ~AvrChip();
   AvrChip(const AvrChip&) = delete;
   AvrChip& operator=(const AvrChip&) = delete;
@@ -60,13 +71,16 @@ class AvrChip {
   // An input pin driven from outside ('B' or 'D', bit 0..7). Only changes reach the chip.
   void drive_pin(char port, int bit, bool level);
 
-  // A byte whose stop bit ends now: the UART flags it received at once (RXC).
-  void uart_receive(std::uint8_t byte);
-  // Called for each byte the firmware writes to UDR0 with the transmitter on, with the
+  // A byte whose stop bit ends now: UART `uart` flags it received at once (RXC).
+  void uart_receive(std::uint8_t byte, int uart = 0);
+  // Called for each byte the firmware writes to UDRn with the transmitter on, with the
   // cycle of the write.
-  void set_uart_output(std::function<void(std::uint8_t, std::uint64_t)> sink) {
-    uart_output_ = std::move(sink);
+  void set_uart_output(std::function<void(std::uint8_t, std::uint64_t)> sink, int uart = 0) {
+    uart_output_.at(static_cast<std::size_t>(uart)) = std::move(sink);
   }
+  // Called with (bit, level, cycle) whenever the firmware changes an output pin of `port`
+  // ('A'..'L'): the select lines of the Mega controller.
+  void watch_output_port(char port, std::function<void(int, bool, std::uint64_t)> sink);
   bool uart_transmitter_enabled() const;
   bool uart_receiver_enabled() const;
 
@@ -79,6 +93,8 @@ class AvrChip {
 
  private:
   static void on_uart_output_irq(avr_irq_t* irq, std::uint32_t value, void* param);
+  static void on_uart1_output_irq(avr_irq_t* irq, std::uint32_t value, void* param);
+  static void on_port_pin_irq(avr_irq_t* irq, std::uint32_t value, void* param);
   static void on_isr_running_irq(avr_irq_t* irq, std::uint32_t value, void* param);
   void connect();
   void reapply_pins();
@@ -86,11 +102,19 @@ class AvrChip {
   void correct_uart_frame_time();
   bool output_pin(std::uint16_t ddr, std::uint16_t port, int bit) const;
 
+  ChipModel model_;
   avr_t* avr_ = nullptr;
-  avr_uart_t* uart_ = nullptr;
+  std::array<avr_uart_t*, 2> uarts_{};
+  avr_uart_t* uart_ = nullptr;  // uarts_[0]
   bool held_in_reset_ = false;
-  std::uint64_t corrected_cycles_per_byte_ = 0;
-  std::function<void(std::uint8_t, std::uint64_t)> uart_output_;
+  std::array<std::uint64_t, 2> corrected_cycles_per_byte_{};
+  std::array<std::function<void(std::uint8_t, std::uint64_t)>, 2> uart_output_;
+  struct PinProbe {
+    AvrChip* chip;
+    int bit;
+  };
+  std::array<PinProbe, 8> pin_probes_{};
+  std::function<void(int, bool, std::uint64_t)> port_output_;
   // Levels driven from outside: [0] port B, [1] port D; mask says which bits we drive.
   std::array<std::uint8_t, 2> driven_mask_{};
   std::array<std::uint8_t, 2> driven_level_{};
@@ -100,10 +124,10 @@ class AvrChip {
     std::uint64_t entered_at;
     std::uint64_t nested_cycles;  // spent in ISRs that interrupted this one
   };
-  std::array<int, 32> running_{};  // stack of vectors being serviced (nesting)
+  std::array<int, 64> running_{};  // stack of vectors being serviced (nesting)
   int running_depth_ = 0;
-  std::array<VectorProbe, 32> probes_{};
-  std::array<IsrStats, 32> isr_stats_{};
+  std::array<VectorProbe, 64> probes_{};
+  std::array<IsrStats, 64> isr_stats_{};
 };
 
 }  // namespace armctl::joint_avr

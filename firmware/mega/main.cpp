@@ -1,0 +1,141 @@
+// Arm controller firmware for the SCARA's Arduino Mega 2560 (16 MHz), plain avr-libc: Robot
+// Commands on UART0 (the USB serial port), the joint bus on UART1 with the select lines of
+// joints 1..7 on D22..D28 (PA0..PA6), as the original master is wired. The portable
+// ControllerCore (src/portable_controller) does all the work; this is the main loop: bytes
+// in and out, select lines, the watchdog. docs/mega-controller.md describes the whole.
+//
+// Build-time settings (make flash-controller RC_BAUD=... JOINT_BAUD=...):
+//   ARMCTL_RC_BAUD     upstream baud (9600 default, 115200)
+//   ARMCTL_JOINT_BAUD  joint bus baud (9600 default, 115200): must match the joints'
+#include <avr/eeprom.h>
+#include <avr/interrupt.h>
+#include <avr/io.h>
+#include <avr/wdt.h>
+
+#include "board/tick_timer.hpp"
+#include "mega/mega_uart.hpp"
+#include "portable_controller/controller_core.hpp"
+#include "portable_controller/rc_frame_reader.hpp"
+#include "portable_controller/scara_arm.hpp"
+
+#ifndef ARMCTL_RC_BAUD
+#define ARMCTL_RC_BAUD 9600UL
+#endif
+#ifndef ARMCTL_JOINT_BAUD
+#define ARMCTL_JOINT_BAUD 9600UL
+#endif
+
+namespace ctl = armctl::controller;
+
+// The very first code after reset (.init3, before static constructors): stop a watchdog
+// that survived the reset and drive every select line LOW (no joint selected), so that a
+// reset mid-transaction leaves the bus idle. From reset to here every pin is a high-Z input:
+// the joint boards' pull-downs hold their select inputs LOW meanwhile.
+uint8_t mega_reset_cause __attribute__((section(".noinit")));
+extern "C" void mega_safe_state_at_reset(void) __attribute__((naked, used, section(".init3")));
+extern "C" void mega_safe_state_at_reset(void) {
+  mega_reset_cause = MCUSR;
+  MCUSR = 0;
+  wdt_disable();
+  PORTA = static_cast<uint8_t>(PORTA & 0x80u);
+  DDRA = static_cast<uint8_t>(DDRA | 0x7Fu);
+}
+
+ISR(TIMER0_COMPA_vect) { board::tick_timer_count_from_isr(); }
+
+namespace {
+
+// Select line of joint n (1..7) = PA(n-1) = D22 + n - 1.
+class MegaBus final : public ctl::BusPort {
+ public:
+  void set_select(uint8_t joint, bool high) override {
+    const uint8_t bit = static_cast<uint8_t>(1u << (joint - 1));
+    if (high) {
+      PORTA = static_cast<uint8_t>(PORTA | bit);
+    } else {
+      lower_ = static_cast<uint8_t>(lower_ | bit);  // once the bytes queued so far are out
+      service();
+    }
+  }
+  void send_byte(uint8_t byte) override { mega::uart_send(mega::Port::bus, byte); }
+  void service() {
+    if (lower_ != 0 && mega::uart_tx_idle(mega::Port::bus)) {
+      PORTA = static_cast<uint8_t>(PORTA & ~lower_);
+      lower_ = 0;
+    }
+  }
+
+ private:
+  uint8_t lower_ = 0;
+};
+
+class MegaUpstream final : public ctl::UpstreamPort {
+ public:
+  void send_frame(uint8_t command, const uint8_t* data, uint8_t length) override {
+    put(0x55);
+    put(0x55);
+    put(static_cast<uint8_t>(length + 2));
+    put(command);
+    for (uint8_t i = 0; i < length; ++i) put(data[i]);
+  }
+
+ private:
+  // A reply never waits for the host: if the ring is full the rest is dropped (64-byte
+  // frames into a 128-byte ring; the host reads continuously).
+  static void put(uint8_t byte) { mega::uart_send(mega::Port::upstream, byte); }
+};
+
+// Action groups in the whole 4 KiB EEPROM (group_store.hpp has the layout). A byte write
+// takes 3.4 ms: the store starts one only when the previous one is done, so the main loop
+// never waits for the EEPROM.
+class MegaEeprom final : public ctl::GroupMemory {
+ public:
+  uint16_t size() const override { return E2END + 1; }
+  uint8_t read(uint16_t address) override {
+    return eeprom_read_byte(reinterpret_cast<const uint8_t*>(address));
+  }
+  bool ready() override { return eeprom_is_ready(); }
+  void write(uint16_t address, uint8_t value) override {
+    eeprom_update_byte(reinterpret_cast<uint8_t*>(address), value);
+  }
+};
+
+const uint32_t joint_start_ms = 100;
+
+MegaBus bus;
+MegaUpstream upstream;
+MegaEeprom eeprom;
+ctl::ControllerCore core;
+ctl::RcFrameReader reader;
+
+}  // namespace
+
+int main() {
+  board::tick_timer_begin();
+  mega::uart_begin(mega::Port::upstream, ARMCTL_RC_BAUD);
+  mega::uart_begin(mega::Port::bus, ARMCTL_JOINT_BAUD);
+  DDRB = static_cast<uint8_t>(DDRB | _BV(PB7));  // LED D13: on while a joint is selected
+  sei();
+  reader.set_gap_us(ctl::frame_gap_us(ARMCTL_RC_BAUD));
+  core.begin(ctl::scara_joints, ctl::scara_joint_count, &bus, &upstream, ARMCTL_JOINT_BAUD, board::tick_timer_us(),
+             &eeprom);
+  core.set_battery_millivolts(ctl::scara_supply_millivolts);
+  // Watchdog: a main loop stuck for 250 ms resets the board (selects LOW, joints halted).
+  wdt_enable(WDTO_250MS);
+  // After a common power-up the joints need a few ms to read their EEPROM: give them 100 ms
+  // before the first transaction (upstream bytes wait in the ring meanwhile).
+  while (board::tick_timer_ms() < joint_start_ms) wdt_reset();
+  for (;;) {
+    wdt_reset();
+    uint8_t byte;
+    while (mega::uart_receive(mega::Port::upstream, &byte)) {
+      const uint32_t now = board::tick_timer_us();
+      if (reader.on_byte(byte, now)) core.on_frame(reader.command(), reader.data(), reader.data_length(), now);
+    }
+    while (mega::uart_receive(mega::Port::bus, &byte)) core.on_bus_byte(byte, board::tick_timer_us());
+    bus.service();
+    core.poll(board::tick_timer_us());
+    if ((PORTA & 0x7Fu) != 0) PORTB = static_cast<uint8_t>(PORTB | _BV(PB7));
+    else PORTB = static_cast<uint8_t>(PORTB & ~_BV(PB7));
+  }
+}

@@ -1,0 +1,100 @@
+#include "mega/mega_uart.hpp"
+
+#include <avr/interrupt.h>
+#include <avr/io.h>
+
+#include "board/ring_buffer.hpp"
+
+namespace mega {
+namespace {
+
+struct Channel {
+  board::RingBuffer<uint8_t, 128> rx;
+  board::RingBuffer<uint8_t, 128> tx;
+  volatile uint8_t errors;
+};
+
+Channel channels[2];
+
+uint16_t ubrr_for(uint32_t baud) { return static_cast<uint16_t>((F_CPU / 8 + baud / 2) / baud - 1); }
+
+void count_error(Channel& c) {
+  if (c.errors != 0xFF) c.errors = static_cast<uint8_t>(c.errors + 1);
+}
+
+}  // namespace
+
+void uart_begin(Port port, uint32_t baud) {
+  const uint16_t ubrr = ubrr_for(baud);
+  if (port == Port::upstream) {
+    UBRR0 = ubrr;
+    UCSR0A = _BV(U2X0);
+    UCSR0C = _BV(UCSZ01) | _BV(UCSZ00);  // 8N1
+    UCSR0B = _BV(RXEN0) | _BV(TXEN0) | _BV(RXCIE0);
+  } else {
+    UBRR1 = ubrr;
+    UCSR1A = _BV(U2X1);
+    UCSR1C = _BV(UCSZ11) | _BV(UCSZ10);
+    UCSR1B = _BV(RXEN1) | _BV(TXEN1) | _BV(RXCIE1);
+  }
+}
+
+bool uart_receive(Port port, uint8_t* byte) { return channels[uint8_t(port)].rx.pop(byte); }
+
+bool uart_send(Port port, uint8_t byte) {
+  Channel& c = channels[uint8_t(port)];
+  if (!c.tx.push(byte)) return false;
+  // TXC is cleared by writing 1: it is set again only when this byte has left.
+  if (port == Port::upstream) {
+    UCSR0A = static_cast<uint8_t>(UCSR0A | _BV(TXC0));
+    UCSR0B = static_cast<uint8_t>(UCSR0B | _BV(UDRIE0));
+  } else {
+    UCSR1A = static_cast<uint8_t>(UCSR1A | _BV(TXC1));
+    UCSR1B = static_cast<uint8_t>(UCSR1B | _BV(UDRIE1));
+  }
+  return true;
+}
+
+bool uart_tx_idle(Port port) {
+  Channel& c = channels[uint8_t(port)];
+  if (!c.tx.empty()) return false;
+  return port == Port::upstream ? (UCSR0A & _BV(TXC0)) != 0 : (UCSR1A & _BV(TXC1)) != 0;
+}
+
+uint8_t uart_rx_errors(Port port) { return channels[uint8_t(port)].errors; }
+
+}  // namespace mega
+
+using mega::channels;
+
+ISR(USART0_RX_vect) {
+  const uint8_t status = UCSR0A;
+  const uint8_t byte = UDR0;
+  if ((status & (_BV(FE0) | _BV(DOR0))) != 0 || !channels[0].rx.push(byte)) mega::count_error(channels[0]);
+}
+
+ISR(USART0_UDRE_vect) {
+  uint8_t byte;
+  if (channels[0].tx.pop(&byte)) {
+    UCSR0A = static_cast<uint8_t>(UCSR0A | _BV(TXC0));  // set again only once this byte has left
+    UDR0 = byte;
+  } else {
+    UCSR0B = static_cast<uint8_t>(UCSR0B & ~_BV(UDRIE0));
+  }
+}
+
+ISR(USART1_RX_vect) {
+  const uint8_t status = UCSR1A;
+  const uint8_t byte = UDR1;
+  if ((status & (_BV(FE1) | _BV(DOR1))) != 0 || !channels[1].rx.push(byte)) mega::count_error(channels[1]);
+}
+
+ISR(USART1_UDRE_vect) {
+  uint8_t byte;
+  if (channels[1].tx.pop(&byte)) {
+    UCSR1A = static_cast<uint8_t>(UCSR1A | _BV(TXC1));
+    UDR1 = byte;
+  } else {
+    UCSR1B = static_cast<uint8_t>(UCSR1B & ~_BV(UDRIE1));
+  }
+}

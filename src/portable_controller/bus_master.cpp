@@ -1,0 +1,136 @@
+#include "portable_controller/bus_master.hpp"
+
+#include "portable/joint_bus_codes.hpp"
+#include "portable_controller/counting.hpp"
+
+namespace armctl {
+namespace controller {
+
+namespace jb = ::armctl::joint_bus;
+
+namespace {
+// The joint answers from its main loop: allow 2 ms of turnaround beyond the wire time.
+const uint32_t turnaround_us = 2000;
+// Wait that long for a joint's reply word beyond the words still on the wire.
+const uint8_t margin_words = 2;
+// Quiet bus after a failure (in word times): a late STATUS or READY dies out meanwhile.
+const uint8_t quiet_words = 4;
+
+}  // namespace
+
+void BusMaster::begin(BusPort* port, uint32_t baud) {
+  port_ = port;
+  word_us_ = 20000000UL / baud;  // 2 bytes x 10 bits
+  state_ = State::idle;
+  result_ready_ = false;
+  quiet_ = false;
+}
+
+bool BusMaster::can_start(uint32_t now_us) const {
+  return state_ == State::idle && !result_ready_ && (!quiet_ || reached(now_us, quiet_until_us_));
+}
+
+void BusMaster::arm(uint32_t now_us, uint8_t words_out) {
+  deadline_us_ = now_us + (words_out + 1u + margin_words) * word_us_ + turnaround_us;
+  have_low_ = false;
+}
+
+bool BusMaster::start(uint8_t joint, int16_t command, int16_t data, uint32_t now_us) {
+  const jb::CommandShape shape = jb::command_shape(command);
+  if (!shape.known || state_ != State::idle || result_ready_ || joint < 1 || joint > jb::max_joints)
+    return false;
+  quiet_ = false;
+  current_ = BusResult{joint, command, data, jb::status_no_answer, 0, false};
+  takes_data_ = shape.takes_data;
+  returns_value_ = shape.returns_value;
+  state_ = State::await_ready;
+  arm(now_us, 0);
+  port_->set_select(joint, true);
+  return true;
+}
+
+bool BusMaster::take_word(uint8_t byte, int16_t* word) {
+  if (!have_low_) {
+    low_byte_ = byte;
+    have_low_ = true;
+    return false;
+  }
+  have_low_ = false;
+  *word = jb::word_from(low_byte_, byte);
+  return true;
+}
+
+void BusMaster::on_rx_byte(uint8_t byte, uint32_t now_us) {
+  int16_t word = 0;
+  switch (state_) {
+    case State::idle:
+      count_up(stray_bytes_);
+      return;
+    case State::await_ready:
+      if (!take_word(byte, &word)) return;
+      if (word != current_.joint) {
+        finish(jb::status_wrong_joint, now_us);
+        return;
+      }
+      port_->send_byte(jb::word_low(current_.command));
+      port_->send_byte(jb::word_high(current_.command));
+      if (takes_data_) {
+        port_->send_byte(jb::word_low(current_.data));
+        port_->send_byte(jb::word_high(current_.data));
+      }
+      if (returns_value_) {
+        state_ = State::await_response;
+        arm(now_us, takes_data_ ? 2 : 1);
+      } else {
+        // Select falls once COMMAND and DATA have left (BusPort); the STATUS wait counts them.
+        port_->set_select(current_.joint, false);
+        state_ = State::await_status;
+        arm(now_us, takes_data_ ? 2 : 1);
+      }
+      return;
+    case State::await_response:
+      if (!take_word(byte, &word)) return;
+      current_.response = word;
+      port_->set_select(current_.joint, false);
+      state_ = State::await_status;
+      arm(now_us, 0);
+      return;
+    case State::await_status:
+      if (!take_word(byte, &word)) return;
+      if (word == jb::success_status(current_.command) && current_.command == jb::cmd_ping &&
+          current_.response != current_.data) {
+        finish(jb::status_ping_bad_echo, now_us);
+        return;
+      }
+      finish(word, now_us);
+      return;
+  }
+}
+
+void BusMaster::poll(uint32_t now_us) {
+  if (state_ == State::idle || !reached(now_us, deadline_us_)) return;
+  finish(jb::status_no_answer, now_us);
+}
+
+void BusMaster::finish(int16_t status, uint32_t now_us) {
+  if (state_ == State::await_ready || state_ == State::await_response)
+    port_->set_select(current_.joint, false);
+  current_.status = status;
+  current_.ok = status == jb::success_status(current_.command);
+  state_ = State::idle;
+  result_ready_ = true;
+  if (!current_.ok) {
+    quiet_ = true;
+    quiet_until_us_ = now_us + quiet_words * word_us_;
+  }
+}
+
+bool BusMaster::take_result(BusResult* result) {
+  if (!result_ready_) return false;
+  result_ready_ = false;
+  *result = current_;
+  return true;
+}
+
+}  // namespace controller
+}  // namespace armctl

@@ -1,0 +1,214 @@
+// The arm controller's core on the board side, portable (C++14, no STL, no heap, no
+// exceptions; floating point only in the main loop, never in an interrupt handler): Robot
+// Commands requests in, joint bus transactions out, one at a time, never blocking.
+// The Mega firmware (firmware/mega/) runs it over its UARTs; tests run it on the host.
+//
+// Requests (spec robot-commands.md; a frame that is malformed, names a joint that is not
+// configured or a position outside its soft limits is ignored whole, as the spec says):
+//   MultiServoMove     a synchronized move: every named joint arrives at the same instant
+//                      (plan_move below); refused whole if a named joint is not answering
+//   ServoPositionRead  answered from the latest polled positions
+//   MultiServoOff      position loops off (set_pid_state 0)
+//   GroupStop          every joint brought to rest (set_speed 0), notification CMD 7
+//   GetBatteryVoltage  the value the board measured (set_battery_millivolts)
+//   GroupDownload      sub 1..5 as docs/action-groups.md decides, into a GroupStore; a
+//                      download that does not fit is refused at sub 2 (no reply, as for
+//                      anything inconsistent); sub 4 and 5 are acknowledged once written
+//   GroupRun/Erase/Speed  playback (each action one synchronized move), notifications
+//                      CMD 6 started, 7 stopped, 8 finished; erase replies CMD 8 once written
+//   ServoOffsetAdjust/Read  a zero offset per joint in position units (-125..125): targets
+//                      are map(position + offset); volatile (ServoOffsetWrite: not yet)
+//   ServoSpeed         motor mode: a velocity jog (set_speed ceil(|speed| / 10) %) toward
+//                      the soft limit in that direction; servo mode (or a move) ends it
+// Between commands the joints are polled round robin (get_position), so positions are
+// fresh and a joint that stops answering is known before a move names it.
+//
+// Bus work is a queue of operations with the instant each is due; poll() starts the next
+// due one, else the next position poll. Time is a free-running microsecond counter that
+// wraps (all comparisons are by difference).
+#pragma once
+
+#include <stdint.h>
+
+#include "portable_controller/bus_master.hpp"
+#include "portable_controller/group_store.hpp"
+
+namespace armctl {
+namespace controller {
+
+// One joint as the arm controller sees it (config/scara-arm.json has the same values).
+struct JointSetup {
+  uint8_t number;          // 1..7: servo ID upstream = select line on the bus
+  int16_t clicks_at_0;     // Robot Commands position 0 -> clicks
+  int16_t clicks_at_1000;  // position 1000 -> clicks (a straight line between)
+  int16_t soft_min;        // clicks; a target outside is refused
+  int16_t soft_max;
+  uint16_t max_speed_cps;   // the joint's velocity at set_speed 100 %
+  uint16_t max_accel_cps2;  // its setpoint acceleration limit
+  int16_t zone;             // clicks, sent with set_zone at start
+};
+
+class UpstreamPort {
+ public:
+  virtual void send_frame(uint8_t command, const uint8_t* data, uint8_t length) = 0;
+ protected:
+  ~UpstreamPort() {}
+};
+
+struct JointState {
+  int16_t clicks;     // last good get_position
+  bool read;          // clicks holds a reading
+  bool answering;     // the last transaction with the joint worked
+  bool loop_on;       // as last commanded
+  uint16_t reads;     // saturating counters
+  uint16_t faults;
+  int16_t last_fault; // STATUS of the last failure (990 no answer, 910, 940, ...)
+  // The joint's last planned motion: from `plan_from` (drive taking effect at
+  // plan_start_us) to `plan_to`, arriving at plan_end_us. A move planned while it is still
+  // under way starts from where this line puts the joint now, not from the last poll,
+  // which is up to a sweep old on a moving joint (streamed moves).
+  bool planned;
+  bool jogging;       // ServoSpeed motor mode
+  int8_t offset;      // ServoOffsetAdjust
+  int16_t plan_from;
+  int16_t plan_to;
+  uint32_t plan_start_us;
+  uint32_t plan_end_us;
+};
+
+struct CoreStats {
+  uint16_t frames;
+  uint16_t ignored_frames;  // malformed, unknown joint, out of range, unsupported
+  uint16_t moves;
+  uint16_t refused_moves;   // a named joint not answering
+  uint32_t polls;
+  uint16_t poll_failures;
+  uint16_t commands;
+  uint16_t command_failures;
+  uint32_t sweeps;          // complete rounds of polls over every joint
+  uint16_t downloads;       // groups stored
+  uint16_t download_rejected;  // inconsistent sub-commands (the download is abandoned)
+  uint16_t download_too_big;   // refused at sub 2: no room in the group memory
+  uint16_t actions_played;
+  uint16_t actions_skipped;    // a stored action that no longer fits, or a joint not answering
+};
+
+class ControllerCore {
+ public:
+  static const uint8_t max_joints = 7;
+  static const uint8_t max_ops = 24;
+
+  // `joints` (count <= 7, numbers distinct) must outlive the core. Queues set_speed 0 and
+  // then set_zone for every joint: after a reset nothing keeps moving on an old command.
+  // `groups`: where action groups are kept (nullptr: group requests are ignored).
+  void begin(const JointSetup* joints, uint8_t count, BusPort* bus, UpstreamPort* upstream,
+             uint32_t bus_baud, uint32_t now_us, GroupMemory* groups = nullptr);
+
+  void on_frame(uint8_t command, const uint8_t* data, uint8_t length, uint32_t now_us);
+  void on_bus_byte(uint8_t byte, uint32_t now_us) { master_.on_rx_byte(byte, now_us); }
+  // Bus work: ends a timed-out transaction, takes a result, starts the next transaction.
+  void poll(uint32_t now_us);
+
+  void set_battery_millivolts(uint16_t millivolts) { battery_mv_ = millivolts; }
+
+  // Position <-> clicks through the joint's line (rounded to nearest); 0 for no joint.
+  int16_t to_clicks(uint8_t joint, uint16_t position) const;
+  int16_t to_position(uint8_t joint, int16_t clicks) const;
+
+  // Inspection (tests, diagnostics). joint_state(n) of an unconfigured n is all zero.
+  const JointState& joint_state(uint8_t joint) const;
+  const CoreStats& stats() const { return stats_; }
+  uint8_t pending_ops() const { return op_count_; }
+  // The speed percent the last move gave each joint (0: not in that move).
+  uint8_t planned_percent(uint8_t joint) const;
+  // The move's planned duration from its start, in ms.
+  uint32_t planned_ms() const { return planned_ms_; }
+  const BusMaster& master() const { return master_; }
+  const GroupStore& groups() const { return groups_; }
+  bool playing() const { return playing_; }
+
+ private:
+  enum class OpKind : uint8_t { set_zone, loop_on, loop_off, speed, drive_to };
+  struct Op {
+    uint32_t due_us;
+    uint8_t joint;
+    OpKind kind;
+    int16_t value;
+  };
+  struct Target {
+    uint8_t index;  // into joints_
+    int16_t clicks;
+  };
+  enum class Check : uint8_t { ok, invalid, not_answering };
+  enum class Awaiting : uint8_t { nothing, download_action, download_end, erase };
+
+  int8_t index_of(uint8_t joint) const;
+  bool schedule(uint32_t due_us, uint8_t index, OpKind kind, int16_t value);
+  void cancel_ops(uint8_t index, bool drives_only);
+  void start_next(uint32_t now_us);
+  void take_result(const BusResult& r);
+  void note_fault(uint8_t index, int16_t status);
+  // Where joint `index` is taken to be at `now_us` when a move is planned (see JointState).
+  float start_clicks(uint8_t index, uint32_t now_us) const;
+
+  Check check_targets(const uint8_t* servos, const uint16_t* positions, uint8_t n, Target* out,
+                      uint8_t* moving) const;
+  void on_move(const uint8_t* data, uint8_t length, uint32_t now_us);
+  // Action groups (group_requests.cpp).
+  void on_group_download(const uint8_t* data, uint8_t length);
+  bool download_step(const uint8_t* data, uint8_t length);
+  void on_group_run(const uint8_t* data, uint8_t length, uint32_t now_us);
+  void on_group_erase(const uint8_t* data, uint8_t length, uint32_t now_us);
+  void on_group_speed(const uint8_t* data, uint8_t length);
+  void stop_playing(bool notify);
+  void play_next(uint32_t now_us);
+  void service_groups();
+  void notify(uint8_t command, uint8_t group, uint16_t count);
+  void on_position_read(const uint8_t* data, uint8_t length);
+  void on_servo_off(const uint8_t* data, uint8_t length, uint32_t now_us);
+  // Offsets and motor mode (servo_requests.cpp).
+  int16_t target_clicks(uint8_t index, uint16_t position) const;
+  void on_offset_adjust(const uint8_t* data, uint8_t length);
+  void on_offset_read(const uint8_t* data, uint8_t length);
+  void on_servo_speed(const uint8_t* data, uint8_t length, uint32_t now_us);
+  void halt(uint32_t now_us);
+  void plan_move(const Target* targets, uint8_t count, uint16_t time_ms, uint32_t now_us);
+  void reply_u16(uint8_t command, uint16_t value);
+
+  const JointSetup* joints_ = nullptr;
+  uint8_t count_ = 0;
+  UpstreamPort* upstream_ = nullptr;
+  BusMaster master_;
+  JointState state_[max_joints];
+  uint8_t percent_[max_joints];
+  Op ops_[max_ops];
+  uint8_t op_count_ = 0;
+  bool inflight_is_op_ = false;
+  OpKind inflight_kind_ = OpKind::set_zone;
+  uint8_t poll_index_ = 0;
+  uint16_t battery_mv_ = 0;
+  uint32_t planned_ms_ = 0;
+  CoreStats stats_{};
+
+  GroupStore groups_;
+  bool have_groups_ = false;
+  Awaiting awaiting_ = Awaiting::nothing;
+  // The download in progress (docs/action-groups.md): stage = last sub accepted.
+  uint8_t download_stage_ = 0;
+  uint8_t download_group_ = 0;
+  uint16_t download_count_ = 0;
+  uint8_t download_servos_ = 0;
+  uint16_t download_start_ = 0;
+  uint8_t download_got_[1020 / 8 + 1];  // one bit per action slot
+  // Playback.
+  bool playing_ = false;
+  GroupInfo play_{};
+  uint16_t play_count_ = 0;  // passes asked, 0 = until stopped
+  uint16_t play_pass_ = 0;
+  uint16_t play_index_ = 0;
+  uint32_t play_due_us_ = 0;
+  uint16_t speeds_[255];     // percent per group, 100 = as recorded (volatile)
+};
+
+}  // namespace controller
+}  // namespace armctl

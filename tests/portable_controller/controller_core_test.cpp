@@ -1,0 +1,318 @@
+// The arm-controller core against scripted joints (fake_joints.hpp): what each Robot
+// Commands request puts on the joint bus, and what goes back upstream.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include "devices/arm_controller/controller_config.hpp"
+#include "fake_joints.hpp"
+#include "portable_controller/controller_core.hpp"
+#include "portable_controller/rc_codes.hpp"
+#include "portable_controller/scara_arm.hpp"
+
+namespace armctl::controller::testing {
+namespace {
+
+namespace jb = joint_bus;
+
+using Reply = SentFrame;
+
+struct CoreRig {
+  CoreRig() {
+    core.begin(scara_joints, scara_joint_count, &joints, &upstream, 9600, now);
+    core.set_battery_millivolts(23456);
+    run_us(200000);  // start-up commands and a first sweep of polls
+    joints.log.clear();
+  }
+  void run_us(std::uint32_t us) {
+    const std::uint32_t end = now + us;
+    while (static_cast<std::int32_t>(now - end) < 0) {
+      joints.pump([&](std::uint8_t b) { core.on_bus_byte(b, now); });
+      core.poll(now);
+      now += 100;
+    }
+  }
+  void request(std::uint8_t command, std::vector<std::uint8_t> data) {
+    core.on_frame(command, data.data(), static_cast<std::uint8_t>(data.size()), now);
+  }
+  // MultiServoMove data: count, time, {servo, position}.
+  static std::vector<std::uint8_t> move(std::uint16_t ms, std::vector<std::pair<int, int>> targets) {
+    std::vector<std::uint8_t> d{static_cast<std::uint8_t>(targets.size()), static_cast<std::uint8_t>(ms & 0xFF),
+                                static_cast<std::uint8_t>(ms >> 8)};
+    for (auto [s, p] : targets) {
+      d.push_back(static_cast<std::uint8_t>(s));
+      d.push_back(static_cast<std::uint8_t>(p & 0xFF));
+      d.push_back(static_cast<std::uint8_t>(p >> 8));
+    }
+    return d;
+  }
+  std::vector<SentCommand> motion_commands() const {
+    std::vector<SentCommand> out;
+    for (const auto& c : joints.log)
+      if (c.command != jb::cmd_get_position) out.push_back(c);
+    return out;
+  }
+
+  FakeJoints joints;
+  RecordingUpstream upstream;
+  ControllerCore core;
+  std::uint32_t now = 5000;
+};
+
+TEST(ControllerCore, StartsByHaltingEveryJointAndSettingZones) {
+  FakeJoints joints;
+  RecordingUpstream up;
+  ControllerCore core;
+  std::uint32_t now = 0;
+  core.begin(scara_joints, scara_joint_count, &joints, &up, 9600, now);
+  for (int i = 0; i < 3000; ++i, now += 100) {
+    joints.pump([&](std::uint8_t b) { core.on_bus_byte(b, now); });
+    core.poll(now);
+  }
+  ASSERT_GE(joints.log.size(), 14u);
+  for (int j = 1; j <= 7; ++j) {
+    EXPECT_EQ(joints.log[j - 1].command, jb::cmd_set_speed) << "after a reset nothing keeps moving";
+    EXPECT_EQ(joints.log[j - 1].data, 0);
+    EXPECT_EQ(joints.log[6 + j].command, jb::cmd_set_zone);
+    EXPECT_EQ(joints.log[6 + j].data, 20);
+    EXPECT_TRUE(core.joint_state(j).answering);
+    EXPECT_TRUE(core.joint_state(j).read);
+  }
+  EXPECT_GE(core.stats().sweeps, 1u) << "then it polls positions round robin";
+}
+
+TEST(ControllerCore, MapsPositionsToClicksAndBack) {
+  CoreRig rig;
+  EXPECT_EQ(rig.core.to_clicks(1, 0), -20000);
+  EXPECT_EQ(rig.core.to_clicks(1, 1000), 20000);
+  EXPECT_EQ(rig.core.to_clicks(4, 600), 2000);
+  EXPECT_EQ(rig.core.to_clicks(7, 333), -1670);
+  EXPECT_EQ(rig.core.to_position(7, -1670), 333);
+  EXPECT_EQ(rig.core.to_position(2, -21000), -25) << "read-backs may leave 0..1000";
+  EXPECT_EQ(rig.core.to_clicks(9, 500), 0) << "no joint 9";
+}
+
+TEST(ControllerCore, MoveSendsEverySpeedThenEveryDrive) {
+  CoreRig rig;
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 600}, {3, 450}, {7, 0xFF00}}));
+  rig.run_us(300000);
+  auto sent = rig.motion_commands();
+  ASSERT_EQ(sent.size(), 4u) << "joint 7 is left alone (0xFF00)";
+  EXPECT_EQ(sent[0].command, jb::cmd_set_speed);
+  EXPECT_EQ(sent[0].joint, 1);
+  EXPECT_EQ(sent[1].command, jb::cmd_set_speed);
+  EXPECT_EQ(sent[1].joint, 3);
+  EXPECT_EQ(sent[2].command, jb::cmd_drive_to);
+  EXPECT_EQ(sent[3].command, jb::cmd_drive_to);
+  // Each drive waits for its own instant (the longer profile starts first).
+  std::set<std::pair<int, int>> drives{{sent[2].joint, sent[2].data}, {sent[3].joint, sent[3].data}};
+  EXPECT_EQ(drives, (std::set<std::pair<int, int>>{{1, 4000}, {3, -2000}}));
+  EXPECT_EQ(rig.core.stats().moves, 1);
+}
+
+// Seconds a joint at rest takes for `d` clicks at `percent` of (v, a) as the joint ramps.
+double ramp_time(double d, int percent, double v, double a) {
+  const double speed = v * percent / 100.0;
+  if (d * a >= speed * speed) return d / speed + speed / a;
+  return 2.0 * std::sqrt(d / a);
+}
+
+TEST(ControllerCore, EachJointGetsTheSlowestSpeedThatArrivesInTime) {
+  CoreRig rig;
+  rig.request(rc_multi_servo_move, CoreRig::move(1500, {{1, 800}, {2, 550}, {4, 100}, {6, 510}}));
+  EXPECT_EQ(rig.core.planned_ms(), 1500u) << "every joint can make it in the time asked";
+  const std::uint32_t txn = rig.core.master().transaction_estimate_us();
+  const int order[] = {1, 2, 4, 6};
+  for (int k = 0; k < 4; ++k) {
+    const int j = order[k];
+    const JointSetup& s = scara_joints[j - 1];
+    const double d = std::abs(rig.core.to_clicks(j, j == 1 ? 800 : j == 2 ? 550 : j == 4 ? 100 : 510));
+    // Its drive follows 4 speeds and k drives, and takes effect 3 words after it starts.
+    const double available = 1.5 - ((4 + k) * txn + 3 * rig.core.master().word_time_us()) / 1e6;
+    const int p = rig.core.planned_percent(j);
+    SCOPED_TRACE(::testing::Message() << "joint " << j << " at " << p << " %");
+    ASSERT_GE(p, 1);
+    ASSERT_LE(p, 100);
+    EXPECT_LE(ramp_time(d, p, s.max_speed_cps, s.max_accel_cps2), available + 1e-6);
+    if (p > 1) {
+      EXPECT_GT(ramp_time(d, p - 1, s.max_speed_cps, s.max_accel_cps2), available);
+    }
+  }
+}
+
+TEST(ControllerCore, MoveWhileTheJointIsUnderWayStartsFromWhereItIsPlannedToBe) {
+  // The polls of a moving joint are up to a sweep old (here: never updated at all); a move
+  // planned half way through the previous one must start from its half-way point.
+  CoreRig moving;
+  moving.joints.drives_move = false;
+  moving.request(rc_multi_servo_move, CoreRig::move(2000, {{1, 750}}));  // 0 -> 10000 clicks
+  moving.run_us(1000000);
+  moving.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 750}}));
+  CoreRig at_rest;
+  at_rest.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 750}}));
+  EXPECT_LT(moving.core.planned_percent(1) + 10, at_rest.core.planned_percent(1))
+      << "about half the distance left: a much lower speed";
+  const JointState& s = moving.core.joint_state(1);
+  EXPECT_TRUE(s.planned);
+  EXPECT_NEAR(s.plan_from, 5000, 600) << "half way along the first move's line";
+}
+
+TEST(ControllerCore, MoveTooFastForAJointIsStretchedToItsReach) {
+  CoreRig rig;
+  rig.request(rc_multi_servo_move, CoreRig::move(100, {{2, 1000}}));  // 20000 clicks in 0.1 s
+  // SHOULDER: 8000 clicks/s, 15000 clicks/s^2 -> 20000/8000 + 8000/15000 = 3.03 s.
+  const auto& m = rig.core.master();
+  EXPECT_NEAR(rig.core.planned_ms(), 3033 + (m.transaction_estimate_us() + 3 * m.word_time_us()) / 1000.0, 2);
+  EXPECT_EQ(rig.core.planned_percent(2), 100);
+}
+
+TEST(ControllerCore, IgnoresMalformedAndOutOfRangeMovesWhole) {
+  CoreRig rig;
+  const auto before = rig.core.stats().ignored_frames;
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 600}, {9, 500}}));   // no joint 9
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 600}, {2, 1001}}));  // > 1000
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{2, 600}, {1, 100}}));   // below Z's soft min
+  rig.request(rc_multi_servo_move, CoreRig::move(30001, {{1, 600}}));            // > 30 s
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 600}, {1, 700}}));   // twice the same
+  auto short_frame = CoreRig::move(1000, {{1, 600}});
+  short_frame.pop_back();
+  rig.request(rc_multi_servo_move, short_frame);
+  rig.run_us(300000);
+  EXPECT_TRUE(rig.motion_commands().empty());
+  EXPECT_EQ(rig.core.stats().ignored_frames, before + 6);
+}
+
+TEST(ControllerCore, MoveNamingAJointThatStoppedAnsweringIsRefused) {
+  CoreRig rig;
+  rig.joints.dead[3] = true;
+  rig.run_us(400000);  // a sweep finds it silent
+  EXPECT_FALSE(rig.core.joint_state(3).answering);
+  EXPECT_EQ(rig.core.joint_state(3).last_fault, jb::status_no_answer);
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{2, 600}, {3, 600}}));
+  rig.run_us(300000);
+  EXPECT_TRUE(rig.motion_commands().empty());
+  EXPECT_EQ(rig.core.stats().refused_moves, 1);
+  EXPECT_GT(rig.core.joint_state(2).reads, 0) << "the others are still polled";
+}
+
+TEST(ControllerCore, PositionReadAnswersFromThePolls) {
+  CoreRig rig;
+  rig.joints.position[2] = 4000;
+  rig.joints.position[7] = -5000;
+  rig.run_us(200000);
+  rig.request(rc_servo_position_read, {2, 2, 7});
+  ASSERT_EQ(rig.upstream.frames.size(), 1u);
+  const Reply& r = rig.upstream.frames[0];
+  EXPECT_EQ(r.command, rc_servo_position_read);
+  EXPECT_EQ(r.data, (std::vector<std::uint8_t>{2, 2, 0x58, 0x02, 7, 0, 0}));  // 600, 0
+  rig.request(rc_servo_position_read, {2, 2, 8});  // no joint 8: ignored
+  EXPECT_EQ(rig.upstream.frames.size(), 1u);
+}
+
+TEST(ControllerCore, ServoOffTurnsLoopsOffAndTheNextMoveOn) {
+  CoreRig rig;
+  rig.request(rc_multi_servo_off, {2, 4, 5});
+  rig.run_us(100000);
+  auto sent = rig.motion_commands();
+  ASSERT_EQ(sent.size(), 2u);
+  EXPECT_EQ(sent[0].command, jb::cmd_set_pid_state);
+  EXPECT_EQ(sent[0].data, 0);
+  EXPECT_EQ(sent[1].joint, 5);
+  rig.joints.log.clear();
+  rig.request(rc_multi_servo_move, CoreRig::move(500, {{4, 600}}));
+  rig.run_us(200000);
+  sent = rig.motion_commands();
+  ASSERT_EQ(sent.size(), 3u);
+  EXPECT_EQ(sent[0].command, jb::cmd_set_pid_state);
+  EXPECT_EQ(sent[0].data, 1);
+  EXPECT_EQ(sent[2].command, jb::cmd_drive_to);
+}
+
+TEST(ControllerCore, GroupStopHaltsEveryJointAndNotifies) {
+  CoreRig rig;
+  rig.request(rc_multi_servo_move, CoreRig::move(3000, {{1, 900}, {2, 900}}));
+  rig.request(rc_group_stop, {});  // before the move's commands went out: they never do
+  rig.run_us(300000);
+  auto sent = rig.motion_commands();
+  ASSERT_EQ(sent.size(), 7u);
+  for (const auto& c : sent) {
+    EXPECT_EQ(c.command, jb::cmd_set_speed);
+    EXPECT_EQ(c.data, 0);
+  }
+  ASSERT_EQ(rig.upstream.frames.size(), 1u);
+  EXPECT_EQ(rig.upstream.frames[0].command, rc_group_stop);
+  EXPECT_TRUE(rig.upstream.frames[0].data.empty());
+}
+
+TEST(ControllerCore, BatteryAndUnknownCommands) {
+  CoreRig rig;
+  rig.request(rc_get_battery_voltage, {});
+  ASSERT_EQ(rig.upstream.frames.size(), 1u);
+  EXPECT_EQ(rig.upstream.frames[0].data, (std::vector<std::uint8_t>{0xA0, 0x5B}));
+  rig.request(99, {});
+  rig.request(rc_get_battery_voltage, {1});
+  EXPECT_EQ(rig.upstream.frames.size(), 1u);
+}
+
+TEST(ControllerCore, OffsetShiftsTargetsAndIsReadBack) {
+  CoreRig rig;
+  rig.request(rc_servo_offset_adjust, {2, 25, 0});
+  rig.request(rc_servo_offset_adjust, {3, 0x82, 0xFF});  // -126: out of range, ignored
+  rig.request(rc_servo_offset_read, {2, 2, 3});
+  ASSERT_EQ(rig.upstream.frames.size(), 1u);
+  EXPECT_EQ(rig.upstream.frames[0].command, rc_servo_offset_read);
+  EXPECT_EQ(rig.upstream.frames[0].data, (std::vector<std::uint8_t>{2, 2, 25, 3, 0}));
+  rig.request(rc_multi_servo_move, CoreRig::move(500, {{2, 500}}));
+  rig.run_us(300000);
+  const auto drives = rig.joints.commands_of(jb::cmd_drive_to);
+  ASSERT_EQ(drives.size(), 1u);
+  EXPECT_EQ(drives[0].data, 1000) << "map(500 + 25)";
+}
+
+TEST(ControllerCore, MotorModeJogsTowardTheSoftLimitAndServoModeEndsIt) {
+  CoreRig rig;
+  rig.request(rc_servo_speed, {3, 1, 0x39, 0xFE});  // motor, -455
+  rig.run_us(100000);
+  auto sent = rig.motion_commands();
+  ASSERT_EQ(sent.size(), 2u);
+  EXPECT_EQ(sent[0].command, jb::cmd_set_speed);
+  EXPECT_EQ(sent[0].data, 46);
+  EXPECT_EQ(sent[1].command, jb::cmd_drive_to);
+  EXPECT_EQ(sent[1].data, -20000) << "toward joint 3's soft minimum";
+  EXPECT_TRUE(rig.core.joint_state(3).jogging);
+  rig.joints.log.clear();
+  rig.request(rc_servo_speed, {3, 0, 0, 0});
+  rig.run_us(100000);
+  sent = rig.motion_commands();
+  ASSERT_EQ(sent.size(), 1u);
+  EXPECT_EQ(sent[0].command, jb::cmd_set_speed);
+  EXPECT_EQ(sent[0].data, 0);
+  rig.request(rc_servo_speed, {3, 1, 0xE9, 0x03});  // 1001: out of range
+  rig.request(rc_servo_speed, {3, 2, 0, 0});        // mode 2
+  rig.run_us(100000);
+  EXPECT_EQ(rig.motion_commands().size(), 1u);
+}
+
+TEST(ScaraJoints, MatchTheArmControllerConfig) {
+  const auto config = arm_controller::load_controller_config(arm_controller::default_controller_config_path());
+  ASSERT_EQ(config.joints.size(), scara_joint_count);
+  EXPECT_EQ(config.supply_millivolts, scara_supply_millivolts);
+  for (std::size_t i = 0; i < scara_joint_count; ++i) {
+    const auto& c = config.joints[i];
+    const JointSetup& s = scara_joints[i];
+    SCOPED_TRACE(c.name);
+    EXPECT_EQ(s.number, c.number);
+    EXPECT_EQ(s.clicks_at_0, c.map.to_clicks(0));
+    EXPECT_EQ(s.clicks_at_1000, c.map.to_clicks(1000));
+    EXPECT_EQ(s.soft_min, c.soft_min);
+    EXPECT_EQ(s.soft_max, c.soft_max);
+    EXPECT_EQ(s.max_speed_cps, c.max_speed_cps);
+    EXPECT_EQ(s.max_accel_cps2, c.max_accel_cps2);
+    EXPECT_EQ(s.zone, c.zone_clicks);
+  }
+}
+
+}  // namespace
+}  // namespace armctl::controller::testing

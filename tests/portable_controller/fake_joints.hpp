@@ -1,0 +1,105 @@
+// Seven scripted joints behind a BusPort, byte for byte: READY on select rise, RESPONSE
+// after COMMAND (and DATA), STATUS after select falls. Bytes are queued and handed to the
+// master by pump(), never from inside a master call. A joint can be made silent, or to
+// answer with another number. Also: a recorder of what the core sends upstream.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include "portable/joint_bus_codes.hpp"
+#include "portable_controller/bus_master.hpp"
+#include "portable_controller/controller_core.hpp"
+
+namespace armctl::controller::testing {
+
+struct SentCommand {
+  int joint;
+  int command;
+  int data;
+};
+
+class FakeJoints final : public BusPort {
+ public:
+  void set_select(std::uint8_t joint, bool high) override {
+    if (high) {
+      selected_ = joint;
+      received_.clear();
+      if (!silent(joint)) queue_word(ready_word(joint));
+      return;
+    }
+    if (selected_ == joint && !silent(joint) && pending_status_) queue_word(*pending_status_);
+    pending_status_.reset();
+    selected_ = 0;
+  }
+  void send_byte(std::uint8_t byte) override {
+    if (selected_ == 0 || silent(selected_)) return;
+    received_.push_back(byte);
+    if (received_.size() < 2) return;
+    const auto command = joint_bus::word_from(received_[0], received_[1]);
+    const auto shape = joint_bus::command_shape(command);
+    if (shape.takes_data && received_.size() < 4) return;
+    const int data = shape.takes_data ? joint_bus::word_from(received_[2], received_[3]) : 0;
+    const int j = selected_;
+    log.push_back(SentCommand{j, command, data});
+    std::int16_t response = 0;
+    if (command == joint_bus::cmd_get_position) response = position[j];
+    // Instant, for these tests (or never: a joint whose polls lag behind its motion).
+    if (command == joint_bus::cmd_drive_to && drives_move) position[j] = static_cast<std::int16_t>(data);
+    if (command == joint_bus::cmd_ping) response = static_cast<std::int16_t>(data);
+    if (shape.returns_value) queue_word(response);
+    pending_status_ = joint_bus::success_status(command);
+    received_.clear();
+  }
+  // Hands every queued byte to `sink` (the master or the core).
+  template <typename Sink>
+  void pump(Sink&& sink) {
+    while (!wire_.empty()) {
+      const std::uint8_t b = wire_.front();
+      wire_.pop_front();
+      sink(b);
+    }
+  }
+  std::vector<SentCommand> commands_of(int command) const {
+    std::vector<SentCommand> out;
+    for (const auto& c : log)
+      if (c.command == command) out.push_back(c);
+    return out;
+  }
+
+  std::int16_t position[8] = {};
+  bool dead[8] = {};
+  int answers_as[8] = {};  // != 0: READY says this number instead
+  bool drives_move = true;
+  std::vector<SentCommand> log;
+
+ private:
+  bool silent(int joint) const { return dead[joint]; }
+  int ready_word(int joint) const { return answers_as[joint] != 0 ? answers_as[joint] : joint; }
+  void queue_word(int word) {
+    wire_.push_back(joint_bus::word_low(static_cast<std::int16_t>(word)));
+    wire_.push_back(joint_bus::word_high(static_cast<std::int16_t>(word)));
+  }
+  int selected_ = 0;
+  std::vector<std::uint8_t> received_;
+  std::optional<std::int16_t> pending_status_;
+  std::deque<std::uint8_t> wire_;
+};
+
+// What the core sent upstream, frame by frame.
+struct SentFrame {
+  int command;
+  std::vector<std::uint8_t> data;
+};
+
+class RecordingUpstream final : public UpstreamPort {
+ public:
+  void send_frame(std::uint8_t command, const std::uint8_t* data, std::uint8_t length) override {
+    frames.push_back(SentFrame{command, {data, data + length}});
+  }
+  std::vector<SentFrame> frames;
+};
+
+}  // namespace armctl::controller::testing

@@ -1,0 +1,274 @@
+// Action groups in the portable core: download (sub 1..5) into a GroupStore over a
+// byte-addressed memory, capacity, atomic replacement across resets, playback.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "fake_joints.hpp"
+#include "portable_controller/controller_core.hpp"
+#include "portable_controller/rc_codes.hpp"
+#include "portable_controller/scara_arm.hpp"
+
+namespace armctl::controller::testing {
+namespace {
+
+namespace jb = joint_bus;
+
+// RAM standing in for the EEPROM. `writes_left` < 0: unlimited; else the memory takes that
+// many more byte writes and then ignores the rest (power lost mid-way).
+class RamMemory final : public GroupMemory {
+ public:
+  explicit RamMemory(std::uint16_t size = 4096) : bytes(size, 0xFF) {}
+  std::uint16_t size() const override { return static_cast<std::uint16_t>(bytes.size()); }
+  std::uint8_t read(std::uint16_t a) override { return bytes.at(a); }
+  bool ready() override { return true; }
+  void write(std::uint16_t a, std::uint8_t v) override {
+    ++writes;
+    if (writes_left == 0) return;
+    if (writes_left > 0) --writes_left;
+    bytes.at(a) = v;
+  }
+  std::vector<std::uint8_t> bytes;
+  long writes_left = -1;
+  long writes = 0;
+};
+
+struct Action {
+  std::uint16_t ms;
+  std::vector<std::pair<int, int>> targets;  // servo, position
+};
+
+struct GroupRig {
+  explicit GroupRig(RamMemory& m) : memory(m) {
+    core.begin(scara_joints, scara_joint_count, &joints, &upstream, 115200, now, &memory);
+    run_us(100000);
+    joints.log.clear();
+    upstream.frames.clear();
+  }
+  void run_us(std::uint32_t us) {
+    const std::uint32_t end = now + us;
+    while (static_cast<std::int32_t>(now - end) < 0) {
+      joints.pump([&](std::uint8_t b) { core.on_bus_byte(b, now); });
+      core.poll(now);
+      now += 50;
+    }
+  }
+  void send(std::uint8_t command, std::vector<std::uint8_t> data) {
+    core.on_frame(command, data.data(), static_cast<std::uint8_t>(data.size()), now);
+    run_us(2000);
+  }
+  // The SDK's download sequence; true if every sub was acknowledged.
+  bool download(std::uint8_t group, const std::vector<Action>& actions) {
+    upstream.frames.clear();
+    std::vector<std::uint8_t> begin{1, group};
+    for (std::size_t left = actions.size(); left > 0;) {
+      const std::size_t b = std::min<std::size_t>(left, 255);
+      begin.push_back(static_cast<std::uint8_t>(b));
+      left -= b;
+    }
+    send(rc_group_download, begin);
+    send(rc_group_download, {2, group, 0, static_cast<std::uint8_t>(actions[0].targets.size()), 0});
+    std::vector<std::uint8_t> blocks{3, group, 0};
+    for (std::size_t b = 0; b * 255 < actions.size(); ++b) blocks.push_back(static_cast<std::uint8_t>(b));
+    send(rc_group_download, blocks);
+    for (std::size_t i = 0; i < actions.size(); ++i) {
+      const Action& a = actions[i];
+      std::vector<std::uint8_t> d{4, group, static_cast<std::uint8_t>(i / 255), static_cast<std::uint8_t>(i % 255),
+                                  static_cast<std::uint8_t>(2 + 3 * a.targets.size()),
+                                  static_cast<std::uint8_t>(a.ms & 0xFF), static_cast<std::uint8_t>(a.ms >> 8)};
+      for (auto [s, p] : a.targets) {
+        d.push_back(static_cast<std::uint8_t>(s));
+        d.push_back(static_cast<std::uint8_t>(p & 0xFF));
+        d.push_back(static_cast<std::uint8_t>(p >> 8));
+      }
+      send(rc_group_download, d);
+    }
+    send(rc_group_download, {5, group});
+    return acks() == 4 + actions.size();
+  }
+  std::size_t acks() const {
+    std::size_t n = 0;
+    for (const auto& f : upstream.frames) n += f.command == rc_group_download ? 1 : 0;
+    return n;
+  }
+
+  RamMemory& memory;
+  FakeJoints joints;
+  RecordingUpstream upstream;
+  ControllerCore core;
+  std::uint32_t now = 1000;
+};
+
+std::vector<Action> wave(int n, int servos = 3) {
+  std::vector<Action> out;
+  for (int i = 0; i < n; ++i) {
+    Action a{static_cast<std::uint16_t>(100 + i), {}};
+    for (int s = 1; s <= servos; ++s) a.targets.push_back({s, 300 + (i * 37 + s * 11) % 400});
+    out.push_back(a);
+  }
+  return out;
+}
+
+// What the store holds for `group`, as actions (empty if nothing).
+std::vector<Action> stored(RamMemory& memory, std::uint8_t group) {
+  GroupStore store;
+  store.begin(&memory);
+  GroupInfo info;
+  std::vector<Action> out;
+  if (!store.find(group, &info)) return out;
+  for (std::uint16_t i = 0; i < info.action_count; ++i) {
+    std::uint16_t ms;
+    std::uint8_t servos[7];
+    std::uint16_t positions[7];
+    store.read_action(info, i, &ms, servos, positions);
+    Action a{ms, {}};
+    for (int k = 0; k < info.servo_count; ++k) a.targets.push_back({servos[k], positions[k]});
+    out.push_back(a);
+  }
+  return out;
+}
+
+bool same(const std::vector<Action>& a, const std::vector<Action>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].ms != b[i].ms || a[i].targets != b[i].targets) return false;
+  return true;
+}
+
+TEST(Groups, DownloadIsAcknowledgedAndStored) {
+  RamMemory memory;
+  GroupRig rig(memory);
+  const auto actions = wave(300);  // two blocks
+  ASSERT_TRUE(rig.download(7, actions));
+  EXPECT_TRUE(same(stored(memory, 7), actions));
+  EXPECT_EQ(rig.core.stats().downloads, 1);
+}
+
+TEST(Groups, InconsistentSubAbandonsTheDownloadWithoutReply) {
+  RamMemory memory;
+  GroupRig rig(memory);
+  ASSERT_TRUE(rig.download(2, wave(3)));
+  rig.upstream.frames.clear();
+  rig.send(rc_group_download, {1, 2, 3});
+  rig.send(rc_group_download, {2, 2, 0, 3, 0});
+  rig.send(rc_group_download, {3, 2, 0, 0});
+  rig.send(rc_group_download, {4, 2, 0, 5, 11, 100, 0, 1, 0x2C, 1, 2, 0x2C, 1, 3, 0x2C, 1});  // index 5 >= 3
+  EXPECT_EQ(rig.acks(), 3u) << "no reply to the bad action";
+  rig.send(rc_group_download, {5, 2});
+  EXPECT_EQ(rig.acks(), 3u) << "the download was abandoned";
+  EXPECT_TRUE(same(stored(memory, 2), wave(3))) << "the old content is intact";
+  EXPECT_GE(rig.core.stats().download_rejected, 2);
+}
+
+TEST(Groups, ADownloadThatDoesNotFitIsRefusedAtTheServoCount) {
+  RamMemory memory;
+  GroupRig rig(memory);
+  // 4096 - 132 bytes of group data: 172 actions of 7 joints (23 bytes each).
+  EXPECT_EQ(rig.core.groups().capacity_bytes() / GroupStore::action_bytes(7), 172);
+  ASSERT_TRUE(rig.download(1, wave(170, 7)));
+  rig.upstream.frames.clear();
+  rig.send(rc_group_download, {1, 3, 5});
+  rig.send(rc_group_download, {2, 3, 0, 7, 0});  // 5 x 23 bytes: only 2 actions' room left
+  EXPECT_EQ(rig.acks(), 1u);
+  EXPECT_EQ(rig.core.stats().download_too_big, 1);
+  EXPECT_TRUE(same(stored(memory, 1), wave(170, 7)));
+  EXPECT_TRUE(stored(memory, 3).empty());
+  ASSERT_TRUE(rig.download(3, wave(2, 7))) << "what fits is taken";
+}
+
+TEST(Groups, ReplacementSurvivesAResetAfterAnyWrite) {
+  // Download group 4 (old), then a replacement (new) that dies after `k` byte writes, for
+  // every k: after the restart group 4 is exactly old or exactly new, never a mixture.
+  const auto old_actions = wave(5);
+  const auto new_actions = wave(4, 2);
+  long total = 0;
+  {
+    RamMemory memory;
+    GroupRig rig(memory);
+    ASSERT_TRUE(rig.download(4, old_actions));
+    const long before = memory.writes;
+    ASSERT_TRUE(rig.download(4, new_actions));
+    total = memory.writes - before;
+  }
+  ASSERT_GT(total, 30);
+  int saw_old = 0, saw_new = 0;
+  for (long k = 0; k <= total; ++k) {
+    RamMemory memory;
+    {
+      GroupRig rig(memory);
+      ASSERT_TRUE(rig.download(4, old_actions));
+      memory.writes_left = k;
+      rig.download(4, new_actions);
+    }
+    memory.writes_left = -1;
+    GroupRig after(memory);  // restart: begin() repairs, then writes settle
+    after.run_us(10000);
+    const auto now_stored = stored(memory, 4);
+    const bool is_old = same(now_stored, old_actions), is_new = same(now_stored, new_actions);
+    EXPECT_TRUE(is_old || is_new) << "after " << k << " of " << total << " writes";
+    saw_old += is_old;
+    saw_new += is_new;
+  }
+  EXPECT_GT(saw_old, 0);
+  EXPECT_GT(saw_new, 0);
+}
+
+TEST(Groups, RunPlaysEachActionAsAMoveAndNotifies) {
+  RamMemory memory;
+  GroupRig rig(memory);
+  const std::vector<Action> actions{{200, {{1, 520}, {2, 480}}}, {200, {{1, 540}, {2, 460}}}};
+  ASSERT_TRUE(rig.download(9, actions));
+  rig.upstream.frames.clear();
+  rig.send(rc_group_run, {9, 2, 0});
+  rig.run_us(3000000);
+  ASSERT_FALSE(rig.upstream.frames.empty());
+  EXPECT_EQ(rig.upstream.frames.front().command, rc_group_run);
+  EXPECT_EQ(rig.upstream.frames.front().data, (std::vector<std::uint8_t>{9, 2, 0}));
+  EXPECT_EQ(rig.upstream.frames.back().command, rc_group_erase) << "CMD 8: finished";
+  EXPECT_EQ(rig.upstream.frames.back().data, (std::vector<std::uint8_t>{9, 2, 0}));
+  const auto drives = rig.joints.commands_of(jb::cmd_drive_to);
+  ASSERT_EQ(drives.size(), 8u) << "2 actions x 2 joints x 2 passes";
+  EXPECT_EQ(rig.core.stats().actions_played, 4);
+  EXPECT_FALSE(rig.core.playing());
+}
+
+TEST(Groups, SpeedScalesTheActionTime) {
+  RamMemory memory;
+  GroupRig rig(memory);
+  ASSERT_TRUE(rig.download(1, {{2000, {{1, 520}}}}));
+  rig.send(rc_group_speed, {1, 200, 0});
+  rig.send(rc_group_run, {1, 1, 0});
+  EXPECT_EQ(rig.core.planned_ms(), 1000u) << "200 % = twice as fast";
+  rig.send(rc_group_speed, {1, 0, 0});  // 0 % is refused
+  rig.send(rc_group_speed, {255, 50, 0});
+  rig.send(rc_group_run, {1, 1, 0});
+  EXPECT_EQ(rig.core.planned_ms(), 4000u);
+}
+
+TEST(Groups, StopAndEraseEndThePlayback) {
+  RamMemory memory;
+  GroupRig rig(memory);
+  ASSERT_TRUE(rig.download(1, wave(3)));
+  rig.send(rc_group_run, {1, 0, 0});  // until stopped
+  rig.run_us(500000);
+  EXPECT_TRUE(rig.core.playing());
+  rig.upstream.frames.clear();
+  rig.send(rc_group_stop, {});
+  EXPECT_FALSE(rig.core.playing());
+  ASSERT_EQ(rig.upstream.frames.size(), 1u);
+  EXPECT_EQ(rig.upstream.frames[0].command, rc_group_stop);
+  rig.send(rc_group_run, {1, 0, 0});
+  rig.upstream.frames.clear();
+  rig.send(rc_group_erase, {255});
+  rig.run_us(10000);
+  ASSERT_EQ(rig.upstream.frames.size(), 2u);
+  EXPECT_EQ(rig.upstream.frames[0].command, rc_group_stop);
+  EXPECT_EQ(rig.upstream.frames[1].command, rc_group_erase);
+  EXPECT_TRUE(rig.upstream.frames[1].data.empty());
+  EXPECT_TRUE(stored(memory, 1).empty());
+  rig.send(rc_group_run, {1, 1, 0});
+  EXPECT_FALSE(rig.core.playing()) << "an erased group does not run";
+}
+
+}  // namespace
+}  // namespace armctl::controller::testing
