@@ -113,11 +113,6 @@ class Arm {
   // arrive there, as after move_joints.
   void expect_at(const std::vector<double>& positions) { last_targets_.assign(positions.begin(), positions.end()); }
 
-  // The time a board move from `from` to `to` takes at `speed` of the limits (rest to rest).
-  Duration move_time(const std::vector<double>& from, const std::vector<std::optional<double>>& to,
-                     double speed) const {
-    return kinematics_->board_move_time(from, to, speed);
-  }
   // Checks targets against the joint limits and the device's range (ArmKinematics); the
   // error names the joint, the value and what is allowed.
   Status check_targets(const std::vector<std::optional<double>>& targets) const {

@@ -14,14 +14,6 @@ namespace {
 
 Error refuse(std::string message) { return Error{ErrorKind::invalid_argument, std::move(message)}; }
 
-// Rest-to-rest time of a trapezoidal (or triangular) profile over `distance`.
-double profile_seconds(double distance, double v, double a) {
-  if (distance <= 0) return 0;
-  const double ramp = v / a;                 // time to reach v
-  if (distance <= v * ramp) return 2 * std::sqrt(distance / a);  // never reaches v
-  return distance / v + ramp;
-}
-
 motion::Pose compose(const motion::Pose& a, const motion::Pose& b) {
   motion::Pose out;
   out.position = a.position + a.orientation * b.position;
@@ -223,17 +215,6 @@ Result<std::vector<std::optional<double>>> ArmKinematics::device_targets(const s
     out[i] = device[i];
   }
   return out;
-}
-
-Duration ArmKinematics::board_move_time(const std::vector<double>& from, const std::vector<std::optional<double>>& to,
-                                        double speed) const {
-  double seconds = 0;
-  for (std::size_t i = 0; i < to.size(); ++i) {
-    if (!to[i]) continue;
-    const JointLimits& l = model_.joints[i].limits;
-    seconds = std::max(seconds, profile_seconds(std::abs(*to[i] - from[i]), speed * l.velocity, l.acceleration));
-  }
-  return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(seconds));
 }
 
 }  // namespace armctl::arm

@@ -86,11 +86,6 @@ class ArmKinematics {
   Result<std::vector<std::optional<double>>> device_targets(const std::vector<double>& full,
                                                             const std::vector<bool>& sent) const;
 
-  // The time a board move (the device interpolates) from `from` to `to` takes at `speed` of
-  // the velocity limits with the acceleration limits (rest to rest, trapezoidal).
-  Duration board_move_time(const std::vector<double>& from, const std::vector<std::optional<double>>& to,
-                           double speed) const;
-
  private:
   ArmModel model_;
   std::optional<Protocol> device_;

@@ -130,6 +130,23 @@ class Planner {
     if (timed && timed->stretched) p.note = timed->note;
     p.moves = 1;
     p.end = target;
+    // The jerk-limited move within the limits. Streamed, it is what plays; for a board move
+    // (the device interpolates) its duration is the board's time, so that a PTP takes as
+    // long however an app sends it (the one duration rule, docs/architecture.md).
+    ArmModel scaled;
+    const ArmModel* model = &model_;
+    if (m.acceleration_scale != 1) {
+      scaled = model_;
+      for (auto& j : scaled.joints) j.limits.acceleration *= m.acceleration_scale;
+      model = &scaled;
+    }
+    JointMove move;
+    move.waypoints = m.waypoints;
+    move.target = target;
+    move.speed = timed ? 1.0 : speed;
+    move.min_duration = timed ? std::max(timed->seconds, m.min_duration) : m.min_duration;
+    auto planned = plan_joint_move(*model, state_, move);
+    if (!planned) refuse(k, k, planned.error());
     if (p.kind == PieceKind::board_move) {
       // The joints that move, and the partner of a coupled one (its actuator value depends on both).
       p.targets.assign(target.size(), std::nullopt);
@@ -139,23 +156,8 @@ class Planner {
         if (given[std::size_t(c.first)] || given[std::size_t(c.second)])
           for (int j : {c.first, c.second}) p.targets[std::size_t(j)] = target[std::size_t(j)];
       if (auto ok = kin_.check_targets(p.targets, &state_); !ok) refuse(k, k, ok.error());
-      p.seconds = timed ? timed->seconds
-                        : std::chrono::duration<double>(kin_.board_move_time(state_, p.targets, speed)).count();
+      p.seconds = planned->duration;
     } else {
-      ArmModel scaled;
-      const ArmModel* model = &model_;
-      if (m.acceleration_scale != 1) {
-        scaled = model_;
-        for (auto& j : scaled.joints) j.limits.acceleration *= m.acceleration_scale;
-        model = &scaled;
-      }
-      JointMove move;
-      move.waypoints = m.waypoints;
-      move.target = target;
-      move.speed = timed ? 1.0 : speed;
-      move.min_duration = timed ? std::max(timed->seconds, m.min_duration) : m.min_duration;
-      auto planned = plan_joint_move(*model, state_, move);
-      if (!planned) refuse(k, k, planned.error());
       p.motion = std::move(planned).value();
     }
     pieces_.push_back(std::move(p));

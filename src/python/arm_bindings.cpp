@@ -84,6 +84,14 @@ struct PyReport {
   double held = 0;  // s a late host held the motion (docs/motion.md)
 };
 
+// What a board move (move_joints, move_to, gripper) was planned to be, as every app answers
+// a move: how long it takes and where it ends.
+struct PyPlannedMove {
+  double duration = 0;  // s
+  Array targets;        // every joint, SI, the model's order
+  std::string note;     // why it takes longer than asked ("" if it does not)
+};
+
 // A LIN or CIRC segment of armctl.Arm.path, as Python writes it.
 // armctl.Lin / armctl.Circ: the Arm API's Cartesian move.
 using PySegment = arm::CartesianMove;
@@ -297,10 +305,7 @@ class PyArm {
   // is a UserWarning).
   static arm::PtpMove ptp_move(std::optional<double> duration, double speed) {
     arm::PtpMove m;
-    if (duration) {
-      (void)duration_of(*duration, "duration");
-      m.duration = *duration;
-    }
+    if (duration) m.duration = *duration;  // the planner refuses one outside 0..motion::kMaxMoveDuration
     m.duration_words = fmt::format("duration={:g}", duration.value_or(0));
     m.speed = speed;
     return m;
@@ -360,7 +365,7 @@ class PyArm {
 
   // A board move (the device interpolates; arm::PtpRun::board) from where the arm stands,
   // then, with wait=True, until it arrives (as wait(timeout)).
-  void board_move(const arm::PtpMove& move, bool wait_for_it, double timeout) {
+  PyPlannedMove board_move(const arm::PtpMove& move, bool wait_for_it, double timeout) {
     const std::vector<double> from = here();
     arm::PlanOptions board;
     board.ptp = arm::PtpRun::board;
@@ -371,24 +376,25 @@ class PyArm {
     warn_note(plan.notes());
     if (ran.stop_called && ran.report.stopped)
       raise(ErrorKind::device, "the wait ended: stop() was called during it (the arm was stopped)");
+    return {plan.duration, to_array(plan.end()), plan.notes()};
   }
 
-  void move_joints(const py::object& targets, std::optional<double> duration, double speed, bool wait_for_it,
-                   double timeout) {
+  PyPlannedMove move_joints(const py::object& targets, std::optional<double> duration, double speed,
+                            bool wait_for_it, double timeout) {
     arm::PtpMove m = ptp_move(duration, speed);
     m.target = targets_of(targets);
-    board_move(m, wait_for_it, timeout);
+    return board_move(m, wait_for_it, timeout);
   }
 
-  void move_to(const std::vector<double>& position, std::optional<double> roll, std::optional<double> pitch,
+  PyPlannedMove move_to(const std::vector<double>& position, std::optional<double> roll, std::optional<double> pitch,
                std::optional<double> yaw, const std::optional<std::string>& elbow, bool nearest,
                std::optional<double> duration, double speed, bool wait_for_it, double timeout) {
     arm::PtpMove m = ptp_move(duration, speed);
     m.target = goal_of(position, roll, pitch, yaw, elbow, nearest);
-    board_move(m, wait_for_it, timeout);
+    return board_move(m, wait_for_it, timeout);
   }
 
-  void gripper(double closed_fraction, std::optional<double> duration, double speed, bool wait_for_it,
+  PyPlannedMove gripper(double closed_fraction, std::optional<double> duration, double speed, bool wait_for_it,
                double timeout) {
     if (!model().gripper)
       raise(ErrorKind::unsupported, fmt::format("arm '{}' has no gripper", model().name));
@@ -399,7 +405,7 @@ class PyArm {
     std::vector<std::optional<double>> targets(std::size_t(model().joint_count()));
     targets[std::size_t(model().gripper->joint)] = model().gripper->at(closed_fraction);
     m.target = targets;
-    board_move(m, wait_for_it, timeout);
+    return board_move(m, wait_for_it, timeout);
   }
 
   void stop() {
@@ -684,6 +690,15 @@ void define_arm(py::module_& m) {
                            r.elapsed, r.points);
       });
 
+  py::class_<PyPlannedMove>(m, "PlannedMove",
+                            "What move_joints, move_to and gripper planned: as every armctl app answers a move.")
+      .def_readonly("duration", &PyPlannedMove::duration, "s the move takes")
+      .def_readonly("targets", &PyPlannedMove::targets, "every joint where it ends, SI, the model's order")
+      .def_readonly("note", &PyPlannedMove::note, "why it takes longer than asked ('' if it does not)")
+      .def("__repr__", [](const PyPlannedMove& p) {
+        return fmt::format("PlannedMove(duration={:.3f}, targets={})", p.duration, repr_array(p.targets));
+      });
+
   py::class_<PySegment>(m, "Segment", "A Cartesian path segment: made by armctl.Lin or armctl.Circ.")
       .def_property_readonly(
           "kind", [](const PySegment& s) { return std::string(motion::to_string(s.kind)); }, "'LIN' or 'CIRC'")
@@ -798,7 +813,7 @@ void define_arm(py::module_& m) {
            "Stops every joint where it is and holds it. A wait another thread runs ends (armctl.Error), a\n"
            "streamed motion stops on its path (its MotionReport: stopped), before the stop is sent.")
       .def("set_torque", in_turn(&PyArm::set_torque), "on"_a, "off: the arm can be moved by hand; on: hold where it stands.")
-      .def("gripper", in_turn(&PyArm::gripper), "closed_fraction"_a, "duration"_a = py::none(), "speed"_a = motion::kDefaultJointSpeed,
+      .def("gripper", in_turn(&PyArm::gripper), "closed_fraction"_a, "duration"_a = py::none(), "speed"_a = motion::kDefaultGripperSpeed,
            "wait"_a = false, "timeout"_a = seconds(arm::kArrivalTimeout), "The gripper: 0 = open, 1 = closed, anything between.")
       .def(
           "download_group",

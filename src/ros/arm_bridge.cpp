@@ -71,13 +71,20 @@ bool is_stopped(const Status& s) {
 // A PTP sent as one board move from where the arm stands, then waited for (the one planner
 // and runner: arm::plan_moves, arm::run_motion). A stop meanwhile halts the arm and ends
 // the job with an error that says so.
-Status board_move(arm::Arm& a, session::JobContext& ctx, const arm::PtpMove& move) {
+// What a board move was planned to be: its duration and where it ends (every joint, SI).
+struct PlannedMove {
+  double duration = 0;
+  std::vector<double> targets;
+};
+
+Status board_move(arm::Arm& a, session::JobContext& ctx, const arm::PtpMove& move, PlannedMove* planned = nullptr) {
   auto here = a.read();
   if (!here) return here.error();
   arm::PlanOptions o;
   o.ptp = arm::PtpRun::board;
   auto plan = arm::plan_moves(*a.kinematics(), here->positions, std::vector<arm::Move>{{move}}, o);
   if (!plan) return plan.error();
+  if (planned) *planned = {plan->duration, plan->end()};
   arm::RunHooks hooks;
   hooks.command = [&ctx] { return ctx.stopping() ? arm::MotionCommand::stop : arm::MotionCommand::none; };
   hooks.wait = ctx.wait_options();
@@ -91,6 +98,7 @@ MotionOutcome refusal_outcome(const Error& e) {
   const GoalRefusal r = refusal_of(e);
   MotionOutcome m;
   m.code = r.code;
+  m.kind = to_string(e.kind);
   m.message = r.message;
   return m;
 }
@@ -128,7 +136,10 @@ struct ArmBridge::Impl {
     MotionOutcome m;
     m.ok = s.ok();
     m.stopped = is_stopped(s);
-    if (!s) m.message = s.error().message;
+    if (!s) {
+      m.kind = to_string(s.error().kind);
+      m.message = s.error().message;
+    }
     return m;
   }
 };
@@ -242,8 +253,13 @@ MotionOutcome ArmBridge::move_to(const std::vector<double>& position, const std:
   arm::PtpMove move;
   move.target = goal;
   move.speed = impl_->options.move_speed;
-  return impl_->run("pose goal",
-                    [move](arm::Arm& a, session::JobContext& ctx) -> Status { return board_move(a, ctx, move); });
+  auto planned = std::make_shared<PlannedMove>();  // written by the job, read once it ended
+  MotionOutcome o = impl_->run("pose goal", [move, planned](arm::Arm& a, session::JobContext& ctx) -> Status {
+    return board_move(a, ctx, move, planned.get());
+  });
+  o.duration = planned->duration;
+  o.targets = planned->targets;
+  return o;
 }
 
 MotionOutcome ArmBridge::set_torque(bool on) {
@@ -255,7 +271,8 @@ MotionOutcome ArmBridge::gripper(double closed_fraction) {
   if (!std::isfinite(closed_fraction) || closed_fraction < 0 || closed_fraction > 1)
     return refusal_outcome(Error{ErrorKind::invalid_argument,
                                  fmt::format("closed_fraction {} is not allowed: 0 (open) to 1 (closed)", closed_fraction)});
-  const double speed = impl_->options.move_speed;
+  // The gripper's own default, as in every app (the `speed` parameter is for pose goals).
+  const double speed = motion::kDefaultGripperSpeed;
   return impl_->run("gripper", [closed_fraction, speed](arm::Arm& a, session::JobContext& ctx) -> Status {
     const arm::ArmModel& model = a.model();
     if (!model.gripper) return Error{ErrorKind::unsupported, fmt::format("arm '{}' has no gripper", model.name)};

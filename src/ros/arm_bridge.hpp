@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "motion/move_limits.hpp"
 #include "ros/trajectory_types.hpp"
 
 namespace armctl::ros_node {
@@ -21,7 +22,7 @@ struct BridgeOptions {
   std::string arm = "xarm";
   std::string device;       // "": the embedded simulator
   double goal_time = 1.0;   // s: goal_time_tolerance when a goal gives none
-  double move_speed = 0.25; // pose goals and the gripper: fraction of the velocity limits
+  double move_speed = motion::kDefaultJointSpeed;  // pose goals: fraction of the velocity limits
   // s between position reads while idle (joint_states' period); 0: back to back, as fast
   // as the link answers; nothing: the device's own poll interval.
   std::optional<double> poll;
@@ -52,7 +53,11 @@ struct MotionOutcome {
   bool ok = false;
   bool stopped = false;  // by stop(), a cancel or a newer motion: at rest on the path
   GoalError code = GoalError::none;  // trajectories: why it failed
+  std::string kind;      // on failure: the error's kind as armctl names it ("invalid argument")
   std::string message;
+  // A planned move (move_to): how long it takes (s) and every joint where it ends (SI).
+  double duration = 0;
+  std::vector<double> targets;
 };
 
 // For feedback: where the trajectory wants every joint now (the model's order).

@@ -24,6 +24,7 @@
 #include <std_srvs/Trigger.h>
 #include <trajectory_msgs/JointTrajectory.h>
 
+#include "armctl_msgs/MoveTo.h"
 #include "armctl_msgs/RunActionGroup.h"
 #include "armctl_msgs/SetGripper.h"
 
@@ -106,6 +107,7 @@ struct ArmNode::Impl {
     services.push_back(private_nh.advertiseService("stop", &Impl::on_stop, this));
     services.push_back(private_nh.advertiseService("set_torque", &Impl::on_torque, this));
     services.push_back(private_nh.advertiseService("gripper", &Impl::on_gripper, this));
+    services.push_back(private_nh.advertiseService("move_to", &Impl::on_move_to, this));
     services.push_back(private_nh.advertiseService("run_action_group", &Impl::on_run_group, this));
     services.push_back(private_nh.advertiseService("stop_action_group", &Impl::on_stop_group, this));
     server = std::make_unique<Server>(nh, "arm_controller/follow_joint_trajectory",
@@ -446,6 +448,17 @@ struct ArmNode::Impl {
 
   bool on_gripper(armctl_msgs::SetGripper::Request& req, armctl_msgs::SetGripper::Response& res) {
     return answer(res, arm.gripper(req.closed_fraction), fmt::format("gripper at {:.2f} closed", req.closed_fraction));
+  }
+
+  // The answering twin of the pose_goal topic: says how it went, the plan and why not.
+  bool on_move_to(armctl_msgs::MoveTo::Request& req, armctl_msgs::MoveTo::Response& res) {
+    const auto& p = req.pose.position;
+    const auto& q = req.pose.orientation;
+    const MotionOutcome o = arm.move_to({p.x, p.y, p.z}, {q.w, q.x, q.y, q.z});
+    res.kind = o.kind;
+    res.duration = o.duration;
+    res.targets = o.targets;
+    return answer(res, o, "arrived");
   }
 
   bool on_run_group(armctl_msgs::RunActionGroup::Request& req, armctl_msgs::RunActionGroup::Response& res) {

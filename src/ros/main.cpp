@@ -39,7 +39,7 @@ int run(int argc, char** argv) {
   private_nh.param<std::string>("arm", options.arm, "xarm");
   private_nh.param<std::string>("device", options.device, "");
   options.goal_time = param_in(private_nh, "goal_time_tolerance", 1.0, 0.01, 60);
-  options.move_speed = param_in(private_nh, "speed", 0.25, 0.01, 1);
+  options.move_speed = param_in(private_nh, "speed", options.move_speed, 0.01, 1);
   const double link_timeout = param_in(private_nh, "link_timeout", 5.0, 0, 3600);
   // joint_states: one per position read, ~rate a second (the link's pace if that is slower;
   // 0: back to back, as fast as the link answers, which on the embedded simulators is

@@ -1,5 +1,6 @@
 // Build tool: writes the .msg definitions of the installed messages that the local
-// FollowJointTrajectory action uses (trajectory_msgs, std_msgs/Header, actionlib_msgs), as
+// FollowJointTrajectory action and the node's services use (trajectory_msgs,
+// std_msgs/Header, actionlib_msgs, geometry_msgs/Pose), as
 // <out>/<package>/<Name>.msg, for genmsg/gencpp. Debian's message packages carry no .msg
 // files, only the generated headers, whose full definition text (every nested type after
 // a separator line) this reads back: the same text the MD5 sums were computed from.
@@ -9,6 +10,7 @@
 #include <string>
 
 #include <actionlib_msgs/GoalStatusArray.h>
+#include <geometry_msgs/Pose.h>
 #include <trajectory_msgs/JointTrajectory.h>
 
 namespace {
@@ -51,7 +53,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s OUTPUT_DIR\n", argv[0]);
     return 2;
   }
-  if (!dump<trajectory_msgs::JointTrajectory>(argv[1]) || !dump<actionlib_msgs::GoalStatus>(argv[1])) {
+  if (!dump<trajectory_msgs::JointTrajectory>(argv[1]) || !dump<actionlib_msgs::GoalStatus>(argv[1]) ||
+      !dump<geometry_msgs::Pose>(argv[1])) {
     std::fprintf(stderr, "%s: cannot write the message definitions into %s\n", argv[0], argv[1]);
     return 1;
   }

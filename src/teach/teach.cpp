@@ -63,6 +63,17 @@ std::string describe(const arm::ArmModel& model, const std::vector<double>& q) {
 
 }  // namespace
 
+const char* to_string(TeachEventKind kind) {
+  switch (kind) {
+    case TeachEventKind::started: return "started";
+    case TeachEventKind::recorded: return "recorded";
+    case TeachEventKind::replaced: return "replaced";
+    case TeachEventKind::refused: return "refused";
+    case TeachEventKind::finished: return "finished";
+  }
+  return "?";
+}
+
 Result<std::size_t> teach_points(arm::Arm& arm, const std::filesystem::path& points_path, const TeachIo& io) {
   program::PointsFile file;
   std::error_code ec;
@@ -75,15 +86,17 @@ Result<std::size_t> teach_points(arm::Arm& arm, const std::filesystem::path& poi
   if (auto s = check_writable(points_path); !s) return s.error();
   auto limp = LimpArm::make(arm);
   if (!limp) return limp.error();
-  io.say(fmt::format("torque off: move the arm by hand; Enter records a point (type a name first, or "
-                     "nothing for {}); end of input (Ctrl-D) or Ctrl-C ends",
-                     next_free_name(file)));
+  io.on_event({TeachEventKind::started,
+               fmt::format("torque off: move the arm by hand; Enter records a point (type a name first, or "
+                           "nothing for {}); end of input (Ctrl-D) or Ctrl-C ends",
+                           next_free_name(file)),
+               {}, {}, 0});
   std::size_t recorded = 0;
   while (auto line = io.next_line()) {
     std::string name = trimmed(*line);
     if (name.empty()) name = next_free_name(file);
     if (auto why = program::bad_name(name)) {
-      io.say(fmt::format("not recorded: {}; type another name", *why));
+      io.on_event({TeachEventKind::refused, fmt::format("not recorded: {}; type another name", *why), name, {}, 0});
       continue;
     }
     auto state = arm.read();
@@ -98,11 +111,15 @@ Result<std::size_t> teach_points(arm::Arm& arm, const std::filesystem::path& poi
     if (!replaced) file.points.push_back(point);
     if (auto s = program::write_points_file(points_path, file); !s) return s.error();
     ++recorded;
-    io.say(fmt::format("{} {}: {}", replaced ? "replaced" : "recorded", name, describe(arm.model(), state->positions)));
+    io.on_event({replaced ? TeachEventKind::replaced : TeachEventKind::recorded,
+                 fmt::format("{} {}: {}", replaced ? "replaced" : "recorded", name, describe(arm.model(), state->positions)),
+                 name, state->positions, 0});
   }
   if (auto s = (*limp)->release(); !s) return s.error();
-  io.say(fmt::format("torque on, holding; {} point{} recorded in {}", recorded, recorded == 1 ? "" : "s",
-                     points_path.string()));
+  io.on_event({TeachEventKind::finished,
+               fmt::format("torque on, holding; {} point{} recorded in {}", recorded, recorded == 1 ? "" : "s",
+                           points_path.string()),
+               {}, {}, recorded});
   return recorded;
 }
 

@@ -38,10 +38,21 @@ class LimpArm {
 // loses the configuration (elbow) and needs IK to come back, joints replay exactly.
 program::Point point_at(const arm::ArmModel& model, const std::vector<double>& positions, std::string name);
 
+// What teaching a point says, as a value: the CLI prints `text`, or under --json the fields.
+enum class TeachEventKind { started, recorded, replaced, refused, finished };
+struct TeachEvent {
+  TeachEventKind kind;
+  std::string text;               // one line for a person (every kind)
+  std::string name;               // recorded, replaced: the point; refused: the name typed
+  std::vector<double> positions;  // recorded, replaced: every joint, SI
+  std::size_t points = 0;         // finished: how many recorded
+};
+const char* to_string(TeachEventKind kind);  // "started", "recorded", ...
+
 struct TeachIo {
   // The next line typed; nullopt at the end (end of input, Ctrl-C).
   std::function<std::optional<std::string>()> next_line;
-  std::function<void(const std::string&)> say;
+  std::function<void(const TeachEvent&)> on_event;
 };
 
 // Teaches points into `points_path` (read first if it exists, so points are added to it):

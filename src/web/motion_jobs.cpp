@@ -8,6 +8,7 @@
 #include "arm/run_motion.hpp"
 #include "core/quantity.hpp"
 #include "motion/move_limits.hpp"
+#include "web/display_value.hpp"
 
 namespace armctl::web {
 
@@ -33,7 +34,13 @@ Status plan_and_run(arm::Arm& arm, session::JobContext& ctx, const Accept& accep
                     const std::vector<arm::Move>& moves) {
   auto plan = arm::plan_moves(*arm.kinematics(), here.positions, moves);
   if (!plan) return plan.error();
-  json answer{{"moving", true}, {"duration_s", plan->duration}};
+  // As every app answers a move: how long it takes and where it ends (each joint as the API
+  // shows joints: deg or mm).
+  json targets = json::object();
+  const arm::ArmModel& model = arm.model();
+  for (std::size_t i = 0; i < model.joints.size(); ++i)
+    targets[model.joints[i].name] = display_value(model.joints[i].dimension, plan->end()[i]);
+  json answer{{"moving", true}, {"duration_s", plan->duration}, {"targets", targets}};
   if (const std::string note = plan->notes(); !note.empty()) answer["note"] = note;
   accept(answer);
   auto report = arm::run_motion(arm, *plan, job_hooks(ctx));

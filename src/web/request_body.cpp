@@ -177,8 +177,10 @@ JointsRequest parse_joints_request(const arm::ArmModel& model, const json& body)
   }
   const auto speed = r.optional_number("speed", 0, 1, "a fraction of the joints' velocity limits above 0 up to 1", true);
   const auto duration = r.optional_number(
-      "duration", 0, kMaxMoveSeconds,
-      "seconds, above 0 up to 600 (a time shorter than the joints allow is stretched to it)", true);
+      "duration", 0, motion::kMaxMoveDuration,
+      fmt::format("seconds, above 0 up to {:g} (a time shorter than the joints allow is stretched to it)",
+                  motion::kMaxMoveDuration),
+      true);
   r.finish();
   if (speed && duration) bad_value("duration", "give speed or duration, not both");
   if (speed) out.speed = *speed;
@@ -188,11 +190,11 @@ JointsRequest parse_joints_request(const arm::ArmModel& model, const json& body)
 
 namespace {
 
-// Reads speed (0, 1], default 0.25.
-double speed_field(BodyReader& r) {
+// Reads speed (0, 1]; without one, a move gets what every app gives (motion/move_limits.hpp).
+double speed_field(BodyReader& r, bool linear) {
   return r.optional_number("speed", 0, 1,
                            "above 0 up to 1: a fraction of the joints' velocity limits (linear: of 200 mm/s)", true)
-      .value_or(0.25);
+      .value_or(linear ? motion::kDefaultToolSpeed / kMaxLinearSpeed : motion::kDefaultJointSpeed);
 }
 
 }  // namespace
@@ -210,7 +212,7 @@ ToolRequest parse_tool_request(const json& body) {
   out.pitch = rad(r.optional_number("pitch", -360, 360, angle));
   out.yaw = rad(r.optional_number("yaw", -360, 360, angle));
   out.linear = r.optional_boolean("linear").value_or(false);
-  out.speed = speed_field(r);
+  out.speed = speed_field(r, out.linear);
   r.finish();
   return out;
 }
@@ -229,7 +231,7 @@ JogRequest parse_jog_request(const json& body) {
   if (step == 0) bad_value("step", fmt::format("0 is not allowed; a step of {} that is not 0", angle ? "deg" : "mm"));
   out.step = angle ? step * M_PI / 180 : step / 1e3;
   out.linear = r.optional_boolean("linear").value_or(false);
-  out.speed = speed_field(r);
+  out.speed = speed_field(r, out.linear);
   r.finish();
   return out;
 }

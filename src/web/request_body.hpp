@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "arm/arm_model.hpp"
+#include "motion/move_limits.hpp"
 
 namespace armctl::web {
 
@@ -73,10 +74,9 @@ ControlRequest parse_control_request(const json& body);
 // POST /api/v1/joints: targets in SI, one entry per joint of the model (empty = stays).
 struct JointsRequest {
   std::vector<std::optional<double>> targets;
-  double speed = 0.25;              // of the velocity limits, (0, 1]
-  std::optional<double> duration;   // s, (0, 600]: at least this long
+  double speed = motion::kDefaultJointSpeed;  // of the velocity limits, (0, 1]
+  std::optional<double> duration;   // s, (0, motion::kMaxMoveDuration]: at least this long
 };
-inline constexpr double kMaxMoveSeconds = 600;
 JointsRequest parse_joints_request(const arm::ArmModel& model, const json& body);
 
 // POST /api/v1/tool: a tool target (m, rad).
@@ -84,9 +84,9 @@ struct ToolRequest {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   std::optional<double> roll, pitch, yaw;
   bool linear = false;
-  double speed = 0.25;  // (0, 1]: of the joints' velocity limits, or linear of kMaxLinearSpeed
+  double speed = motion::kDefaultJointSpeed;  // (0, 1]: of the joints' velocity limits, or linear of kMaxLinearSpeed
 };
-inline constexpr double kMaxLinearSpeed = 0.2;  // m/s of the tool at speed 1 (0.25: 50 mm/s)
+inline constexpr double kMaxLinearSpeed = 0.2;  // m/s of the tool at speed 1
 inline constexpr double kMaxReach = 2.0;          // m: no target further from the base
 ToolRequest parse_tool_request(const json& body);
 
@@ -95,7 +95,7 @@ struct JogRequest {
   int axis = 0;        // x y z roll pitch yaw
   double step = 0;     // m or rad, signed
   bool linear = false;
-  double speed = 0.25;
+  double speed = motion::kDefaultJointSpeed;
 };
 inline constexpr double kMaxJogLength = 0.1;          // m
 inline constexpr double kMaxJogAngle = 1.5707963267948966;  // rad (90 deg)

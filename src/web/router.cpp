@@ -16,11 +16,12 @@ void Call::reply(const json& body, int status) const {
   response.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
-void reply_error(httplib::Response& response, int status, const std::string& message) {
+void reply_error(httplib::Response& response, int status, const std::string& message, const Error* error) {
   response.status = status;
   response.set_header("Cache-Control", "no-store");
-  response.set_content(json{{"error", message}}.dump(-1, ' ', false, json::error_handler_t::replace),
-                       "application/json");
+  json body{{"error", message}};
+  if (error) body["kind"] = to_string(error->kind);
+  response.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
 void Router::add(std::string method, const std::string& pattern, Handler handler) {
@@ -48,9 +49,9 @@ bool Router::dispatch(const httplib::Request& request, httplib::Response& respon
     try {
       r.handler(call);
     } catch (const ApiError& e) {
-      reply_error(response, e.status(), e.what());
+      reply_error(response, e.status(), e.what(), e.error());
     } catch (const ArmctlError& e) {
-      reply_error(response, status_of(e.error()), e.what());
+      reply_error(response, status_of(e.error()), e.what(), &e.error());
     } catch (const std::exception& e) {
       reply_error(response, 500, fmt::format("internal error: {}", printable(e.what())));
     }

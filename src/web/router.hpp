@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "web/httplib.hpp"
 #include <nlohmann/json.hpp>
 
@@ -25,7 +26,9 @@ struct Call {
   void reply(const json& body, int status = 200) const;
 };
 
-void reply_error(httplib::Response& response, int status, const std::string& message);
+// {"error": message} with `status`; with the armctl error behind it, also {"kind": its kind}
+// as every armctl app names kinds ("invalid argument", "busy"...; README "Exit status").
+void reply_error(httplib::Response& response, int status, const std::string& message, const Error* error = nullptr);
 
 class Router {
  public:

@@ -6,7 +6,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import {
   waitFor, waitForPosition, waitIdle, screenshot, artifacts, expectRefused,
-  dashboardForFile,
+  dashboardForFile, pageMove as pageMoveOn, clickAnswered as clickAnsweredOn,
 } from './harness.mjs';
 
 let server;
@@ -18,19 +18,8 @@ const slider = (name) => page.getByRole('slider', { name: `${name} (deg)`, exact
 const sliderValue = async (name) => Number(await slider(name).inputValue());
 const viewValue = (name) => page.evaluate((n) => window.armctlView.jointValues()[n], name);
 const tab = (name) => page.getByRole('tab', { name });
-// A move sent by the page itself (as its sliders send one), so that control stays with it.
-const pageMove = (positions, duration = 0.4) => page.evaluate(async ({ p, d }) => {
-  const { api } = await import('/assets/app/api.js');
-  await api.post('/api/v1/joints', { positions: p, duration: d });
-}, { p: positions, d: duration });
-// Clicks and waits for the server's answer to the request the click sends (it must be 2xx).
-async function clickAnswered(locator, pathEnd) {
-  const answered = page.waitForResponse((r) => new URL(r.url()).pathname.endsWith(pathEnd) && r.request().method() !== 'GET');
-  await locator.click();
-  const response = await answered;
-  assert.ok(response.ok(), `${pathEnd}: ${response.status()} ${await response.text()}`);
-  return response;
-}
+const pageMove = (positions, duration = 0.4) => pageMoveOn(page, positions, duration);
+const clickAnswered = (locator, pathEnd) => clickAnsweredOn(page, locator, pathEnd);
 
 dashboardForFile('xarm', (s) => ({ server, page, problems, script } = s));
 

@@ -179,3 +179,20 @@ export async function waitIdle(client) {
     return s.job === '' && s.motion === null && s.joints.every((j) => Math.abs(j.velocity) < 1e-6) && s;
   }, 'the arm at rest with no job');
 }
+
+// A move sent by the page itself (as its sliders send one), so that control stays with it.
+export function pageMove(page, positions, duration = 0.4) {
+  return page.evaluate(async ({ p, d }) => {
+    const { api } = await import('/assets/app/api.js');
+    await api.post('/api/v1/joints', { positions: p, duration: d });
+  }, { p: positions, d: duration });
+}
+
+// Clicks and waits for the server's answer to the request the click sends (it must be 2xx).
+export async function clickAnswered(page, locator, pathEnd) {
+  const answered = page.waitForResponse((r) => new URL(r.url()).pathname.endsWith(pathEnd) && r.request().method() !== 'GET');
+  await locator.click();
+  const response = await answered;
+  assert.ok(response.ok(), `${pathEnd}: ${response.status()} ${await response.text()}`);
+  return response;
+}

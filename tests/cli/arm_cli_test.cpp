@@ -36,6 +36,7 @@ class ArmCli : public ::testing::Test {
 };
 
 using armctl::cli_test::contains;
+using armctl::cli_test::json_lines;
 
 TEST_F(ArmCli, JointsAndPoseOfBothArms) {
   auto x = run_armctl("arm joints");
@@ -56,8 +57,13 @@ TEST_F(ArmCli, MoveToAPointInMillimetresOnBothArms) {
                           "arm --arm scara --json move-to x=400 y=100 z=300 --wait --time 2s"}) {
     auto r = run_armctl(cmd, "2>/dev/null");
     ASSERT_EQ(r.status, 0) << cmd;
-    auto doc = nlohmann::json::parse(r.out);
-    EXPECT_LT(doc["position_error_mm"].get<double>(), 2.0) << cmd << ": " << r.out;
+    const auto docs = json_lines(r.out);
+    ASSERT_EQ(docs.size(), 2u) << r.out;
+    // First the plan (as every app answers a move), then the pose read back.
+    EXPECT_EQ(docs[0]["event"], "planned") << r.out;
+    EXPECT_GT(docs[0]["duration_s"].get<double>(), 0.1) << r.out;
+    EXPECT_FALSE(docs[0]["targets"].empty()) << r.out;
+    EXPECT_LT(docs[1]["position_error_mm"].get<double>(), 2.0) << cmd << ": " << r.out;
   }
 }
 

@@ -50,6 +50,45 @@ TEST(TeachCli, RecordThenReplayOnBothArms) {
   }
 }
 
+// Under --json, teach and replay say every event as one JSON object per line.
+TEST(TeachCli, TeachAndReplayAsJsonLines) {
+  const std::string points = dir() + "/cli-json.points";
+  std::remove(points.c_str());
+  auto r = run_armctl("teach --json --points " + points + " <<'EOF'\nhome\nlin\nEOF\n", "2>/dev/null");
+  ASSERT_EQ(r.status, 0) << r.out;
+  auto docs = json_lines(r.out);
+  ASSERT_EQ(docs.size(), 4u) << r.out;
+  EXPECT_EQ(docs[0]["event"], "started");
+  EXPECT_EQ(docs[1]["event"], "recorded");
+  EXPECT_EQ(docs[1]["point"], "home");
+  ASSERT_EQ(docs[1]["joints"].size(), 6u) << r.out;
+  EXPECT_EQ(docs[1]["joints"][0]["unit"], "rad");
+  EXPECT_EQ(docs[2]["event"], "refused");
+  EXPECT_EQ(docs[2]["point"], "lin");
+  EXPECT_EQ(docs[3]["event"], "finished");
+  EXPECT_EQ(docs[3]["points"], 1);
+
+  const std::string rec = dir() + "/cli-json.rec";
+  r = run_armctl("teach --json --record 20Hz --out " + rec + " --duration 1s </dev/null", "2>/dev/null");
+  ASSERT_EQ(r.status, 0) << r.out;
+  docs = json_lines(r.out);
+  ASSERT_EQ(docs.size(), 2u) << r.out;
+  EXPECT_EQ(docs[0]["event"], "started");
+  EXPECT_EQ(docs[0]["rate_hz"], 20);
+  EXPECT_EQ(docs[1]["event"], "finished");
+  EXPECT_EQ(docs[1]["samples"], 21) << r.out;  // 0 s .. 1 s at 20 Hz
+  EXPECT_EQ(docs[1]["file"], rec);
+
+  r = run_armctl("replay --json " + rec, "2>/dev/null");
+  ASSERT_EQ(r.status, 0) << r.out;
+  docs = json_lines(r.out);
+  ASSERT_GE(docs.size(), 2u) << r.out;
+  EXPECT_EQ(docs[0]["event"], "planned");
+  EXPECT_EQ(docs[0]["samples"], 21);
+  EXPECT_EQ(docs[0]["speed_percent"], 100);
+  for (std::size_t i = 1; i < docs.size(); ++i) EXPECT_EQ(docs[i]["event"], "done") << r.out;
+}
+
 // A motion made by hand cannot be made again: an --out that cannot be written (no such
 // directory, a read-only file) is refused before torque goes off, and nothing is written.
 TEST(TeachCli, RecordRefusesAnOutputItCannotWriteBeforeTorqueOff) {

@@ -441,6 +441,59 @@ TEST_F(XarmCli, ThroughTheArmControllerARefusedMoveFailsTheWait) {
       << end.out << end.err;
 }
 
+// Under --json a server's whole output is JSON lines on stdout: "started" with the pty path
+// a host opens, every log line as "log", and "stopped" with its counts; nothing on stderr.
+TEST_F(XarmCli, ServersLogAsJsonLinesUnderJson) {
+  const std::string link = (dir_ / "scara").string();
+  Process controller({"controller", "--json", "--bus", "sim?dead=3", "--link", link}, state_);
+  // Log lines may come first (what the controller found on the bus while it started).
+  std::optional<std::string> first;
+  nlohmann::json started;
+  while ((first = controller.read_line()) && (started = nlohmann::json::parse(*first))["event"] == "log") {
+  }
+  ASSERT_TRUE(first) << "armctl controller --json ended before it started";
+  EXPECT_EQ(started["event"], "started") << *first;
+  EXPECT_EQ(started["source"], "controller") << *first;
+  EXPECT_EQ(started["joints"], 7) << *first;
+  EXPECT_EQ(started["device"].get<std::string>().rfind("/dev/pts/", 0), 0u) << *first;
+
+  const Outcome refused = xarm("--device serial:" + link + " --servos 7 move 3=600 --time 200");
+  EXPECT_EQ(refused.status, 0) << refused.err;  // sent; the controller refuses it in its log
+  ASSERT_EQ(::kill(controller.pid(), SIGTERM), 0);
+  const Outcome end = controller.finish();
+  EXPECT_EQ(end.err, "");
+  const auto docs = json_lines(end.out);  // throws on a line that is not JSON
+  bool dead_joint_logged = false, refusal_logged = false;
+  for (const auto& d : docs) {
+    if (d["event"] != "log") continue;
+    const std::string m = d["message"];
+    dead_joint_logged |= contains(m, "joint 3 UAE: NOT ANSWERING");
+    refusal_logged |= contains(m, "MultiServoMove refused: joint 3 (UAE) is not answering");
+  }
+  EXPECT_TRUE(dead_joint_logged) << end.out;
+  EXPECT_TRUE(refusal_logged) << end.out;
+  ASSERT_FALSE(docs.empty());
+  EXPECT_EQ(docs.back()["event"], "stopped") << end.out;
+  EXPECT_EQ(docs.back()["refused_moves"], 1) << end.out;
+
+  Process emulator({"sim", "xarm", "--json"}, state_);
+  first = emulator.read_line();
+  ASSERT_TRUE(first);
+  const auto xarm_started = nlohmann::json::parse(*first);
+  EXPECT_EQ(xarm_started["event"], "started") << *first;
+  EXPECT_EQ(xarm_started["source"], "sim xarm") << *first;
+  const std::string device = xarm_started["device"];
+  EXPECT_EQ(xarm("--device serial:" + device + " battery").status, 0);
+  ASSERT_EQ(::kill(emulator.pid(), SIGINT), 0);
+  const Outcome xarm_end = emulator.finish();
+  EXPECT_EQ(xarm_end.status, 0);
+  EXPECT_EQ(xarm_end.err, "");
+  const auto xarm_docs = json_lines(xarm_end.out);
+  ASSERT_FALSE(xarm_docs.empty());
+  EXPECT_EQ(xarm_docs.back()["event"], "stopped") << xarm_end.out;
+  EXPECT_GE(xarm_docs.back()["handled"].get<int>(), 1) << xarm_end.out;
+}
+
 // ------------------------------------------------- `armctl sim xarm` as a process
 
 TEST_F(XarmCli, AgainstASimXarmProcess) {

@@ -1,7 +1,8 @@
-"""The examples of README.md and docs/motion.md run exactly as printed, against the embedded
+"""The examples of README.md and docs/ run exactly as printed, against the embedded
 simulators, so that the documentation cannot rot: each `armctl` line of the sections below
 (the CLI of this build in place of `build/armctl` or `armctl`) must exit 0, and the README's
-Python lines must run in order in one interpreter without raising.
+Python lines must run in order in one interpreter without raising. A server (`armctl serve`)
+must come up and say where to open it, then stop on Ctrl-C with status 0.
 
 Each `armctl` command starts its own embedded simulator: the xArm in its start pose, every
 servo centred (the arm straight up, a singular pose), as a user's first command finds it."""
@@ -11,6 +12,8 @@ import os
 import re
 import shlex
 import shutil
+import signal
+import socket
 import subprocess
 import tempfile
 from pathlib import Path
@@ -28,7 +31,7 @@ atexit.register(shutil.rmtree, WORK, ignore_errors=True)
 for folder in ("examples", "config"):
     (WORK / folder).symlink_to(ROOT / folder)
 
-# (file, section heading): the sections whose examples are run.
+# (file, section heading): the sections whose examples are run; None: the whole file.
 SECTIONS = [
     ("README.md", "Move the tool to a point in millimetres"),
     ("README.md", "Follow a line, blend corners, stop on the path"),
@@ -36,19 +39,34 @@ SECTIONS = [
     ("README.md", "Write robot programs"),
     ("README.md", "Teach by hand, record and replay"),
     ("docs/motion.md", "From the command line"),
+    ("docs/programs.md", None),
+    ("docs/teach.md", None),
+    ("docs/dashboard.md", None),
 ]
 
-# Commands not run, each with why: those that need hardware or another process. None of
-# the sections above has one today; a line added there that does goes here, word for word.
-SKIPPED = {}
+HARDWARE = "needs a real arm (a USB HID board)"
+# Commands not run, each with why, word for word: those that need hardware or another process.
+SKIPPED = {
+    "armctl program compile examples/programs/xarm-pick-place.prog --group 3 --device hid": HARDWARE,
+    "armctl teach --arm xarm --device hid --points pick.points": HARDWARE,
+    "armctl xarm group import examples/groups/wave.rob --group 3 --device hid   # and download it as group 3": HARDWARE,
+    "build/armctl serve --device /dev/hidraw0 --points cell.points   # a real xArm; points saved to a file": HARDWARE,
+    "build/armctl serve --listen 0.0.0.0:8080   # the LAN: prints http://HOST:8080/?token=T, open that URL":
+        "listens on every interface; tests stay on the loopback (tests/web covers the token off it)",
+    "ARMCTL_CLI=build/armctl node --test tests/browser/dashboard_xarm.test.mjs":
+        "the browser test itself, which CTest runs (browser.dashboard_xarm)",
+}
 
 
 def fenced_blocks(file, heading):
-    """The (language, text) of each fenced block in the section `## heading` of `file`."""
+    """The (language, text) of each fenced block in the section `## heading` of `file` (all
+    of the file for None)."""
     text = (ROOT / file).read_text()
-    match = re.search(rf"^## {re.escape(heading)}\n(.*?)(?=^## |\Z)", text, re.S | re.M)
-    assert match, f"{file}: no section '## {heading}'"
-    return re.findall(r"^```(\w*)\n(.*?)^```", match.group(1), re.S | re.M)
+    if heading is not None:
+        match = re.search(rf"^## {re.escape(heading)}\n(.*?)(?=^## |\Z)", text, re.S | re.M)
+        assert match, f"{file}: no section '## {heading}'"
+        text = match.group(1)
+    return re.findall(r"^```(\w*)\n(.*?)^```", text, re.S | re.M)
 
 
 def command_lines(file, heading):
@@ -61,6 +79,37 @@ def command_lines(file, heading):
             if line.strip() and not line.lstrip().startswith("#"):
                 lines.append(line)
     return lines
+
+
+def is_server(line):
+    return re.match(r"(build/)?armctl serve\b", line) is not None
+
+
+def port_taken(port):
+    with socket.socket() as s:
+        return s.connect_ex(("127.0.0.1", port)) == 0
+
+
+def run_server(file, line):
+    """Starts the server as printed, waits for the URL it prints, stops it with Ctrl-C."""
+    if port_taken(8080):
+        pytest.skip("something on this machine already listens on 127.0.0.1:8080, where the example serves")
+    server = subprocess.Popen(argv_of(line), cwd=WORK, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, text=True)
+    said = []
+    try:
+        for out in server.stdout:  # blocks per line; the server ends the loop if it exits
+            said.append(out)
+            if out.startswith("open http://127.0.0.1:8080/"):
+                break
+        assert said and said[-1].startswith("open http"), f"{file}: {line}\nno URL printed:\n{''.join(said)}"
+        server.send_signal(signal.SIGINT)
+        rest, _ = server.communicate(timeout=60)
+    finally:
+        if server.poll() is None:
+            server.kill()
+            server.wait()
+    assert server.returncode == 0, f"{file}: {line}\nexit {server.returncode}\n{''.join(said)}{rest}"
 
 
 def argv_of(line):
@@ -81,13 +130,18 @@ def test_every_section_has_examples():
     for file, heading in SECTIONS:
         blocks = fenced_blocks(file, heading)
         assert blocks, f"{file}: '## {heading}' has no fenced block"
-    assert len(COMMANDS) >= 18  # README: 8 + 3 + 3 + 3 commands; motion.md's 4
+    assert len(COMMANDS) >= 36  # README: 8 + 3 + 3 + 4 commands; motion.md's 4; programs, teach, dashboard: 18
+    for line in SKIPPED:
+        assert any(line == command for _, command in COMMANDS), f"skipped but no longer in the docs: {line}"
 
 
 @pytest.mark.parametrize("file,line", COMMANDS, ids=[line.split("#")[0].strip() for _, line in COMMANDS])
 def test_command_runs_as_printed(file, line):
     if line in SKIPPED:
         pytest.skip(SKIPPED[line])
+    if is_server(line):
+        run_server(file, line)
+        return
     run = subprocess.run(argv_of(line), cwd=WORK, stdin=subprocess.DEVNULL, capture_output=True, text=True,
                          timeout=180)
     assert run.returncode == 0, f"{file}: {line}\nexit {run.returncode}\n{run.stdout}\n{run.stderr}"

@@ -29,6 +29,7 @@ using arm::testing::shipped;
 struct Script {
   std::deque<std::pair<std::function<void()>, std::string>> lines;
   std::vector<std::string> said;
+  std::vector<TeachEvent> events;
   TeachIo io() {
     return {[this]() -> std::optional<std::string> {
               if (lines.empty()) return std::nullopt;
@@ -37,7 +38,10 @@ struct Script {
               if (move) move();
               return text;
             },
-            [this](const std::string& s) { said.push_back(s); }};
+            [this](const TeachEvent& e) {
+              said.push_back(e.text);
+              events.push_back(e);
+            }};
   }
 };
 
@@ -113,6 +117,13 @@ TEST_F(XarmTeach, PointsFromAScriptTorqueOffThenOnHolding) {
   EXPECT_NEAR(file->points[1].joints[2].value, 0.5, 0.005);  // replaced: taken at the later place
   ASSERT_EQ(file->points[2].joints.size(), std::size_t(arm.model().joint_count()));
   for (std::size_t j = 0; j < held.size(); ++j) EXPECT_NEAR(file->points[2].joints[j].value, held[j], 1e-9);
+  // The same as values (what `teach --json` prints): each event's kind, point and joints.
+  std::vector<std::string> kinds;
+  for (const auto& e : script.events) kinds.push_back(std::string(to_string(e.kind)) + " " + e.name);
+  EXPECT_EQ(kinds, (std::vector<std::string>{"started ", "recorded p1", "recorded pick", "refused lin",
+                                             "replaced pick", "recorded p2", "finished "}));
+  EXPECT_NEAR(script.events[4].positions[2], 0.5, 0.005);
+  EXPECT_EQ(script.events.back().points, 4u);
   bool replaced = false, refused = false;
   for (const auto& s : script.said) {
     replaced |= s.rfind("replaced pick:", 0) == 0;

@@ -14,6 +14,7 @@
 #include "apps/armctl/arm_motion.hpp"
 #include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/arm_json.hpp"
 #include "apps/armctl/json_output.hpp"
 #include "apps/armctl/motion_trace.hpp"
 #include "apps/armctl/number_options.hpp"
@@ -120,16 +121,8 @@ arm::WaitOptions wait_options(const ArmArgs& a) {
 }
 
 json joints_json(const arm::ArmModel& m, const arm::JointState& s) {
-  json out = json::array();
-  for (int i = 0; i < m.joint_count(); ++i) {
-    const auto& j = m.joints[std::size_t(i)];
-    out.push_back({{"name", j.name},
-                   {"si", s.positions[std::size_t(i)]},
-                   {"unit", j.dimension == Dimension::angle ? "rad" : "m"},
-                   {"shown", to_display(j.dimension, s.positions[std::size_t(i)])},
-                   {"shown_unit", display_unit(j.dimension)},
-                   {"device", s.device[std::size_t(i)]}});
-  }
+  json out = joint_values_json(m, s.positions);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i]["device"] = s.device[i];
   return out;
 }
 
@@ -216,7 +209,9 @@ void run_board_move(const ArmArgs& a, session::ArmSession& s, const arm::PtpMove
   const arm::Plan plan = must(arm::plan_moves(*s.arm->kinematics(), here.positions, std::vector<arm::Move>{{move}}, o));
   if (const std::string note = plan.notes(); !note.empty()) fmt::print(stderr, "note: {}\n", note);
   Interrupted interrupted;
-  StopOnSignals on_signals(interrupted);
+  StopOnSignals on_signals(interrupted);  // before the plan is said: a Ctrl-C after it stops the move
+  if (a.json)  // what every app answers for a move: how long it takes and where it ends
+    print_json_event("planned", {{"duration_s", plan.duration}, {"targets", joint_values_json(s.arm->model(), plan.end())}});
   arm::RunHooks hooks;
   hooks.command = [&] { return interrupted ? arm::MotionCommand::stop : arm::MotionCommand::none; };
   hooks.wait = wait_options(a);

@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "apps/armctl/arm_json.hpp"
 #include "apps/armctl/json_output.hpp"
 #include "apps/armctl/motion_trace.hpp"
 #include "apps/armctl/serve_support.hpp"
@@ -126,16 +127,17 @@ arm::JointState run_path_moves(session::ArmSession& session, const std::vector<m
 
   const double total = plan.duration;
   const std::size_t pieces = plan.pieces.size();
+  Interrupted interrupted;
+  StopOnSignals on_signals(interrupted);  // before the plan is said: a Ctrl-C after it stops the motion
   if (options.json)
     print_json_line(json{{"event", "planned"}, {"moves", moves.size()}, {"pieces", pieces},
-                            {"duration_s", total / options.speed_override}});
+                            {"duration_s", total / options.speed_override},
+                            {"targets", joint_values_json(arm.model(), plan.end())}});
   else
     fmt::print("planned {} move{} ({} piece{}), {:.1f} s\n", moves.size(), moves.size() == 1 ? "" : "s", pieces,
                pieces == 1 ? "" : "s", total / options.speed_override);
   std::fflush(stdout);
 
-  Interrupted interrupted;
-  StopOnSignals on_signals(interrupted);
   const bool progress_line = !options.json && isatty(STDERR_FILENO);
   arm::RunHooks hooks;
   hooks.speed_override = options.speed_override;

@@ -11,7 +11,7 @@
 
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/controller_serve.hpp"
-#include "core/printable.hpp"
+#include "apps/armctl/server_log.hpp"
 #include "devices/arm_controller/controller_config.hpp"
 #include "transport/paced_link.hpp"
 #include "devices/joint_bus/reconnecting_link.hpp"
@@ -47,13 +47,10 @@ void run_controller(const ControllerArgs& args) {
   };
   connection.reset();
   const SteadyClock clock;
-  const std::string label = args.serve.label;
+  const ServerLog log(args.serve.label, args.serve.json);
   joint_bus::ReconnectingLink link(
       std::move(open), clock, [](TimePoint t) { std::this_thread::sleep_until(t); },
-      [label](const std::string& line) {
-        fmt::print(stderr, "{}: {}\n", label, printable(line));
-        std::fflush(stderr);
-      });
+      [&log](const std::string& line) { log.line(line); });
   ControllerServeArgs serve = args.serve;
   serve.link_losses = [&link] { return link.losses(); };
   serve_controller(link, master_options, std::move(config), serve);
@@ -74,6 +71,7 @@ void add_controller_command(CLI::App& app) {
   c->add_option("--link", args->serve.link, "Also create this symlink to the pty (removed on exit)");
   c->add_option("--state-dir", args->serve.state_dir,
                 "Keep action groups, offsets and limits here (default: in memory)");
+  c->add_flag("--json", args->serve.json, "Log as JSON lines on stdout (started with the pty path, log, stopped)");
   c->callback([args] { run_controller(*args); });
 }
 

@@ -20,6 +20,7 @@ struct ControllerServeArgs {
   std::string label = "controller";
   // A bus link that can be lost and comes back (ReconnectingLink::losses); empty otherwise.
   std::function<std::uint64_t()> link_losses;
+  bool json = false;  // --json: the log as JSON lines on stdout (apps/armctl/server_log.hpp)
 };
 
 // `link` may be a simulated bus: it is then paced to the wall clock.

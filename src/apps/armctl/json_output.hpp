@@ -35,4 +35,13 @@ inline std::string json_text(const nlohmann::json& j) {
 
 inline void print_json_line(const nlohmann::json& j) { fmt::print("{}\n", json_text(j)); }
 
+// {"event": event, ...fields} on one line, flushed: what commands that report as they go
+// (teach, replay, the servers, program run) print per event under --json.
+inline void print_json_event(const char* event, nlohmann::json fields) {
+  if (!fields.is_object()) fields = nlohmann::json::object();
+  fields["event"] = event;
+  print_json_line(fields);
+  std::fflush(stdout);
+}
+
 }  // namespace armctl::cli

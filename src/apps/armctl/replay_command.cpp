@@ -10,6 +10,7 @@
 
 #include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/json_output.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "arm/run_motion.hpp"
 #include "core/error.hpp"
@@ -25,6 +26,7 @@ struct ReplayArgs {
   std::string arm;
   std::string device;
   std::string speed = "100%";
+  bool json = false;
 };
 
 [[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
@@ -52,9 +54,15 @@ void run_replay(const ReplayArgs& a) {
   options.speed = speed;
   auto plan = teach::plan_replay(arm.model(), here->positions, *recording, options);
   if (!plan) throw ArmctlError(Error{plan.error().kind, a.file + ": " + plan.error().message});
-  fmt::print("{}: {} samples over {:.2f} s -> {} waypoints; to the start {:.2f} s, replay {:.2f} s at {:g} %\n", a.file,
-             recording->samples.size(), plan->recorded_seconds, plan->waypoints.size(), plan->to_start.duration,
-             plan->motion.duration, speed * 100);
+  if (a.json)
+    print_json_event("planned", {{"file", a.file}, {"samples", recording->samples.size()},
+                                 {"recorded_s", plan->recorded_seconds}, {"waypoints", plan->waypoints.size()},
+                                 {"to_start_s", plan->to_start.duration}, {"replay_s", plan->motion.duration},
+                                 {"speed_percent", speed * 100}});
+  else
+    fmt::print("{}: {} samples over {:.2f} s -> {} waypoints; to the start {:.2f} s, replay {:.2f} s at {:g} %\n",
+               a.file, recording->samples.size(), plan->recorded_seconds, plan->waypoints.size(),
+               plan->to_start.duration, plan->motion.duration, speed * 100);
   std::fflush(stdout);
 
   Interrupted interrupted;
@@ -65,15 +73,25 @@ void run_replay(const ReplayArgs& a) {
     if (e.kind != arm::RunEventKind::piece_done || !e.report) return;
     const arm::MotionReport& report = *e.report;
     const arm::PlannedMotion& m = e.piece->motion;
+    const double elapsed = std::chrono::duration<double>(report.elapsed).count();
+    const int joint = report.largest_following_joint;
+    if (a.json) {
+      nlohmann::json j{{"what", m.what}, {"planned_s", m.duration}};
+      if (report.stopped) j["reached_s"] = report.t_reached;
+      else j["elapsed_s"] = elapsed;
+      if (joint >= 0)
+        j["largest_following_error"] = {{"joint", arm.model().joints[std::size_t(joint)].name},
+                                        {"si", report.largest_following_error}};
+      print_json_event(report.stopped ? "stopped" : "done", std::move(j));
+      return;
+    }
     if (report.stopped) {
       fmt::print("stopped by a signal at {:.2f} of {:.2f} s ({})\n", report.t_reached, m.duration, m.what);
       return;
     }
-    fmt::print("{}: done in {:.2f} s, largest following error {}\n", m.what,
-               std::chrono::duration<double>(report.elapsed).count(),
-               report.largest_following_joint >= 0
-                   ? arm::format_joint_value(arm.model(), report.largest_following_joint, report.largest_following_error)
-                   : std::string("none measured"));
+    fmt::print("{}: done in {:.2f} s, largest following error {}\n", m.what, elapsed,
+               joint >= 0 ? arm::format_joint_value(arm.model(), joint, report.largest_following_error)
+                          : std::string("none measured"));
   };
   auto report = arm::run_motion(arm, plan->plan, hooks);
   if (!report) throw ArmctlError(report.error());
@@ -88,6 +106,7 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--arm", a->arm, "xarm | scara | an arm file (default: the arm the recording names)");
   cmd->add_option("--device", a->device, "As for `armctl arm` (default: the embedded simulated arm)");
   cmd->add_option("--speed", a->speed, "Percent of the velocity limits (default 100%)");
+  cmd->add_flag("--json", a->json, "One JSON object per line: planned, then done (or stopped) per motion");
   cmd->callback([a] { run_replay(*a); });
 }
 

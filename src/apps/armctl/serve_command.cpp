@@ -13,6 +13,7 @@
 #include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/serve_support.hpp"
+#include "apps/armctl/server_log.hpp"
 #include "core/printable.hpp"
 #include "core/regular_file.hpp"
 #include "session/arm_worker.hpp"
@@ -30,6 +31,7 @@ struct ServeArgs {
   std::string listen = "127.0.0.1:8080";
   std::string token;
   std::string points;
+  bool json = false;
 };
 
 [[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
@@ -84,17 +86,18 @@ void run_serve(const ServeArgs& a) {
   session::ArmWorker worker(std::move(session));
   web::WebServer server(worker, options);
   server.start();
-  fmt::print("armctl serve: arm {} on {}\nopen {}\n(Ctrl-C stops the arm and the server)\n", arm_name,
-             printable(options.device.description), server.url());
-  std::fflush(stdout);
-
   Interrupted interrupted;
-  StopOnSignals on_signals(interrupted);
+  StopOnSignals on_signals(interrupted);  // before the URL is said: Ctrl-C from then on stops cleanly
+  const ServerLog log("armctl serve", a.json, stdout);
+  log.started({{"arm", arm_name}, {"device", printable(options.device.description)}, {"url", server.url()}},
+              fmt::format("armctl serve: arm {} on {}\nopen {}\n(Ctrl-C stops the arm and the server)", arm_name,
+                          printable(options.device.description), server.url()));
+
   // The signal handler only sets the flag; stopping the server is not async-signal-safe.
   while (!interrupted) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   worker.command(arm::MotionCommand::stop);
   server.stop();
-  fmt::print("stopped\n");
+  log.stopped({}, "stopped");
 }
 
 }  // namespace
@@ -110,6 +113,7 @@ void add_serve_command(CLI::App& app) {
   cmd->add_option("--listen", a->listen, "HOST:PORT (default 127.0.0.1:8080; port 0: any free port)");
   cmd->add_option("--token", a->token, "The access token (default: made up off the loopback address)");
   cmd->add_option("--points", a->points, "Points file the dashboard records points into (program format)");
+  cmd->add_flag("--json", a->json, "Say where it listens, and that it stopped, as JSON lines on stdout");
   cmd->callback([a] { run_serve(*a); });
 }
 

@@ -19,7 +19,7 @@
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "core/error.hpp"
-#include "core/printable.hpp"
+#include "apps/armctl/server_log.hpp"
 #include "devices/joint_bus/sim_link_server.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
 #include "transport/serial_port.hpp"
@@ -36,7 +36,7 @@ struct SimArgs {
   // controller in this process) instead of the joint bus on a unix socket.
   bool robot_commands = false;
   std::string arm;  // controller's arm config (default config/scara-arm.json)
-  ControllerServeArgs serve{"pty", "", "", "sim scara", {}};
+  ControllerServeArgs serve{"pty", "", "", "sim scara", {}, false};
   // --controller mega: the Mega controller firmware and the joint firmware on emulated
   // chips, in the test tool armctl-mega-sim (libsimavr is GPL: armctl never links it).
   std::string controller;
@@ -70,7 +70,8 @@ void run_sim_scara(const SimArgs& args) {
                         fmt::format("--controller {}: allowed is mega (the Mega controller firmware on emulated "
                                     "silicon); without --controller, --robot-commands runs the Linux one",
                                     args.controller));
-    if (args.robot_commands || !args.arm.empty() || !args.serve.state_dir.empty() || !args.config.empty())
+    if (args.robot_commands || !args.arm.empty() || !args.serve.state_dir.empty() || !args.config.empty() ||
+        args.serve.json)
       throw ArmctlError(ErrorKind::invalid_argument,
                         "--controller mega takes only --baud and --link (the firmware has the arm built in)");
     exec_mega_sim(args);
@@ -93,16 +94,18 @@ void run_sim_scara(const SimArgs& args) {
   }
   joint_bus::SimLinkServer server(arm.link(), args.listen);
   server.set_tick([&arm] { arm.bus().sync(); });
-  server.set_log([](const std::string& line) { fmt::print("sim scara: {}\n", printable(line)); std::fflush(stdout); });
+  const ServerLog log("sim scara", args.serve.json, stdout);
+  server.set_log([&log](const std::string& line) { log.line(line); });
 
   const StopOnSignals stop_on_signals(server);
 
-  fmt::print("sim scara: {} joints at {} baud, listening on {} (Ctrl-C to stop)\n", arm.joint_count(),
-             arm.config().baud, args.listen);
-  std::fflush(stdout);
+  log.started({{"joints", arm.joint_count()}, {"baud", arm.config().baud}, {"listen", args.listen}},
+              fmt::format("sim scara: {} joints at {} baud, listening on {} (Ctrl-C to stop)", arm.joint_count(),
+                          arm.config().baud, args.listen));
   server.run();
-  fmt::print("sim scara: stopped ({} masters served, {} bytes to masters)\n", server.stats().clients,
-             server.stats().bytes_to_master);
+  log.stopped({{"masters_served", server.stats().clients}, {"bytes_to_masters", server.stats().bytes_to_master}},
+              fmt::format("sim scara: stopped ({} masters served, {} bytes to masters)", server.stats().clients,
+                          server.stats().bytes_to_master));
 }
 
 }  // namespace
@@ -126,6 +129,7 @@ void add_sim_command(CLI::App& app) {
   scara->add_option("--controller", args->controller,
                     "mega: the Mega controller firmware driving the joint firmware, all on emulated chips, with "
                     "Robot Commands on a pty (test builds; docs/mega-controller.md)");
+  scara->add_flag("--json", args->serve.json, "Log as JSON lines on stdout (started, log, stopped)");
   scara->callback([args] { run_sim_scara(*args); });
 }
 

@@ -9,8 +9,8 @@
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
+#include "apps/armctl/server_log.hpp"
 #include "core/error.hpp"
-#include "core/printable.hpp"
 #include "devices/xarm_emulator/emulator_runner.hpp"
 #include "protocol/robot_commands/messages.hpp"
 #include "transport/serial_port.hpp"
@@ -24,6 +24,7 @@ struct SimXarmArgs {
   std::uint32_t baud = 9600;
   bool wire_timing = false;
   unsigned battery = 7500;
+  bool json = false;
 };
 
 void run_sim_xarm(const SimXarmArgs& args) {
@@ -36,24 +37,24 @@ void run_sim_xarm(const SimXarmArgs& args) {
   options.wire_timing = args.wire_timing;
   options.baud = args.baud;
 
-  xarm::EmulatorRunner runner(
-      options, [](const std::string& m) { fmt::print(stderr, "sim xarm: {}\n", printable(m)); });
+  const ServerLog log("sim xarm", args.json);
+  xarm::EmulatorRunner runner(options, [&log](const std::string& m) { log.line(m); });
 
   const PtySymlink symlink(args.link, runner.device_path());
   const StopOnSignals stop_on_signals(runner);
 
-  fmt::print("{}\n", runner.device_path());
-  fmt::print(stderr, "emulated xArm (servos 1..6) on {}{}{}; Ctrl-C to stop\n",
-             runner.device_path(), args.link.empty() ? "" : " linked from " + args.link,
-             args.wire_timing ? fmt::format(", wire timing {} baud", args.baud) : "");
-  std::fflush(stdout);
+  log.started({{"servos", 6}, {"link", args.link}, {"wire_timing_baud", args.wire_timing ? args.baud : 0}},
+              fmt::format("emulated xArm (servos 1..6) on {}{}{}; Ctrl-C to stop", runner.device_path(),
+                          args.link.empty() ? "" : " linked from " + args.link,
+                          args.wire_timing ? fmt::format(", wire timing {} baud", args.baud) : ""),
+              runner.device_path());
 
   runner.run();
 
   auto s = runner.stats();
-  fmt::print(stderr,
-             "sim xarm: stopped; {} frames, {} handled, {} ignored, {} bytes discarded\n",
-             s.frames, s.handled, s.ignored(), s.discarded_bytes);
+  log.stopped({{"frames", s.frames}, {"handled", s.handled}, {"ignored", s.ignored()}, {"discarded_bytes", s.discarded_bytes}},
+              fmt::format("sim xarm: stopped; {} frames, {} handled, {} ignored, {} bytes discarded", s.frames,
+                          s.handled, s.ignored(), s.discarded_bytes));
 }
 
 void add_xarm_options(CLI::App& xarm, const std::shared_ptr<SimXarmArgs>& args) {
@@ -66,6 +67,7 @@ void add_xarm_options(CLI::App& xarm, const std::shared_ptr<SimXarmArgs>& args) 
                 "Bytes take as long as on a real 8N1 line at --baud");
   xarm.add_option("--battery", args->battery, "Battery voltage in mV, 4500..12000 (default 7500)")
       ->check(whole_number_in(rc::kMillivoltsMin, rc::kMillivoltsMax));
+  xarm.add_flag("--json", args->json, "Log as JSON lines on stdout (started with the pty path, log, stopped)");
 }
 
 constexpr const char* kXarmHelp =

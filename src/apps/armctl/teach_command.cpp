@@ -8,7 +8,9 @@
 #include <fmt/core.h>
 
 #include "session/arm_session.hpp"
+#include "apps/armctl/arm_json.hpp"
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/json_output.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/stdin_lines.hpp"
 #include "core/atomic_file.hpp"
@@ -28,6 +30,7 @@ struct TeachArgs {
   std::string record;
   std::string out;
   std::string duration;
+  bool json = false;
 };
 
 [[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
@@ -75,13 +78,31 @@ void run_teach(const TeachArgs& a) {
   Interrupted interrupted;
   StopOnSignals on_signals(interrupted);
   StdinLines input(interrupted.flag);
-  auto say = [](const std::string& line) {
-    fmt::print("{}\n", line);
+  // A line for a person, or under --json one JSON object per event.
+  auto say = [&](const std::string& event, nlohmann::json fields, const std::string& text) {
+    if (a.json) {
+      print_json_event(event.c_str(), std::move(fields));
+      return;
+    }
+    fmt::print("{}\n", text);
     std::fflush(stdout);
   };
 
   if (!recording) {
-    teach::TeachIo io{[&] { return input.next(); }, say};
+    auto on_event = [&](const teach::TeachEvent& e) {
+      nlohmann::json fields = nlohmann::json::object();
+      switch (e.kind) {
+        case teach::TeachEventKind::started: fields["points_file"] = a.points; break;
+        case teach::TeachEventKind::recorded:
+        case teach::TeachEventKind::replaced:
+          fields = {{"point", e.name}, {"joints", joint_values_json(arm.model(), e.positions)}};
+          break;
+        case teach::TeachEventKind::refused: fields = {{"point", e.name}, {"message", e.text}}; break;
+        case teach::TeachEventKind::finished: fields = {{"points", e.points}, {"points_file", a.points}}; break;
+      }
+      say(teach::to_string(e.kind), std::move(fields), e.text);
+    };
+    teach::TeachIo io{[&] { return input.next(); }, on_event};
     auto n = teach::teach_points(arm, a.points, io);
     if (!n) throw ArmctlError(n.error());
     return;
@@ -96,14 +117,18 @@ void run_teach(const TeachArgs& a) {
     return !duration && input.ended();
   };
   o.on_start = [&] {
-    say(fmt::format("torque off: move the arm by hand; recording at {:g} Hz until {}", rate,
+    say("started",
+        {{"rate_hz", rate},
+         {"duration_s", duration ? nlohmann::json(std::chrono::duration<double>(*duration).count()) : nlohmann::json()}},
+        fmt::format("torque off: move the arm by hand; recording at {:g} Hz until {}", rate,
                     duration ? fmt::format("{:g} s have passed (or Ctrl-C)", std::chrono::duration<double>(*duration).count())
                              : std::string("Enter, the end of input or Ctrl-C")));
   };
   auto r = teach::record_motion(arm, o);
   if (!r) throw ArmctlError(r.error());
   if (auto w = motion::write_recording(a.out, *r); !w) throw ArmctlError(w.error());
-  say(fmt::format("torque on, holding; {} samples over {:.2f} s written to {}", r->samples.size(),
+  say("finished", {{"samples", r->samples.size()}, {"seconds", r->samples.back().time}, {"file", a.out}},
+      fmt::format("torque on, holding; {} samples over {:.2f} s written to {}", r->samples.size(),
                   r->samples.back().time, a.out));
 }
 
@@ -117,6 +142,7 @@ void add_teach_command(CLI::App& app) {
   cmd->add_option("--record", a->record, "Record a continuous motion at this rate instead (e.g. 20Hz)");
   cmd->add_option("--out", a->out, "With --record: the recording file to write");
   cmd->add_option("--duration", a->duration, "With --record: stop after this long (e.g. 10s)");
+  cmd->add_flag("--json", a->json, "One JSON object per line for each event (started, recorded, refused, finished)");
   cmd->callback([a] { run_teach(*a); });
 }
 

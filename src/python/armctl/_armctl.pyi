@@ -100,6 +100,16 @@ class Joint:
     @property
     def joint_bus_id(self) -> Optional[int]: ...
 
+class PlannedMove:
+    """What move_joints, move_to and gripper planned: as every armctl app answers a move."""
+
+    @property
+    def duration(self) -> float: ...
+    @property
+    def targets(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def note(self) -> str: ...
+
 class MotionReport:
     """How a streamed motion (joint_move, move_linear, path) went."""
 
@@ -193,12 +203,12 @@ class Arm:
                 near: Optional[Vector] = None) -> list[IkSolution]:
         """Every IK solution for the tool at ``position`` (m), nearest to ``near`` (default: read()) first."""
     def move_joints(self, targets: Targets, duration: Optional[float] = None, speed: float = 0.25,
-                    wait: bool = False, timeout: float = 10.0) -> None:
+                    wait: bool = False, timeout: float = 10.0) -> PlannedMove:
         """Moves the joints that have a target; all arrive together (after ``duration`` s, or at ``speed``)."""
     def move_to(self, position: Vector, roll: Optional[float] = None, pitch: Optional[float] = None,
                 yaw: Optional[float] = None, elbow: Optional[str] = None, nearest_orientation: bool = False,
                 duration: Optional[float] = None, speed: float = 0.25, wait: bool = False,
-                timeout: float = 10.0) -> None:
+                timeout: float = 10.0) -> PlannedMove:
         """PTP: the tool to ``position`` (m) through the IK solution nearest the current joints."""
     def move_linear(self, position: Vector, roll: Optional[float] = None, pitch: Optional[float] = None,
                     yaw: Optional[float] = None, speed: float = 0.05, angular_speed: float = 0.7853981633974483,
@@ -221,8 +231,8 @@ class Arm:
         """Stops every joint where it is and holds it; what other threads run on the arm stops first."""
     def set_torque(self, on: bool) -> None:
         """off: the arm can be moved by hand; on: hold where it stands."""
-    def gripper(self, closed_fraction: float, duration: Optional[float] = None, speed: float = 0.25,
-                wait: bool = False, timeout: float = 10.0) -> None:
+    def gripper(self, closed_fraction: float, duration: Optional[float] = None, speed: float = 0.5,
+                wait: bool = False, timeout: float = 10.0) -> PlannedMove:
         """0 = open, 1 = closed."""
     def download_group(self, group: int, text: str) -> None:
         """Downloads an action group in armctl's group-file format (Robot Commands devices)."""
