@@ -15,7 +15,9 @@
 
 #include "core/error.hpp"
 #include "motion/kinematics.hpp"
+#include "motion/scara_kinematics.hpp"
 #include "motion/urdf_chain.hpp"
+#include "motion/xarm_kinematics.hpp"
 
 namespace {
 
@@ -77,8 +79,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   check_chain(*chain);
   const auto limits = urdf_position_limits(*chain);
-  for (KinematicFamily f : {KinematicFamily::scara, KinematicFamily::xarm}) {
-    auto k = make_kinematics(f, *chain, limits);
+  for (auto make : {make_scara_kinematics, make_xarm_kinematics}) {
+    auto k = make(*chain, limits);
     if (!k.ok()) {
       check(k.error().kind == armctl::ErrorKind::invalid_config, "shape error kind invalid_config");
       continue;

@@ -90,9 +90,7 @@ Result<std::vector<ZeroChange>> calibrate_zero(const ArmModel& model, Protocol p
     if (!chosen[std::size_t(k.first)]) continue;
     ArmModel changed = model;
     for (const ZeroChange& c : out) {
-      auto& slot = protocol == Protocol::robot_commands ? changed.joints[std::size_t(c.joint)].robot_commands
-                                                        : changed.joints[std::size_t(c.joint)].joint_bus;
-      slot = c.map;
+      *changed.joints[std::size_t(c.joint)].map(protocol) = c.map;
       changed.joints[std::size_t(c.joint)].limits = c.limits;
     }
     const JointLimits& a = changed.joints[std::size_t(k.first)].limits;
@@ -125,7 +123,7 @@ Status save_calibration(const ArmModel& model, Protocol protocol, const std::vec
   } catch (const json::exception& e) {
     return Error{ErrorKind::invalid_config, fmt::format("{}: not valid JSON: {}", model.file.string(), e.what())};
   }
-  const char* key = to_string(protocol);
+  const std::string key = to_string(protocol);
   for (const ZeroChange& c : changes) {
     const JointModel& j = model.joints[std::size_t(c.joint)];
     bool done = false;

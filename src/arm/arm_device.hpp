@@ -3,17 +3,26 @@
 // in the model's order. Implementations: rc_arm_device (any Robot Commands board: xArm,
 // emulated xArm, armctl's arm controller) and bus_arm_device (the joint bus, via BusMaster).
 // Devices validate what their protocol can carry and refuse before sending anything.
+// Beyond moving joints a device may offer optional capabilities (action groups, health):
+// apps ask the device for them and never reach around it to the board or bus underneath.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "arm/action_groups.hpp"
 #include "arm/arm_model.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 
 namespace armctl::arm {
+
+// What a device can tell of its own health beyond positions.
+struct DeviceHealth {
+  std::optional<double> battery_volts;  // a board's supply
+  std::vector<std::string> faults;      // "joint 3: overcurrent" (joints that report faults)
+};
 
 class ArmDevice {
  public:
@@ -49,6 +58,13 @@ class ArmDevice {
   // Lets `d` pass on the device's clock (a simulated device runs meanwhile); an error if the
   // link failed meanwhile.
   virtual Status idle(Duration d) = 0;
+
+  // ---- optional capabilities: nullptr / empty when the device has none
+  // Action groups stored on the device (a Robot Commands board).
+  virtual ActionGroups* action_groups() { return nullptr; }
+  // Its health, read now (talks to the device: from the thread that owns it). What cannot be
+  // read is left out.
+  virtual DeviceHealth health() { return {}; }
 };
 
 }  // namespace armctl::arm

@@ -67,12 +67,12 @@ class ArmKinematics {
   // to `position`: roll and pitch kept, the yaw kept unless it follows the position.
   CartesianGoal keeping_orientation(const Eigen::Vector3d& position, const motion::Rpy& current) const;
 
-  // The family's rules, for the planner: the yaw is where the arm points (an empty yaw
-  // follows the position); a target without a pitch leaves the tool pitch free; the chain
-  // reaches positions with the nearest orientation (5 joints).
-  bool yaw_follows_position() const { return model_.family == motion::KinematicFamily::xarm; }
-  bool pitch_free() const { return model_.family == motion::KinematicFamily::xarm; }
-  bool reaches_nearest_orientation() const { return model_.family == motion::KinematicFamily::xarm; }
+  // The family's rules (arm/arm_families.hpp), for the planner: the yaw is where the arm
+  // points (an empty yaw follows the position); a target without a pitch leaves the tool
+  // pitch free; the chain reaches positions with the nearest orientation (5 joints).
+  bool yaw_follows_position() const { return model_.rules.yaw_follows_position; }
+  bool pitch_free() const { return model_.rules.pitch_free; }
+  bool reaches_nearest_orientation() const { return model_.rules.reaches_nearest_orientation; }
 
   // Targets (SI, one entry per joint; empty keeps a joint) against the joint limits and,
   // when the kinematics knows its device, the device's range (a coupled joint's device value

@@ -14,7 +14,6 @@
 #include "core/config_files.hpp"
 #include "core/json_reader.hpp"
 #include "motion/urdf_chain.hpp"
-#include "portable/joint_tuning.hpp"
 
 namespace armctl::arm {
 
@@ -59,12 +58,11 @@ JointLimits parse_limits(const std::string& source, const json& v, const std::st
 }
 
 DeviceMap parse_map(const std::string& source, const json& v, const std::string& path, Dimension d,
-                    Protocol p) {
+                    const ProtocolInfo& p) {
   ObjectReader r(source, v, path);
   DeviceMap m;
-  const DeviceRange range = device_range(p);
-  const char* id_key = p == Protocol::robot_commands ? "servo" : "number";
-  m.id = static_cast<int>(r.integer(id_key, 1, p == Protocol::robot_commands ? 19 : 7));
+  const DeviceRange range = p.range;
+  m.id = static_cast<int>(r.integer(p.id_key, 1, p.max_id));
   const json& dev = r.require("device");
   if (!dev.is_array() || dev.size() != 2)
     r.fail(r.at("device"), fmt::format("must be two device positions [a, b] in {}..{}", range.min, range.max));
@@ -77,10 +75,7 @@ DeviceMap parse_map(const std::string& source, const json& v, const std::string&
   m.actuator_b = quantity(r, joint[1], r.at("joint") + "[1]", d, 0);
   if (m.device_a == m.device_b) r.fail(r.at("device"), "the two device positions must differ");
   if (m.actuator_a == m.actuator_b) r.fail(r.at("joint"), "the two joint positions must differ");
-  if (p == Protocol::joint_bus) {
-    m.max_speed_cps = r.number("max_speed_cps", 1, joint_bus::max_speed_cps_limit);
-    m.max_accel_cps2 = r.number("max_accel_cps2", joint_bus::min_accel_cps2_limit, joint_bus::max_accel_cps2_limit);
-  }
+  if (p.read_extras) p.read_extras(r, m);
   r.finish();
   return m;
 }
@@ -111,9 +106,11 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
   ArmModel m;
   m.name = name_of(r, r.require("name"), "name");
   const std::string family = name_of(r, r.require("family"), "family");
-  if (family == "xarm") m.family = motion::KinematicFamily::xarm;
-  else if (family == "scara") m.family = motion::KinematicFamily::scara;
-  else r.fail("family", fmt::format("'{}' is not a kinematic family armctl knows (allowed: xarm, scara)", family));
+  auto found_family = find_arm_family(family);
+  if (!found_family) r.fail("family", found_family.error().message);
+  const ArmFamily& arm_family = **found_family;
+  m.family = arm_family.name;
+  m.rules = arm_family.rules;
   (void)name_of(r, r.require("urdf"), "urdf");  // read by the caller
   const std::string base = name_of(r, r.require("base_link"), "base_link");
   const std::string tip = name_of(r, r.require("tool_link"), "tool_link");
@@ -159,12 +156,14 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
                           format_quantity(jm.dimension, jm.limits.lower), format_quantity(jm.dimension, jm.limits.upper),
                           format_quantity(jm.dimension, uj->limits->lower),
                           format_quantity(jm.dimension, uj->limits->upper), jm.name));
-    if (const json* v = jr.find("robot_commands"))
-      jm.robot_commands = parse_map(source, *v, jr.at("robot_commands"), jm.dimension, Protocol::robot_commands);
-    if (const json* v = jr.find("joint_bus"))
-      jm.joint_bus = parse_map(source, *v, jr.at("joint_bus"), jm.dimension, Protocol::joint_bus);
-    if (!jm.robot_commands && !jm.joint_bus)
-      jr.fail(path, "needs a device mapping: robot_commands, joint_bus or both");
+    std::string known;
+    for (Protocol p : protocols()) {
+      const ProtocolInfo& info = protocol_info(p);
+      known += (known.empty() ? "" : ", ") + info.name;
+      if (const json* v = jr.find(info.name))
+        jm.devices.emplace(info.name, parse_map(source, *v, jr.at(info.name), jm.dimension, info));
+    }
+    if (jm.devices.empty()) jr.fail(path, fmt::format("needs a device mapping: one or more of {}", known));
     jr.finish();
     m.joints.push_back(std::move(jm));
   }
@@ -200,10 +199,10 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
     ordered.push_back(*it);
     m.gripper = gm;
   }
-  // Both protocols mapped for every joint, or for none: a protocol the arm supports must
+  // Each protocol mapped for every joint, or for none: a protocol the arm supports must
   // reach all of its joints.
-  for (Protocol p : {Protocol::robot_commands, Protocol::joint_bus}) {
-    const bool any = std::any_of(ordered.begin(), ordered.end(), [&](const JointModel& j) { return j.map(p).has_value(); });
+  for (Protocol p : protocols()) {
+    const bool any = std::any_of(ordered.begin(), ordered.end(), [&](const JointModel& j) { return j.map(p) != nullptr; });
     std::set<int> ids;
     for (std::size_t i = 0; any && i < ordered.size(); ++i) {
       if (!ordered[i].map(p))
@@ -276,7 +275,7 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
     if (cj.type == motion::ChainJointType::prismatic)
       m.reach += std::max(std::abs(m.joints[i].limits.lower), std::abs(m.joints[i].limits.upper));
   }
-  auto kin = motion::make_kinematics(m.family, *chain, limits);
+  auto kin = arm_family.make(*chain, limits);
   if (!kin) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, kin.error().message));
   m.kinematics = std::shared_ptr<const motion::Kinematics>(std::move(kin.value()));
   return m;
@@ -304,12 +303,6 @@ Status within_reach(const ArmModel& model, const Eigen::Vector3d& position, std:
   return Ok{};
 }
 
-const char* to_string(Protocol p) { return p == Protocol::robot_commands ? "robot_commands" : "joint_bus"; }
-
-DeviceRange device_range(Protocol p) {
-  return p == Protocol::robot_commands ? DeviceRange{0, 1000} : DeviceRange{-32768, 32767};
-}
-
 std::optional<int> ArmModel::find_joint(std::string_view joint_name) const {
   for (int i = 0; i < joint_count(); ++i)
     if (same_name(joints[static_cast<std::size_t>(i)].name, joint_name)) return i;
@@ -317,7 +310,7 @@ std::optional<int> ArmModel::find_joint(std::string_view joint_name) const {
 }
 
 bool ArmModel::supports(Protocol p) const {
-  return !joints.empty() && joints.front().map(p).has_value();
+  return !joints.empty() && joints.front().map(p) != nullptr;
 }
 
 std::vector<double> ArmModel::to_device(Protocol p, const std::vector<double>& q) const {

@@ -5,21 +5,20 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "arm/arm_families.hpp"
+#include "arm/protocols.hpp"
 #include "core/error.hpp"
 #include "core/quantity.hpp"
 #include "motion/kinematics.hpp"
 
 namespace armctl::arm {
-
-// The two protocols an arm can be driven through (a device URI picks one).
-enum class Protocol { robot_commands, joint_bus };
-const char* to_string(Protocol p);
 
 struct JointLimits {
   double lower = 0, upper = 0;  // rad or m
@@ -32,7 +31,7 @@ struct JointLimits {
 // A straight line between two points: device units <-> actuator value (SI). Direction and
 // zero are in the two points (a reversed joint lists its device values descending).
 struct DeviceMap {
-  int id = 0;  // Robot Commands servo ID, or joint-bus joint number
+  int id = 0;  // the joint's ID on the device: Robot Commands servo ID, joint-bus joint number
   double device_a = 0, actuator_a = 0, device_b = 1, actuator_b = 1;
   // Joint bus only: the joint's own speed at set_speed 100 % and its acceleration, as in
   // its tuning (config/scara.json), so that moves can be planned to arrive together.
@@ -42,12 +41,6 @@ struct DeviceMap {
   double to_actuator(double device) const { return actuator_a + (device - device_a) / device_per_unit(); }
 };
 
-// The smallest and largest value a protocol can carry for one joint.
-struct DeviceRange {
-  double min, max;
-};
-DeviceRange device_range(Protocol p);  // robot_commands 0..1000, joint_bus -32768..32767
-
 enum class JointRole { chain, gripper };
 
 struct JointModel {
@@ -56,10 +49,16 @@ struct JointModel {
   JointRole role = JointRole::chain;
   JointLimits limits;
   double urdf_lower = 0, urdf_upper = 0;  // the URDF's position limits (mechanical travel)
-  std::optional<DeviceMap> robot_commands;
-  std::optional<DeviceMap> joint_bus;
-  const std::optional<DeviceMap>& map(Protocol p) const {
-    return p == Protocol::robot_commands ? robot_commands : joint_bus;
+  // How the joint maps to each protocol that can drive it, by the protocol's name (the arm
+  // file's keys: arm/protocols.hpp).
+  std::map<std::string, DeviceMap, std::less<>> devices;
+  const DeviceMap* map(Protocol p) const {
+    auto it = devices.find(p.name());
+    return it == devices.end() ? nullptr : &it->second;
+  }
+  DeviceMap* map(Protocol p) {
+    auto it = devices.find(p.name());
+    return it == devices.end() ? nullptr : &it->second;
   }
 };
 
@@ -82,7 +81,8 @@ struct GripperModel {
 
 struct ArmModel {
   std::string name;
-  motion::KinematicFamily family = motion::KinematicFamily::xarm;
+  std::string family;  // the arm file's family (arm/arm_families.hpp)
+  FamilyRules rules;   // that family's rules
   std::vector<JointModel> joints;  // the chain's joints base to tool, then the gripper
   std::vector<Coupling> couplings;
   std::optional<GripperModel> gripper;

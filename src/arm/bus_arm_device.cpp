@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 
 #include "devices/joint_bus/bus_connection.hpp"
+#include "devices/joint_bus/joint_diagnostics.hpp"
 
 namespace armctl::arm {
 
@@ -13,14 +14,14 @@ BusArmDevice::BusArmDevice(const ArmModel& model, joint_bus::BusMaster& master, 
                            std::string description)
     : master_(master), link_(link), description_(std::move(description)) {
   for (const JointModel& j : model.joints) {
-    if (!j.joint_bus)
+    if (!j.map(Protocol::joint_bus))
       throw ArmctlError(ErrorKind::invalid_argument, fmt::format("joint {} has no joint_bus mapping in the arm file", j.name));
-    if (j.joint_bus->id > master.joint_count())
+    if (j.map(Protocol::joint_bus)->id > master.joint_count())
       throw ArmctlError(ErrorKind::invalid_argument,
-                        fmt::format("joint {} is joint-bus joint {}, but {} has joints 1..{}", j.name, j.joint_bus->id,
+                        fmt::format("joint {} is joint-bus joint {}, but {} has joints 1..{}", j.name, j.map(Protocol::joint_bus)->id,
                                     description_, master.joint_count()));
-    numbers_.push_back(j.joint_bus->id);
-    profiles_.push_back(motion::as_quantized_by_joint({j.joint_bus->max_speed_cps, j.joint_bus->max_accel_cps2}));
+    numbers_.push_back(j.map(Protocol::joint_bus)->id);
+    profiles_.push_back(joint_bus::as_quantized_by_joint({j.map(Protocol::joint_bus)->max_speed_cps, j.map(Protocol::joint_bus)->max_accel_cps2}));
   }
   // A drive transaction is 8 bytes (READY, COMMAND, DATA, STATUS) plus the turnarounds.
   transaction_ = wire_time(10, link.baud());
@@ -41,7 +42,7 @@ Result<std::vector<double>> BusArmDevice::read_positions() {
 Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Duration duration) {
   auto now = read_positions();
   if (!now) return now.error();
-  std::vector<motion::PlanInput> inputs;
+  std::vector<joint_bus::PlanInput> inputs;
   std::vector<std::int16_t> clicks;
   std::vector<std::size_t> which;
   for (std::size_t i = 0; i < targets.size(); ++i) {
@@ -49,7 +50,7 @@ Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Dur
     const long c = std::lround(*targets[i]);
     if (c < -32768 || c > 32767)
       return Error{ErrorKind::invalid_argument, fmt::format("joint {}: {} clicks is outside -32768..32767", numbers_[i], c)};
-    motion::PlanInput in;
+    joint_bus::PlanInput in;
     in.joint = numbers_[i];
     in.distance = std::abs(double(c) - (*now)[i]);
     in.profile = profiles_[i];
@@ -61,7 +62,7 @@ Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Dur
   if (inputs.empty()) return Ok{};
   streamed_percent_.clear();
   const TimePoint start = link_.clock().now();
-  const auto plan = motion::plan_synchronized_move(inputs, duration, transaction_, transaction_ * 2);
+  const auto plan = joint_bus::plan_synchronized_move(inputs, duration, transaction_, transaction_ * 2);
   // Each joint gets set_speed and drive_to back to back, timed so that it starts when the
   // plan says (the slowest joint first); the plan's start delays make them arrive together.
   std::vector<std::size_t> order(inputs.size());
@@ -143,6 +144,16 @@ Status BusArmDevice::idle(Duration d) {
     joint_bus::idle(link_, d);
     return Ok{};
   });
+}
+
+DeviceHealth BusArmDevice::health() {
+  DeviceHealth h;
+  for (int j = 1; j <= master_.joint_count(); ++j) {
+    auto d = master_.read_diagnostics(j);
+    if (!d) continue;  // legacy firmware has no diagnostics; a dead joint shows in the reads
+    if (d->faults != 0) h.faults.push_back(fmt::format("joint {}: {}", j, joint_bus::describe_faults(d->faults)));
+  }
+  return h;
 }
 
 }  // namespace armctl::arm

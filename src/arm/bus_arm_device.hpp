@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "arm/arm_device.hpp"
-#include "motion/sync_plan.hpp"
+#include "devices/joint_bus/sync_plan.hpp"
 #include "devices/joint_bus/bus_master.hpp"
 
 namespace armctl::arm {
@@ -33,6 +33,7 @@ class BusArmDevice final : public ArmDevice {
   Duration stream_latency() const override { return transaction_; }
   Status stream(const std::vector<double>& targets, const std::vector<double>& velocities, Duration in) override;
   Status idle(Duration d) override;
+  DeviceHealth health() override;  // the joints' fault flags (firmware without diagnostics: none)
 
  private:
   Status failed(const Error& e) const;
@@ -41,7 +42,7 @@ class BusArmDevice final : public ArmDevice {
   transport::JointBusLink& link_;
   std::string description_;
   std::vector<int> numbers_;  // joint-bus number per model joint
-  std::vector<motion::JointProfile> profiles_;
+  std::vector<joint_bus::JointProfile> profiles_;
   Duration transaction_;  // one set_speed or drive_to on this bus
   std::vector<int> streamed_percent_;  // set_speed last sent while streaming (-1: not yet)
   std::vector<std::optional<long>> streamed_target_;  // drive_to last sent while streaming

@@ -12,13 +12,6 @@ namespace {
 
 Error refuse(std::string message) { return Error{ErrorKind::invalid_argument, std::move(message)}; }
 
-motion::Pose compose(const motion::Pose& a, const motion::Pose& b) {
-  motion::Pose out;
-  out.position = a.position + a.orientation * b.position;
-  out.orientation = (a.orientation * b.orientation).normalized();
-  return out;
-}
-
 Status check_joint_count(const ArmModel& model, const std::vector<double>& values, const char* what) {
   if (values.size() != std::size_t(model.joint_count()))
     return refuse(fmt::format("{} has {} joint values; arm '{}' has {} joints", what, values.size(), model.name,
@@ -275,7 +268,7 @@ Result<PathPlan> plan_path(const ArmKinematics& kinematics, const std::vector<do
   const int chain = model.chain_joints();
   motion::JointVector start(chain);
   for (int i = 0; i < chain; ++i) start[i] = from[std::size_t(i)];
-  const motion::Pose start_pose = compose(model.kinematics->forward(start), model.tool);
+  const motion::Pose start_pose = kinematics.forward(start);  // the tool's pose, tool frame included
 
   auto path = motion::build_cartesian_path(start_pose, segments);
   if (!path) return path.error();

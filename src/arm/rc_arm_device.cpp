@@ -9,10 +9,10 @@ namespace armctl::arm {
 
 RcArmDevice::RcArmDevice(const ArmModel& model, robot_commands::Client& client) : client_(client) {
   for (const JointModel& j : model.joints) {
-    if (!j.robot_commands)
+    if (!j.map(Protocol::robot_commands))
       throw ArmctlError(ErrorKind::invalid_argument,
                         fmt::format("joint {} has no robot_commands mapping in the arm file", j.name));
-    servos_.push_back(static_cast<std::uint8_t>(j.robot_commands->id));
+    servos_.push_back(static_cast<std::uint8_t>(j.map(Protocol::robot_commands)->id));
   }
 }
 
@@ -104,6 +104,12 @@ Status RcArmDevice::idle(Duration d) {
   auto pumped = client_.pump_events(client_.clock().now() + d);  // notifications are kept
   if (!pumped) return pumped.error();
   return Ok{};
+}
+
+DeviceHealth RcArmDevice::health() {
+  DeviceHealth h;
+  if (auto mv = client_.battery_millivolts()) h.battery_volts = *mv / 1000.0;
+  return h;
 }
 
 }  // namespace armctl::arm

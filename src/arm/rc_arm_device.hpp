@@ -32,11 +32,14 @@ class RcArmDevice final : public ArmDevice {
   Duration stream_latency() const override;
   Status stream(const std::vector<double>& targets, const std::vector<double>& velocities, Duration in) override;
   Status idle(Duration d) override;
+  ActionGroups* action_groups() override { return &groups_; }
+  DeviceHealth health() override;  // the battery
 
  private:
   Status hold_where_they_stand();  // a move to where every servo reads, in no time
 
   robot_commands::Client& client_;
+  RcActionGroups groups_{client_};
   std::vector<std::uint8_t> servos_;  // per joint, in the model's order
 };
 

@@ -104,7 +104,7 @@ class Parser {
     if (fields.size() == 1)
       return fail(line, fields[0].column + fields[0].text.size(), "",
                   "an action needs at least one servo=position after its time");
-    robot_commands::GroupAction action;
+    rc::GroupAction action;
     action.time_ms = static_cast<std::uint16_t>(*ms);
     for (std::size_t i = 1; i < fields.size(); ++i) {
       auto target = parse_target(line, fields[i]);
@@ -124,7 +124,7 @@ class Parser {
   }
 
   std::optional<Error> check_servo_set(std::size_t line, const std::vector<Field>& fields,
-                                       const robot_commands::GroupAction& action) {
+                                       const rc::GroupAction& action) {
     if (group_.actions.empty()) {
       for (const auto& t : action.targets) group_.servos.push_back(t.servo);
       if (header_count_ && *header_count_ != group_.servos.size())

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "devices/robot_commands/client.hpp"
+#include "protocol/robot_commands/messages.hpp"
 
 namespace armctl::motion {
 
@@ -30,7 +30,7 @@ inline constexpr std::size_t kGroupFileMaxServos = 17;
 
 struct ActionGroupFile {
   std::vector<std::uint8_t> servos;  // the servo set, in the order of the first action
-  std::vector<robot_commands::GroupAction> actions;
+  std::vector<rc::GroupAction> actions;
   bool operator==(const ActionGroupFile&) const = default;
 };
 

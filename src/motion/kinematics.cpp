@@ -3,9 +3,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "motion/scara_kinematics.hpp"
-#include "motion/xarm_kinematics.hpp"
-
 namespace armctl::motion {
 
 Eigen::Quaterniond from_rpy(const Rpy& rpy) {
@@ -29,14 +26,6 @@ Rpy to_rpy(const Eigen::Quaterniond& q) {
   out.roll = std::atan2(r(2, 1), r(2, 2));
   out.yaw = std::atan2(r(1, 0), r(0, 0));
   return out;
-}
-
-const char* to_string(KinematicFamily family) {
-  switch (family) {
-    case KinematicFamily::scara: return "scara";
-    case KinematicFamily::xarm: return "xarm";
-  }
-  return "?";
 }
 
 const char* to_string(Elbow elbow) {
@@ -69,15 +58,6 @@ std::vector<PositionLimits> urdf_position_limits(const UrdfChain& chain) {
   std::vector<PositionLimits> out;
   for (const auto& j : chain.joints) out.push_back(PositionLimits{j.limits.lower, j.limits.upper});
   return out;
-}
-
-Result<std::unique_ptr<Kinematics>> make_kinematics(KinematicFamily family, const UrdfChain& chain,
-                                                    std::span<const PositionLimits> limits) {
-  switch (family) {
-    case KinematicFamily::scara: return make_scara_kinematics(chain, limits);
-    case KinematicFamily::xarm: return make_xarm_kinematics(chain, limits);
-  }
-  return Error{ErrorKind::invalid_argument, "unknown kinematic family"};
 }
 
 }  // namespace armctl::motion

@@ -43,9 +43,6 @@ struct Rpy {
 Eigen::Quaterniond from_rpy(const Rpy& rpy);
 Rpy to_rpy(const Eigen::Quaterniond& q);
 
-enum class KinematicFamily { scara, xarm };
-const char* to_string(KinematicFamily family);  // "scara", "xarm"
-
 // Position limits of one chain joint (rad or m), used to keep IK solutions inside them.
 struct PositionLimits {
   double lower = 0, upper = 0;
@@ -93,7 +90,7 @@ const char* to_string(Singularity s);
 class Kinematics {
  public:
   virtual ~Kinematics() = default;
-  virtual KinematicFamily family() const = 0;
+  virtual std::string_view family() const = 0;  // its name in messages: "scara", "xarm"
   virtual int joint_count() const = 0;  // chain joints
   virtual Pose forward(const JointVector& joints) const = 0;
   // Every solution inside the limits, nearest to `near` first (by weighted joint
@@ -109,13 +106,12 @@ class Kinematics {
 // The URDF's <limit> lower..upper of each chain joint, base to tool.
 std::vector<PositionLimits> urdf_position_limits(const UrdfChain& chain);
 
-// The kinematics of `family` for `chain` (from read_urdf_chain), with the chain joints'
-// position limits (one per chain joint, base to tool; the arm file's, which may be tighter
-// than the URDF's). Refused (invalid_config, naming the joint) when the chain does not have
-// the family's shape: joint count and types, axes parallel or perpendicular, a wrist whose
-// axes meet, no sideways offsets. The lengths come from the chain, so an edited
-// (calibrated) URDF works as long as the shape holds.
-Result<std::unique_ptr<Kinematics>> make_kinematics(KinematicFamily family, const UrdfChain& chain,
-                                                    std::span<const PositionLimits> limits);
+// Each family's kinematics is made by its own factory (make_scara_kinematics,
+// make_xarm_kinematics, or one an arm family registers: arm/arm_families.hpp) from `chain`
+// (read_urdf_chain) and the chain joints' position limits (one per chain joint, base to tool;
+// the arm file's, which may be tighter than the URDF's). A factory refuses (invalid_config,
+// naming the joint) a chain without the family's shape: joint count and types, axes parallel
+// or perpendicular, a wrist whose axes meet, no sideways offsets. The lengths come from the
+// chain, so an edited (calibrated) URDF works as long as the shape holds.
 
 }  // namespace armctl::motion

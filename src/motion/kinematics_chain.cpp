@@ -285,7 +285,7 @@ Error limits_refused(const ChainModel& chain, std::span<const PositionLimits> li
 void ChainKinematics::check_size(const JointVector& joints) const {
   if (joints.size() != chain_.size()) {
     throw ArmctlError(ErrorKind::invalid_argument,
-                      fmt::format("{} kinematics: {} joint values given, the chain has {}", to_string(family()),
+                      fmt::format("{} kinematics: {} joint values given, the chain has {}", family(),
                                   joints.size(), chain_.size()));
   }
 }

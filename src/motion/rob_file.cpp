@@ -67,7 +67,7 @@ Result<ActionGroupFile> parse_rob_file(const std::vector<std::uint8_t>& bytes, s
   for (std::size_t s = 1; s <= kRobServos; ++s) group.servos.push_back(std::uint8_t(s));
   for (std::size_t f = 0; f < count; ++f) {
     const std::size_t at = kRobHeaderBytes + f * kRobFrameBytes;
-    robot_commands::GroupAction action;
+    rc::GroupAction action;
     action.time_ms = u16_at(bytes, at);
     if (action.time_ms > kMaxTimeMs)
       return bad(source, at, fmt::format("frame {}: time {} ms; allowed is 0..{}", f + 1, action.time_ms, kMaxTimeMs));

@@ -117,7 +117,7 @@ class ScaraKinematics final : public detail::ChainKinematics {
   ScaraKinematics(ChainModel chain, ScaraGeometry geometry, std::span<const PositionLimits> limits)
       : detail::ChainKinematics(std::move(chain), limits), g_(std::move(geometry)) {}
 
-  KinematicFamily family() const override { return KinematicFamily::scara; }
+  std::string_view family() const override { return "scara"; }
   Singularity singularity(const JointVector& joints, double tolerance) const override {
     check_size(joints);
     if (std::abs(g_.arm.bend_sine(g_.s_elbow * joints[kElbow])) < tolerance) return Singularity::arm_stretched;

@@ -114,7 +114,7 @@ class XarmKinematics final : public detail::ChainKinematics {
   XarmKinematics(ChainModel chain, XarmGeometry geometry, std::span<const PositionLimits> limits)
       : detail::ChainKinematics(std::move(chain), limits), g_(std::move(geometry)) {}
 
-  KinematicFamily family() const override { return KinematicFamily::xarm; }
+  std::string_view family() const override { return "xarm"; }
   Singularity singularity(const JointVector& joints, double tolerance) const override {
     check_size(joints);
     if (std::abs(g_.arm.bend_sine(g_.s_elbow * joints[kElbow])) < tolerance) return Singularity::arm_stretched;

@@ -5,6 +5,8 @@
 
 #include <fmt/core.h>
 
+#include "arm/group_actions.hpp"
+
 namespace armctl::program {
 
 namespace {
@@ -15,16 +17,7 @@ constexpr double kShortestAction = 0.02;  // s: finer than the servos follow
 
 class Compiler {
  public:
-  Compiler(const arm::Arm& arm, const CompileOptions& options) : arm_(arm), model_(arm.model()), options_(options) {
-    for (const auto& j : model_.joints) {
-      if (!j.robot_commands)
-        throw ArmctlError(ErrorKind::unsupported,
-                          fmt::format("joint {} of arm '{}' has no Robot Commands servo: only a Robot Commands board "
-                                      "replays action groups",
-                                      j.name, model_.name));
-      servos_.push_back(std::uint8_t(j.robot_commands->id));
-    }
-  }
+  Compiler(const arm::Arm& arm, const CompileOptions& options) : arm_(arm), model_(arm.model()), options_(options) {}
 
   CompiledGroup compile(const ProgramPlan& plan) {
     action(plan.start, options_.first_move_seconds);
@@ -104,18 +97,15 @@ class Compiler {
     const long ms = end_ms - total_ms_;
     if (ms <= 0) return;
     total_ms_ = end_ms;
-    robot_commands::GroupAction a;
-    a.time_ms = std::uint16_t(std::min<long>(ms, rc::kMoveTimeMaxMs));
-    const std::vector<double> device = model_.to_device(arm::Protocol::robot_commands, q);
-    for (std::size_t i = 0; i < servos_.size(); ++i)
-      a.targets.push_back({servos_[i], std::uint16_t(std::clamp(std::lround(device[i]), 0L, 1000L))});
-    out_.actions.push_back(std::move(a));
+    // The plan was checked against the board's range: an error here is the arm's own.
+    out_.actions.push_back(arm::servo_action(model_, std::vector<std::optional<double>>(q.begin(), q.end()),
+                                             std::uint16_t(std::min<long>(ms, rc::kMoveTimeMaxMs)))
+                               .value());
   }
 
   const arm::Arm& arm_;
   const arm::ArmModel& model_;
   CompileOptions options_;
-  std::vector<std::uint8_t> servos_;
   std::vector<double> v_, a_;
   CompiledGroup out_;
   double planned_s_ = 0;

@@ -143,8 +143,8 @@ class PyArm {
       p.velocity = j.limits.velocity;
       p.acceleration = j.limits.acceleration;
       p.jerk = j.limits.jerk;
-      if (j.robot_commands) p.robot_commands_id = j.robot_commands->id;
-      if (j.joint_bus) p.joint_bus_id = j.joint_bus->id;
+      if (auto* m = j.map(arm::Protocol::robot_commands)) p.robot_commands_id = m->id;
+      if (auto* m = j.map(arm::Protocol::joint_bus)) p.joint_bus_id = m->id;
       out.push_back(p);
     }
     return out;
@@ -582,13 +582,13 @@ class PyArm {
   }
 
   // ---- action groups (Robot Commands devices only)
-  robot_commands::Client& client() {
-    arm();
-    if (!session_->rc)
+  arm::ActionGroups& groups() {
+    arm::ActionGroups* groups = arm().device().action_groups();
+    if (!groups)
       raise(ErrorKind::unsupported, fmt::format("action groups need a Robot Commands device; arm '{}' is on the joint bus "
                                                 "(open it with a Robot Commands URI to go through the arm controller)",
                                                 model().name));
-    return *session_->rc->client;
+    return *groups;
   }
 
   std::string description() { return arm().device().description(); }
@@ -821,8 +821,8 @@ void define_arm(py::module_& m) {
             if (group < 0 || group > 254) raise(ErrorKind::invalid_argument, fmt::format("group {} is not allowed: 0..254", group));
             const auto file = must(motion::parse_action_group(text, "<text>"));
             const auto turn = a.gate_.enter();
-            auto& c = a.client();
-            must(released([&] { return c.download_group(static_cast<std::uint8_t>(group), file.actions); }));
+            auto& g = a.groups();
+            must(released([&] { return g.download(static_cast<std::uint8_t>(group), file.actions); }));
           },
           "group"_a, "text"_a,
           "Downloads an action group written in armctl's group-file format (docs/action-groups.md) to `group`.")
@@ -833,16 +833,16 @@ void define_arm(py::module_& m) {
               raise(ErrorKind::invalid_argument,
                     fmt::format("group {} times {} is not allowed: group 0..254, times 0..65535 (0: forever)", group, times));
             const auto turn = a.gate_.enter();
-            auto& c = a.client();
-            must(released([&] { return c.run_group(static_cast<std::uint8_t>(group), static_cast<std::uint16_t>(times)); }));
+            auto& g = a.groups();
+            must(released([&] { return g.run(static_cast<std::uint8_t>(group), static_cast<std::uint16_t>(times)); }));
           },
           "group"_a, "times"_a = 1, "Runs an action group stored on the board `times` times (0: until stop_group).")
       .def(
           "stop_group",
           [](PyArm& a) {
             const auto turn = a.gate_.enter();
-            auto& c = a.client();
-            must(released([&] { return c.stop_group(); }));
+            auto& g = a.groups();
+            must(released([&] { return g.stop(); }));
           },
           "Stops the running action group.")
       .def(
@@ -850,14 +850,14 @@ void define_arm(py::module_& m) {
           [](PyArm& a, int group) {
             if (group < 0 || group > 255) raise(ErrorKind::invalid_argument, fmt::format("group {} is not allowed: 0..255 (255: all)", group));
             const auto turn = a.gate_.enter();
-            auto& c = a.client();
-            must(released([&] { return c.erase_group(static_cast<std::uint8_t>(group)); }));
+            auto& g = a.groups();
+            must(released([&] { return g.erase(static_cast<std::uint8_t>(group)); }));
           },
           "group"_a, "Erases an action group (255: all of them).")
       .def(
           "group_events",
           [](PyArm& a, double timeout) {
-            return group_events(a.gate_, [&]() -> robot_commands::Client& { return a.client(); }, timeout);
+            return group_events(a.gate_, [&]() -> arm::ActionGroups& { return a.groups(); }, timeout);
           }, "timeout"_a = 0.0,
           "The action-group notifications received so far (and within `timeout` s): a list of dicts\n"
           "{'kind': 'started'|'stopped'|'finished', 'group': int|None, 'count': int|None}.");

@@ -5,6 +5,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include "arm/action_groups.hpp"
 #include "devices/robot_commands/client.hpp"
 
 namespace armctl::python {
@@ -20,7 +21,9 @@ class DeviceGate;
 // `timeout` s, as dicts {kind, group, count}. Receives in short turns on `gate` (the GIL
 // released meanwhile), so that other threads' calls (a run_group, a stop_group) go between
 // them and a close() does not wait for the timeout; `client()` gives the client during a turn.
+// One overload per source: a board's client (RobotCommands), an arm device's action groups (Arm).
 py::list group_events(DeviceGate& gate, const std::function<robot_commands::Client&()>& client, double timeout);
+py::list group_events(DeviceGate& gate, const std::function<arm::ActionGroups&()>& groups, double timeout);
 
 // Runs `f` with the GIL released and returns what it returns.
 template <typename F>

@@ -189,7 +189,11 @@ auto in_turn(R (PyRobotCommands::*call)(A...)) {
 
 }  // namespace
 
-py::list group_events(DeviceGate& gate, const std::function<robot_commands::Client&()>& client, double timeout) {
+namespace {
+
+// Source: robot_commands::Client or arm::ActionGroups (clock, pump_events, next_event).
+template <typename Source>
+py::list events_of(DeviceGate& gate, const std::function<Source&()>& client, double timeout) {
   if (!(timeout >= 0 && timeout <= 3600))
     raise(ErrorKind::invalid_argument, fmt::format("timeout {} s is not allowed: 0..3600 s", timeout));
   const auto wait = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(timeout));
@@ -212,6 +216,15 @@ py::list group_events(DeviceGate& gate, const std::function<robot_commands::Clie
     }
     return out;
   }
+}
+
+}  // namespace
+
+py::list group_events(DeviceGate& gate, const std::function<robot_commands::Client&()>& client, double timeout) {
+  return events_of(gate, client, timeout);
+}
+py::list group_events(DeviceGate& gate, const std::function<arm::ActionGroups&()>& groups, double timeout) {
+  return events_of(gate, groups, timeout);
 }
 
 void define_robot_commands(py::module_& m) {

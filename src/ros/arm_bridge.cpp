@@ -42,7 +42,7 @@ ArmInfo info_of(const session::ArmSession& session) {
   info.base_frame = j["base_link"].get<std::string>();
   info.tool_frame = j["tool_link"].get<std::string>();
   info.urdf = read_text(model.urdf);
-  info.action_groups = session.rc != nullptr;
+  info.action_groups = session.arm->device().action_groups() != nullptr;
   return info;
 }
 
@@ -294,9 +294,8 @@ MotionOutcome ArmBridge::run_action_group(int group, int times) {
     return refusal_outcome(Error{ErrorKind::unsupported,
                                  "action groups run on a Robot Commands board (the xArm, or the SCARA through the arm "
                                  "controller); this arm is on the joint bus"});
-  auto& session = impl_->worker.session();
-  return impl_->run("action group", [&session, group, times](arm::Arm&, session::JobContext&) {
-    return session.rc->client->run_group(std::uint8_t(group), std::uint16_t(times));
+  return impl_->run("action group", [group, times](arm::Arm& arm, session::JobContext&) {
+    return arm.device().action_groups()->run(std::uint8_t(group), std::uint16_t(times));
   });
 }
 
@@ -304,9 +303,8 @@ MotionOutcome ArmBridge::stop_action_group() {
   if (!impl_->info.action_groups)
     return refusal_outcome(Error{ErrorKind::unsupported,
                                  "action groups run on a Robot Commands board; this arm is on the joint bus"});
-  auto& session = impl_->worker.session();
   return impl_->run("stop action group",
-                    [&session](arm::Arm&, session::JobContext&) { return session.rc->client->stop_group(); });
+                    [](arm::Arm& arm, session::JobContext&) { return arm.device().action_groups()->stop(); });
 }
 
 void ArmBridge::stop() { impl_->lane.stop(); }

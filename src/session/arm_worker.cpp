@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <exception>
 
-#include "devices/joint_bus/joint_diagnostics.hpp"
 
 namespace armctl::session {
 
@@ -277,18 +276,7 @@ void ArmWorker::loop() {
 }
 
 ArmStatus read_arm_status(ArmSession& session) {
-  ArmStatus status;
-  if (session.rc) {
-    if (auto mv = session.rc->client->battery_millivolts()) status.battery_volts = *mv / 1000.0;
-  }
-  if (session.master) {
-    for (int j = 1; j <= session.master->joint_count(); ++j) {
-      auto d = session.master->read_diagnostics(j);
-      if (!d) continue;  // legacy firmware has no diagnostics; a dead joint shows in the reads
-      if (d->faults != 0) status.faults.push_back(fmt::format("joint {}: {}", j, joint_bus::describe_faults(d->faults)));
-    }
-  }
-  return status;
+  return session.arm->device().health();
 }
 
 }  // namespace armctl::session

@@ -27,10 +27,9 @@
 namespace armctl::session {
 
 // Slower-changing state, read every `status_interval` while no job runs.
-struct ArmStatus {
-  std::optional<double> battery_volts;  // Robot Commands boards
-  std::vector<std::string> faults;      // one line per joint fault ("joint 3: runaway")
-};
+// The slower state: the device's health (battery of a Robot Commands board, one line per
+// joint fault: "joint 3: runaway").
+using ArmStatus = arm::DeviceHealth;
 
 struct ArmSnapshot {
   std::uint64_t sequence = 0;  // +1 per published change; 0 = nothing read yet

@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "arm/group_actions.hpp"
 #include "core/printable.hpp"
 #include "core/quantity.hpp"
 #include "web/display_value.hpp"
@@ -51,8 +52,7 @@ GroupFrames frames_to_group(const arm::ArmModel& model, const json& frames) {
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const std::string at = fmt::format("frames[{}].", k);
     BodyReader r(frames[k], at);
-    robot_commands::GroupAction action;
-    action.time_ms = std::uint16_t(r.integer("time_ms", 0, rc::kMoveTimeMaxMs));
+    const auto time_ms = std::uint16_t(r.integer("time_ms", 0, rc::kMoveTimeMaxMs));
     const json& positions = r.require("positions", "an object {\"<joint name>\": value in deg or mm}");
     r.finish();
     if (!positions.is_object() || positions.empty())
@@ -63,31 +63,20 @@ GroupFrames frames_to_group(const arm::ArmModel& model, const json& frames) {
       const auto index = model.find_joint(it.key());
       if (!index) bad_value(field, fmt::format("arm {} has no such joint", model.name));
       const auto& j = model.joints[std::size_t(*index)];
-      if (!j.robot_commands) bad_value(field, fmt::format("joint {} has no Robot Commands servo", j.name));
+      if (!j.map(kRc)) bad_value(field, fmt::format("joint {} has no Robot Commands servo", j.name));
       if (targets[std::size_t(*index)]) bad_value(field, fmt::format("joint {} is given twice", j.name));
       if (!it->is_number() || !std::isfinite(it->get<double>()))
         bad_value(field, fmt::format("{} is not allowed; a number in {}", shown(*it), display_unit(j.dimension)));
       targets[std::size_t(*index)] = from_display(j.dimension, it->get<double>());
     }
-    std::vector<double> q(model.joints.size(), 0.0);
-    for (std::size_t i = 0; i < q.size(); ++i) {
-      if (targets[i]) q[i] = *targets[i];
+    for (std::size_t i = 0; i < targets.size(); ++i) {
       if (auto p = partner(model, i); p && targets[i].has_value() != targets[*p].has_value())
         bad_value(at + "positions", fmt::format("joints {} and {} are driven together: give both or neither",
                                                 model.joints[i].name, model.joints[*p].name));
     }
-    const std::vector<double> device = model.to_device(kRc, q);
-    for (std::size_t i = 0; i < q.size(); ++i) {
-      if (!targets[i]) continue;
-      const auto& j = model.joints[i];
-      const double units = std::round(device[i]);
-      if (!(units >= 0 && units <= rc::kPositionMax))
-        bad_value(at + "positions." + j.name,
-                  fmt::format("{} is servo position {:.0f}, outside the servo's 0..1000", format_quantity(j.dimension, q[i]),
-                              units));
-      action.targets.push_back({std::uint8_t(j.robot_commands->id), std::uint16_t(units)});
-    }
-    out.group.actions.push_back(std::move(action));
+    auto action = arm::servo_action(model, targets, time_ms);
+    if (!action) bad_value(at + "positions", action.error().message);
+    out.group.actions.push_back(std::move(action).value());
     out.targets.push_back(std::move(targets));
   }
   // The group file's own rules (every action the same servos, ...): format and parse it.
@@ -109,7 +98,7 @@ json group_to_frames(const arm::ArmModel& model, const motion::ActionGroupFile& 
     for (const auto& t : action.targets) {
       std::optional<std::size_t> joint;
       for (std::size_t i = 0; i < model.joints.size(); ++i)
-        if (model.joints[i].robot_commands && model.joints[i].robot_commands->id == t.servo) joint = i;
+        if (model.joints[i].map(kRc) && model.joints[i].map(kRc)->id == t.servo) joint = i;
       if (!joint) throw ApiError(400, fmt::format("action {}: servo {} is not a joint of arm {}", k + 1, t.servo, model.name));
       if (!t.position) continue;  // keep: left out of the frame
       device[*joint] = *t.position;

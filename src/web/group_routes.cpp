@@ -4,7 +4,6 @@
 #include <fmt/core.h>
 
 #include "core/quantity.hpp"
-#include "devices/robot_commands/group_start.hpp"
 #include "web/display_value.hpp"
 #include "web/api_error.hpp"
 #include "web/group_frames.hpp"
@@ -24,11 +23,11 @@ void require_board(WebServer::State& s) {
 }  // namespace
 
 void add_group_routes(WebServer::State& s) {
-  auto board = [&s](const std::string& what, std::function<Status(robot_commands::Client&)> f) {
-    auto* rc = s.worker.session().rc.get();
-    s.run_to_end(what, [rc, f](arm::Arm&, session::JobContext&) -> Status {
-      Status st = f(*rc->client);
-      while (rc->client->next_event()) {
+  auto board = [&s](const std::string& what, std::function<Status(arm::ActionGroups&)> f) {
+    s.run_to_end(what, [f](arm::Arm& arm, session::JobContext&) -> Status {
+      arm::ActionGroups* groups = arm.device().action_groups();  // require_board: there
+      Status st = f(*groups);
+      while (groups->next_event()) {
       }
       return st;
     });
@@ -46,7 +45,7 @@ void add_group_routes(WebServer::State& s) {
       if (auto ok = s.kinematics().check_targets(g.targets[k]); !ok)
         throw ApiError(400, fmt::format("frames[{}]: {}", k, ok.error().message));
     board(fmt::format("download group {}", n),
-          [n, actions = g.group.actions](robot_commands::Client& client) { return client.download_group(n, actions); });
+          [n, actions = g.group.actions](arm::ActionGroups& groups) { return groups.download(n, actions); });
     c.reply({{"group", n}, {"frames", g.group.actions.size()}});
   });
   s.router.add("DELETE", "/api/v1/groups/([^/]+)", [&s, board](Call& c) {
@@ -54,7 +53,7 @@ void add_group_routes(WebServer::State& s) {
     s.lease.require(c.client);
     const auto n = parse_group_number(c.params[0]);
     parse_empty_request(c.body());
-    board(fmt::format("erase group {}", n), [n](robot_commands::Client& client) { return client.erase_group(n); });
+    board(fmt::format("erase group {}", n), [n](arm::ActionGroups& groups) { return groups.erase(n); });
     c.reply({{"erased", n}});
   });
   s.router.add("POST", "/api/v1/groups/([^/]+)/run", [&s, board](Call& c) {
@@ -62,23 +61,21 @@ void add_group_routes(WebServer::State& s) {
     s.lease.require(c.client);
     const auto n = parse_group_number(c.params[0]);
     const auto times = parse_group_run(c.body());
-    board(fmt::format("run group {}", n), [n, times](robot_commands::Client& client) {
-      return robot_commands::run_group_started(client, n, times);
-    });
+    board(fmt::format("run group {}", n), [n, times](arm::ActionGroups& groups) { return groups.run_started(n, times); });
     c.reply({{"running", n}, {"times", times}, {"continuous", times == 0}});
   });
   s.router.add("POST", "/api/v1/groups/speed", [&s, board](Call& c) {
     require_board(s);
     s.lease.require(c.client);
     const auto percent = parse_group_speed(c.body());
-    board("group speed", [percent](robot_commands::Client& client) { return client.set_group_speed(255, percent); });
+    board("group speed", [percent](arm::ActionGroups& groups) { return groups.set_speed(255, percent); });
     c.reply({{"percent", percent}});
   });
   s.router.add("POST", "/api/v1/groups/stop", [&s, board](Call& c) {
     require_board(s);
     s.lease.require(c.client);
     parse_empty_request(c.body());
-    board("stop group", [](robot_commands::Client& client) { return client.stop_group(); });
+    board("stop group", [](arm::ActionGroups& groups) { return groups.stop(); });
     c.reply({{"stopped", true}});
   });
   s.router.add("POST", "/api/v1/groups/import", [&s](Call& c) {
@@ -94,7 +91,7 @@ void add_group_routes(WebServer::State& s) {
                                       snapshot.link_error.empty() ? "" : ": " + snapshot.link_error));
     json positions = json::object();
     for (std::size_t i = 0; i < model.joints.size(); ++i)
-      if (model.joints[i].robot_commands)
+      if (model.joints[i].map(arm::Protocol::robot_commands))
         positions[model.joints[i].name] = display_value(model.joints[i].dimension, snapshot.positions[i]);
     c.reply({{"time_ms", 1000}, {"positions", std::move(positions)}});
   });

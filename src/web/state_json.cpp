@@ -25,8 +25,8 @@ DeviceInfo describe_device(session::ArmSession& session, const std::string& uri)
   d.device = uri;
   d.description = session.arm->device().description();
   d.protocol = session.arm->device().protocol();
-  d.groups_supported = session.rc != nullptr;
-  d.reconnects = uri.empty() || session.reconnecting != nullptr;
+  d.groups_supported = session.arm->device().action_groups() != nullptr;
+  d.reconnects = uri.empty() || session.reconnects;
   return d;
 }
 
@@ -40,7 +40,7 @@ json model_json(const arm::ArmModel& model, const DeviceInfo& device) {
                {"min", display_value(j.dimension, j.limits.lower)},
                {"max", display_value(j.dimension, j.limits.upper)},
                {"gripper", j.role == arm::JointRole::gripper},
-               {"raw_unit", device.protocol == arm::Protocol::robot_commands ? "servo units" : "counts"}};
+               {"raw_unit", arm::protocol_info(device.protocol).raw_unit}};
     if (const auto& map = j.map(device.protocol)) {
       const double a = std::clamp(map->to_device(j.limits.lower), range.min, range.max);
       const double b = std::clamp(map->to_device(j.limits.upper), range.min, range.max);

@@ -22,7 +22,7 @@ struct DeviceInfo {
   std::string device;       // the URI as given ("" = the embedded simulator)
   std::string description;  // the device's own description
   arm::Protocol protocol = arm::Protocol::robot_commands;
-  bool groups_supported = false;  // a Robot Commands board (action groups)
+  bool groups_supported = false;  // the device has action groups (a Robot Commands board)
   // A lost link is opened again by itself (a joint bus on a socket or serial port, and the
   // embedded simulators, which cannot be lost); else `serve` must be restarted.
   bool reconnects = false;

@@ -79,7 +79,7 @@ struct BadEdit {
 TEST(ArmModel, BadFilesAreRefusedNamingTheProblem) {
   const BadEdit cases[] = {
       {"unknown key", [](nlohmann::json& j) { j["colour"] = "red"; }, "colour: unknown key"},
-      {"unknown family", [](nlohmann::json& j) { j["family"] = "delta"; }, "allowed: xarm, scara"},
+      {"unknown family", [](nlohmann::json& j) { j["family"] = "delta"; }, "unknown arm family 'delta' (known: xarm, scara"},
       {"joint not in URDF", [](nlohmann::json& j) { j["joints"][1]["name"] = "elbow"; }, "has no joint named 'elbow'"},
       {"chain joint missing", [](nlohmann::json& j) { j["joints"].erase(1); }, "which the arm file does not describe"},
       {"wrong unit for the joint type",

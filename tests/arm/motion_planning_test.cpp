@@ -58,7 +58,7 @@ class XarmMotion : public ::testing::Test {
   std::vector<double> true_joints() {
     std::vector<double> device;
     for (const auto& j : arm.model().joints)
-      device.push_back(link.emulator().servos().commanded_position(std::uint8_t(j.robot_commands->id)));
+      device.push_back(link.emulator().servos().commanded_position(std::uint8_t(j.map(Protocol::robot_commands)->id)));
     return arm.model().from_device(Protocol::robot_commands, device);
   }
   Eigen::Vector3d true_tool() { return arm.forward(arm.chain_of(true_joints())).position; }
@@ -334,7 +334,7 @@ class ScaraMotion : public ::testing::Test {
   std::vector<double> here() { return arm.read().value().positions; }
   Eigen::Vector3d true_tool() {
     std::vector<double> device;
-    for (const auto& j : arm.model().joints) device.push_back(sim->joint(j.joint_bus->id).controller().position());
+    for (const auto& j : arm.model().joints) device.push_back(sim->joint(j.map(Protocol::joint_bus)->id).controller().position());
     return arm.forward(arm.chain_of(arm.model().from_device(Protocol::joint_bus, device))).position;
   }
 };
@@ -391,7 +391,7 @@ TEST(ControllerMotion, LinThroughTheArmControllerStaysWithinItsResolution) {
   ASSERT_TRUE(arm.wait());
   auto true_tool = [&] {
     std::vector<double> device;
-    for (const auto& j : model.joints) device.push_back(rig.clicks(j.joint_bus->id));
+    for (const auto& j : model.joints) device.push_back(rig.clicks(j.map(Protocol::joint_bus)->id));
     return arm.forward(arm.chain_of(model.from_device(Protocol::joint_bus, device))).position;
   };
   const auto from = arm.read().value().positions;

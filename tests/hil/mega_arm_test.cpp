@@ -28,7 +28,7 @@ struct MegaArm {
   // Where the joints truly are (emulated encoders), in SI through the arm file's joint-bus map.
   std::vector<double> true_positions() {
     std::vector<double> device;
-    for (const auto& j : model.joints) device.push_back(rig.clicks(j.joint_bus->id));
+    for (const auto& j : model.joints) device.push_back(rig.clicks(j.map(Protocol::joint_bus)->id));
     return model.from_device(Protocol::joint_bus, device);
   }
   MegaRig rig;

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "kdl_oracle.hpp"
+#include "motion/scara_kinematics.hpp"
 #include "motion/urdf_chain.hpp"
+#include "motion/xarm_kinematics.hpp"
 
 namespace armctl::motion::testing {
 
@@ -19,14 +21,16 @@ inline UrdfChain shipped_chain(const std::string& arm) {
   return chain.value();
 }
 
-inline KinematicFamily family_of(const std::string& arm) {
-  return arm == "scara" ? KinematicFamily::scara : KinematicFamily::xarm;
+// A family's kinematics factory (the built-in families' own; arm/arm_families.hpp names them).
+using MakeKinematics = Result<std::unique_ptr<Kinematics>> (*)(const UrdfChain&, std::span<const PositionLimits>);
+inline MakeKinematics family_of(const std::string& arm) {
+  return arm == "scara" ? make_scara_kinematics : make_xarm_kinematics;
 }
 
 inline std::unique_ptr<Kinematics> shipped_kinematics(const std::string& arm) {
   const UrdfChain chain = shipped_chain(arm);
   const auto limits = urdf_position_limits(chain);
-  auto k = make_kinematics(family_of(arm), chain, limits);
+  auto k = family_of(arm)(chain, limits);
   if (!k) throw std::runtime_error(k.error().message);
   return std::move(k).value();
 }

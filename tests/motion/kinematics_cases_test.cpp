@@ -13,6 +13,7 @@ namespace {
 
 using ::testing::HasSubstr;
 using testing::edited;
+using testing::MakeKinematics;
 using testing::urdf_text;
 constexpr double kPi = std::numbers::pi;
 
@@ -153,7 +154,7 @@ TEST_F(Scara, ZOutsideItsTravelNamesTheJoint) {
 TEST_F(Scara, TighterLimitsFromTheArmFileAreKept) {
   auto limits = urdf_position_limits(testing::shipped_chain("scara"));
   limits[1] = {deg(-10), deg(10)};
-  auto tight = make_kinematics(KinematicFamily::scara, testing::shipped_chain("scara"), limits);
+  auto tight = make_scara_kinematics(testing::shipped_chain("scara"), limits);
   ASSERT_TRUE(tight.ok());
   auto s = (*tight)->inverse(IkRequest{pose({0.1, deg(30), deg(60), 0.2, 0.5, 0.4})}, zero);
   ASSERT_FALSE(s.ok());
@@ -327,7 +328,7 @@ TEST_F(Xarm, ServoLimitsAreNamed) {
   // refuses.
   auto limits = urdf_position_limits(testing::shipped_chain("xarm"));
   limits[1] = {0, deg(120)};
-  auto tight = make_kinematics(KinematicFamily::xarm, testing::shipped_chain("xarm"), limits);
+  auto tight = make_xarm_kinematics(testing::shipped_chain("xarm"), limits);
   ASSERT_TRUE(tight.ok());
   const Eigen::Vector3d p(0.15 * std::cos(deg(130)), 0.15 * std::sin(deg(130)), 0.1);
   auto s = (*tight)->inverse(IkRequest{Pose{p, from_rpy({0, 0, deg(130)})}}, zero);
@@ -338,10 +339,10 @@ TEST_F(Xarm, ServoLimitsAreNamed) {
 
 // --- chains of the wrong shape ----------------------------------------------------------
 
-std::string shape_error(KinematicFamily family, const std::string& text) {
+std::string shape_error(MakeKinematics make, const std::string& text) {
   auto chain = read_urdf_chain(text, "base_link", "tool");
   if (!chain) return "URDF: " + chain.error().message;
-  auto k = make_kinematics(family, *chain, urdf_position_limits(*chain));
+  auto k = make(*chain, urdf_position_limits(*chain));
   if (k) return "(accepted)";
   EXPECT_EQ(k.error().kind, ErrorKind::invalid_config);
   return k.error().message;
@@ -360,28 +361,28 @@ std::string replace_nth(std::string text, const std::string& from, const std::st
 }
 
 TEST(KinematicShape, FamiliesNeedTheirJointCount) {
-  EXPECT_THAT(shape_error(KinematicFamily::xarm, urdf_text("scara")), HasSubstr("needs 5 chain joints"));
-  EXPECT_THAT(shape_error(KinematicFamily::scara, urdf_text("xarm")), HasSubstr("needs 6 chain joints"));
+  EXPECT_THAT(shape_error(make_xarm_kinematics, urdf_text("scara")), HasSubstr("needs 5 chain joints"));
+  EXPECT_THAT(shape_error(make_scara_kinematics, urdf_text("xarm")), HasSubstr("needs 6 chain joints"));
 }
 
 TEST(KinematicShape, ScaraRefusesATiltedElbowAxis) {
   const std::string text = replace_nth(urdf_text("scara"), "<axis xyz=\"0 0 1\"/>", "<axis xyz=\"0 0.01 1\"/>", 2);
-  EXPECT_THAT(shape_error(KinematicFamily::scara, text), HasSubstr("joint UAE's axis is 0.5729 deg off joint Z's"));
+  EXPECT_THAT(shape_error(make_scara_kinematics, text), HasSubstr("joint UAE's axis is 0.5729 deg off joint Z's"));
 }
 
 TEST(KinematicShape, ScaraRefusesWristAxesThatDoNotMeet) {
   const std::string ske = "<origin xyz=\"0 0 0\" rpy=\"1.5707963267948966 0 0\"/>";
-  EXPECT_THAT(shape_error(KinematicFamily::scara, replace_nth(urdf_text("scara"), ske,
+  EXPECT_THAT(shape_error(make_scara_kinematics, replace_nth(urdf_text("scara"), ske,
                                                               "<origin xyz=\"0.01 0 0\" rpy=\"1.5707963267948966 0 0\"/>", 0)),
               HasSubstr("the axes of joints UAJ and SKE pass 10 mm apart"));
-  EXPECT_THAT(shape_error(KinematicFamily::scara, replace_nth(urdf_text("scara"), ske,
+  EXPECT_THAT(shape_error(make_scara_kinematics, replace_nth(urdf_text("scara"), ske,
                                                               "<origin xyz=\"0 0 0.01\" rpy=\"1.5707963267948966 0 0\"/>", 1)),
               HasSubstr("joint SKF's axis passes 10 mm from the wrist centre"));
 }
 
 TEST(KinematicShape, ScaraRefusesATurningColumn) {
   const std::string text = edited(urdf_text("scara"), "name=\"Z\" type=\"prismatic\"", "name=\"Z\" type=\"revolute\"");
-  EXPECT_THAT(shape_error(KinematicFamily::scara, text), HasSubstr("joint Z is revolute; joint 1 (Z) must be prismatic"));
+  EXPECT_THAT(shape_error(make_scara_kinematics, text), HasSubstr("joint Z is revolute; joint 1 (Z) must be prismatic"));
 }
 
 TEST(KinematicShape, ScaraAcceptsOtherLengths) {
@@ -390,7 +391,7 @@ TEST(KinematicShape, ScaraAcceptsOtherLengths) {
   text = edited(text, "<origin xyz=\"0.175 0 0\"", "<origin xyz=\"0.181 0.004 -0.01\"");
   auto chain = read_urdf_chain(text, "base_link", "tool");
   ASSERT_TRUE(chain.ok());
-  auto k = make_kinematics(KinematicFamily::scara, *chain, urdf_position_limits(*chain));
+  auto k = make_scara_kinematics(*chain, urdf_position_limits(*chain));
   ASSERT_TRUE(k.ok()) << k.error().message;
   const JointVector q = joints({0.1, 0.3, 0.8, 0.2, 0.5, 0.4});
   EXPECT_NEAR((*k)->forward(JointVector::Zero(6)).position.x(), 0.255 + 0.2612 + 0.181, 1e-15);
@@ -401,10 +402,10 @@ TEST(KinematicShape, ScaraAcceptsOtherLengths) {
 }
 
 TEST(KinematicShape, XarmRefusesAToolOffItsRollAxisOrSideways) {
-  EXPECT_THAT(shape_error(KinematicFamily::xarm, edited(urdf_text("xarm"), "<origin xyz=\"0 0 0.05\" rpy=\"0 -1.5707963267948966 0\"/>",
+  EXPECT_THAT(shape_error(make_xarm_kinematics, edited(urdf_text("xarm"), "<origin xyz=\"0 0 0.05\" rpy=\"0 -1.5707963267948966 0\"/>",
                                                         "<origin xyz=\"0 0.002 0.05\" rpy=\"0 -1.5707963267948966 0\"/>")),
               HasSubstr("the tool point is 2 mm off joint servo2's axis"));
-  EXPECT_THAT(shape_error(KinematicFamily::xarm, edited(urdf_text("xarm"), "<origin xyz=\"0 0 0.032\"", "<origin xyz=\"0 0.003 0.032\"")),
+  EXPECT_THAT(shape_error(make_xarm_kinematics, edited(urdf_text("xarm"), "<origin xyz=\"0 0 0.032\"", "<origin xyz=\"0 0.003 0.032\"")),
               HasSubstr("the tool point is 3 mm sideways of the base axis"));
 }
 
@@ -413,7 +414,7 @@ TEST(KinematicShape, XarmAcceptsOtherLengths) {
   text = edited(text, "<origin xyz=\"0 0 0.0965\"", "<origin xyz=\"0.001 0 0.0947\"");
   auto chain = read_urdf_chain(text, "base_link", "tool");
   ASSERT_TRUE(chain.ok());
-  auto k = make_kinematics(KinematicFamily::xarm, *chain, urdf_position_limits(*chain));
+  auto k = make_xarm_kinematics(*chain, urdf_position_limits(*chain));
   ASSERT_TRUE(k.ok()) << k.error().message;
   const JointVector q = joints({0.3, 0.3, 0.6, 0.3, 0.2});
   auto s = (*k)->inverse(IkRequest{(*k)->forward(q)}, q);
@@ -425,12 +426,12 @@ TEST(KinematicShape, XarmAcceptsOtherLengths) {
 TEST(KinematicShape, LimitsMustMatchTheChain) {
   const UrdfChain chain = testing::shipped_chain("scara");
   std::vector<PositionLimits> five(5, PositionLimits{-1, 1});
-  auto k = make_kinematics(KinematicFamily::scara, chain, five);
+  auto k = make_scara_kinematics(chain, five);
   ASSERT_FALSE(k.ok());
   EXPECT_THAT(k.error().message, HasSubstr("5 limits given for the scara chain of 6 joints"));
   auto limits = urdf_position_limits(chain);
   limits[2] = {1, -1};
-  auto inverted = make_kinematics(KinematicFamily::scara, chain, limits);
+  auto inverted = make_scara_kinematics(chain, limits);
   ASSERT_FALSE(inverted.ok());
   EXPECT_THAT(inverted.error().message, HasSubstr("joint UAE: position limits"));
 }

@@ -14,7 +14,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "motion/scara_kinematics.hpp"
 #include "motion/urdf_chain.hpp"
+#include "motion/xarm_kinematics.hpp"
 
 namespace armctl::motion {
 namespace {
@@ -37,7 +39,7 @@ TestArm shipped(const std::string& arm) {
   if (!chain) throw std::runtime_error(chain.error().message);
   const auto positions = urdf_position_limits(*chain);
   const bool xarm = arm == "xarm";
-  auto k = make_kinematics(xarm ? KinematicFamily::xarm : KinematicFamily::scara, *chain, positions);
+  auto k = (xarm ? make_xarm_kinematics : make_scara_kinematics)(*chain, positions);
   if (!k) throw std::runtime_error(k.error().message);
   TestArm out;
   out.kinematics = std::move(k).value();
@@ -340,7 +342,7 @@ TEST(PathCheck, ALineThatCannotLeaveASingularStartIsRefusedSayingWhatToDo) {
 // One joint whose only solution jumps by 2 at x = 0.05 m: a configuration change.
 class JumpingKinematics final : public Kinematics {
  public:
-  KinematicFamily family() const override { return KinematicFamily::scara; }
+  std::string_view family() const override { return "scara"; }
   int joint_count() const override { return 1; }
   Pose forward(const JointVector& q) const override {
     Pose p;

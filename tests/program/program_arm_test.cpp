@@ -70,7 +70,7 @@ class XarmProgram : public ::testing::Test {
   std::vector<double> true_joints() {
     std::vector<double> device;
     for (const auto& j : arm.model().joints)
-      device.push_back(link.emulator().servos().commanded_position(std::uint8_t(j.robot_commands->id)));
+      device.push_back(link.emulator().servos().commanded_position(std::uint8_t(j.map(arm::Protocol::robot_commands)->id)));
     return arm.model().from_device(arm::Protocol::robot_commands, device);
   }
   Eigen::Vector3d true_tool() { return arm.forward(arm.chain_of(true_joints())).position; }
@@ -87,7 +87,7 @@ class ScaraProgram : public ::testing::Test {
   std::vector<double> here() { return arm.read().value().positions; }
   Eigen::Vector3d true_tool() {
     std::vector<double> device;
-    for (const auto& j : arm.model().joints) device.push_back(sim->joint(j.joint_bus->id).controller().position());
+    for (const auto& j : arm.model().joints) device.push_back(sim->joint(j.map(arm::Protocol::joint_bus)->id).controller().position());
     return arm.forward(arm.chain_of(arm.model().from_device(arm::Protocol::joint_bus, device))).position;
   }
 };
@@ -328,7 +328,7 @@ TEST(ProgramCompile, RefusesAnArmWithoutRobotCommandsServosAndTooManyActions) {
   auto sim = test::make_arm(115200);
   joint_bus::BusMaster master{sim->link()};
   arm::ArmModel model = shipped("scara");
-  for (auto& j : model.joints) j.robot_commands.reset();
+  for (auto& j : model.joints) j.devices.erase("robot_commands");
   arm::Arm arm{model, std::make_unique<arm::BusArmDevice>(model, master, sim->link(), "simulated SCARA")};
   ProgramPlan plan;
   plan.start = arm.read().value().positions;

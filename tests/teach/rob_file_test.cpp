@@ -33,7 +33,7 @@ ActionGroupFile group_of(std::vector<std::pair<std::uint16_t, std::vector<std::u
   ActionGroupFile g;
   g.servos = {1, 2, 3, 4, 5, 6};
   for (auto& [ms, p] : actions) {
-    robot_commands::GroupAction a;
+    rc::GroupAction a;
     a.time_ms = ms;
     for (std::size_t i = 0; i < p.size(); ++i) a.targets.push_back({std::uint8_t(i + 1), p[i]});
     g.actions.push_back(a);

@@ -81,7 +81,7 @@ class XarmTeach : public ::testing::Test {
   xarm::XarmServos& servos() { return link.emulator().servos(); }
   // Where the hand puts servo `id`, as the Arm reads it (SI).
   bool hand(int joint, double si) {
-    const auto& map = *arm.model().joints[std::size_t(joint)].robot_commands;
+    const auto& map = *arm.model().joints[std::size_t(joint)].map(arm::Protocol::robot_commands);
     return servos().move_by_hand(std::uint8_t(map.id), std::round(map.to_device(si)));
   }
   std::vector<double> here() { return arm.read().value().positions; }
@@ -314,7 +314,7 @@ class ScaraTeach : public ::testing::Test {
   }
   // The hand turns joint `joint` by `si` (rad or m).
   bool turn(int joint, double si) {
-    const auto& map = *arm.model().joints[std::size_t(joint)].joint_bus;
+    const auto& map = *arm.model().joints[std::size_t(joint)].map(arm::Protocol::joint_bus);
     return sim->joint(map.id).turn_by_hand(si * map.device_per_unit());
   }
 };
@@ -335,7 +335,7 @@ TEST(ScaraRecording, ARateTheLinkCannotKeepIsRefusedAndTheDurationIsKept) {
   EXPECT_NE(refused.error().message.find("rate 20 Hz is faster than this link allows"), std::string::npos)
       << refused.error().message;
   EXPECT_NE(refused.error().message.find("Hz or less (nothing recorded, torque not switched off)"), std::string::npos);
-  for (const auto& j : arm.model().joints) EXPECT_TRUE(sim->joint(j.joint_bus->id).controller().loop_enabled());
+  for (const auto& j : arm.model().joints) EXPECT_TRUE(sim->joint(j.map(arm::Protocol::joint_bus)->id).controller().loop_enabled());
 
   RecordOptions kept;
   kept.rate = 10;
@@ -359,7 +359,7 @@ TEST_F(ScaraTeach, PointsFromAScriptLoopsOffThenHolding) {
   auto n = teach_points(arm, path, script.io());
   ASSERT_TRUE(n) << n.error().message;
   EXPECT_EQ(*n, 2u);
-  for (const auto& j : arm.model().joints) EXPECT_TRUE(sim->joint(j.joint_bus->id).controller().loop_enabled());
+  for (const auto& j : arm.model().joints) EXPECT_TRUE(sim->joint(j.map(arm::Protocol::joint_bus)->id).controller().loop_enabled());
   auto file = program::read_points_file(path);
   ASSERT_TRUE(file) << file.error().message;
   ASSERT_EQ(file->points.size(), 2u);

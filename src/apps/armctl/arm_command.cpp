@@ -63,6 +63,14 @@ void must(const Status& s) {
   if (!s) throw ArmctlError(s.error());
 }
 
+// The joint's map on the first protocol that drives it, in the protocols' order (a Robot
+// Commands servo before a joint-bus joint, as the arm files list them).
+const arm::DeviceMap* first_map(const arm::JointModel& j) {
+  for (arm::Protocol p : arm::protocols())
+    if (const arm::DeviceMap* map = j.map(p)) return map;
+  return nullptr;
+}
+
 // A joint as the user names it: its name (any case) or its number — the servo ID on a
 // Robot Commands arm, the joint number on the joint bus (the same numbers the devices use).
 int find_joint(const arm::ArmModel& m, const std::string& word) {
@@ -71,16 +79,12 @@ int find_joint(const arm::ArmModel& m, const std::string& word) {
   auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), n);
   if (ec == std::errc() && end == word.data() + word.size()) {
     for (int i = 0; i < m.joint_count(); ++i) {
-      const auto& j = m.joints[std::size_t(i)];
-      const auto& map = j.robot_commands ? j.robot_commands : j.joint_bus;
+      const arm::DeviceMap* map = first_map(m.joints[std::size_t(i)]);
       if (map && map->id == n) return i;
     }
   }
   std::string names;
-  for (const auto& j : m.joints) {
-    const auto& map = j.robot_commands ? j.robot_commands : j.joint_bus;
-    names += fmt::format("{}{} ({})", names.empty() ? "" : ", ", j.name, map->id);
-  }
+  for (const auto& j : m.joints) names += fmt::format("{}{} ({})", names.empty() ? "" : ", ", j.name, first_map(j)->id);
   usage(fmt::format("arm {} has no joint '{}'; joints (and numbers): {}", m.name, word, names));
 }
 

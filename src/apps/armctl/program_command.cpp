@@ -209,13 +209,14 @@ void run_compile(const ProgramArgs& a) {
   }
   const Loaded l = load(a);
   auto s = session::open_arm_session(a.arm, a.device).value();
-  if (!s->rc)
+  arm::ActionGroups* groups = s->arm->device().action_groups();
+  if (!groups)
     usage(fmt::format("arm '{}' on device '{}' is driven over the joint bus: action groups need a Robot Commands "
                       "board (an xArm, or armctl's arm controller)",
                       s->arm->model().name, a.device.empty() ? "sim" : a.device));
   const auto p = plan(l, *s->arm, true);
   const auto g = must(program::compile_to_group(*s->arm, p, co));
-  if (auto ok = s->rc->client->download_group(group, g.actions); !ok) throw ArmctlError(ok.error());
+  if (auto ok = groups->download(group, g.actions); !ok) throw ArmctlError(ok.error());
   for (const auto& n : g.notes) fmt::print(stderr, "note: {}\n", n);
   if (a.json)
     print_json_line(json{{"event", "compiled"}, {"group", group}, {"actions", g.actions.size()},

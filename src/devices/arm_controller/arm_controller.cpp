@@ -10,13 +10,13 @@
 
 namespace armctl::arm_controller {
 
-using motion::JointMotionModel;
-using motion::JointProfile;
-using motion::MovingStart;
-using motion::PlanInput;
-using motion::PlannedJoint;
-using motion::as_quantized_by_joint;
-using motion::plan_synchronized_move;
+using joint_bus::JointMotionModel;
+using joint_bus::JointProfile;
+using joint_bus::MovingStart;
+using joint_bus::PlanInput;
+using joint_bus::PlannedJoint;
+using joint_bus::as_quantized_by_joint;
+using joint_bus::plan_synchronized_move;
 
 namespace {
 

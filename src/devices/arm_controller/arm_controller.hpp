@@ -24,9 +24,9 @@
 #include <vector>
 
 #include "devices/arm_controller/controller_config.hpp"
-#include "motion/joint_motion_model.hpp"
+#include "devices/joint_bus/joint_motion_model.hpp"
 #include "devices/arm_controller/joint_settings.hpp"
-#include "motion/sync_plan.hpp"
+#include "devices/joint_bus/sync_plan.hpp"
 #include "devices/joint_bus/bus_master.hpp"
 #include "devices/rc_board/arm_backend.hpp"
 
@@ -137,7 +137,7 @@ class ArmController final : public rc_board::ArmBackend {
   // Clicks a Robot Commands position maps to for this joint, with its current offset.
   std::int32_t target_clicks(ServoId servo, std::uint16_t position) const;
   // The plan of the last move (for tests and the benchmark).
-  const motion::SyncPlan& last_plan() const { return last_plan_; }
+  const joint_bus::SyncPlan& last_plan() const { return last_plan_; }
   TimePoint last_move_start() const { return last_move_start_; }
 
  private:
@@ -151,8 +151,8 @@ class ArmController final : public rc_board::ArmBackend {
   };
   struct Joint {
     ControllerJointConfig config;
-    motion::JointProfile profile;  // as the joint quantizes it
-    motion::JointMotionModel model{motion::JointProfile{}};  // its setpoint, replayed from what was sent
+    joint_bus::JointProfile profile;  // as the joint quantizes it
+    joint_bus::JointMotionModel model{joint_bus::JointProfile{}};  // its setpoint, replayed from what was sent
     std::int8_t offset = 0;
     JointStatus status;
     // The last failure's kind and stage (the master's JointFailure; empty when the error had
@@ -190,7 +190,7 @@ class ArmController final : public rc_board::ArmBackend {
   Duration txn_estimate_{};
   Duration min_txn_{};
   ControllerStats stats_;
-  motion::SyncPlan last_plan_;
+  joint_bus::SyncPlan last_plan_;
   TimePoint last_move_start_{};
   TimePoint now_{};
 };

@@ -49,12 +49,7 @@ struct ClientOptions {
   bool servo_off_per_servo = true;
 };
 
-// One action of a group: a MultiServoMove (time + positions).
-struct GroupAction {
-  std::uint16_t time_ms = 0;
-  std::vector<ServoTarget> targets;
-  bool operator==(const GroupAction&) const = default;
-};
+using rc::GroupAction;  // one action of a group (protocol/robot_commands/messages.hpp)
 
 struct ClientStats {
   std::size_t frames_sent = 0;

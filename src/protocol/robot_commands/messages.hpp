@@ -59,6 +59,14 @@ struct ServoTarget {
   bool operator==(const ServoTarget&) const = default;
 };
 
+// One action of a group: a MultiServoMove (time + positions). Here, not in the host SDK, so
+// that the group files (motion/action_group_file.hpp) need only the protocol.
+struct GroupAction {
+  std::uint16_t time_ms = 0;
+  std::vector<ServoTarget> targets;
+  bool operator==(const GroupAction&) const = default;
+};
+
 // ---------------------------------------------------------------- requests (host -> board)
 struct MultiServoMove {
   std::uint16_t time_ms = 0;

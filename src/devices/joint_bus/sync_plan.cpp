@@ -1,10 +1,10 @@
-#include "motion/sync_plan.hpp"
+#include "devices/joint_bus/sync_plan.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-namespace armctl::motion {
+namespace armctl::joint_bus {
 
 namespace {
 
@@ -221,4 +221,4 @@ SyncPlan plan_synchronized_move(std::span<const PlanInput> inputs, Duration want
   return plan;
 }
 
-}  // namespace armctl::motion
+}  // namespace armctl::joint_bus

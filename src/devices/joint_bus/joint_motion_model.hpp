@@ -15,10 +15,10 @@
 #include <optional>
 
 #include "core/clock.hpp"
-#include "motion/sync_plan.hpp"
+#include "devices/joint_bus/sync_plan.hpp"
 #include "portable/setpoint_ramp.hpp"
 
-namespace armctl::motion {
+namespace armctl::joint_bus {
 
 class JointMotionModel {
  public:
@@ -56,4 +56,4 @@ class JointMotionModel {
   std::optional<int> percent_;
 };
 
-}  // namespace armctl::motion
+}  // namespace armctl::joint_bus

@@ -1,8 +1,8 @@
-#include "motion/joint_motion_model.hpp"
+#include "devices/joint_bus/joint_motion_model.hpp"
 
 #include <chrono>
 
-namespace armctl::motion {
+namespace armctl::joint_bus {
 
 namespace {
 constexpr Duration kTick = std::chrono::milliseconds(1);
@@ -62,4 +62,4 @@ bool JointMotionModel::settled_at(TimePoint t) const {
 
 double JointMotionModel::setpoint_clicks_at(TimePoint t) const { return ramp_at(t).setpoint_q8() / 256.0; }
 
-}  // namespace armctl::motion
+}  // namespace armctl::joint_bus

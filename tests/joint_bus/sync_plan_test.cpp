@@ -1,10 +1,10 @@
-#include "motion/sync_plan.hpp"
+#include "devices/joint_bus/sync_plan.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace armctl::motion {
+namespace armctl::joint_bus {
 namespace {
 
 using namespace std::chrono_literals;
@@ -76,4 +76,4 @@ TEST(SyncPlan, MovingStartArrivesAtTheCommonInstantWithoutTurning) {
 }
 
 }  // namespace
-}  // namespace armctl::motion
+}  // namespace armctl::joint_bus

@@ -19,7 +19,7 @@
 #include "core/clock.hpp"
 #include "portable/setpoint_ramp.hpp"
 
-namespace armctl::motion {
+namespace armctl::joint_bus {
 
 struct JointProfile {
   double max_speed_cps = 1;   // at set_speed 100 %
@@ -92,4 +92,4 @@ std::optional<Duration> moving_arrival(const MovingStart& start, std::int32_t ta
 SyncPlan plan_synchronized_move(std::span<const PlanInput> inputs, Duration wanted, Duration setup,
                                 Duration transaction);
 
-}  // namespace armctl::motion
+}  // namespace armctl::joint_bus

@@ -1,0 +1,1 @@
+#pragma once  // a header-only library of the layer check's test project
