@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "motion/action_group_file.hpp"
+#include "files/action_group_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace armctl::motion;

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "motion/recording.hpp"
+#include "files/recording_file.hpp"
 
 namespace {
 

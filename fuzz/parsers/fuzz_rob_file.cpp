@@ -1,4 +1,4 @@
-// Arbitrary bytes into the .rob reader (motion/rob_file.hpp): never a crash; every error
+// Arbitrary bytes into the .rob reader (files/rob_file.hpp): never a crash; every error
 // names the source and an offset; anything accepted holds servos 1..6 with every position
 // in 0..1000, and exports back to the very same bytes but for the unknown header bytes 8..15.
 #include <cstddef>
@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "motion/rob_file.hpp"
+#include "files/rob_file.hpp"
 
 namespace {
 

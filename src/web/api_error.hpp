@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/must.hpp"
 #include "devices/robot_commands/group_start.hpp"
 #include "session/arm_worker.hpp"
 
@@ -48,10 +49,5 @@ inline int status_of(const Error& e) {
 
 [[noreturn]] inline void fail(const Error& e) { throw ApiError(status_of(e), e); }
 
-template <typename T>
-T must(Result<T> r) {
-  if (!r) fail(r.error());
-  return std::move(r).value();
-}
 
 }  // namespace armctl::web

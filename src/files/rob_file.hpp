@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "motion/action_group_file.hpp"
+#include "files/action_group_file.hpp"
 
-namespace armctl::motion {
+namespace armctl::files {
 
 inline constexpr std::size_t kRobHeaderBytes = 16;
 inline constexpr std::size_t kRobFrameBytes = 14;
@@ -42,4 +42,4 @@ Result<ActionGroupFile> read_rob_file(const std::filesystem::path& path);
 // has no "keep").
 Result<std::vector<std::uint8_t>> format_rob_file(const ActionGroupFile& group);
 
-}  // namespace armctl::motion
+}  // namespace armctl::files
