@@ -176,11 +176,14 @@ TEST(BusCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
 TEST(BusCli, AConfigKeyWithControlCharactersIsShownEscaped) {
   const std::string path = "/tmp/armctl-escape-key-" + std::to_string(::getpid()) + ".json";
   {
-    // The shipped config with one unknown key in front: the key is what gets reported.
-    std::ifstream in(std::string(ARMCTL_SOURCE_DIR) + "/config/scara.json");
+    // The shipped arm file with one unknown key in front of its simulator section: the key is
+    // what gets reported.
+    std::ifstream in(std::string(ARMCTL_SOURCE_DIR) + "/config/scara.arm.json");
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    ASSERT_EQ(text.find('{'), 0u) << "config/scara.json does not start with '{'";
-    text.insert(1, "\"\\u001b]0;owned\\u0007\": 1, ");
+    const std::string section = "\"simulator\": {";
+    const auto at = text.find(section);
+    ASSERT_NE(at, std::string::npos) << "config/scara.arm.json has no simulator section";
+    text.insert(at + section.size(), "\"\\u001b]0;owned\\u0007\": 1, ");
     std::ofstream(path) << text;
   }
   const CliRun r = armctl("bus --device 'sim?config=" + path + "' ping");
