@@ -17,6 +17,7 @@
 namespace {
 
 using namespace armctl::motion;
+using namespace armctl::files;
 
 [[noreturn]] void broken(const char* what) {
   std::fprintf(stderr, "fuzz_path_file: %s\n", what);

@@ -21,7 +21,7 @@ void check(bool ok, const char* what) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using namespace armctl::motion;
+  using namespace armctl::files;
   const std::vector<std::uint8_t> bytes(data, data + size);
   auto g = parse_rob_file(bytes, "fuzz");
   if (!g) {
