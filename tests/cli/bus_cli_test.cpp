@@ -162,8 +162,10 @@ TEST(BusCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
       {"sim xarm --battery 4294967296", "--battery: 4294967296 is outside 4500..12000"},
       {"bus --device 'sim?baud=99999999999' ping", "baud 99999999999 is outside 1..4000000"},
       // Files the CLI reads: a directory is refused naming the path.
-      {"bus --device 'sim?config=/tmp' ping", "arm config /tmp is not a regular file (a directory)"},
-      {"sim scara --config /tmp", "arm config /tmp is not a regular file (a directory)"},
+      {"bus --device 'sim?config=/tmp' ping", "simulator config /tmp is not a regular file (a directory)"},
+      {"sim scara --config /tmp", "simulator config /tmp is not a regular file (a directory)"},
+      {"sim scara --arm /tmp", "simulator config /tmp is not a regular file (a directory)"},
+      {"controller --arm /tmp", "arm controller config /tmp is not a regular file (a directory)"},
   };
   for (const auto& [args, want] : cases) {
     const CliRun r = armctl(args);
