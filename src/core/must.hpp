@@ -1,7 +1,7 @@
 // The value of a Result, or its error thrown as ArmctlError: where a Result meets code that
-// reports errors by throwing (the CLI's commands; the HTTP API's handlers and the Python
-// module, whose one catch of ArmctlError turns it into a status code or armctl.Error). The
-// one such helper: before, each app had its own.
+// reports errors by throwing (the CLI's commands; the Python module, whose exception
+// translator turns ArmctlError into armctl.Error). The one such helper: the CLI had three and
+// the Python module its own. The HTTP API keeps web::must, which throws its ApiError.
 #pragma once
 
 #include <utility>
