@@ -78,7 +78,7 @@ TimePoint at_rest(joint_sim::SimArm& sim) {
 }
 
 // The longest a joint can take to brake: from its top speed at its acceleration limit (the
-// joints' tuning, config/scara.json, as the arm file repeats it), plus 50 ms for the
+// joints' tuning, the arm file's joint_bus entries), plus 50 ms for the
 // position loop to settle.
 Duration worst_braking(const arm::ArmModel& m) {
   double s = 0;

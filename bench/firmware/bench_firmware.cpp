@@ -1,6 +1,6 @@
 // Firmware budgets: flash and static RAM from the ELF (avr-size), and worst-case cycle
 // counts measured on emulated silicon (libsimavr) while all seven joints run step moves at
-// 115200 baud with bus traffic, once with config/scara.json's tuning in EEPROM and once
+// 115200 baud with bus traffic, once with config/scara.arm.json's tuning in EEPROM and once
 // with the default tuning a board gets from `make flash`. One line per figure:
 //   BENCH <name> <value> <unit> limit <L> ratio <value/L>   (lower ratio is better)
 // Cycle counts: from the interrupt's dispatch to the end of its RETI as simavr counts
@@ -87,7 +87,7 @@ int main() {
   bench::bench_line("fw_flash", double(sizes.text + sizes.data), "bytes", 8192);
   bench::bench_line("fw_static_ram", double(sizes.data + sizes.bss + sizes.noinit), "bytes", 512);
 
-  // Twice: with config/scara.json's tuning in every joint's EEPROM, and with none (the
+  // Twice: with config/scara.arm.json's tuning in every joint's EEPROM, and with none (the
   // portable default_tuning(), what a board gets from `make flash`).
   int failures = 0;
   for (const bool scara_tuning : {true, false}) {
@@ -97,7 +97,7 @@ int main() {
       std::fprintf(stderr,
                    "bench_firmware: with %s, %d transactions failed or joints ended faulted (joints:%s): "
                    "the figures of this run were measured on an arm that did not follow its moves\n",
-                   scara_tuning ? "config/scara.json's tuning" : "the default tuning", f.failures,
+                   scara_tuning ? "config/scara.arm.json's tuning" : "the default tuning", f.failures,
                    f.faulted_joints.empty() ? " none" : f.faulted_joints.c_str());
     const char* suffix = scara_tuning ? "" : "_default_tuning";
     const std::string tick_name = std::string("fw_control_tick_worst") + suffix;

@@ -5,10 +5,10 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "motion/action_group_file.hpp"
+#include "files/action_group_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using namespace armctl::motion;
+  using namespace armctl::files;
   std::string_view text(reinterpret_cast<const char*>(data), size);
   auto g = parse_action_group(text, "fuzz");
   if (!g.ok()) {

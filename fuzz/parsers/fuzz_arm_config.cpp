@@ -1,6 +1,6 @@
 // The simulated arm's config parser (devices/joint_sim/arm_config.hpp) on hostile input.
 // Input byte 0 chooses the mode: even = the rest is the JSON text itself; odd = the rest
-// chooses edits to config/scara.json (json_edits.hpp). Either way the parser must throw
+// chooses edits to config/scara.arm.json (its simulator section; json_edits.hpp). Either way the parser must throw
 // ArmctlError(invalid_config) with a message naming the source, or return a config whose
 // every value lies in the documented ranges (the tuning is checked by handing it to the
 // joint controller's PositionLoop, which must not need to clamp anything).
@@ -85,7 +85,7 @@ void check_config(const ArmConfig& c) {
 
 const std::string& base_text() {
   static const std::string text =
-      armctl::fuzz::read_text_file(std::string(ARMCTL_SOURCE_DIR) + "/config/scara.json");
+      armctl::fuzz::read_text_file(std::string(ARMCTL_SOURCE_DIR) + "/config/scara.arm.json");
   return text;
 }
 

@@ -1,6 +1,6 @@
 // The arm controller's config parser (devices/arm_controller/controller_config.hpp) on
 // hostile input. Byte 0 chooses the mode: even = the rest is the JSON text; odd = the rest
-// chooses edits to config/scara-arm.json (json_edits.hpp). The parser must throw
+// chooses edits to config/scara.arm.json (its arm_controller section; json_edits.hpp). The parser must throw
 // ArmctlError(invalid_config) naming the source, or return a config whose every value lies
 // in the documented ranges, with maps that convert both ways without overflow.
 #include <cmath>
@@ -70,7 +70,7 @@ void check_config(const ControllerConfig& c) {
 
 const std::string& base_text() {
   static const std::string text =
-      armctl::fuzz::read_text_file(std::string(ARMCTL_SOURCE_DIR) + "/config/scara-arm.json");
+      armctl::fuzz::read_text_file(std::string(ARMCTL_SOURCE_DIR) + "/config/scara.arm.json");
   return text;
 }
 

@@ -1,4 +1,4 @@
-// Arbitrary text into the path-file parser (motion/path_file.hpp): never a crash; every
+// Arbitrary text into the path-file parser (files/path_file.hpp): never a crash; every
 // error names the source and a line; anything accepted obeys the documented limits and
 // survives a format/parse round trip. The lin/circ moves accepted are then built into a
 // Cartesian path from a fixed start: the builder refuses with invalid_argument or returns a
@@ -12,11 +12,12 @@
 #include <vector>
 
 #include "motion/cartesian_path.hpp"
-#include "motion/path_file.hpp"
+#include "files/path_file.hpp"
 
 namespace {
 
 using namespace armctl::motion;
+using namespace armctl::files;
 
 [[noreturn]] void broken(const char* what) {
   std::fprintf(stderr, "fuzz_path_file: %s\n", what);

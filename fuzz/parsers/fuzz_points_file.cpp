@@ -1,4 +1,4 @@
-// Arbitrary text into the points-file parser (program/points_file.hpp): never a crash;
+// Arbitrary text into the points-file parser (files/points_file.hpp): never a crash;
 // every error names the source and is invalid_config; anything accepted has valid unique
 // names and finite values, and survives a format/parse round trip.
 #include <cmath>
@@ -8,11 +8,11 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "program/points_file.hpp"
+#include "files/points_file.hpp"
 
 namespace {
 
-using namespace armctl::program;
+using namespace armctl::files;
 
 void check(bool ok, const char* what) {
   if (!ok) {

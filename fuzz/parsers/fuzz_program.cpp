@@ -14,6 +14,7 @@
 namespace {
 
 using namespace armctl::program;
+using namespace armctl::files;
 
 void check(bool ok, const char* what) {
   if (!ok) {

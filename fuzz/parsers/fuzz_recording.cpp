@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "motion/recording.hpp"
+#include "files/recording_file.hpp"
 
 namespace {
 
@@ -23,6 +23,7 @@ void check(bool ok, const char* what) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace armctl::motion;
+  using namespace armctl::files;
   std::string_view text(reinterpret_cast<const char*>(data), size);
   auto r = parse_recording(text, "fuzz");
   if (!r) {

@@ -1,4 +1,4 @@
-// Arbitrary bytes into the .rob reader (motion/rob_file.hpp): never a crash; every error
+// Arbitrary bytes into the .rob reader (files/rob_file.hpp): never a crash; every error
 // names the source and an offset; anything accepted holds servos 1..6 with every position
 // in 0..1000, and exports back to the very same bytes but for the unknown header bytes 8..15.
 #include <cstddef>
@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "motion/rob_file.hpp"
+#include "files/rob_file.hpp"
 
 namespace {
 
@@ -21,7 +21,7 @@ void check(bool ok, const char* what) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using namespace armctl::motion;
+  using namespace armctl::files;
   const std::vector<std::uint8_t> bytes(data, data + size);
   auto g = parse_rob_file(bytes, "fuzz");
   if (!g) {

@@ -11,6 +11,7 @@
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "core/arm_file_sections.hpp"
 #include "core/config_files.hpp"
 #include "core/json_reader.hpp"
 #include "motion/urdf_chain.hpp"
@@ -263,6 +264,9 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
     m.tool.position = xyz;
     m.tool.orientation = motion::from_rpy({rpy[0], rpy[1], rpy[2]});
   }
+  // The sections of the boxes that run the arm, each read by its box (core/arm_file_sections.hpp).
+  (void)r.find(std::string(arm_file::kSimulatorSection));
+  (void)r.find(std::string(arm_file::kControllerSection));
   r.finish();
 
   std::vector<motion::PositionLimits> limits;

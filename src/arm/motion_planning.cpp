@@ -35,7 +35,7 @@ Status within_limits(const ArmModel& model, std::size_t joint, double lowest, do
 }  // namespace
 
 Result<std::vector<std::optional<double>>> joint_values_targets(const ArmModel& model,
-                                                                const std::vector<motion::JointValue>& values) {
+                                                                const std::vector<files::JointValue>& values) {
   if (values.size() > model.joints.size())
     return refuse(fmt::format("{} joint values given; arm '{}' has {} joints", values.size(), model.name,
                               model.joints.size()));
@@ -51,7 +51,7 @@ Result<std::vector<std::optional<double>>> joint_values_targets(const ArmModel& 
 }
 
 Result<std::vector<double>> joint_values_target(const ArmModel& model, const std::vector<double>& from,
-                                                const std::vector<motion::JointValue>& values) {
+                                                const std::vector<files::JointValue>& values) {
   if (values.size() > from.size())
     return refuse(fmt::format("{} joint values given; arm '{}' has {} joints", values.size(), model.name, from.size()));
   auto targets = joint_values_targets(model, values);

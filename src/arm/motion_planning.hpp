@@ -20,7 +20,7 @@
 #include "motion/cartesian_path.hpp"
 #include "motion/move_limits.hpp"
 #include "motion/path_check.hpp"
-#include "motion/path_file.hpp"
+#include "files/path_file.hpp"
 #include "motion/trajectory.hpp"
 
 namespace armctl::arm {
@@ -59,10 +59,10 @@ Result<MoveDuration> joint_move_duration(const ArmModel& model, const std::vecto
 // angle or a length as its joint is; the joints not given stay where `from` has them. The
 // target (SI, every joint), or why not (too many values, a value of the wrong kind).
 Result<std::vector<double>> joint_values_target(const ArmModel& model, const std::vector<double>& from,
-                                                const std::vector<motion::JointValue>& values);
+                                                const std::vector<files::JointValue>& values);
 // The same as targets (one per joint; the joints not given are empty: a PtpMove keeps them).
 Result<std::vector<std::optional<double>>> joint_values_targets(const ArmModel& model,
-                                                                const std::vector<motion::JointValue>& values);
+                                                                const std::vector<files::JointValue>& values);
 
 // The timing of a Cartesian path along its length: how fast the tool may speed up and slow
 // down (the speed of each segment is in the segment).

@@ -1,4 +1,4 @@
-// Where armctl finds its default config files (config/scara.json, config/scara-arm.json):
+// Where armctl finds its default config files (config/xarm.arm.json, config/scara.arm.json):
 // $ARMCTL_CONFIG_DIR if set, then the source tree this binary was built from, then the
 // installed copy (make install puts them in <prefix>/share/armctl).
 #pragma once

@@ -1,4 +1,5 @@
 #include "core/quantity.hpp"
+#include "core/units.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -10,13 +11,7 @@ namespace armctl {
 
 namespace {
 
-struct Unit {
-  const char* name;
-  Dimension dimension;
-  double to_si;
-};
-
-constexpr Unit kUnits[] = {
+constexpr QuantityUnit kUnits[] = {
     {"deg", Dimension::angle, std::numbers::pi / 180.0},
     {"rad", Dimension::angle, 1.0},
     {"mm", Dimension::length, 1e-3},
@@ -31,7 +26,7 @@ std::string rate_suffix(int power) {
 
 std::string allowed_units(Dimension d, int power) {
   std::string out;
-  for (const Unit& u : kUnits) {
+  for (const QuantityUnit& u : kUnits) {
     if (u.dimension != d) continue;
     out += (out.empty() ? "" : ", ") + std::string(u.name) + rate_suffix(power);
   }
@@ -40,8 +35,15 @@ std::string allowed_units(Dimension d, int power) {
 
 }  // namespace
 
+const QuantityUnit* find_unit(std::string_view name) {
+  for (const QuantityUnit& u : kUnits)
+    if (name == u.name) return &u;
+  return nullptr;
+}
+const QuantityUnit& display_unit_of(Dimension d) { return d == Dimension::angle ? kUnits[0] : kUnits[2]; }
+
 const char* to_string(Dimension d) { return d == Dimension::angle ? "angle" : "length"; }
-const char* display_unit(Dimension d) { return d == Dimension::angle ? "deg" : "mm"; }
+const char* display_unit(Dimension d) { return display_unit_of(d).name; }
 double to_display(Dimension d, double si) {
   const double shown = d == Dimension::angle ? si * 180.0 / std::numbers::pi : si * 1e3;
   return std::abs(shown) < 5e-7 ? 0.0 : shown;  // no "-0.000"
@@ -70,7 +72,7 @@ Result<double> parse_quantity(std::string_view text, Dimension dimension, std::s
     unit = *default_unit;
   }
   const std::string suffix = rate_suffix(per_second_power);
-  for (const Unit& u : kUnits) {
+  for (const QuantityUnit& u : kUnits) {
     if (unit != std::string(u.name) + suffix) continue;
     if (u.dimension != dimension)
       return refuse(fmt::format("is {}, but this is {}", u.dimension == Dimension::angle ? "an angle" : "a length",

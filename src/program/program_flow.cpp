@@ -16,7 +16,7 @@ namespace {
 // ---------------------------------------------------------------- names
 class NameCheck {
  public:
-  NameCheck(const Program& p, const PointsFile& points) : p_(p), points_(points) {}
+  NameCheck(const Program& p, const files::PointsFile& points) : p_(p), points_(points) {}
   void run() {
     for (const auto& s : p_.subroutines) block(s.body);
     block(p_.main);
@@ -64,13 +64,13 @@ class NameCheck {
     }
   }
   const Program& p_;
-  const PointsFile& points_;
+  const files::PointsFile& points_;
 };
 
 // ---------------------------------------------------------------- running
 class Runner {
  public:
-  Runner(const Program& p, const PointsFile& points, const FlowLimits& limits)
+  Runner(const Program& p, const files::PointsFile& points, const FlowLimits& limits)
       : p_(p), points_(points), limits_(limits) {}
 
   Flow run() {
@@ -188,7 +188,7 @@ class Runner {
   TargetValue target(const Target& t) {
     TargetValue v;
     if (t.kind == TargetKind::point) {
-      const Point& p = *points_.find(t.point);  // check_names made sure
+      const files::Point& p = *points_.find(t.point);  // check_names made sure
       v.label = p.name;
       v.joints = p.joints;
       v.position = p.position;
@@ -203,8 +203,8 @@ class Runner {
         if (j.unit != Unit::angle && j.unit != Unit::length)
           fail(e->at, fmt::format("a joint value is an angle or a length (e.g. 30deg, 120mm), found {} ({})",
                                   describe(j.unit), format_value(j)));
-        if (t.joints.size() > motion::kPathFileMaxJoints)
-          fail(e->at, fmt::format("at most {} joint values", motion::kPathFileMaxJoints));
+        if (t.joints.size() > files::kPathFileMaxJoints)
+          fail(e->at, fmt::format("at most {} joint values", files::kPathFileMaxJoints));
         v.joints.push_back({j.si, j.unit == Unit::angle ? Dimension::angle : Dimension::length});
         v.label += (v.label.size() > 7 ? ", " : "") + format_value(j);
       }
@@ -342,7 +342,7 @@ class Runner {
   }
 
   const Program& p_;
-  const PointsFile& points_;
+  const files::PointsFile& points_;
   FlowLimits limits_;
   Flow flow_;
   std::vector<Frame> frames_;
@@ -351,14 +351,14 @@ class Runner {
 
 }  // namespace
 
-Status check_names(const Program& program, const PointsFile& points) {
+Status check_names(const Program& program, const files::PointsFile& points) {
   return catch_error([&]() -> Status {
     NameCheck(program, points).run();
     return Ok{};
   });
 }
 
-Result<Flow> run_flow(const Program& program, const PointsFile& points, const FlowLimits& limits) {
+Result<Flow> run_flow(const Program& program, const files::PointsFile& points, const FlowLimits& limits) {
   if (auto ok = check_names(program, points); !ok) return ok.error();
   return catch_error([&]() -> Result<Flow> { return Runner(program, points, limits).run(); });
 }

@@ -15,8 +15,8 @@
 
 #include "core/error.hpp"
 #include "motion/kinematics.hpp"
-#include "motion/path_file.hpp"
-#include "program/points_file.hpp"
+#include "files/path_file.hpp"
+#include "files/points_file.hpp"
 #include "program/program_syntax.hpp"
 
 namespace armctl::program {
@@ -32,7 +32,7 @@ struct FlowLimits {
 // program_plan.hpp).
 struct TargetValue {
   std::string label;  // "pick", "pick + tool(0, 0, -30 mm)", "pose(...)", "joints(...)"
-  std::vector<motion::JointValue> joints;  // a joint target, or empty for a pose
+  std::vector<files::JointValue> joints;  // a joint target, or empty for a pose
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   std::optional<double> roll, pitch, yaw;
   std::optional<motion::Elbow> elbow;
@@ -69,11 +69,11 @@ struct Flow {
 
 // Names that must resolve before anything runs: every point a move names is in `points`,
 // every CALL names a DEF with as many parameters. Errors name the place.
-Status check_names(const Program& program, const PointsFile& points);
+Status check_names(const Program& program, const files::PointsFile& points);
 
 // check_names, then runs the flow. Errors (invalid_config for the program's text,
 // invalid_argument for values: a length where a time is wanted, a division by zero, a
 // loop past its cap) name "file:line:column:".
-Result<Flow> run_flow(const Program& program, const PointsFile& points, const FlowLimits& limits = {});
+Result<Flow> run_flow(const Program& program, const files::PointsFile& points, const FlowLimits& limits = {});
 
 }  // namespace armctl::program

@@ -17,7 +17,7 @@ Result<LoadedProgram> load_program(const std::filesystem::path& file, const std:
     if (std::filesystem::exists(guess, ec)) used = guess;
   }
   if (!used.empty()) {
-    auto read = read_points_file(used);
+    auto read = files::read_points_file(used);
     if (!read) return read.error();
     l.points = std::move(read).value();
   }

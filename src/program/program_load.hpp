@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "core/error.hpp"
-#include "program/points_file.hpp"
+#include "files/points_file.hpp"
 #include "program/program_flow.hpp"
 #include "program/program_syntax.hpp"
 
@@ -14,7 +14,7 @@ namespace armctl::program {
 
 struct LoadedProgram {
   Program program;
-  PointsFile points;
+  files::PointsFile points;
   Flow flow;
 };
 

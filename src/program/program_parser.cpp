@@ -9,8 +9,8 @@
 #include "core/ascii.hpp"
 #include "core/json_reader.hpp"
 #include "motion/kinematics.hpp"
-#include "program/language_words.hpp"
-#include "program/points_file.hpp"
+#include "files/language_words.hpp"
+#include "files/points_file.hpp"
 #include "program/program_lexer.hpp"
 
 namespace armctl::program {
@@ -80,7 +80,7 @@ class Parser {
   std::string user_name(std::string_view what) {
     const Token& t = peek();
     if (t.kind != TokenKind::name) fail(t, what);
-    if (auto why = bad_name(t.text)) fail(t, fmt::format("{} ({})", what, *why));
+    if (auto why = files::bad_name(t.text)) fail(t, fmt::format("{} ({})", what, *why));
     next();
     return t.text;
   }
@@ -282,7 +282,7 @@ class Parser {
       }
       expect_symbol(")", "',' and another joint value, or ')'");
     } else {
-      if (peek().kind != TokenKind::name || is_language_word(peek().text)) fail(peek(), what);
+      if (peek().kind != TokenKind::name || files::is_language_word(peek().text)) fail(peek(), what);
       t.kind = TargetKind::point;
       t.point = user_name(what);
     }
@@ -444,7 +444,7 @@ class Parser {
       next();
       return e;
     }
-    if (t.kind == TokenKind::name && !is_language_word(t.text)) {
+    if (t.kind == TokenKind::name && !files::is_language_word(t.text)) {
       e->kind = ExprKind::variable;
       e->name = user_name(*what_);
       return e;

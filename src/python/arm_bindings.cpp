@@ -21,7 +21,7 @@
 #include "program/program_plan.hpp"
 #include "program/program_runner.hpp"
 #include "bindings.hpp"
-#include "motion/action_group_file.hpp"
+#include "files/action_group_file.hpp"
 #include "python_support.hpp"
 #include "session/arm_session.hpp"
 
@@ -819,7 +819,7 @@ void define_arm(py::module_& m) {
           "download_group",
           [](PyArm& a, int group, const std::string& text) {
             if (group < 0 || group > 254) raise(ErrorKind::invalid_argument, fmt::format("group {} is not allowed: 0..254", group));
-            const auto file = must(motion::parse_action_group(text, "<text>"));
+            const auto file = must(files::parse_action_group(text, "<text>"));
             const auto turn = a.gate_.enter();
             auto& g = a.groups();
             must(released([&] { return g.download(static_cast<std::uint8_t>(group), file.actions); }));

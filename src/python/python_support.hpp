@@ -15,6 +15,7 @@
 #include <pybind11/pybind11.h>
 
 #include "core/error.hpp"
+#include "core/must.hpp"
 
 namespace armctl::python {
 
@@ -28,15 +29,6 @@ void define_error(py::module_& m);
 [[noreturn]] void raise(const Error& error);
 [[noreturn]] void raise(ErrorKind kind, const std::string& message);
 
-// The value, or armctl.Error.
-template <typename T>
-T must(Result<T> r) {
-  if (!r) raise(r.error());
-  return std::move(r.value());
-}
-inline void must(const Status& s) {
-  if (!s) raise(s.error());
-}
 
 // Watches for a pending Python signal (SIGINT: KeyboardInterrupt) while the GIL is
 // released: check() takes the GIL for a moment and runs Python's signal handlers; once one

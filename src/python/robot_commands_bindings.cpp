@@ -15,7 +15,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "motion/action_group_file.hpp"
+#include "files/action_group_file.hpp"
 #include "python_support.hpp"
 #include "session/xarm_session.hpp"
 
@@ -140,7 +140,7 @@ class PyRobotCommands {
 
   void download_group(int group, const std::string& text) {
     if (group < 0 || group > 254) raise(ErrorKind::invalid_argument, fmt::format("group {} is not allowed: 0..254", group));
-    const auto file = must(motion::parse_action_group(text, "<text>"));
+    const auto file = must(files::parse_action_group(text, "<text>"));
     auto& c = client();
     must(released([&] { return c.download_group(static_cast<std::uint8_t>(group), file.actions); }));
   }

@@ -10,7 +10,7 @@
 #include "arm/motion_executor.hpp"
 #include "arm/plan_moves.hpp"
 #include "core/error.hpp"
-#include "motion/recording.hpp"
+#include "files/recording_file.hpp"
 
 namespace armctl::teach {
 

@@ -30,8 +30,8 @@ Status LimpArm::release() {
   return arm_.device().idle(arm_.device().stream_latency() + arm_.device().stream_period(false));
 }
 
-program::Point point_at(const arm::ArmModel& model, const std::vector<double>& positions, std::string name) {
-  program::Point p;
+files::Point point_at(const arm::ArmModel& model, const std::vector<double>& positions, std::string name) {
+  files::Point p;
   p.name = std::move(name);
   for (std::size_t i = 0; i < positions.size() && i < model.joints.size(); ++i)
     p.joints.push_back({positions[i], model.joints[i].dimension});
@@ -47,7 +47,7 @@ std::string trimmed(const std::string& s) {
   return s.substr(a, b - a + 1);
 }
 
-std::string next_free_name(const program::PointsFile& file) {
+std::string next_free_name(const files::PointsFile& file) {
   for (std::size_t n = 1;; ++n) {
     std::string name = fmt::format("p{}", n);
     if (file.find(name) == nullptr) return name;
@@ -75,10 +75,10 @@ const char* to_string(TeachEventKind kind) {
 }
 
 Result<std::size_t> teach_points(arm::Arm& arm, const std::filesystem::path& points_path, const TeachIo& io) {
-  program::PointsFile file;
+  files::PointsFile file;
   std::error_code ec;
   if (std::filesystem::exists(points_path, ec)) {
-    auto read = program::read_points_file(points_path);
+    auto read = files::read_points_file(points_path);
     if (!read) return read.error();
     file = std::move(read).value();
   }
@@ -95,13 +95,13 @@ Result<std::size_t> teach_points(arm::Arm& arm, const std::filesystem::path& poi
   while (auto line = io.next_line()) {
     std::string name = trimmed(*line);
     if (name.empty()) name = next_free_name(file);
-    if (auto why = program::bad_name(name)) {
+    if (auto why = files::bad_name(name)) {
       io.on_event({TeachEventKind::refused, fmt::format("not recorded: {}; type another name", *why), name, {}, 0});
       continue;
     }
     auto state = arm.read();
     if (!state) return state.error();
-    program::Point point = point_at(arm.model(), state->positions, name);
+    files::Point point = point_at(arm.model(), state->positions, name);
     bool replaced = false;
     for (auto& p : file.points)
       if (p.name == name) {
@@ -109,7 +109,7 @@ Result<std::size_t> teach_points(arm::Arm& arm, const std::filesystem::path& poi
         replaced = true;
       }
     if (!replaced) file.points.push_back(point);
-    if (auto s = program::write_points_file(points_path, file); !s) return s.error();
+    if (auto s = files::write_points_file(points_path, file); !s) return s.error();
     ++recorded;
     io.on_event({replaced ? TeachEventKind::replaced : TeachEventKind::recorded,
                  fmt::format("{} {}: {}", replaced ? "replaced" : "recorded", name, describe(arm.model(), state->positions)),
@@ -124,9 +124,9 @@ Result<std::size_t> teach_points(arm::Arm& arm, const std::filesystem::path& poi
 }
 
 Result<motion::Recording> record_motion(arm::Arm& arm, const RecordOptions& options) {
-  if (!(options.rate >= 1 && options.rate <= motion::kRecordingMaxRate))
+  if (!(options.rate >= 1 && options.rate <= files::kRecordingMaxRate))
     return Error{ErrorKind::invalid_argument,
-                 fmt::format("rate {} Hz: allowed is 1..{:g} Hz", options.rate, motion::kRecordingMaxRate)};
+                 fmt::format("rate {} Hz: allowed is 1..{:g} Hz", options.rate, files::kRecordingMaxRate)};
   motion::Recording r;
   r.arm = arm.model().name;
   r.rate = options.rate;
@@ -161,7 +161,7 @@ Result<motion::Recording> record_motion(arm::Arm& arm, const RecordOptions& opti
     sample.positions = state->positions;
     r.samples.push_back(sample);
     if (options.on_sample) options.on_sample(sample);
-    if (r.samples.size() >= motion::kRecordingMaxSamples) break;
+    if (r.samples.size() >= files::kRecordingMaxSamples) break;
     if (options.done && options.done()) break;
     next += period;
     const TimePoint now = arm.clock().now();

@@ -1,5 +1,5 @@
 // Teaching an arm by hand: torque off (xArm) or the position loops off (SCARA), the arm
-// moved by hand, its position recorded as named points (program/points_file.hpp) or as a
+// moved by hand, its position recorded as named points (files/points_file.hpp) or as a
 // continuous recording (motion/recording.hpp); torque back on at the end holding the arm
 // where it stands, whatever the way out. Docs: docs/teach.md.
 #pragma once
@@ -13,8 +13,8 @@
 
 #include "arm/arm.hpp"
 #include "core/error.hpp"
-#include "motion/recording.hpp"
-#include "program/points_file.hpp"
+#include "files/recording_file.hpp"
+#include "files/points_file.hpp"
 
 namespace armctl::teach {
 
@@ -36,7 +36,7 @@ class LimpArm {
 
 // The point `name` at `positions` (SI, every joint): joint values, not a pose — a pose
 // loses the configuration (elbow) and needs IK to come back, joints replay exactly.
-program::Point point_at(const arm::ArmModel& model, const std::vector<double>& positions, std::string name);
+files::Point point_at(const arm::ArmModel& model, const std::vector<double>& positions, std::string name);
 
 // What teaching a point says, as a value: the CLI prints `text`, or under --json the fields.
 enum class TeachEventKind { started, recorded, replaced, refused, finished };
@@ -60,7 +60,7 @@ struct TeachIo {
 // around it ignored), or p1, p2, ... (the first free) for an empty line; a name already in
 // the file is replaced. The file is written after every point. A bad name is said and
 // nothing recorded; teaching goes on. The file is written keeping its comments and every
-// other line (program::write_points_file). A file that does not parse or cannot be written
+// other line (files::write_points_file). A file that does not parse or cannot be written
 // (read-only, no such directory) is refused before torque goes off. Returns the number of
 // points recorded.
 Result<std::size_t> teach_points(arm::Arm& arm, const std::filesystem::path& points_path, const TeachIo& io);

@@ -48,10 +48,13 @@ inline int status_of(const Error& e) {
 
 [[noreturn]] inline void fail(const Error& e) { throw ApiError(status_of(e), e); }
 
+// core/must.hpp's must for the HTTP API: the error thrown is the ApiError with its status,
+// so that what the request helpers throw is one type, whoever calls them.
 template <typename T>
 T must(Result<T> r) {
   if (!r) fail(r.error());
   return std::move(r).value();
 }
+
 
 }  // namespace armctl::web

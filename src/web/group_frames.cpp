@@ -9,7 +9,7 @@
 #include "core/printable.hpp"
 #include "core/quantity.hpp"
 #include "web/display_value.hpp"
-#include "motion/rob_file.hpp"
+#include "files/rob_file.hpp"
 #include "protocol/robot_commands/messages.hpp"
 #include "web/api_error.hpp"
 #include "web/base64.hpp"
@@ -43,10 +43,10 @@ std::optional<std::size_t> partner(const arm::ArmModel& model, std::size_t i) {
 
 GroupFrames frames_to_group(const arm::ArmModel& model, const json& frames) {
   require_rc(model);
-  if (!frames.is_array() || frames.empty() || frames.size() > motion::kGroupFileMaxActions)
+  if (!frames.is_array() || frames.empty() || frames.size() > files::kGroupFileMaxActions)
     bad_value("frames", fmt::format("{} is not allowed; an array of 1..{} frames {{\"time_ms\": ..., \"positions\": "
                                     "{{\"<joint name>\": deg or mm}}}}",
-                                    shown(frames), motion::kGroupFileMaxActions));
+                                    shown(frames), files::kGroupFileMaxActions));
   GroupFrames out;
   std::string servo_set;  // the first frame's joints, for the same-servos rule's message
   for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -81,14 +81,14 @@ GroupFrames frames_to_group(const arm::ArmModel& model, const json& frames) {
   }
   // The group file's own rules (every action the same servos, ...): format and parse it.
   for (const auto& t : out.group.actions.front().targets) out.group.servos.push_back(t.servo);
-  auto checked = motion::parse_action_group(motion::format_action_group(out.group), "frames");
+  auto checked = files::parse_action_group(files::format_action_group(out.group), "frames");
   if (!checked)
     throw ApiError(400, fmt::format("{} (every frame must give the same joints)", checked.error().message));
   out.group = std::move(checked).value();
   return out;
 }
 
-json group_to_frames(const arm::ArmModel& model, const motion::ActionGroupFile& group) {
+json group_to_frames(const arm::ArmModel& model, const files::ActionGroupFile& group) {
   require_rc(model);
   json frames = json::array();
   for (std::size_t k = 0; k < group.actions.size(); ++k) {
@@ -147,17 +147,17 @@ std::uint16_t parse_group_speed(const json& body) {
   return std::uint16_t(percent);
 }
 
-motion::ActionGroupFile parse_group_import(const json& body) {
+files::ActionGroupFile parse_group_import(const json& body) {
   BodyReader r(body);
   const std::string format = r.word("format", {"group", "rob"});
   const std::string content = r.string("content", kMaxBodyBytes);
   r.finish();
-  if (format == "group") return must(motion::parse_action_group(content, "content"));
+  if (format == "group") return must(files::parse_action_group(content, "content"));
   auto bytes = base64_decode(content);
   if (!bytes) bad_value("content", "not base64: a .rob file's bytes are sent as base64");
-  if (bytes->size() > motion::kRobMaxBytes)
-    bad_value("content", fmt::format("{} bytes; a .rob file has at most {}", bytes->size(), motion::kRobMaxBytes));
-  return must(motion::parse_rob_file(*bytes, "content"));
+  if (bytes->size() > files::kRobMaxBytes)
+    bad_value("content", fmt::format("{} bytes; a .rob file has at most {}", bytes->size(), files::kRobMaxBytes));
+  return must(files::parse_rob_file(*bytes, "content"));
 }
 
 json export_group(const arm::ArmModel& model, const json& body) {
@@ -166,8 +166,8 @@ json export_group(const arm::ArmModel& model, const json& body) {
   const json& frames = r.require("frames", "an array of frames");
   r.finish();
   const GroupFrames g = frames_to_group(model, frames);
-  if (format == "group") return {{"content", motion::format_action_group(g.group)}};
-  return {{"content", base64_encode(must(motion::format_rob_file(g.group)))}};
+  if (format == "group") return {{"content", files::format_action_group(g.group)}};
+  return {{"content", base64_encode(must(files::format_rob_file(g.group)))}};
 }
 
 }  // namespace armctl::web

@@ -14,7 +14,7 @@ namespace armctl::web {
 
 namespace {
 
-json point_json(const arm::ArmKinematics& arm, const program::Point& p) {
+json point_json(const arm::ArmKinematics& arm, const files::Point& p) {
   const arm::ArmModel& model = arm.model();
   json out{{"name", p.name}};
   if (p.is_joints()) {
@@ -48,9 +48,9 @@ json points_json(WebServer::State& s) {
 }
 
 // Writes the file (if any) with `next`; only then does `next` replace the points.
-void commit(WebServer::State& s, program::PointsFile next) {
+void commit(WebServer::State& s, files::PointsFile next) {
   if (!s.options.points_file.empty())
-    if (auto ok = program::write_points_file(s.options.points_file, next); !ok)
+    if (auto ok = files::write_points_file(s.options.points_file, next); !ok)
       throw ApiError(500, fmt::format("the points were not changed: {}", ok.error().message));
   s.points = std::move(next);
 }
@@ -74,8 +74,8 @@ void add_point_routes(WebServer::State& s) {
       return Ok{};
     });
     std::lock_guard lock(s.points_mutex);
-    program::PointsFile next = s.points;
-    program::Point point = teach::point_at(s.worker.model(), positions, name);
+    files::PointsFile next = s.points;
+    files::Point point = teach::point_at(s.worker.model(), positions, name);
     bool replaced = false;
     for (auto& p : next.points)
       if (p.name == name) {
@@ -83,9 +83,9 @@ void add_point_routes(WebServer::State& s) {
         replaced = true;
       }
     if (!replaced) {
-      if (next.points.size() >= program::kPointsFileMaxPoints)
+      if (next.points.size() >= files::kPointsFileMaxPoints)
         throw ApiError(400, fmt::format("name: '{}' would be point {}; at most {} points are allowed", name,
-                                        next.points.size() + 1, program::kPointsFileMaxPoints));
+                                        next.points.size() + 1, files::kPointsFileMaxPoints));
       next.points.push_back(point);
     }
     commit(s, std::move(next));
@@ -95,9 +95,9 @@ void add_point_routes(WebServer::State& s) {
     s.lease.require(c.client);
     const std::string name = check_point_name(c.params[0]);
     std::lock_guard lock(s.points_mutex);
-    program::PointsFile next = s.points;
+    files::PointsFile next = s.points;
     const auto before = next.points.size();
-    std::erase_if(next.points, [&](const program::Point& p) { return p.name == name; });
+    std::erase_if(next.points, [&](const files::Point& p) { return p.name == name; });
     if (next.points.size() == before) throw ApiError(404, fmt::format("no point named '{}'", printable(name)));
     commit(s, std::move(next));
     c.reply({{"deleted", name}});

@@ -1,7 +1,7 @@
 #include "web/program_check.hpp"
 
 #include "core/source_place.hpp"
-#include "program/points_file.hpp"
+#include "files/points_file.hpp"
 #include "program/program_flow.hpp"
 #include "program/program_parser.hpp"
 
@@ -18,7 +18,7 @@ CheckedProgram check_program(const ProgramRequest& r, const arm::ArmKinematics* 
     out.errors.push_back(place_error(e));
     return out;
   };
-  auto points = program::parse_points_file(r.points, kPointsSource);
+  auto points = files::parse_points_file(r.points, kPointsSource);
   if (!points) return fail(points.error());
   auto parsed = program::parse_program(r.source, kProgramSource);
   if (!parsed) return fail(parsed.error());

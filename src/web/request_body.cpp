@@ -7,7 +7,7 @@
 #include "core/printable.hpp"
 #include "core/quantity.hpp"
 #include "core/strict_json.hpp"
-#include "program/points_file.hpp"
+#include "files/points_file.hpp"
 #include "web/api_error.hpp"
 
 namespace armctl::web {
@@ -251,11 +251,11 @@ bool parse_torque_request(const json& body) {
 }
 
 std::string check_point_name(std::string_view name) {
-  if (name.empty() || name.size() > program::kPointNameMaxLength)
+  if (name.empty() || name.size() > files::kPointNameMaxLength)
     bad_value("name", fmt::format("'{}' is not allowed; a letter or '_' then letters, digits or '_', at most {} "
                                   "characters",
-                                  printable(name), program::kPointNameMaxLength));
-  if (auto why = program::bad_name(name)) bad_value("name", fmt::format("'{}' is not allowed: {}", printable(name), *why));
+                                  printable(name), files::kPointNameMaxLength));
+  if (auto why = files::bad_name(name)) bad_value("name", fmt::format("'{}' is not allowed: {}", printable(name), *why));
   return std::string(name);
 }
 

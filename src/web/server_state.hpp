@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "program/points_file.hpp"
+#include "files/points_file.hpp"
 #include "session/arm_worker.hpp"
 #include "web/connection_guard.hpp"
 #include "web/control_lease.hpp"
@@ -34,7 +34,7 @@ struct WebServer::State {
   ConnectionTable* connections = nullptr;  // the server's (event streams take their budget there)
 
   std::mutex points_mutex;
-  program::PointsFile points;
+  files::PointsFile points;
 
   // The arm's kinematics (check_targets, forward, tool_rpy, planning): an immutable value,
   // safe on the HTTP threads while the worker thread drives the arm.

@@ -151,7 +151,7 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
   if (!s.options.points_file.empty()) {
     std::error_code ec;
     if (std::filesystem::exists(s.options.points_file, ec)) {
-      auto read = program::read_points_file(s.options.points_file);
+      auto read = files::read_points_file(s.options.points_file);
       if (!read) throw ArmctlError(read.error());
       s.points = std::move(read).value();
     }

@@ -101,7 +101,7 @@ TEST(JointValuesTarget, LeadingJointsOfTheirKindTheRestStay) {
   auto wrong = joint_values_target(scara, from, {{0.2, Dimension::angle}});
   ASSERT_FALSE(wrong);
   EXPECT_EQ(wrong.error().message, "joint Z takes a length, not an angle");
-  auto many = joint_values_target(scara, from, std::vector<motion::JointValue>(8));
+  auto many = joint_values_target(scara, from, std::vector<files::JointValue>(8));
   ASSERT_FALSE(many);
   EXPECT_EQ(many.error().message, "8 joint values given; arm 'scara' has 7 joints");
 }

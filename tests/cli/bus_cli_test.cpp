@@ -162,8 +162,10 @@ TEST(BusCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
       {"sim xarm --battery 4294967296", "--battery: 4294967296 is outside 4500..12000"},
       {"bus --device 'sim?baud=99999999999' ping", "baud 99999999999 is outside 1..4000000"},
       // Files the CLI reads: a directory is refused naming the path.
-      {"bus --device 'sim?config=/tmp' ping", "arm config /tmp is not a regular file (a directory)"},
-      {"sim scara --config /tmp", "arm config /tmp is not a regular file (a directory)"},
+      {"bus --device 'sim?config=/tmp' ping", "simulator config /tmp is not a regular file (a directory)"},
+      {"sim scara --config /tmp", "simulator config /tmp is not a regular file (a directory)"},
+      {"sim scara --arm /tmp", "simulator config /tmp is not a regular file (a directory)"},
+      {"controller --arm /tmp", "arm controller config /tmp is not a regular file (a directory)"},
   };
   for (const auto& [args, want] : cases) {
     const CliRun r = armctl(args);
@@ -176,11 +178,14 @@ TEST(BusCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
 TEST(BusCli, AConfigKeyWithControlCharactersIsShownEscaped) {
   const std::string path = "/tmp/armctl-escape-key-" + std::to_string(::getpid()) + ".json";
   {
-    // The shipped config with one unknown key in front: the key is what gets reported.
-    std::ifstream in(std::string(ARMCTL_SOURCE_DIR) + "/config/scara.json");
+    // The shipped arm file with one unknown key in front of its simulator section: the key is
+    // what gets reported.
+    std::ifstream in(std::string(ARMCTL_SOURCE_DIR) + "/config/scara.arm.json");
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    ASSERT_EQ(text.find('{'), 0u) << "config/scara.json does not start with '{'";
-    text.insert(1, "\"\\u001b]0;owned\\u0007\": 1, ");
+    const std::string section = "\"simulator\": {";
+    const auto at = text.find(section);
+    ASSERT_NE(at, std::string::npos) << "config/scara.arm.json has no simulator section";
+    text.insert(at + section.size(), "\"\\u001b]0;owned\\u0007\": 1, ");
     std::ofstream(path) << text;
   }
   const CliRun r = armctl("bus --device 'sim?config=" + path + "' ping");

@@ -134,7 +134,10 @@ TEST(TeachCli, RefusesBadArgumentsAndRecordings) {
   auto r = run_armctl("replay " + rec + " --arm xarm");
   EXPECT_EQ(r.status, 1);
   EXPECT_TRUE(contains(r.out, "the recording is of arm 'scara', this arm is 'xarm'")) << r.out;
-  EXPECT_TRUE(contains(run_armctl("replay " + rec + " --speed 0%").out, "--speed '0%'"));
+  EXPECT_TRUE(contains(run_armctl("replay " + rec + " --speed 0%").out,
+                       "--speed (of the velocity limits): '0%' is too small; allowed 0.1..100 %"));
+  // One percentage parser in every command: a bare number is refused (half, or 0.5 %?).
+  EXPECT_TRUE(contains(run_armctl("replay " + rec + " --speed 50").out, "'50' has no unit; write a percentage like 50%"));
 }
 
 TEST(TeachCli, ARecordingRateTheLinkCannotKeepIsRefusedBeforeTorqueOff) {

@@ -18,7 +18,7 @@ run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 foreach(f lib/cmake/armctl/armctl-config.cmake lib/cmake/armctl/armctl-config-version.cmake
           lib/cmake/armctl/armctl-targets.cmake lib/libarmctl_core.a lib/libarmctl_device_registry.a
           include/armctl/devices/joint_bus/bus_master.hpp include/armctl/core/error.hpp
-          share/armctl/scara.json bin/armctl)
+          share/armctl/scara.arm.json bin/armctl)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "not installed: ${f}")
   endif()

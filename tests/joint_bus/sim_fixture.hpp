@@ -1,4 +1,4 @@
-// The simulated SCARA arm (config/scara.json) at a chosen baud, for master tests.
+// The simulated SCARA arm (config/scara.arm.json) at a chosen baud, for master tests.
 #pragma once
 
 #include <memory>

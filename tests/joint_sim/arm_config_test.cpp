@@ -1,4 +1,5 @@
-// config/scara.json loads, and every kind of bad config is refused with a clear message.
+// The simulator section of config/scara.arm.json loads, and every kind of bad config (of the
+// old form, a file of its own: the same reader) is refused with a clear message.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

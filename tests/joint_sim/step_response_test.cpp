@@ -58,7 +58,7 @@ StepResult step(SimArm& arm, int joint, std::int16_t distance, int zone, int spe
   return r;
 }
 
-// Stated performance with config/scara.json (docs/simulator.md, "Step response"): a 3000
+// Stated performance with config/scara.arm.json (docs/simulator.md, "Step response"): a 3000
 // click step at 100 % speed with zone 10 settles (stays in the zone for good) within 700 ms
 // on every joint but SHOULDER (1000 ms, slower profile for its inertia), and overshoots by
 // at most 5 clicks.

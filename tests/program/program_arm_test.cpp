@@ -29,7 +29,7 @@ std::string example(const std::string& name) { return std::string(ARMCTL_SOURCE_
 Flow flow_of(std::string_view text, std::string_view points_text) {
   auto program = parse_program(text, "t.prog");
   EXPECT_TRUE(program) << program.error().message;
-  auto points = parse_points_file(points_text, "t.points");
+  auto points = files::parse_points_file(points_text, "t.points");
   EXPECT_TRUE(points) << points.error().message;
   auto flow = run_flow(*program, *points);
   EXPECT_TRUE(flow) << flow.error().message;
@@ -39,7 +39,7 @@ Flow flow_of(std::string_view text, std::string_view points_text) {
 Flow example_flow(const std::string& arm) {
   auto program = read_program_file(example(arm + "-pick-place.prog"));
   EXPECT_TRUE(program) << program.error().message;
-  auto points = read_points_file(example(arm + "-pick-place.points"));
+  auto points = files::read_points_file(example(arm + "-pick-place.points"));
   EXPECT_TRUE(points) << points.error().message;
   auto flow = run_flow(*program, *points);
   EXPECT_TRUE(flow) << flow.error().message;
@@ -100,7 +100,7 @@ void run_example(Rig& rig, const std::string& name, double tolerance) {
   auto plan = plan_program(*rig.arm.kinematics(), rig.here(), flow, name);
   ASSERT_TRUE(plan) << plan.error().message;
   EXPECT_GT(plan->duration, 5.0);
-  auto points = read_points_file(example(name + "-pick-place.points")).value();
+  auto points = files::read_points_file(example(name + "-pick-place.points")).value();
   const Eigen::Vector3d pick = points.find("pick")->position, place = points.find("place")->position;
   double nearest_pick = 1e9, nearest_place = 1e9;
   std::vector<std::string> printed;
@@ -242,7 +242,7 @@ TEST_F(XarmProgram, OverrideSlowsTheMotionsAndStopComesToRest) {
   EXPECT_FALSE(stopped->completed);
   EXPECT_EQ(stopped->pieces, 1u);
   ASSERT_TRUE(arm.wait());
-  const auto pts = parse_points_file(points).value();
+  const auto pts = files::parse_points_file(points).value();
   const Eigen::Vector3d a = pts.find("a")->position, b = pts.find("b")->position;
   const Eigen::Vector3d t = true_tool();
   EXPECT_LT(to_polyline(t, {a, b}), 0.003);

@@ -11,8 +11,8 @@
 namespace armctl::program {
 namespace {
 
-PointsFile points() {
-  return parse_points_file("home joints=0deg,0deg\np x=200mm y=0mm z=50mm pitch=90deg\nq x=150mm y=50mm z=50mm\n").value();
+files::PointsFile points() {
+  return files::parse_points_file("home joints=0deg,0deg\np x=200mm y=0mm z=50mm pitch=90deg\nq x=150mm y=50mm z=50mm\n").value();
 }
 
 Result<Flow> flow_of(std::string_view text, const FlowLimits& limits = {}) {

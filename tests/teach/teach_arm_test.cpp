@@ -106,7 +106,7 @@ TEST_F(XarmTeach, PointsFromAScriptTorqueOffThenOnHolding) {
   EXPECT_EQ(here(), held);  // holding where it stands
   EXPECT_NEAR(held[2], 0.5, 0.005);
 
-  auto file = program::read_points_file(path);
+  auto file = files::read_points_file(path);
   ASSERT_TRUE(file) << file.error().message;
   ASSERT_EQ(file->points.size(), 3u);
   EXPECT_EQ(file->points[0].name, "p1");
@@ -136,7 +136,7 @@ TEST_F(XarmTeach, PointsFromAScriptTorqueOffThenOnHolding) {
   Script more;
   more.lines.push_back({[&] { EXPECT_TRUE(hand(0, -0.2)); }, "place"});
   ASSERT_TRUE(teach_points(arm, path, more.io()));
-  file = program::read_points_file(path);
+  file = files::read_points_file(path);
   ASSERT_EQ(file->points.size(), 4u);
   std::vector<std::optional<double>> targets;
   for (const auto& j : file->find("pick")->joints) targets.push_back(j.value);
@@ -184,9 +184,9 @@ TEST_F(XarmTeach, TeachingKeepsTheFilesCommentsAndOtherLines) {
   script.lines.push_back({[&] { EXPECT_TRUE(hand(0, 0.3)); }, "home"});
   script.lines.push_back({nullptr, "pick"});
   ASSERT_TRUE(teach_points(arm, path, script.io()));
-  const auto file = program::read_points_file(path).value();
-  const std::string home = program::format_point_fields(*file.find("home"));
-  const std::string pick = program::format_point_fields(*file.find("pick"));
+  const auto file = files::read_points_file(path).value();
+  const std::string home = files::format_point_fields(*file.find("home"));
+  const std::string pick = files::format_point_fields(*file.find("pick"));
   EXPECT_NEAR(file.find("home")->joints[0].value, 0.3, 0.005);
   EXPECT_EQ(slurp(path),
             "# my cell\n"
@@ -227,7 +227,7 @@ TEST_F(XarmTeach, ASymlinkedPointsFileIsWrittenThrough) {
   ASSERT_TRUE(teach_points(arm, symlink, script.io()));
   EXPECT_TRUE(std::filesystem::is_symlink(std::filesystem::symlink_status(symlink)));
   EXPECT_EQ(std::filesystem::read_symlink(symlink), target);
-  const auto file = program::read_points_file(target);
+  const auto file = files::read_points_file(target);
   ASSERT_TRUE(file) << file.error().message;
   ASSERT_NE(file->find("pick"), nullptr);
   EXPECT_EQ(slurp(target).rfind("# shared\npick ", 0), 0u) << slurp(target);
@@ -253,8 +253,8 @@ TEST_F(XarmTeach, RecordAndReplay) {
   EXPECT_TRUE(servos().torque(1));
   // Written and read back.
   const std::string path = temp_file("xarm.rec");
-  ASSERT_TRUE(motion::write_recording(path, *r));
-  auto back = motion::read_recording(path);
+  ASSERT_TRUE(files::write_recording(path, *r));
+  auto back = files::read_recording(path);
   ASSERT_TRUE(back) << back.error().message;
 
   auto plan = plan_replay(arm.model(), here(), *back);
@@ -360,7 +360,7 @@ TEST_F(ScaraTeach, PointsFromAScriptLoopsOffThenHolding) {
   ASSERT_TRUE(n) << n.error().message;
   EXPECT_EQ(*n, 2u);
   for (const auto& j : arm.model().joints) EXPECT_TRUE(sim->joint(j.map(arm::Protocol::joint_bus)->id).controller().loop_enabled());
-  auto file = program::read_points_file(path);
+  auto file = files::read_points_file(path);
   ASSERT_TRUE(file) << file.error().message;
   ASSERT_EQ(file->points.size(), 2u);
   EXPECT_NEAR(file->points[0].joints[0].value, before[0] + 0.2, 0.002);

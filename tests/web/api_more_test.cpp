@@ -3,7 +3,7 @@
 #include <set>
 #include <utility>
 
-#include "program/points_file.hpp"
+#include "files/points_file.hpp"
 #include "api_server.hpp"
 
 namespace armctl::web::testing {
@@ -39,7 +39,7 @@ TEST(WebPoints, RecordListDeleteAndSave) {
     EXPECT_NEAR(p["joints"][model.joints[i].name].get<double>(), here.positions[i] * 180 / M_PI, 0.5);
   EXPECT_NEAR(p["tool"]["z"].get<double>(), here.pose->position.z() * 1e3, 1.0);
   // The file holds it, in the program points-file format.
-  const auto saved = program::read_points_file(file);
+  const auto saved = files::read_points_file(file);
   ASSERT_TRUE(saved) << saved.error().message;
   ASSERT_EQ(saved->points.size(), 1u);
   EXPECT_EQ(saved->points[0].name, "pick");
@@ -58,7 +58,7 @@ TEST(WebPoints, RecordListDeleteAndSave) {
   r = api.send("DELETE", "/api/v1/points/pick", "", "page");
   ASSERT_EQ(r.status, 200) << r.text;
   EXPECT_TRUE(api.get("/api/v1/points").body["points"].empty());
-  EXPECT_TRUE(program::read_points_file(file)->points.empty());
+  EXPECT_TRUE(files::read_points_file(file)->points.empty());
   // A server started on the file lists what it holds.
   ASSERT_EQ(api.post("/api/v1/points", {{"name", "home"}}, "page").status, 200);
   ApiServer again("xarm", o);

@@ -6,7 +6,7 @@
 
 #include "core/source_place.hpp"
 #include "devices/robot_commands/group_start.hpp"
-#include "motion/rob_file.hpp"
+#include "files/rob_file.hpp"
 #include "session/arm_worker.hpp"
 #include "web/api_error.hpp"
 #include "refusal.hpp"
@@ -83,7 +83,7 @@ TEST(GroupFrames, ImportAndExportOfGroupAndRobFiles) {
   const json rob = export_group(xarm(), {{"format", "rob"}, {"frames", frames}});
   const auto bytes = base64_decode(rob["content"].get<std::string>());
   ASSERT_TRUE(bytes);
-  EXPECT_EQ(bytes->size(), motion::kRobHeaderBytes + 2 * motion::kRobFrameBytes);
+  EXPECT_EQ(bytes->size(), files::kRobHeaderBytes + 2 * files::kRobFrameBytes);
   const auto from_rob = parse_group_import({{"format", "rob"}, {"content", rob["content"]}});
   EXPECT_EQ(group_to_frames(xarm(), from_rob), group_to_frames(xarm(), from_text));
   EXPECT_NE(refusal([] { parse_group_import({{"format", "rob"}, {"content", "***"}}); }).second.find("not base64"),

@@ -23,6 +23,7 @@
 #include "arm/plan_moves.hpp"
 #include "arm/run_motion.hpp"
 #include "core/error.hpp"
+#include "core/must.hpp"
 #include "core/quantity.hpp"
 #include "motion/move_limits.hpp"
 
@@ -54,14 +55,6 @@ struct ArmArgs {
 
 [[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
 
-template <typename T>
-T must(Result<T> r) {
-  if (!r) throw ArmctlError(r.error());
-  return std::move(r.value());
-}
-void must(const Status& s) {
-  if (!s) throw ArmctlError(s.error());
-}
 
 // The joint's map on the first protocol that drives it, in the protocols' order (a Robot
 // Commands servo before a joint-bus joint, as the arm files list them).
@@ -112,9 +105,7 @@ arm::PtpMove ptp_move(const ArmArgs& a) {
     m.duration = seconds;
     m.duration_words = "--time " + a.time;
   }
-  if (!a.speed.empty())
-    m.speed = must(parse_percent(a.speed, "--speed (of the joints' velocity limits)", motion::kMinSpeedFraction,
-                                 motion::kMaxSpeedFraction));
+  if (!a.speed.empty()) m.speed = percent_option(a.speed, "--speed (of the joints' velocity limits)", 0);
   return m;
 }
 
@@ -262,9 +253,7 @@ void run_move_joints(const ArmArgs& a) {
 }
 
 double parse_override(const ArmArgs& a) {
-  if (a.speed_override.empty()) return 1.0;
-  return must(parse_percent(a.speed_override, "--override (of the programmed speeds)", motion::kMinSpeedFraction,
-                            motion::kMaxSpeedFraction));
+  return percent_option(a.speed_override, "--override (of the programmed speeds)", 1.0);
 }
 
 MotionCliOptions motion_cli_options(const ArmArgs& a) { return MotionCliOptions{a.json, parse_override(a)}; }
@@ -273,8 +262,8 @@ MotionCliOptions motion_cli_options(const ArmArgs& a) { return MotionCliOptions{
 void run_move_linear(const ArmArgs& a) {
   if (!a.time.empty()) usage("--time is not allowed with --linear: give the tool's speed with --speed (e.g. 50mm/s)");
   const arm::CartesianGoal goal = parse_goal(a);
-  motion::PathMove m;
-  m.kind = motion::MoveKind::lin;
+  files::PathMove m;
+  m.kind = files::MoveKind::lin;
   m.position = goal.position;
   m.roll = goal.roll;
   m.pitch = goal.pitch;
@@ -290,7 +279,7 @@ void run_move_linear(const ArmArgs& a) {
 }
 
 void run_path(const ArmArgs& a) {
-  const motion::PathFile file = must(motion::read_path_file(a.path_file));
+  const files::PathFile file = must(files::read_path_file(a.path_file));
   if (file.moves.empty()) usage(fmt::format("{} has no moves", a.path_file));
   MotionCliOptions options = motion_cli_options(a);
   std::optional<MotionTrace> trace;  // opened before anything moves: a bad path is refused first

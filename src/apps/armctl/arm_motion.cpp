@@ -25,11 +25,11 @@ namespace {
 using nlohmann::json;
 
 // Where a move came from, for messages: "line 12" of a path file, or the command line.
-std::string where(const motion::PathMove& m) {
-  return m.line ? fmt::format("line {} ({})", m.line, motion::to_string(m.kind)) : std::string("the move");
+std::string where(const files::PathMove& m) {
+  return m.line ? fmt::format("line {} ({})", m.line, files::to_string(m.kind)) : std::string("the move");
 }
 
-arm::CartesianGoal goal_of(const motion::PathMove& m) {
+arm::CartesianGoal goal_of(const files::PathMove& m) {
   arm::CartesianGoal g;
   g.position = m.position;
   g.roll = m.roll;
@@ -39,9 +39,9 @@ arm::CartesianGoal goal_of(const motion::PathMove& m) {
 }
 
 // A path file's move as the planner takes it.
-arm::Move move_of(const arm::ArmModel& model, const motion::PathMove& m) {
+arm::Move move_of(const arm::ArmModel& model, const files::PathMove& m) {
   arm::Move out{arm::WaitMove{}, where(m), m.line};
-  if (m.kind == motion::MoveKind::ptp) {
+  if (m.kind == files::MoveKind::ptp) {
     arm::PtpMove ptp;
     if (!m.joints.empty()) {
       auto given = arm::joint_values_targets(model, m.joints);
@@ -57,7 +57,7 @@ arm::Move move_of(const arm::ArmModel& model, const motion::PathMove& m) {
     return out;
   }
   arm::CartesianMove t;
-  t.kind = m.kind == motion::MoveKind::circ ? motion::SegmentKind::circ : motion::SegmentKind::lin;
+  t.kind = m.kind == files::MoveKind::circ ? motion::SegmentKind::circ : motion::SegmentKind::lin;
   t.goal = goal_of(m);
   t.via = m.via;
   t.speed = m.speed.value_or(motion::kDefaultToolSpeed);
@@ -70,15 +70,15 @@ arm::Move move_of(const arm::ArmModel& model, const motion::PathMove& m) {
 // Every move planned from where the arm stands (arm::plan_moves). A refusal names the move:
 // "line 12 (PTP): why"; a run of LIN/CIRC its lines ("lines 3..5: segment 2 (LIN): why").
 arm::Plan plan_path_moves(const arm::ArmKinematics& kinematics, const std::vector<double>& from,
-                          const std::vector<motion::PathMove>& path) {
+                          const std::vector<files::PathMove>& path) {
   std::vector<arm::Move> moves;
   for (const auto& m : path) moves.push_back(move_of(kinematics.model(), m));
   arm::MoveRefusal refused;
   auto plan = arm::plan_moves(kinematics, from, moves, {}, &refused);
   if (plan) return std::move(plan).value();
   const Error& e = plan.error();
-  const motion::PathMove& first = path[refused.first_move];
-  if (first.kind == motion::MoveKind::ptp)
+  const files::PathMove& first = path[refused.first_move];
+  if (first.kind == files::MoveKind::ptp)
     throw ArmctlError(ErrorKind::invalid_argument, fmt::format("{}: {}", where(first), e.message));
   // The path's errors count segments from 1 within this run: say which lines.
   const std::string lines =
@@ -118,7 +118,7 @@ double tool_path_error(const arm::Arm& arm, const arm::MotionReport& r, const mo
 
 }  // namespace
 
-arm::JointState run_path_moves(session::ArmSession& session, const std::vector<motion::PathMove>& moves, const MotionCliOptions& options) {
+arm::JointState run_path_moves(session::ArmSession& session, const std::vector<files::PathMove>& moves, const MotionCliOptions& options) {
   std::string stopped_at;  // the piece running when a signal stops the run
   arm::Arm& arm = *session.arm;
   auto here = arm.read();

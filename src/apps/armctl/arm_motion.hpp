@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "session/arm_session.hpp"
-#include "motion/path_file.hpp"
+#include "files/path_file.hpp"
 
 namespace armctl::cli {
 
@@ -24,6 +24,6 @@ struct MotionCliOptions {
 // A path file's moves, or one move from the command line (line 0), planned by arm::plan_moves
 // and run by arm::run_motion; returns the read that found the arm arrived at the end.
 // Throws ArmctlError naming the line and what was wrong (nothing has moved then).
-arm::JointState run_path_moves(session::ArmSession& session, const std::vector<motion::PathMove>& moves, const MotionCliOptions& options);
+arm::JointState run_path_moves(session::ArmSession& session, const std::vector<files::PathMove>& moves, const MotionCliOptions& options);
 
 }  // namespace armctl::cli

@@ -1,4 +1,4 @@
-// armctl controller --upstream URI [--bus URI] [--arm CONFIG] [--link PATH] [--state-dir DIR]
+// armctl controller --upstream URI [--bus URI] [--arm ARM] [--link PATH] [--state-dir DIR]
 // The arm controller as a daemon: Robot Commands from a host on a pty or serial port,
 // seven joints on the joint bus (docs/arm-controller.md).
 #include <cstdio>
@@ -28,9 +28,7 @@ struct ControllerArgs {
 };
 
 void run_controller(const ControllerArgs& args) {
-  auto config = args.arm.empty()
-                    ? arm_controller::load_controller_config(arm_controller::default_controller_config_path())
-                    : arm_controller::load_controller_config(args.arm);
+  auto config = controller_config_for(args.arm);
   std::shared_ptr<joint_bus::BusConnection> connection = devices::open_joint_bus(args.bus).value();
   if (transport::runs_on_simulated_time(connection->link())) {
     serve_controller(connection->link(), connection->default_options(), std::move(config), args.serve);
@@ -67,7 +65,8 @@ void add_controller_command(CLI::App& app) {
                 "pty | serial:/dev/ttyS0[?baud=9600] | /dev/PATH (default pty)");
   c->add_option("--bus", args->bus,
                 "Joint bus: sim[?baud=N&config=FILE] | unix:/path | serial:/dev/ttyAMA0?baud=N&select=... (default sim)");
-  c->add_option("--arm", args->arm, "Arm config (default config/scara-arm.json)");
+  c->add_option("--arm", args->arm,
+                "scara | an arm file: its arm_controller section (default scara, config/scara.arm.json)");
   c->add_option("--link", args->serve.link, "Also create this symlink to the pty (removed on exit)");
   c->add_option("--state-dir", args->serve.state_dir,
                 "Keep action groups, offsets and limits here (default: in memory)");

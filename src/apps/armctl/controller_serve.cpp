@@ -8,11 +8,16 @@
 
 #include <fmt/core.h>
 
+#include "arm/arm_model.hpp"
 #include "core/error.hpp"
 #include "devices/arm_controller/controller_runner.hpp"
 #include "transport/paced_link.hpp"
 
 namespace armctl::cli {
+
+arm_controller::ControllerConfig controller_config_for(const std::string& arm) {
+  return arm_controller::load_controller_config(arm::arm_file_path(arm.empty() ? "scara" : arm));
+}
 
 void serve_controller(transport::JointBusLink& bus, joint_bus::MasterOptions master_options,
                       arm_controller::ControllerConfig config, const ControllerServeArgs& args,

@@ -23,6 +23,11 @@ struct ControllerServeArgs {
   bool json = false;  // --json: the log as JSON lines on stdout (apps/armctl/server_log.hpp)
 };
 
+// The controller's config from the arm `--arm` names (scara, xarm or an arm file, as in every
+// command; empty: scara): its "arm_controller" section. A controller config of the old form
+// (config/scara-arm.json) is still read, with a warning.
+arm_controller::ControllerConfig controller_config_for(const std::string& arm);
+
 // `link` may be a simulated bus: it is then paced to the wall clock.
 void serve_controller(transport::JointBusLink& link, joint_bus::MasterOptions master_options,
                       arm_controller::ControllerConfig config, const ControllerServeArgs& args,

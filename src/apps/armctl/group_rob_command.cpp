@@ -1,6 +1,6 @@
 // armctl xarm group import FILE.rob [--out FILE] [--group N] and
 // armctl xarm group export GROUPFILE --out FILE.rob: the xArm maker's PC-software action
-// files to and from our group files (motion/rob_file.hpp, docs/teach.md ".rob files").
+// files to and from our group files (files/rob_file.hpp, docs/teach.md ".rob files").
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -13,8 +13,9 @@
 #include "apps/armctl/xarm_args.hpp"
 #include "session/xarm_session.hpp"
 #include "core/error.hpp"
-#include "motion/action_group_file.hpp"
-#include "motion/rob_file.hpp"
+#include "core/must.hpp"
+#include "files/action_group_file.hpp"
+#include "files/rob_file.hpp"
 
 namespace armctl::cli {
 
@@ -26,11 +27,6 @@ struct RobArgs {
   std::string group;
 };
 
-template <typename T>
-T must(Result<T> r) {
-  if (!r) throw ArmctlError(r.error());
-  return std::move(r.value());
-}
 
 void write_file(const std::string& path, const void* data, std::size_t size) {
   // Crash-safe: the old file or the new one, never a mix.
@@ -38,8 +34,8 @@ void write_file(const std::string& path, const void* data, std::size_t size) {
 }
 
 void run_import(const RobArgs& a, const XarmDeviceOptions& d) {
-  const auto group = must(motion::read_rob_file(a.file));
-  const std::string text = motion::format_action_group(group);
+  const auto group = must(files::read_rob_file(a.file));
+  const std::string text = files::format_action_group(group);
   if (a.out.empty() && a.group.empty()) {
     fmt::print("{}", text);
     return;
@@ -57,8 +53,8 @@ void run_import(const RobArgs& a, const XarmDeviceOptions& d) {
 }
 
 void run_export(const RobArgs& a) {
-  const auto group = must(motion::read_action_group_file(a.file));
-  const auto bytes = must(motion::format_rob_file(group));
+  const auto group = must(files::read_action_group_file(a.file));
+  const auto bytes = must(files::format_rob_file(group));
   write_file(a.out, bytes.data(), bytes.size());
   fmt::print("{}: {} actions written to {} ({} bytes)\n", a.file, group.actions.size(), a.out, bytes.size());
 }

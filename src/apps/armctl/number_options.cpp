@@ -5,10 +5,19 @@
 
 #include <fmt/core.h>
 
+#include "core/error.hpp"
+#include "core/must.hpp"
 #include "core/printable.hpp"
+#include "core/quantity.hpp"
+#include "motion/move_limits.hpp"
 #include "transport/serial_port.hpp"
 
 namespace armctl::cli {
+
+double percent_option(const std::string& text, const std::string& what, double otherwise) {
+  if (text.empty()) return otherwise;
+  return must(parse_percent(text, what, motion::kMinSpeedFraction, motion::kMaxSpeedFraction));
+}
 
 CLI::Validator whole_number_in(long long min, long long max) {
   const std::string range = fmt::format("{}..{}", min, max);

@@ -15,6 +15,12 @@ CLI::Validator whole_number_in(long long min, long long max);
 // A finite number within min..max (no nan, no inf), `unit` is shown after it ("s", "ms").
 // With `above_min`, min itself is refused too (a timeout of 0 s).
 CLI::Validator number_in(double min, double max, const std::string& unit, bool above_min = false);
+// A percentage option as a fraction: --speed of the joints' velocity limits (arm, replay),
+// --override of the programmed speeds (arm, program): "50%", within 0.1..100 % (the motion
+// layer's limits); a bare number is refused (half, or 0.5 %?). Empty: `otherwise`. The one
+// parser of them all (core/quantity.hpp's parse_percent); errors throw invalid_argument.
+double percent_option(const std::string& text, const std::string& what, double otherwise);
+
 // A standard serial line rate (0, 12345 and 99999999999 all get the one message listing them).
 CLI::Validator standard_baud();
 

@@ -18,16 +18,18 @@
 
 #include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
+#include "apps/armctl/number_options.hpp"
 #include "apps/armctl/json_output.hpp"
 #include "apps/armctl/motion_trace.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/xarm_args.hpp"
 #include "core/error.hpp"
+#include "core/must.hpp"
 #include "core/printable.hpp"
 #include "core/quantity.hpp"
 #include "motion/move_limits.hpp"
 #include "program/group_compiler.hpp"
-#include "program/points_file.hpp"
+#include "files/points_file.hpp"
 #include "program/program_flow.hpp"
 #include "program/program_load.hpp"
 #include "program/program_parser.hpp"
@@ -56,23 +58,10 @@ struct ProgramArgs {
 
 [[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
 
-template <typename T>
-T must(Result<T> r) {
-  if (!r) throw ArmctlError(r.error());
-  return std::move(r.value());
-}
 
 using Loaded = program::LoadedProgram;
 
 Loaded load(const ProgramArgs& a) { return must(program::load_program(a.file, a.points)); }
-
-double parse_override(const std::string& text) {
-  if (text.empty()) return 1.0;
-  auto v = parse_percent(text, "--override (of the programmed speeds)", motion::kMinSpeedFraction,
-                         motion::kMaxSpeedFraction);
-  if (!v) throw ArmctlError(v.error());
-  return *v;
-}
 
 program::ProgramPlan plan(const Loaded& l, arm::Arm& arm, bool blend) {
   const auto here = must(arm.read());
@@ -113,7 +102,7 @@ void run_check(const ProgramArgs& a) {
 void run_run(const ProgramArgs& a) {
   if (a.dry_run && !a.device.empty())
     usage("--dry-run runs on the embedded simulated arm: leave out --device (or drop --dry-run to run on it)");
-  const double speed_override = parse_override(a.speed_override);
+  const double speed_override = percent_option(a.speed_override, "--override (of the programmed speeds)", 1.0);
   const Loaded l = load(a);
   std::optional<MotionTrace> trace;  // opened before anything moves: a bad path is refused first
   if (!a.trace.empty()) trace.emplace(a.trace);

@@ -3,7 +3,6 @@
 // decimated into waypoints, one jerk-limited move through them within the arm's limits
 // (docs/teach.md "Replay"). Refuses a recording of another arm or outside the limits before
 // anything moves. Ctrl-C stops on the path with a controlled deceleration.
-#include <cstdlib>
 #include <string>
 
 #include <fmt/core.h>
@@ -11,10 +10,11 @@
 #include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/json_output.hpp"
+#include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "arm/run_motion.hpp"
 #include "core/error.hpp"
-#include "motion/recording.hpp"
+#include "files/recording_file.hpp"
 #include "teach/replay.hpp"
 
 namespace armctl::cli {
@@ -29,21 +29,9 @@ struct ReplayArgs {
   bool json = false;
 };
 
-[[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
-
-double parse_speed(const std::string& text) {
-  std::string digits = text;
-  if (!digits.empty() && digits.back() == '%') digits.pop_back();
-  char* end = nullptr;
-  const double v = std::strtod(digits.c_str(), &end);
-  if (digits.empty() || end != digits.c_str() + digits.size() || !(v > 0 && v <= 100))
-    usage(fmt::format("--speed '{}': a percentage of the velocity limits, above 0 up to 100%", text));
-  return v / 100;
-}
-
 void run_replay(const ReplayArgs& a) {
-  const double speed = parse_speed(a.speed);
-  auto recording = motion::read_recording(a.file);
+  const double speed = percent_option(a.speed, "--speed (of the velocity limits)", 1.0);
+  auto recording = files::read_recording(a.file);
   if (!recording) throw ArmctlError(recording.error());
   // The recording names its arm: the shipped model of that name unless --arm says otherwise.
   auto s = session::open_arm_session(a.arm.empty() ? recording->arm : a.arm, a.device).value();

@@ -1,4 +1,4 @@
-// armctl sim scara [--listen PATH] [--baud N] [--config FILE] (and sim xarm: sim_xarm_command.cpp)
+// armctl sim scara [--listen PATH] [--baud N] [--arm ARM] (and sim xarm: sim_xarm_command.cpp)
 // Runs the simulated SCARA arm as a long-lived process, paced to the wall clock, serving its
 // joint bus on a unix socket so that `armctl bus --device unix:PATH ...` keeps the arm's
 // state between invocations. SIGINT/SIGTERM stop it cleanly (socket file removed).
@@ -18,6 +18,8 @@
 #include "apps/armctl/controller_serve.hpp"
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
+#include "arm/arm_model.hpp"
+#include "core/arm_file_sections.hpp"
 #include "core/error.hpp"
 #include "apps/armctl/server_log.hpp"
 #include "devices/joint_bus/sim_link_server.hpp"
@@ -31,11 +33,11 @@ namespace {
 struct SimArgs {
   std::string listen = "/tmp/armctl-scara.sock";
   std::uint32_t baud = 0;  // 0: the config's
-  std::string config;
+  std::string config;  // the old --config: a simulator config file (now the arm file's section)
   // --robot-commands: the whole arm as a Robot Commands device on a pty (SimArm + arm
   // controller in this process) instead of the joint bus on a unix socket.
   bool robot_commands = false;
-  std::string arm;  // controller's arm config (default config/scara-arm.json)
+  std::string arm;  // scara or an arm file (default scara): its simulator and arm_controller sections
   ControllerServeArgs serve{"pty", "", "", "sim scara", {}, false};
   // --controller mega: the Mega controller firmware and the joint firmware on emulated
   // chips, in the test tool armctl-mega-sim (libsimavr is GPL: armctl never links it).
@@ -80,14 +82,28 @@ void run_sim_scara(const SimArgs& args) {
     throw ArmctlError(ErrorKind::invalid_argument,
                       "--link and --state-dir belong to --robot-commands (the arm controller's pty); without it "
                       "the simulated arm serves the joint bus on --listen");
-  joint_sim::ArmConfig config = args.config.empty() ? joint_sim::load_arm_config(joint_sim::default_arm_config_path())
-                                                    : joint_sim::load_arm_config(args.config);
+  // One arm file for the simulator and the controller (--arm, as in every command). The old
+  // options still work, with a warning: --config named the simulator's config, and --arm the
+  // controller's (config/scara.json, config/scara-arm.json: now the arm file's sections).
+  std::filesystem::path sim_file = arm::arm_file_path(args.arm.empty() ? "scara" : args.arm);
+  std::string controller_arm = args.arm;
+  if (!args.arm.empty() && !arm_file::is_arm_file(sim_file)) {
+    arm_file::warn_once(fmt::format("sim scara --arm {}: a controller config of the old form; --arm now takes "
+                                    "an arm file (config/scara.arm.json) for the simulator and the controller",
+                                    args.arm));
+    sim_file = arm::arm_file_path("scara");
+  }
+  if (!args.config.empty()) {
+    arm_file::warn_once(fmt::format("sim scara --config {}: --config is now --arm, an arm file "
+                                    "(config/scara.arm.json) whose \"simulator\" section the simulator reads",
+                                    args.config));
+    sim_file = args.config;
+  }
+  joint_sim::ArmConfig config = joint_sim::load_arm_config(sim_file);
   if (args.baud != 0) config.baud = args.baud;
   joint_sim::SimArm arm(std::move(config));
   if (args.robot_commands) {
-    auto controller_config = args.arm.empty()
-        ? arm_controller::load_controller_config(arm_controller::default_controller_config_path())
-        : arm_controller::load_controller_config(args.arm);
+    auto controller_config = controller_config_for(controller_arm);
     const auto supply_mv = static_cast<std::uint16_t>(arm.config().joints.front().hardware.motor.supply_v * 1000.0);
     serve_controller(arm.link(), {}, std::move(controller_config), args.serve, [supply_mv] { return supply_mv; });
     return;
@@ -119,12 +135,14 @@ void add_sim_command(CLI::App& app) {
   scara->add_option("--listen", args->listen, "Unix socket path (default /tmp/armctl-scara.sock)");
   scara->add_option("--baud", args->baud, "Joint bus baud (default: the config's, 9600)")
       ->check(standard_baud());
-  scara->add_option("--config", args->config, "Arm config file (default config/scara.json)");
+  scara->add_option("--arm", args->arm,
+                    "scara | an arm file: its simulator and arm_controller sections (default scara, "
+                    "config/scara.arm.json)");
+  scara->add_option("--config", args->config, "Old form of --arm (a simulator config file); still read, with a warning");
   scara->add_flag("--robot-commands", args->robot_commands,
                   "Serve the whole arm as a Robot Commands device on a pty (arm controller inside; prints the pty path)");
   scara->add_option("--link", args->serve.link,
                     "With --robot-commands or --controller: also create this symlink to the pty");
-  scara->add_option("--arm", args->arm, "With --robot-commands: controller arm config (default config/scara-arm.json)");
   scara->add_option("--state-dir", args->serve.state_dir, "With --robot-commands: keep groups, offsets, limits here");
   scara->add_option("--controller", args->controller,
                     "mega: the Mega controller firmware driving the joint firmware, all on emulated chips, with "

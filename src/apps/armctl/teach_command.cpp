@@ -16,7 +16,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/quantity.hpp"
-#include "motion/recording.hpp"
+#include "files/recording_file.hpp"
 #include "teach/teach.hpp"
 
 namespace armctl::cli {
@@ -61,7 +61,7 @@ void run_teach(const TeachArgs& a) {
   if (!recording && !a.duration.empty()) usage("--duration goes with --record");
   double rate = 0;
   if (recording) {
-    auto r = motion::parse_rate(a.record);
+    auto r = files::parse_rate(a.record);
     if (!r) usage("--record: " + r.error().message);
     rate = *r;
   }
@@ -126,7 +126,7 @@ void run_teach(const TeachArgs& a) {
   };
   auto r = teach::record_motion(arm, o);
   if (!r) throw ArmctlError(r.error());
-  if (auto w = motion::write_recording(a.out, *r); !w) throw ArmctlError(w.error());
+  if (auto w = files::write_recording(a.out, *r); !w) throw ArmctlError(w.error());
   say("finished", {{"samples", r->samples.size()}, {"seconds", r->samples.back().time}, {"file", a.out}},
       fmt::format("torque on, holding; {} samples over {:.2f} s written to {}", r->samples.size(),
                   r->samples.back().time, a.out));

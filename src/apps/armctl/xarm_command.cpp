@@ -14,7 +14,7 @@
 #include "apps/armctl/serve_support.hpp"
 #include "session/xarm_session.hpp"
 #include "devices/robot_commands/arrival.hpp"
-#include "motion/action_group_file.hpp"
+#include "files/action_group_file.hpp"
 #include "protocol/robot_commands/units.hpp"
 
 namespace armctl::cli {
@@ -235,7 +235,7 @@ void run_info_write(const XarmCli& o) {
 
 void run_group_download(const XarmCli& o) {
   const auto group = xarm_args::parse_group(o.group, false);
-  const auto file = check(motion::read_action_group_file(o.file));
+  const auto file = check(files::read_action_group_file(o.file));
   auto s = open(o);
   check(s->check(s->client->download_group(group, file.actions)));
   done(o, fmt::format("group {}: {} actions downloaded", group, file.actions.size()));

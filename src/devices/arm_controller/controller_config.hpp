@@ -1,4 +1,7 @@
-// The arm controller's view of the arm (config/scara-arm.json): which joints exist, how a
+// The arm controller's view of the arm (the "arm_controller" section of config/scara.arm.json,
+// core/arm_file_sections.hpp; a file of the old form, as config/scara-arm.json was, is still
+// read; each joint's name, number and velocity/acceleration are the arm file's joint
+// entry's): which joints exist, how a
 // Robot Commands position (0..1000) maps to joint clicks, the soft limits, and what the
 // joints can do (velocity at set_speed 100 %, acceleration), which the synchronized-move
 // planner needs. Format: docs/arm-controller.md. Every key is validated: an unknown key, a
@@ -47,7 +50,8 @@ struct ControllerConfig {
 ControllerConfig parse_controller_config(std::string_view json_text,
                                          const std::string& source = "<string>");
 ControllerConfig load_controller_config(const std::filesystem::path& path);
-// config/scara-arm.json: $ARMCTL_CONFIG_DIR, the installed copy, or the source tree.
+// config/scara.arm.json: $ARMCTL_CONFIG_DIR, the installed copy, or the source tree. Asked for
+// the old name config/scara-arm.json, load_controller_config reads it, with a warning.
 std::filesystem::path default_controller_config_path();
 
 }  // namespace armctl::arm_controller

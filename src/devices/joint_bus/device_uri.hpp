@@ -23,7 +23,7 @@ namespace armctl::joint_bus {
 
 struct SimDevice {
   std::optional<std::uint32_t> baud;  // empty: the config's baud
-  std::string config;  // empty: the built-in config/scara.json
+  std::string config;  // empty: config/scara.arm.json's simulator section
   std::vector<int> dead_joints;  // joints 1..7 whose controller never answers
   Dialect dialect = Dialect::standard;  // legacy: every joint in legacy-master mode
 };

@@ -1,5 +1,6 @@
 #include "devices/joint_sim/arm_config.hpp"
 
+#include "core/arm_file_sections.hpp"
 #include "core/config_files.hpp"
 
 #include <algorithm>
@@ -210,13 +211,21 @@ void read_motor(Reader r, MotorParams* m) {
   r.finish();
 }
 
-JointConfig read_joint(const std::string& source, const json& entry, std::size_t index,
-                       const json* defaults, std::uint32_t physics_step_us) {
-  const std::string path = "joints[" + std::to_string(index) + "]";
-  Reader r(source, &entry, path, defaults, defaults ? "joint_defaults" : "");
+// One joint's hardware and tuning from `entry` at `path` (over `defaults` at
+// `defaults_path`). Its name and number come from the entry (a config of the old form) or,
+// from an arm file, from the arm's joint (`bus`): there they are not repeated.
+JointConfig read_joint(const std::string& source, const json& entry, const std::string& path, const json* defaults,
+                       const std::string& defaults_path, std::uint32_t physics_step_us,
+                       const arm_file::BusJoint* bus) {
+  Reader r(source, &entry, path, defaults, defaults ? defaults_path : "");
   JointConfig j;
-  j.name = r.string("name", 32);
-  j.number = static_cast<std::uint8_t>(r.integer("number", 1, 7, "(the joint's select line)"));
+  if (bus == nullptr) {
+    j.name = r.string("name", 32);
+    j.number = static_cast<std::uint8_t>(r.integer("number", 1, 7, "(the joint's select line)"));
+  } else {
+    j.name = bus->name;
+    j.number = static_cast<std::uint8_t>(bus->number);
+  }
   JointHardwareParams& h = j.hardware;
   read_motor(r.object("motor"), &h.motor);
   {
@@ -255,13 +264,28 @@ JointConfig read_joint(const std::string& source, const json& entry, std::size_t
                              h.clicks_per_motor_rev() / (2.0 * std::numbers::pi);
   const auto speed_cap =
       std::clamp<std::int64_t>(std::int64_t(no_load_cps), 1, joint_bus::max_speed_cps_limit);
-  j.tuning.max_speed_cps = static_cast<std::int32_t>(
-      t.integer("max_speed_cps", 1, speed_cap, "clicks/s, below the motor's no-load speed"));
   // The joint controller's own limits (portable/joint_tuning.hpp; PositionLoop::begin clamps
   // into them): the wider 1000..5e7 used here before let values through that the joint then
   // silently replaced (found by fuzz_arm_config).
-  j.tuning.max_accel_cps2 = static_cast<std::int32_t>(t.integer(
-      "max_accel_cps2", joint_bus::min_accel_cps2_limit, joint_bus::max_accel_cps2_limit, "clicks/s^2"));
+  if (bus == nullptr) {
+    j.tuning.max_speed_cps = static_cast<std::int32_t>(
+        t.integer("max_speed_cps", 1, speed_cap, "clicks/s, below the motor's no-load speed"));
+    j.tuning.max_accel_cps2 = static_cast<std::int32_t>(t.integer(
+        "max_accel_cps2", joint_bus::min_accel_cps2_limit, joint_bus::max_accel_cps2_limit, "clicks/s^2"));
+  } else {
+    // The arm's joint_bus.max_speed_cps / max_accel_cps2: the planner's limits are the joint's tuning.
+    const std::string& from = bus->bus_path;
+    auto whole = [&](double v, const char* key, double min, double max, const char* unit) {
+      if (!(v >= min && v <= max) || v != std::floor(v))
+        r.fail(from + "." + key, format_number(v) + " is out of range (allowed: whole numbers " + format_number(min) +
+                                     " .. " + format_number(max) + " " + unit + ")");
+      return static_cast<std::int32_t>(v);
+    };
+    j.tuning.max_speed_cps =
+        whole(bus->max_speed_cps, "max_speed_cps", 1, double(speed_cap), "clicks/s, below the motor's no-load speed");
+    j.tuning.max_accel_cps2 = whole(bus->max_accel_cps2, "max_accel_cps2", joint_bus::min_accel_cps2_limit,
+                                    joint_bus::max_accel_cps2_limit, "clicks/s^2");
+  }
   j.tuning.kp_q8 = t.gain_q8("kp", "PWM counts per click");
   j.tuning.ki_q8 = t.gain_q8("ki", "PWM counts per click per ms");
   j.tuning.kd_q8 = t.gain_q8("kd", "PWM counts per click/ms");
@@ -280,13 +304,14 @@ const JointConfig& ArmConfig::joint(int number) const {
                     "arm config: no joint number " + std::to_string(number));
 }
 
-ArmConfig parse_arm_config(std::string_view json_text, const std::string& source) {
-  const json root = json_reader::parse_document(json_text, source);
-  if (!root.is_object()) {
-    throw ArmctlError(ErrorKind::invalid_config,
-                      source + ": expected a JSON object at the top, got " + type_name(root));
-  }
-  Reader top(source, &root, "", nullptr, "");
+namespace {
+
+// The config at `top_path` of `root` ("" for a config of the old form, "simulator" in an arm
+// file): baud, physics step, joint_defaults, and one entry per joint. `bus_joints` is null for
+// the old form (joints[] holds every joint with its name and number), else the arm's joints.
+ArmConfig read_config(const json& root, const std::string& source, const std::string& top_path,
+                      const std::vector<arm_file::BusJoint>* bus_joints) {
+  Reader top(source, &root, top_path, nullptr, "");
   ArmConfig config;
   config.baud = static_cast<std::uint32_t>(top.integer("baud", 300, 2000000, "baud"));
   const auto step_us =
@@ -300,21 +325,40 @@ ArmConfig parse_arm_config(std::string_view json_text, const std::string& source
   if (defaults != nullptr && (defaults->contains("name") || defaults->contains("number"))) {
     top.fail(path, "name and number belong to each joint, not to the defaults");
   }
-  const json& joints = top.require("joints", &path);
-  if (!joints.is_array() || joints.empty() || joints.size() > 7) {
-    top.fail(path, "expected an array of 1..7 joints, got " + type_name(joints) +
-                       (joints.is_array() ? " of " + std::to_string(joints.size()) : ""));
+  const std::string defaults_path = path;
+  std::vector<std::pair<const json*, std::string>> entries;  // each joint's entry and its path
+  static const json kEmpty = json::object();
+  if (bus_joints == nullptr) {
+    const json& joints = top.require("joints", &path);
+    if (!joints.is_array() || joints.empty() || joints.size() > 7) {
+      top.fail(path, "expected an array of 1..7 joints, got " + type_name(joints) +
+                         (joints.is_array() ? " of " + std::to_string(joints.size()) : ""));
+    }
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+      const std::string jpath = "joints[" + std::to_string(i) + "]";
+      if (!joints[i].is_object()) top.fail(jpath, "expected an object, got " + type_name(joints[i]));
+      entries.push_back({&joints[i], jpath});
+    }
+  } else {
+    (void)top.find("joints", &path);  // read by arm_file::read_section
+    if (bus_joints->empty() || bus_joints->size() > 7)
+      top.fail(path, "the arm needs 1..7 joints with a joint_bus mapping to be simulated, has " +
+                         std::to_string(bus_joints->size()));
+    for (const arm_file::BusJoint& b : *bus_joints) {
+      if (b.entry != nullptr && !b.entry->is_object()) top.fail(b.path, "expected an object, got " + type_name(*b.entry));
+      if (b.entry != nullptr && (b.entry->contains("name") || b.entry->contains("number")))
+        top.fail(b.path, "name and number are the arm's (joints[].name, joints[].joint_bus.number), not repeated here");
+      entries.push_back({b.entry != nullptr ? b.entry : &kEmpty, b.path});
+    }
   }
   top.finish();
 
   std::set<int> numbers;
   std::set<std::string> names;
-  for (std::size_t i = 0; i < joints.size(); ++i) {
-    const std::string jpath = "joints[" + std::to_string(i) + "]";
-    if (!joints[i].is_object()) {
-      top.fail(jpath, "expected an object, got " + type_name(joints[i]));
-    }
-    JointConfig j = read_joint(source, joints[i], i, defaults, step_us);
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const std::string& jpath = entries[i].second;
+    JointConfig j = read_joint(source, *entries[i].first, jpath, defaults, defaults_path, step_us,
+                               bus_joints ? &(*bus_joints)[i] : nullptr);
     if (!numbers.insert(j.number).second) {
       top.fail(jpath + ".number", std::to_string(j.number) + " is used twice (allowed: each of 1..7 once)");
     }
@@ -328,10 +372,16 @@ ArmConfig parse_arm_config(std::string_view json_text, const std::string& source
   return config;
 }
 
-ArmConfig load_arm_config(const std::filesystem::path& path) {
-  return parse_arm_config(json_reader::read_config_file(path, "arm config"), path.string());
+}  // namespace
+
+ArmConfig parse_arm_config(std::string_view json_text, const std::string& source) {
+  return arm_file::parse_box_config(json_text, arm_file::kSimulatorSection, source, read_config);
 }
 
-std::filesystem::path default_arm_config_path() { return find_config_file("scara.json"); }
+ArmConfig load_arm_config(const std::filesystem::path& path) {
+  return arm_file::load_box_config(path, arm_file::kSimulatorSection, "simulator config", read_config);
+}
+
+std::filesystem::path default_arm_config_path() { return find_config_file(arm_file::kScaraArmFile); }
 
 }  // namespace armctl::joint_sim

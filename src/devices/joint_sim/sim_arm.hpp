@@ -21,7 +21,7 @@ struct SimArmOptions {
 class SimArm {
  public:
   explicit SimArm(ArmConfig config, SimArmOptions options = {});
-  // config/scara.json from the source tree.
+  // The simulator section of config/scara.arm.json (default_arm_config_path()).
   static std::unique_ptr<SimArm> from_default_config();
 
   SimArm(const SimArm&) = delete;

@@ -60,7 +60,7 @@ struct ServoTarget {
 };
 
 // One action of a group: a MultiServoMove (time + positions). Here, not in the host SDK, so
-// that the group files (motion/action_group_file.hpp) need only the protocol.
+// that the group files (files/action_group_file.hpp) need only the protocol.
 struct GroupAction {
   std::uint16_t time_ms = 0;
   std::vector<ServoTarget> targets;

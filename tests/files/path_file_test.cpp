@@ -1,6 +1,6 @@
 // Path files: every form of move, units, comments, the canonical text's round trip, and
 // every error with its file, line and column, what was found and what is expected.
-#include "motion/path_file.hpp"
+#include "files/path_file.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -13,8 +13,10 @@
 #include "core/source_place.hpp"
 #include <gtest/gtest.h>
 
-namespace armctl::motion {
+namespace armctl::files {
 namespace {
+
+using motion::Elbow;
 
 using ::testing::HasSubstr;
 constexpr double kPi = std::numbers::pi;
@@ -198,4 +200,4 @@ TEST(PathFile, ReadsAFileAndRefusesWhatIsNotOne) {
 }
 
 }  // namespace
-}  // namespace armctl::motion
+}  // namespace armctl::files

@@ -7,7 +7,7 @@
 //   place  x=120mm y=150mm z=40mm pitch=90deg elbow=up
 //
 // A line is a name and key=value fields that read exactly as a path file's ptp target
-// (motion/path_file.hpp): joints=... (one value per joint, chain then gripper, fewer leaves
+// (files/path_file.hpp): joints=... (one value per joint, chain then gripper, fewer leaves
 // the rest as they are) or a tool pose x, y, z (and optionally roll, pitch, yaw, elbow).
 // Values carry their unit. Names: a letter or '_' then letters, digits, '_' (at most 64),
 // case-sensitive, each once, not a word of the program language. '#' starts a comment.
@@ -26,9 +26,9 @@
 
 #include "core/error.hpp"
 #include "motion/kinematics.hpp"
-#include "motion/path_file.hpp"
+#include "files/path_file.hpp"
 
-namespace armctl::program {
+namespace armctl::files {
 
 inline constexpr std::size_t kPointsFileMaxPoints = 10'000;
 inline constexpr std::size_t kPointNameMaxLength = 64;
@@ -37,7 +37,7 @@ struct Point {
   std::string name;
   std::size_t line = 0;  // 1-based, for messages (0: made in code)
   // Joint values (SI) in the arm's order, or empty for a pose.
-  std::vector<motion::JointValue> joints;
+  std::vector<JointValue> joints;
   // A tool pose (m, rad, base frame) when `joints` is empty. Orientation angles left out
   // keep the tool's current ones when the point is reached (as in path files).
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
@@ -83,4 +83,4 @@ Status write_points_file(const std::filesystem::path& path, const PointsFile& fi
 // not, why ("'lin' is a word of the language").
 std::optional<std::string> bad_name(std::string_view name);
 
-}  // namespace armctl::program
+}  // namespace armctl::files

@@ -23,7 +23,7 @@
 #include "core/error.hpp"
 #include "protocol/robot_commands/messages.hpp"
 
-namespace armctl::motion {
+namespace armctl::files {
 
 inline constexpr std::size_t kGroupFileMaxActions = rc::kActionsMax;
 inline constexpr std::size_t kGroupFileMaxServos = 17;
@@ -43,4 +43,4 @@ Result<ActionGroupFile> read_action_group_file(const std::filesystem::path& path
 // parse_action_group(format_action_group(g)) == g for any valid g.
 std::string format_action_group(const ActionGroupFile& group);
 
-}  // namespace armctl::motion
+}  // namespace armctl::files

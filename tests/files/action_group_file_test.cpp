@@ -1,13 +1,13 @@
-// The action-group text format (motion/action_group_file.hpp): good files, and bad files
+// The action-group text format (files/action_group_file.hpp): good files, and bad files
 // whose errors name the line, the field and what is allowed.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
-#include "motion/action_group_file.hpp"
+#include "files/action_group_file.hpp"
 
-namespace armctl::motion {
+namespace armctl::files {
 namespace {
 
 TEST(ActionGroupFile, ParsesTheDocumentedExample) {
@@ -111,4 +111,4 @@ TEST(ActionGroupFile, MoreThan1020ActionsNamesTheLine) {
 }
 
 }  // namespace
-}  // namespace armctl::motion
+}  // namespace armctl::files

@@ -7,10 +7,16 @@
 #include <fstream>
 #include <string>
 
-#include "motion/recording.hpp"
+#include "files/recording_file.hpp"
 
-namespace armctl::motion {
+namespace armctl::files {
 namespace {
+
+using motion::Recording;
+using motion::RecordingJoint;
+using motion::RecordingSample;
+using motion::keep_samples;
+using motion::smooth;
 
 Recording two_joints() {
   Recording r;
@@ -160,4 +166,4 @@ TEST(Recording, AByteOrderMarkIsNotPartOfTheFile) {
 }
 
 }  // namespace
-}  // namespace armctl::motion
+}  // namespace armctl::files

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "motion/action_group_file.hpp"
-#include "motion/rob_file.hpp"
+#include "files/action_group_file.hpp"
+#include "files/rob_file.hpp"
 
-namespace armctl::motion {
+namespace armctl::files {
 namespace {
 
 std::vector<std::uint8_t> header(std::uint16_t frames) {
@@ -167,4 +167,4 @@ TEST(RobFile, AGroupFileWithAByteOrderMarkReads) {
 }
 
 }  // namespace
-}  // namespace armctl::motion
+}  // namespace armctl::files

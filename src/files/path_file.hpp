@@ -9,13 +9,14 @@
 //
 // A line is a move (ptp, lin or circ) and key=value fields in any order; values carry their
 // unit as on the command line (core/quantity.hpp). '#' starts a comment; blank lines are
-// ignored. Errors name the file, line and column, what was found and what is expected;
+// ignored (files/line_reader.hpp). Errors name the file, line and column, what was found and what is expected;
 // nothing is returned on error.
 #pragma once
 
 #include <cstddef>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,12 +25,13 @@
 
 #include "core/error.hpp"
 #include "core/quantity.hpp"
+#include "files/line_reader.hpp"
 #include "motion/kinematics.hpp"
 
-namespace armctl::motion {
+namespace armctl::files {
 
 inline constexpr std::size_t kPathFileMaxMoves = 100'000;
-inline constexpr std::size_t kPathFileMaxJoints = kMaxChainJoints + 1;  // the chain and a gripper
+inline constexpr std::size_t kPathFileMaxJoints = motion::kMaxChainJoints + 1;  // the chain and a gripper
 
 enum class MoveKind { ptp, lin, circ };
 const char* to_string(MoveKind kind);  // "ptp", "lin", "circ" (as written in the file)
@@ -53,7 +55,7 @@ struct PathMove {
   // as `armctl arm move` does).
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   std::optional<double> roll, pitch, yaw;  // rad
-  std::optional<Elbow> elbow;               // ptp to a pose: only solutions in this configuration
+  std::optional<motion::Elbow> elbow;               // ptp to a pose: only solutions in this configuration
   Eigen::Vector3d via = Eigen::Vector3d::Zero();  // circ: a point on the arc (m)
   std::optional<double> speed;          // lin, circ: the tool point's speed, m/s (> 0)
   std::optional<double> angular_speed;  // lin, circ: the tool's turning speed, rad/s (> 0)
@@ -69,6 +71,9 @@ struct PathFile {
 
 // `source` names the text in errors ("pick.path:12:5: ...").
 Result<PathFile> parse_path_file(std::string_view text, std::string_view source = "<path>");
+// One move line's fields (the first the move's kind: ptp, lin, circ), the line numbered
+// `line` of `source`. What a points file reads its points' fields with.
+Result<PathMove> parse_path_move(std::span<const TextField> fields, std::size_t line, std::string_view source);
 // Reads a regular file of at most 1 MiB (as config files are read), then parses it.
 Result<PathFile> read_path_file(const std::filesystem::path& path);
 
@@ -76,4 +81,4 @@ Result<PathFile> read_path_file(const std::filesystem::path& path);
 // gives f back (speed fractions to within rounding of the percent).
 std::string format_path_file(const PathFile& file);
 
-}  // namespace armctl::motion
+}  // namespace armctl::files

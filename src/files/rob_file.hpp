@@ -1,5 +1,5 @@
 // Action files of the xArm maker's PC software (".rob"), converted to and from our group
-// files (motion/action_group_file.hpp). The maker does not document the layout; what is
+// files (files/action_group_file.hpp). The maker does not document the layout; what is
 // known and what is guessed is in docs/teach.md ".rob files". As armctl reads it:
 //
 //   offset 0   6 bytes  "SOBARM"                      (checked)
@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "motion/action_group_file.hpp"
+#include "files/action_group_file.hpp"
 
-namespace armctl::motion {
+namespace armctl::files {
 
 inline constexpr std::size_t kRobHeaderBytes = 16;
 inline constexpr std::size_t kRobFrameBytes = 14;
@@ -42,4 +42,4 @@ Result<ActionGroupFile> read_rob_file(const std::filesystem::path& path);
 // has no "keep").
 Result<std::vector<std::uint8_t>> format_rob_file(const ActionGroupFile& group);
 
-}  // namespace armctl::motion
+}  // namespace armctl::files

@@ -1,4 +1,4 @@
-// Points files (program/points_file.hpp): every form, every error with its place, the
+// Points files (files/points_file.hpp): every form, every error with its place, the
 // writer's round trip.
 #include <gtest/gtest.h>
 
@@ -11,10 +11,10 @@
 #include <unistd.h>
 
 #include "core/source_place.hpp"
-#include "motion/path_file.hpp"
-#include "program/points_file.hpp"
+#include "files/path_file.hpp"
+#include "files/points_file.hpp"
 
-namespace armctl::program {
+namespace armctl::files {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
@@ -203,11 +203,11 @@ TEST(PointsFile, AByteOrderMarkIsNotPartOfAPointsOrPathFile) {
 
   const auto path = dir / ("armctl-bom-" + std::to_string(::getpid()) + ".path");
   std::ofstream(path, std::ios::binary) << "\xEF\xBB\xBFptp joints=10deg\n";
-  auto moves = motion::read_path_file(path);
+  auto moves = files::read_path_file(path);
   ASSERT_TRUE(moves) << moves.error().message;
   EXPECT_EQ(moves->moves.size(), 1u);
   std::filesystem::remove(path);
 }
 
 }  // namespace
-}  // namespace armctl::program
+}  // namespace armctl::files

@@ -1,4 +1,4 @@
-#include "motion/rob_file.hpp"
+#include "files/rob_file.hpp"
 
 #include <algorithm>
 #include <iterator>
@@ -8,7 +8,7 @@
 
 #include "core/regular_file.hpp"
 
-namespace armctl::motion {
+namespace armctl::files {
 
 namespace {
 
@@ -123,4 +123,4 @@ Result<std::vector<std::uint8_t>> format_rob_file(const ActionGroupFile& group) 
   return out;
 }
 
-}  // namespace armctl::motion
+}  // namespace armctl::files

@@ -1,9 +1,4 @@
-#include "program/points_file.hpp"
-
-#include "core/source_place.hpp"
-#include "core/ascii.hpp"
-#include "core/atomic_file.hpp"
-
+#include "files/points_file.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -13,37 +8,31 @@
 
 #include <fmt/core.h>
 
-#include "core/printable.hpp"
-#include "core/regular_file.hpp"
-
+#include "core/ascii.hpp"
+#include "core/atomic_file.hpp"
 #include "core/json_reader.hpp"
-#include "program/language_words.hpp"
+#include "core/regular_file.hpp"
+#include "files/language_words.hpp"
+#include "files/line_reader.hpp"
 
-namespace armctl::program {
+namespace armctl::files {
 
 namespace {
 
-// Outside text for messages: control bytes escaped (core/printable.hpp), long text cut.
-std::string shown(std::string_view text, std::size_t longest = 60) {
-  return printable(text.substr(0, longest)) + (text.size() > longest ? "..." : "");
-}
-
-bool blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
 constexpr std::string_view kPointKeys = "joints=..., or x, y, z with roll, pitch, yaw, elbow";
 
 Error fail(std::string_view source, std::size_t line, std::size_t column, std::string_view found,
            const std::string& expected) {
-  return source_error(ErrorKind::invalid_config,
-                      {std::string(source), line, column, fmt::format("found '{}', expected {}", shown(found), expected)});
+  return file_error(source, line, column, fmt::format("found '{}', expected {}", shown(found), expected));
 }
 
-// The path file's parser reads a point's fields (they are a ptp's target): its place is a
-// column of the rewritten line ("ptp" in place of the name) and its words speak of a ptp.
-Error from_path_error(const Error& e, std::string_view source, std::size_t shift) {
+// The path file's parser reads a point's fields (they are a ptp's target): its words speak
+// of a ptp.
+Error from_path_error(const Error& e) {
   const SourcePlace* where = source_place(e);
   if (!where) return Error{ErrorKind::invalid_config, e.message};
-  SourcePlace place{std::string(source), where->line, where->column ? where->column + shift - 3 : 0, where->reason};
+  SourcePlace place = *where;
   std::string& m = place.reason;
   for (auto [from, to] : {std::pair<std::string_view, std::string_view>{"a ptp", "a point"}, {"the ptp's", "the point's"}}) {
     for (auto at = m.find(from); at != std::string::npos; at = m.find(from, at + to.size())) m.replace(at, from.size(), to);
@@ -81,19 +70,13 @@ const Point* PointsFile::find(std::string_view name) const {
 Result<PointsFile> parse_points_file(std::string_view text, std::string_view source) {
   PointsFile file;
   std::set<std::string, std::less<>> names;
-  std::size_t pos = 0, line_no = 0;
-  while (pos <= text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(pos, end - pos);
-    ++line_no;
-    if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    std::size_t i = 0;
-    while (i < line.size() && blank(line[i])) ++i;
-    if (i < line.size()) {
-      const std::size_t name_start = i;
-      while (i < line.size() && !blank(line[i])) ++i;
-      const std::string_view name = line.substr(name_start, i - name_start);
+  LineReader lines(text);
+  while (auto text_line = lines.next()) {
+    const std::size_t line_no = text_line->number;
+    {
+      const std::size_t name_start = text_line->fields[0].column - 1;
+      const std::string_view name = text_line->fields[0].text;
+      const std::size_t i = name_start + name.size();
       if (name.find('=') != std::string_view::npos)
         return fail(source, line_no, name_start + 1, name, "a point's name first (e.g. 'pick x=200mm y=0mm z=40mm')");
       if (auto why = bad_name(name)) return fail(source, line_no, name_start + 1, name, "a point name: " + *why);
@@ -101,27 +84,21 @@ Result<PointsFile> parse_points_file(std::string_view text, std::string_view sou
       if (file.points.size() == kPointsFileMaxPoints)
         return fail(source, line_no, name_start + 1, name, fmt::format("at most {} points in a file", kPointsFileMaxPoints));
       // Only the keys of a point (a ptp would also take speed).
-      bool any = false;
-      for (std::size_t k = i; k < line.size();) {
-        while (k < line.size() && blank(line[k])) ++k;
-        const std::size_t f = k;
-        while (k < line.size() && !blank(line[k])) ++k;
-        if (k == f) break;
-        any = true;
-        const std::string_view field = line.substr(f, k - f);
+      std::vector<TextField> fields = text_line->fields;
+      for (std::size_t k = 1; k < fields.size(); ++k) {
+        const std::string_view field = fields[k].text;
         const std::string_view key = field.substr(0, field.find('='));
         static constexpr std::string_view kKeys[] = {"joints", "x", "y", "z", "roll", "pitch", "yaw", "elbow"};
         if (field.find('=') == std::string_view::npos || std::find(std::begin(kKeys), std::end(kKeys), key) == std::end(kKeys))
-          return fail(source, line_no, f + 1, field.find('=') == std::string_view::npos ? field : key,
+          return fail(source, line_no, fields[k].column, field.find('=') == std::string_view::npos ? field : key,
                       fmt::format("a point's key=value: {}", kPointKeys));
       }
-      if (!any) return fail(source, line_no, i + 1, "", fmt::format("the point's position after its name: {}", kPointKeys));
-      std::string rewritten(line_no - 1, '\n');
-      rewritten += "ptp";
-      rewritten += line.substr(i);
-      auto parsed = motion::parse_path_file(rewritten, source);
-      if (!parsed) return from_path_error(parsed.error(), source, i);
-      const motion::PathMove& m = parsed->moves.front();
+      if (fields.size() == 1)
+        return fail(source, line_no, i + 1, "", fmt::format("the point's position after its name: {}", kPointKeys));
+      fields[0].text = "ptp";  // the fields after the name read as a ptp's target
+      auto parsed = parse_path_move(fields, line_no, source);
+      if (!parsed) return from_path_error(parsed.error());
+      const PathMove& m = *parsed;
       Point p;
       p.name = std::string(name);
       p.line = line_no;
@@ -136,8 +113,6 @@ Result<PointsFile> parse_points_file(std::string_view text, std::string_view sou
       names.insert(p.name);
       file.points.push_back(std::move(p));
     }
-    if (end == text.size()) break;
-    pos = end + 1;
   }
   return file;
 }
@@ -223,11 +198,11 @@ Result<std::string> update_points_text(std::string_view text, const PointsFile& 
     // indentation, the alignment, a trailing comment and the line's end stay.
     const std::string_view code = line.substr(0, std::min(line.find('#'), line.size()));
     std::size_t from = 0;
-    while (from < code.size() && blank(code[from])) ++from;
+    while (from < code.size() && is_blank(code[from])) ++from;
     from += was.name.size();
-    while (from < code.size() && blank(code[from])) ++from;
+    while (from < code.size() && is_blank(code[from])) ++from;
     std::size_t to = code.size();
-    while (to > from && (blank(code[to - 1]) || code[to - 1] == '\n')) --to;
+    while (to > from && (is_blank(code[to - 1]) || code[to - 1] == '\n')) --to;
     out += line.substr(0, from);
     out += format_point_fields(*now);
     out += line.substr(to);
@@ -263,4 +238,4 @@ Status write_points_file(const std::filesystem::path& path, const PointsFile& fi
   return write_file_atomically(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 
-}  // namespace armctl::program
+}  // namespace armctl::files

@@ -1,26 +1,33 @@
-#include "motion/path_file.hpp"
+#include "files/path_file.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <span>
 #include <string>
 
 #include <fmt/core.h>
 
-#include "core/source_place.hpp"
 #include "core/ascii.hpp"
 #include "core/json_reader.hpp"
 #include "core/printable.hpp"
-#include "core/text_fields.hpp"
+#include "files/line_reader.hpp"
 #include "motion/move_limits.hpp"
 
-namespace armctl::motion {
+namespace armctl::files {
 
 namespace {
 
 using Field = TextField;
+using motion::Elbow;
+using motion::kMaxSpeedFraction;
+using motion::kMaxToolAngularSpeed;
+using motion::kMaxToolSpeed;
+using motion::kMinSpeedFraction;
+using motion::kMinToolAngularSpeed;
+using motion::kMinToolSpeed;
 
 // What each move takes (docs/paths.md).
 constexpr std::array<std::string_view, 13> kKeys = {"joints", "x",     "y",     "z",             "roll",
@@ -45,53 +52,36 @@ bool allowed(MoveKind kind, std::string_view key) {
   return false;
 }
 
-// Outside text quoted in a message: control bytes escaped (core/printable.hpp), so one bad
-// byte in a file cannot garble the terminal, and long fields cut.
-std::string quoted(std::string_view text, std::size_t longest = 60) {
-  std::string out = printable(text.substr(0, longest));
-  if (text.size() > longest) out += "...";
-  return out;
-}
-
 class Parser {
  public:
-  explicit Parser(std::string_view source) : source_(printable(source)) {}
+  explicit Parser(std::string_view source) : source_(source) {}
 
   Result<PathFile> parse(std::string_view text) {
     PathFile file;
-    std::size_t pos = 0, line_no = 0;
-    while (pos <= text.size()) {
-      std::size_t end = text.find('\n', pos);
-      if (end == std::string_view::npos) end = text.size();
-      std::string_view line = text.substr(pos, end - pos);
-      ++line_no;
-      if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-      const auto fields = split_fields(line);
-      if (!fields.empty()) {
-        if (file.moves.size() == kPathFileMaxMoves)
-          return fail(line_no, fields[0].column, fields[0].text,
-                      fmt::format("at most {} moves in a path file", kPathFileMaxMoves));
-        auto move = parse_move(line_no, fields);
-        if (!move) return move.error();
-        file.moves.push_back(std::move(move).value());
-      }
-      if (end == text.size()) break;
-      pos = end + 1;
-    }
+    const auto last = read_lines(text, [&](const TextLine& line) -> Status {
+      const auto& fields = line.fields;
+      if (file.moves.size() == kPathFileMaxMoves)
+        return fail(line.number, fields[0].column, fields[0].text,
+                    fmt::format("at most {} moves in a path file", kPathFileMaxMoves));
+      auto move = parse_move(line.number, fields);
+      if (!move) return move.error();
+      file.moves.push_back(std::move(move).value());
+      return Ok{};
+    });
+    if (!last) return last.error();
     if (file.moves.empty())
       return Error{ErrorKind::invalid_config,
-                   fmt::format("{}: the file has no moves; expected lines of ptp, lin or circ moves", source_)};
+                   fmt::format("{}: the file has no moves; expected lines of ptp, lin or circ moves", printable(source_))};
     return file;
   }
 
  private:
   Error fail(std::size_t line, std::size_t column, std::string_view found, const std::string& expected) const {
-    return source_error(ErrorKind::invalid_config,
-                        {source_, line, column, fmt::format("found '{}', expected {}", quoted(found), expected)});
+    return file_error(source_, line, column, fmt::format("found '{}', expected {}", shown(found), expected));
   }
   // An error from a value parser (parse_quantity's message names the key, the text and the units).
   Error fail_value(std::size_t line, std::size_t column, const Error& e) const {
-    return source_error(ErrorKind::invalid_config, {source_, line, column, quoted(e.message, 400)});
+    return file_error(source_, line, column, shown(e.message, 400));
   }
 
   Result<double> quantity(std::size_t line, const Field& f, std::string_view key, std::string_view value,
@@ -101,7 +91,8 @@ class Parser {
     return v;
   }
 
-  Result<PathMove> parse_move(std::size_t line, const std::vector<Field>& fields) {
+ public:
+  Result<PathMove> parse_move(std::size_t line, std::span<const Field> fields) {
     PathMove move;
     move.line = line;
     const std::string kind = ascii_lower(fields[0].text);
@@ -132,6 +123,7 @@ class Parser {
     return finish_move(line, fields, move, has_xyz, has_via);
   }
 
+ private:
   Status parse_field(std::size_t line, const Field& f, std::string_view key, std::string_view value, PathMove& move,
                      std::array<bool, 3>& has_xyz, bool& has_via) const {
     const std::size_t value_column = f.column + key.size() + 1;
@@ -215,7 +207,7 @@ class Parser {
     return Ok{};
   }
 
-  Result<PathMove> finish_move(std::size_t line, const std::vector<Field>& fields, PathMove& move,
+  Result<PathMove> finish_move(std::size_t line, std::span<const Field> fields, PathMove& move,
                                const std::array<bool, 3>& has_xyz, bool has_via) const {
     const Field& first = fields[0];
     const std::size_t after = fields.back().column + fields.back().text.size();
@@ -280,6 +272,10 @@ Result<PathFile> parse_path_file(std::string_view text, std::string_view source)
   return Parser(source).parse(text);
 }
 
+Result<PathMove> parse_path_move(std::span<const TextField> fields, std::size_t line, std::string_view source) {
+  return Parser(source).parse_move(line, fields);
+}
+
 Result<PathFile> read_path_file(const std::filesystem::path& path) {
   auto text = catch_error([&]() -> Result<std::string> { return json_reader::read_config_file(path, "path file"); });
   if (!text) return text.error();
@@ -312,4 +308,4 @@ std::string format_path_file(const PathFile& file) {
   return out;
 }
 
-}  // namespace armctl::motion
+}  // namespace armctl::files

@@ -1,4 +1,4 @@
-#include "motion/action_group_file.hpp"
+#include "files/action_group_file.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -7,13 +7,12 @@
 
 #include <fmt/core.h>
 
-#include "core/source_place.hpp"
 #include "core/printable.hpp"
 #include "core/regular_file.hpp"
-#include "core/text_fields.hpp"
+#include "files/line_reader.hpp"
 #include "protocol/robot_commands/units.hpp"
 
-namespace armctl::motion {
+namespace armctl::files {
 namespace {
 
 using Field = TextField;
@@ -39,18 +38,12 @@ class Parser {
   explicit Parser(std::string_view source) : source_(source) {}
 
   Result<ActionGroupFile> parse(std::string_view text) {
-    std::size_t line_no = 0;
-    std::size_t pos = 0;
-    while (pos <= text.size()) {
-      std::size_t end = text.find('\n', pos);
-      if (end == std::string_view::npos) end = text.size();
-      std::string_view line = text.substr(pos, end - pos);
-      ++line_no;
-      if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-      if (auto e = parse_line(line_no, split_fields(line))) return *e;
-      if (end == text.size()) break;
-      pos = end + 1;
-    }
+    const auto last = read_lines(text, [&](const TextLine& line) -> Status {
+      if (auto e = parse_line(line.number, line.fields)) return *e;
+      return Ok{};
+    });
+    if (!last) return last.error();
+    const std::size_t line_no = *last;
     if (group_.actions.empty())
       return fail(line_no, 0, "", "the file has no actions; a group holds 1..1020");
     if (header_count_ && *header_count_ != group_.servos.size())
@@ -65,12 +58,11 @@ class Parser {
              const std::string& what) const {
     // The file's name and fields are outside text: printable() keeps control sequences in
     // them from reaching a terminal.
-    std::string quoted = field.empty() ? "" : fmt::format("'{}' ", printable(field));
-    return source_error(ErrorKind::invalid_config, {printable(source_), line, column, quoted + what});
+    std::string shown = field.empty() ? "" : fmt::format("'{}' ", printable(field));
+    return file_error(source_, line, column, shown + what);
   }
 
   std::optional<Error> parse_line(std::size_t line, const std::vector<Field>& fields) {
-    if (fields.empty()) return std::nullopt;
     if (fields[0].text == "servos") return parse_header(line, fields);
     return parse_action(line, fields);
   }
@@ -216,4 +208,4 @@ std::string format_action_group(const ActionGroupFile& group) {
   return out;
 }
 
-}  // namespace armctl::motion
+}  // namespace armctl::files
