@@ -3,12 +3,25 @@
 // driving seven emulated joints, joint_avr::AvrMegaArm) at 9600 and 115200 baud:
 //   mega_refresh_<baud>     position sweeps of all seven joints per second, idle upstream,
 //                           against the joint bus floor (7 get_position = 56 bytes of wire
-//                           time per sweep); ratio = rate / floor (higher is better)
+//                           time per sweep, at the AVR UARTs' real rate); ratio = rate /
+//                           floor (higher is better)
 //   mega_round_trip_<baud>  ServoPositionRead of seven joints: first request byte sent to
 //                           last reply byte received, worst of 200 requests spread over
 //                           the poll cycle; limit = its wire time (12 + 26 bytes) / 0.90,
 //                           i.e. wire time / round trip >= 0.90 (lower ratio is better)
+//   mega_loop_worst_<baud>  the longest pass of the firmware's main loop, in CPU cycles
+//                           (interrupt handlers included), timed by the loop's heartbeat (a
+//                           write to GPIOR0 per pass). `_polling`: while it polls the joints
+//                           and answers the 200 reads above; limit one word on the bus at
+//                           115200 (2 bytes, 2,778 cycles, the joint firmware's turnaround
+//                           budget: such a pass never delays a joint's answer by more than a
+//                           word). Without suffix: also planning seven-joint moves (floating
+//                           point, between transactions); limit the 128-byte receive ring at
+//                           115200 (11.1 ms, 177,778 cycles): no byte a host sends back to
+//                           back is lost meanwhile.
 #include <algorithm>
+#include <memory>
+#include <string>
 #include <cstdio>
 #include <vector>
 
@@ -30,6 +43,55 @@ joint_avr::AvrMegaArm make_arm(std::uint32_t baud) {
   return joint_avr::AvrMegaArm(std::move(config), elf, baud);
 }
 
+// A 7-joint MultiServoMove: every joint to `position` in `ms`.
+std::vector<std::uint8_t> move_all(std::uint16_t position, std::uint16_t ms) {
+  std::vector<std::uint8_t> f{0x55, 0x55, 2 + 3 + 3 * 7, 0x03, 7, std::uint8_t(ms & 0xFF), std::uint8_t(ms >> 8)};
+  for (std::uint8_t j = 1; j <= 7; ++j) {
+    f.push_back(j);
+    f.push_back(std::uint8_t(position & 0xFF));
+    f.push_back(std::uint8_t(position >> 8));
+  }
+  return f;
+}
+
+// Times every pass of the Mega's main loop from its heartbeat (GPIOR0 written once a pass).
+class LoopWatch {
+ public:
+  explicit LoopWatch(joint_avr::AvrMegaArm& arm) : arm_(arm) {
+    arm_.mega().watch_register_write(gpior0, [this](std::uint8_t, std::uint64_t cycle) {
+      if (last_ != 0) worst_ = std::max(worst_, cycle - last_);
+      last_ = cycle;
+      ++passes_;
+    });
+  }
+  ~LoopWatch() { arm_.mega().watch_register_write(gpior0, nullptr); }
+  std::uint64_t worst() const { return worst_; }
+  std::uint64_t passes() const { return passes_; }
+
+ private:
+  static constexpr std::uint16_t gpior0 = 0x3E;  // data-space address (I/O 0x1E)
+  joint_avr::AvrMegaArm& arm_;
+  std::uint64_t last_ = 0, worst_ = 0, passes_ = 0;
+};
+
+// Ten seven-joint moves, each followed by a read of all positions.
+void run_moves(joint_avr::AvrMegaArm& arm) {
+  const std::vector<std::uint8_t> read{0x55, 0x55, 0x0A, 0x15, 0x07, 1, 2, 3, 4, 5, 6, 7};
+  for (int i = 0; i < 10; ++i) {
+    arm.send_upstream(move_all(i % 2 == 0 ? 450 : 550, 600));
+    arm.advance(std::chrono::milliseconds(100));
+    arm.send_upstream(read);
+    arm.advance(std::chrono::milliseconds(700));
+    arm.take_upstream();
+  }
+}
+
+void loop_line(const std::string& name, const LoopWatch& w, double limit) {
+  std::printf("# %s: %llu passes, worst %.1f us\n", name.c_str(), static_cast<unsigned long long>(w.passes()),
+              double(w.worst()) / 16.0);
+  bench::bench_line(name.c_str(), double(w.worst()), "cycles", limit);
+}
+
 int bench_baud(std::uint32_t baud) {
   joint_avr::AvrMegaArm arm = make_arm(baud);
   arm.advance(std::chrono::milliseconds(500));  // start-up commands done, polling
@@ -39,7 +101,8 @@ int bench_baud(std::uint32_t baud) {
   arm.advance(std::chrono::seconds(3));
   const double sweeps = double(arm.select_edges() - edges0) / 2.0 / 7.0;
   const double rate = sweeps / seconds(arm.now() - t0);
-  const double floor_rate = 1.0 / seconds(wire_time(8 * 7, baud));
+  // The floor at the rate the wire really runs: the AVRs' U2X rate (117,647 baud for 115200).
+  const double floor_rate = 1.0 / seconds(arm.arm().bus().byte_time() * (8 * 7));
   std::printf("BENCH mega_refresh_%u %.3f sweeps/s limit %.3f ratio %.3f\n", baud, rate, floor_rate,
               rate / floor_rate);
 
@@ -48,6 +111,7 @@ int bench_baud(std::uint32_t baud) {
   const Duration wire = wire_time(request.size() + reply_bytes, baud);
   Duration worst{};
   int lost = 0;
+  auto polling = std::make_unique<LoopWatch>(arm);
   for (int i = 0; i < 200; ++i) {
     arm.advance(std::chrono::microseconds(2000 + (i * 7919) % 9000));  // spread over the poll cycle
     arm.take_upstream();
@@ -73,6 +137,13 @@ int bench_baud(std::uint32_t baud) {
   const double limit_ms = seconds(wire) * 1e3 / 0.9;
   std::printf("BENCH mega_round_trip_%u %.3f ms limit %.3f ratio %.3f\n", baud, seconds(worst) * 1e3, limit_ms,
               seconds(worst) * 1e3 / limit_ms);
+  loop_line("mega_loop_worst_polling_" + std::to_string(baud), *polling, 2778);
+  polling.reset();
+  {
+    LoopWatch moving(arm);
+    run_moves(arm);
+    loop_line("mega_loop_worst_" + std::to_string(baud), moving, 177778);
+  }
   return lost;
 }
 

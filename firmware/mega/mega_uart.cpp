@@ -26,15 +26,20 @@ void count_error(Channel& c) {
 
 void uart_begin(Port port, uint32_t baud) {
   const uint16_t ubrr = ubrr_for(baud);
+  // U2X and the frame format before UBRR: the chip does not care, but simavr computes the
+  // bit time only when UBRRnL is written, and with U2X still clear it would run the
+  // emulated UART at half speed (replies and bus commands at half the baud rate).
   if (port == Port::upstream) {
-    UBRR0 = ubrr;
     UCSR0A = _BV(U2X0);
     UCSR0C = _BV(UCSZ01) | _BV(UCSZ00);  // 8N1
+    UBRR0H = static_cast<uint8_t>(ubrr >> 8);
+    UBRR0L = static_cast<uint8_t>(ubrr);  // last: simavr takes the bit time here
     UCSR0B = _BV(RXEN0) | _BV(TXEN0) | _BV(RXCIE0);
   } else {
-    UBRR1 = ubrr;
     UCSR1A = _BV(U2X1);
     UCSR1C = _BV(UCSZ11) | _BV(UCSZ10);
+    UBRR1H = static_cast<uint8_t>(ubrr >> 8);
+    UBRR1L = static_cast<uint8_t>(ubrr);
     UCSR1B = _BV(RXEN1) | _BV(TXEN1) | _BV(RXCIE1);
   }
 }

@@ -20,6 +20,15 @@ const JointState no_joint{};
 int32_t divide_rounded(int32_t a, int32_t b) { return a >= 0 ? (a + b / 2) / b : -((-a + b / 2) / b); }
 
 
+// The acceleration a joint's setpoint ramp really runs (portable/setpoint_ramp.hpp): Q8
+// clicks per tick^2 = (cps2 * 32 + 62500) / 125000, at least 1; 40,000 clicks/s^2 is
+// 39,062, 15,000 is 15,625. Planning with the configured figure would misjudge every ramp.
+float ramp_accel(uint32_t cps2) {
+  uint32_t q8 = (cps2 * 32u + 62500u) / 125000u;
+  if (q8 < 1) q8 = 1;
+  return float(q8) * (1e6f / 256.0f);
+}
+
 // Seconds a joint at rest needs for `distance` clicks at its full speed and acceleration.
 float shortest_time_s(float distance, float speed, float accel) {
   if (distance * accel >= speed * speed) return distance / speed + speed / accel;
@@ -39,6 +48,22 @@ uint8_t percent_for(float distance, float time_s, float speed, float accel) {
   return percent < 1.0f ? 1 : static_cast<uint8_t>(percent);
 }
 
+// A joint at rest covering `distance` in exactly `time_s` by starting at speed v1 and
+// switching to v2 < v1 part-way (the slower percentage alone would arrive late, v1 alone
+// early). Accelerating to v1, cruising, braking to v2 at the switch, cruising, braking to
+// rest: the distance left at the switch is v1^2/2a + v2 t2, the time v1/a + t2, so the
+// switch comes at (distance - v2 (time - v1/a)) / (v1 - v2) after the drive takes effect.
+// False if the profile never cruises at v1 (its time then does not depend on the speed).
+bool switch_time_s(float distance, float time_s, float v1, float v2, float accel, float* switch_s) {
+  const float reach_s = v1 / accel;
+  if (distance * accel < v1 * v1 || time_s < 2.0f * reach_s) return false;
+  float t = (distance - v2 * (time_s - reach_s)) / (v1 - v2);
+  if (t < reach_s) t = reach_s;                    // still accelerating: switch as it cruises
+  if (t > time_s - reach_s) t = time_s - reach_s;  // not before it would brake anyway
+  *switch_s = t;
+  return true;
+}
+
 }  // namespace
 
 void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus, UpstreamPort* upstream,
@@ -48,6 +73,7 @@ void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus
   upstream_ = upstream;
   master_.begin(bus, bus_baud);
   op_count_ = 0;
+  pending_count_ = 0;
   poll_index_ = 0;
   stats_ = CoreStats{};
   for (uint8_t i = 0; i < max_joints; ++i) {
@@ -55,6 +81,7 @@ void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus
     state_[i].loop_on = true;
     percent_[i] = 0;
   }
+  for (uint8_t i = 0; i < count_; ++i) state_[i].position = to_position(joints_[i].number, 0);
   have_groups_ = groups != nullptr;
   if (have_groups_) groups_.begin(groups);
   awaiting_ = Awaiting::nothing;
@@ -137,11 +164,28 @@ void ControllerCore::cancel_ops(uint8_t index, bool drives_only) {
 
 void ControllerCore::poll(uint32_t now_us) {
   if (have_groups_) service_groups();
-  if (playing_ && reached(now_us, play_due_us_)) play_next(now_us);
   master_.poll(now_us);
   BusResult r;
   if (master_.take_result(&r)) take_result(r);
+  // Moves are planned between transactions (see plan_pending). Planning takes long enough
+  // on the Mega that `now_us` is stale afterwards: the next transaction starts at the next
+  // poll, with a fresh time (else its timeout would run from before the planning).
+  if (!master_.busy()) {
+    if (plan_pending(now_us)) return;
+    if (playing_ && reached(now_us, play_due_us_)) {
+      play_next(now_us);
+      return;
+    }
+  }
   if (master_.can_start(now_us)) start_next(now_us);
+}
+
+bool ControllerCore::plan_pending(uint32_t now_us) {
+  if (pending_count_ == 0) return false;
+  const uint8_t n = pending_count_;
+  pending_count_ = 0;
+  plan_move(pending_, n, pending_ms_, now_us);
+  return true;
 }
 
 void ControllerCore::start_next(uint32_t now_us) {
@@ -196,6 +240,9 @@ void ControllerCore::take_result(const BusResult& r) {
   if (!inflight_is_op_) {
     if (r.ok) {
       s.clicks = r.response;
+      // In position units now, one division per poll: a ServoPositionRead then only copies
+      // (seven divisions in the reply's pass took the Mega 0.5 ms of its round trip).
+      s.position = to_position(r.joint, r.response);
       s.read = true;
       s.answering = true;
       count_up(s.reads);
@@ -225,8 +272,18 @@ void ControllerCore::take_result(const BusResult& r) {
 
 void ControllerCore::on_frame(uint8_t command, const uint8_t* data, uint8_t length, uint32_t now_us) {
   count_up(stats_.frames);
+  // A request that changes what the joints do comes after a move still waiting to be
+  // planned: that move first, so that requests take effect in the order they came.
   switch (command) {
-    case rc_multi_servo_move: on_move(data, length, now_us); return;
+    case rc_multi_servo_move:
+    case rc_multi_servo_off:
+    case rc_servo_speed:
+    case rc_group_run:
+    case rc_group_erase: plan_pending(now_us); break;
+    default: break;
+  }
+  switch (command) {
+    case rc_multi_servo_move: on_move(data, length); return;
     case rc_servo_position_read: on_position_read(data, length); return;
     case rc_multi_servo_off: on_servo_off(data, length, now_us); return;
     case rc_group_stop:
@@ -288,7 +345,7 @@ ControllerCore::Check ControllerCore::check_targets(const uint8_t* servos, const
   return answering ? Check::ok : Check::not_answering;
 }
 
-void ControllerCore::on_move(const uint8_t* data, uint8_t length, uint32_t now_us) {
+void ControllerCore::on_move(const uint8_t* data, uint8_t length) {
   if (length < 3 || length != 3 + 3 * data[0] || data[0] > max_joints) {
     count_up(stats_.ignored_frames);
     return;
@@ -311,7 +368,11 @@ void ControllerCore::on_move(const uint8_t* data, uint8_t length, uint32_t now_u
     return;
   }
   count_up(stats_.moves);
-  if (moving > 0) plan_move(targets, moving, time_ms, now_us);
+  // Planned at the end of the transaction under way (poll): planning takes milliseconds on
+  // the Mega, and a joint waiting that long mid-transaction for COMMAND would give up on it.
+  for (uint8_t k = 0; k < moving; ++k) pending_[k] = targets[k];
+  pending_count_ = moving;
+  pending_ms_ = time_ms;
 }
 
 void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_ms, uint32_t now_us) {
@@ -320,7 +381,10 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
   // can take effect `effect[k]` after now at the earliest (behind the speeds and k drives);
   // the common arrival is the time asked, or later if a joint cannot make it. Each joint
   // gets the smallest whole percent that arrives in time, and its drive is delayed so that
-  // its profile ends at the common instant (absorbing the 1 % steps of set_speed).
+  // its profile ends at the common instant. The 1 % steps of set_speed are absorbed by a
+  // second set_speed, one percent slower, part-way through (switch_time_s), not by delaying
+  // the drive: a delay of up to 1/p of the move would leave a slow joint standing for
+  // seconds, and a stop in that time would find it never started.
   const uint32_t txn = master_.transaction_estimate_us();
   // drive_to takes effect once READY, COMMAND and DATA (3 words) have crossed the wire.
   const float latency_s = float(3 * master_.word_time_us()) / 1e6f;
@@ -337,7 +401,7 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
     from[k] = start_clicks(targets[k].index, now_us);
     const float d = float(targets[k].clicks) - from[k];
     distance[k] = d < 0.0f ? -d : d;
-    const float earliest = effect_s[k] + shortest_time_s(distance[k], j.max_speed_cps, j.max_accel_cps2);
+    const float earliest = effect_s[k] + shortest_time_s(distance[k], j.max_speed_cps, ramp_accel(j.max_accel_cps2));
     if (earliest > arrive_s) arrive_s = earliest;
   }
   planned_ms_ = static_cast<uint32_t>(arrive_s * 1000.0f + 0.5f);
@@ -350,7 +414,7 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
   for (uint8_t k = 0; k < n; ++k) {
     const uint8_t index = targets[k].index;
     const JointSetup& j = joints_[index];
-    percent_[index] = percent_for(distance[k], arrive_s - effect_s[k], j.max_speed_cps, j.max_accel_cps2);
+    percent_[index] = percent_for(distance[k], arrive_s - effect_s[k], j.max_speed_cps, ramp_accel(j.max_accel_cps2));
     schedule(now_us, index, OpKind::speed, percent_[index]);
     state_[index].loop_on = true;
     state_[index].jogging = false;
@@ -358,11 +422,24 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
   for (uint8_t k = 0; k < n; ++k) {
     const uint8_t index = targets[k].index;
     const JointSetup& j = joints_[index];
-    const float speed = float(j.max_speed_cps) * float(percent_[index]) / 100.0f;
-    const float ramp_s = distance[k] > 0.0f ? shortest_time_s(distance[k], speed, j.max_accel_cps2) : 0.0f;
+    const float accel = ramp_accel(j.max_accel_cps2);
+    const uint8_t percent = percent_[index];
+    const float speed = float(j.max_speed_cps) * float(percent) / 100.0f;
+    const float available_s = arrive_s - effect_s[k];
+    float ramp_s = distance[k] > 0.0f ? shortest_time_s(distance[k], speed, accel) : 0.0f;
+    float switch_s = 0.0f;
+    if (percent > 1 && available_s - ramp_s > 0.003f &&
+        switch_time_s(distance[k], available_s, speed, float(j.max_speed_cps) * float(percent - 1) / 100.0f, accel,
+                      &switch_s)) {
+      ramp_s = available_s;  // the drive at once, the slower speed from switch_s on
+    }
     float start_s = arrive_s - ramp_s - latency_s;
     if (start_s < 0.0f) start_s = 0.0f;
     schedule(now_us + static_cast<uint32_t>(start_s * 1e6f), index, OpKind::drive_to, targets[k].clicks);
+    if (switch_s > 0.0f) {
+      schedule(now_us + static_cast<uint32_t>((start_s + switch_s) * 1e6f), index, OpKind::speed,
+               static_cast<int16_t>(percent - 1));
+    }
     JointState& s = state_[index];
     s.planned = true;
     s.plan_from = static_cast<int16_t>(from[k] < 0.0f ? from[k] - 0.5f : from[k] + 0.5f);
@@ -386,7 +463,7 @@ void ControllerCore::on_position_read(const uint8_t* data, uint8_t length) {
       count_up(stats_.ignored_frames);
       return;
     }
-    const uint16_t position = static_cast<uint16_t>(to_position(joint, state_[index].clicks));
+    const uint16_t position = static_cast<uint16_t>(state_[index].position);
     reply[1 + 3 * k] = joint;
     reply[2 + 3 * k] = static_cast<uint8_t>(position & 0xFFu);
     reply[3 + 3 * k] = static_cast<uint8_t>(position >> 8);
@@ -417,6 +494,7 @@ void ControllerCore::on_servo_off(const uint8_t* data, uint8_t length, uint32_t 
 
 void ControllerCore::halt(uint32_t now_us) {
   op_count_ = 0;
+  pending_count_ = 0;
   // 0 % brings each joint's setpoint to rest at its acceleration limit and holds it there.
   for (uint8_t i = 0; i < count_; ++i) {
     schedule(now_us, i, OpKind::speed, 0);

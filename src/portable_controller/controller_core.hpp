@@ -24,7 +24,9 @@
 // fresh and a joint that stops answering is known before a move names it.
 //
 // Bus work is a queue of operations with the instant each is due; poll() starts the next
-// due one, else the next position poll. Time is a free-running microsecond counter that
+// due one, else the next position poll. A move is planned (its operations queued) by poll()
+// between two transactions, never while a joint waits mid-transaction: planning seven
+// joints in floating point takes the Mega several milliseconds. Time is a free-running microsecond counter that
 // wraps (all comparisons are by difference).
 #pragma once
 
@@ -57,6 +59,7 @@ class UpstreamPort {
 
 struct JointState {
   int16_t clicks;     // last good get_position
+  int16_t position;   // the same in Robot Commands units (to_position)
   bool read;          // clicks holds a reading
   bool answering;     // the last transaction with the joint worked
   bool loop_on;       // as last commanded
@@ -96,7 +99,8 @@ struct CoreStats {
 class ControllerCore {
  public:
   static const uint8_t max_joints = 7;
-  static const uint8_t max_ops = 24;
+  // A move of seven joints: loop-on, speed, drive and a part-way speed switch each.
+  static const uint8_t max_ops = 32;
 
   // `joints` (count <= 7, numbers distinct) must outlive the core. Queues set_speed 0 and
   // then set_zone for every joint: after a reset nothing keeps moving on an old command.
@@ -153,7 +157,7 @@ class ControllerCore {
 
   Check check_targets(const uint8_t* servos, const uint16_t* positions, uint8_t n, Target* out,
                       uint8_t* moving) const;
-  void on_move(const uint8_t* data, uint8_t length, uint32_t now_us);
+  void on_move(const uint8_t* data, uint8_t length);
   // Action groups (group_requests.cpp).
   void on_group_download(const uint8_t* data, uint8_t length);
   bool download_step(const uint8_t* data, uint8_t length);
@@ -173,6 +177,7 @@ class ControllerCore {
   void on_servo_speed(const uint8_t* data, uint8_t length, uint32_t now_us);
   void halt(uint32_t now_us);
   void plan_move(const Target* targets, uint8_t count, uint16_t time_ms, uint32_t now_us);
+  bool plan_pending(uint32_t now_us);  // true if a move was planned
   void reply_u16(uint8_t command, uint16_t value);
 
   const JointSetup* joints_ = nullptr;
@@ -189,6 +194,10 @@ class ControllerCore {
   uint16_t battery_mv_ = 0;
   uint32_t planned_ms_ = 0;
   CoreStats stats_{};
+  // A move accepted but not yet planned: it is planned between two transactions.
+  Target pending_[max_joints];
+  uint8_t pending_count_ = 0;
+  uint16_t pending_ms_ = 0;
 
   GroupStore groups_;
   bool have_groups_ = false;

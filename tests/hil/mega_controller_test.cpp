@@ -3,12 +3,14 @@
 // the joints' true positions (their emulated encoders) as the judge.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <vector>
 
 #include <fmt/core.h>
 
+#include "devices/robot_commands/arrival.hpp"
 #include "mega_rig.hpp"
 
 namespace armctl::hil {
@@ -76,6 +78,54 @@ TEST(MegaController, SynchronizedMoveArrivesTogetherAndReadsBack) {
     }() : 500;
     EXPECT_NEAR(p.position, expected, 1) << "joint " << int(p.servo);
   }
+}
+
+// Stated tolerance for a synchronized move's arrival (as the Linux arm controller states
+// it, docs/arm-controller.md): every joint in its zone within max(75 ms, 5 % of the move's
+// time) of the instant asked for, or of the joints' reach when that is later.
+double arrival_tolerance_ms(double move_ms) { return std::max(75.0, 0.05 * move_ms); }
+
+TEST(MegaController, SynchronizedMoveArrivesWithinItsTime) {
+  for (const std::uint32_t baud : {9600u, 115200u}) {
+    SCOPED_TRACE(::testing::Message() << baud << " baud");
+    MegaRig rig(baud);
+    const std::vector<ServoTarget> move{{1, 600}, {3, 450}, {6, 620}};
+    std::map<int, int> targets;
+    for (const auto& t : move) targets[t.servo] = clicks_for(t.servo, *t.position);
+    const TimePoint start = rig.now();
+    ASSERT_TRUE(rig.client->move(move, 800).ok());
+    for (const auto& [j, at] : watch_arrivals(rig, targets, start + 1500ms)) {
+      EXPECT_NEAR(ms_between(start, at), 800, arrival_tolerance_ms(800)) << "joint " << j;
+      EXPECT_LE(std::abs(rig.clicks(j) - targets[j]), 20) << "joint " << j;
+    }
+  }
+}
+
+// Found by hand: `armctl xarm ... move 1=600 --time 500 --wait` on the emulated Mega
+// failed. Joint 1 (Z: 12,000 clicks/s, 40,000 clicks/s^2) cannot cover 4,000 clicks in
+// 500 ms: its reach is 2 x sqrt(4000 / 39062) = 640 ms (the joint's acceleration as its
+// fixed-point ramp holds it), so the move is stretched to that, as an xArm stretches a
+// move to its servos' speed limit; then it must arrive within the tolerance, and the CLI's
+// closed-loop wait (reads from 500 ms on, 1000 ms more) must find it there.
+TEST(MegaController, MoveOutOfReachArrivesAsSoonAsTheJointCan) {
+  const std::vector<ServoTarget> move{{1, 600}};
+  const double reach_ms = 2000.0 * std::sqrt(4000.0 / 39062.0);
+  {
+    MegaRig rig;
+    const TimePoint start = rig.now();
+    ASSERT_TRUE(rig.client->move(move, 500).ok());
+    const auto arrivals = watch_arrivals(rig, {{1, clicks_for(1, 600)}}, start + 1500ms);
+    EXPECT_NEAR(ms_between(start, arrivals.at(1)), reach_ms, arrival_tolerance_ms(reach_ms));
+    EXPECT_LE(std::abs(rig.clicks(1) - clicks_for(1, 600)), 20);
+  }
+  MegaRig rig;
+  const TimePoint start = rig.now();
+  ASSERT_TRUE(rig.client->move(move, 500).ok());
+  robot_commands::ArrivalOptions options;
+  options.not_before = start + 500ms;
+  const auto report = robot_commands::wait_until_arrived(*rig.client, move, start + 1500ms, options);
+  ASSERT_TRUE(report.ok()) << report.error().message;
+  EXPECT_TRUE(report->all_arrived()) << "servo 1 at " << report->servos[0].position;
 }
 
 TEST(MegaController, GroupStopHaltsEveryJointShortOfItsTarget) {
@@ -147,17 +197,17 @@ TEST(MegaController, RefusesBadRequestsWhole) {
   EXPECT_TRUE(rig.client->battery_millivolts().ok());
 }
 
-// Fails on emulated silicon in the first run: docs/mega-controller.md "Known failures".
-TEST(MegaController, DISABLED_MoveNamingADeadJointIsRefusedWhole) {
+TEST(MegaController, MoveNamingADeadJointIsRefusedWhole) {
   MegaRig rig;
   rig.mega.arm().joint(5).set_held_in_reset(true);  // killed: it never answers again
   rig.mega.advance(500ms);                          // the polls find out
   ASSERT_TRUE(rig.client->move({{2, 700}, {5, 700}}, 800).ok());
   rig.mega.advance(1200ms);
   EXPECT_NEAR(rig.clicks(2), 0, 20) << "no joint of a refused move moves";
-  // The others still work.
+  // The others still work. (The SHOULDER's 8,000 clicks take at least 8000/8000 +
+  // 8000/15625 = 1.51 s: the move is stretched to that, so look at 2 s, not at 1.2 s.)
   ASSERT_TRUE(rig.client->move({{2, 700}}, 800).ok());
-  rig.mega.advance(1200ms);
+  rig.mega.advance(2000ms);
   EXPECT_NEAR(rig.clicks(2), clicks_for(2, 700), 20);
 }
 
@@ -185,8 +235,7 @@ TEST(MegaController, ResetMidMoveHaltsTheJoints) {
   EXPECT_TRUE(rig.client->battery_millivolts().ok()) << "answers again after the reset";
 }
 
-// Fails on emulated silicon in the first run: docs/mega-controller.md "Known failures".
-TEST(MegaController, DISABLED_GroupDownloadedSurvivesAResetAndPlays) {
+TEST(MegaController, GroupDownloadedSurvivesAResetAndPlays) {
   MegaRig rig(115200);
   const std::vector<robot_commands::GroupAction> actions{
       {400, {{1, 520}, {2, 480}, {7, 550}}},
@@ -225,8 +274,7 @@ TEST(MegaController, GroupThatDoesNotFitTheEepromIsRefusedAndErasedGroupsDoNotRu
   EXPECT_NEAR(rig.clicks(3), 0, 20);
 }
 
-// Fails on emulated silicon in the first run: docs/mega-controller.md "Known failures".
-TEST(MegaController, DISABLED_SynchronizedMoveAt115200) {
+TEST(MegaController, SynchronizedMoveAt115200) {
   MegaRig rig(115200);
   const std::vector<ServoTarget> move{{1, 400}, {2, 560}, {4, 300}, {6, 650}};
   std::map<int, int> targets;

@@ -10,6 +10,13 @@ namespace armctl::joint_avr {
 
 std::string default_firmware_elf() { return ARMCTL_FIRMWARE_ELF; }
 
+Duration avr_byte_time(std::uint32_t baud) {
+  // UBRR as the firmwares round it (firmware/board/uart.cpp); 8 cycles a bit with U2X.
+  const std::uint64_t ubrr = (16'000'000ULL + 4ULL * baud) / (8ULL * baud) - 1;
+  const std::uint64_t cycles = 10 * 8 * (ubrr + 1);
+  return std::chrono::nanoseconds(cycles * 1000 / 16);
+}
+
 AvrArm::AvrArm(joint_sim::ArmConfig config, AvrArmOptions options) : config_(std::move(config)) {
   const std::string elf = options.elf_path.empty() ? default_firmware_elf() : options.elf_path;
   int lines = 0;
@@ -32,7 +39,8 @@ AvrArm::AvrArm(joint_sim::ArmConfig config, AvrArmOptions options) : config_(std
     endpoints[j.number - 1u] = joint.get();
     joints_[j.number - 1u] = std::move(joint);
   }
-  bus_ = std::make_unique<joint_sim::SimBus>(config_.baud, std::move(endpoints));
+  bus_ = std::make_unique<joint_sim::SimBus>(config_.baud, std::move(endpoints),
+                                             options.wire_at_avr_rate ? avr_byte_time(config_.baud) : Duration::zero());
 }
 
 AvrJoint& AvrArm::joint(int number) {

@@ -27,7 +27,16 @@ struct AvrArmOptions {
   bool write_tuning = true;
   // Motor polarity and legacy-master mode written into every joint's EEPROM (settings byte).
   joint_bus::JointOptions joints{};
+  // The wire carries bytes at the rate the emulated UARTs make them (avr_byte_time), not at
+  // the nominal baud. Needed when the master is an emulated AVR too (AvrMegaArm): it lowers
+  // select when its own UART says the last byte has left, which on a wire 2 % slower (at
+  // 115200) is before the joint has that byte, and the joint then drops the command.
+  bool wire_at_avr_rate = false;
 };
+
+// How long a 16 MHz AVR UART in double speed (U2X, as both firmwares set it) takes for one
+// 8N1 byte at `baud`: 1040 us at 9600 (9615 baud), 85 us at 115200 (117,647 baud).
+Duration avr_byte_time(std::uint32_t baud);
 
 // The firmware ELF built by this CMake build (ARMCTL_FIRMWARE_ELF).
 std::string default_firmware_elf();

@@ -117,6 +117,10 @@ void AvrChip::connect() {
       throw ArmctlError(ErrorKind::unsupported, std::string("simavr ") + model_.mcu + " without UART" + char('0' + u));
   }
   uart_ = uarts_[0];
+  for (int u = 0; u < model_.uart_count; ++u) {
+    avr_uart_t* uart = uarts_[static_cast<std::size_t>(u)];
+    avr_register_io_write(avr_, uart->udrc.enable.reg, &AvrChip::on_uart_control_write, uart);
+  }
   avr_irq_register_notify(avr_io_getirq(avr_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT),
                           &AvrChip::on_uart_output_irq, this);
   if (model_.uart_count > 1) {
@@ -129,6 +133,19 @@ void AvrChip::connect() {
     probes_[static_cast<std::size_t>(v)] = VectorProbe{this, v, 0, 0};
     avr_irq_register_notify(irq + AVR_INT_IRQ_RUNNING, &AvrChip::on_isr_running_irq,
                             &probes_[static_cast<std::size_t>(v)]);
+  }
+}
+
+void AvrChip::on_uart_control_write(avr_t* avr, std::uint16_t, std::uint8_t, void* param) {
+  // Runs after simavr's own handler of UCSRnB. A real UART flags UDRE whenever its data
+  // register is empty, so enabling UDRIE then interrupts at once. simavr 1.6 raises it on
+  // enable only if its transmit timer is idle, and that timer runs on for one byte time
+  // after the last byte has gone: a reply started just after a previous one waited up to a
+  // byte time (a joint's STATUS after its RESPONSE: 1 ms at 9600).
+  auto* uart = static_cast<avr_uart_t*>(param);
+  if (avr_regbit_get(avr, uart->udrc.enable) && avr_regbit_get(avr, uart->txen) && uart->tx_cnt == 0 &&
+      !uart->udrc.pending) {
+    avr_raise_interrupt(avr, &uart->udrc);
   }
 }
 
@@ -149,6 +166,18 @@ void AvrChip::watch_output_port(char port, std::function<void(int, bool, std::ui
     avr_irq_register_notify(avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(port), bit), &AvrChip::on_port_pin_irq,
                             &pin_probes_[static_cast<std::size_t>(bit)]);
   }
+}
+
+void AvrChip::watch_register_write(std::uint16_t address,
+                                   std::function<void(std::uint8_t, std::uint64_t)> sink) {
+  register_write_ = std::move(sink);
+  avr_register_io_write(avr_, address, &AvrChip::on_register_write, this);
+}
+
+void AvrChip::on_register_write(avr_t* avr, std::uint16_t address, std::uint8_t value, void* param) {
+  auto* self = static_cast<AvrChip*>(param);
+  avr_core_watch_write(avr, address, value);  // a write hook stores the value itself
+  if (self->register_write_) self->register_write_(value, avr->cycle);
 }
 
 void AvrChip::on_port_pin_irq(avr_irq_t*, std::uint32_t value, void* param) {

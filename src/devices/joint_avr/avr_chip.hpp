@@ -81,6 +81,9 @@ class AvrChip {
   // Called with (bit, level, cycle) whenever the firmware changes an output pin of `port`
   // ('A'..'L'): the select lines of the Mega controller.
   void watch_output_port(char port, std::function<void(int, bool, std::uint64_t)> sink);
+  // Called with (value, cycle) whenever the firmware writes the I/O register at data-space
+  // `address` (e.g. GPIOR0 = 0x3E, a register with no pin: a heartbeat the harness times).
+  void watch_register_write(std::uint16_t address, std::function<void(std::uint8_t, std::uint64_t)> sink);
   bool uart_transmitter_enabled() const;
   bool uart_receiver_enabled() const;
 
@@ -96,6 +99,8 @@ class AvrChip {
   static void on_uart1_output_irq(avr_irq_t* irq, std::uint32_t value, void* param);
   static void on_port_pin_irq(avr_irq_t* irq, std::uint32_t value, void* param);
   static void on_isr_running_irq(avr_irq_t* irq, std::uint32_t value, void* param);
+  static void on_register_write(avr_t* avr, std::uint16_t address, std::uint8_t value, void* param);
+  static void on_uart_control_write(avr_t* avr, std::uint16_t address, std::uint8_t value, void* param);
   void connect();
   void reapply_pins();
   void apply_reset_values();
@@ -115,6 +120,7 @@ class AvrChip {
   };
   std::array<PinProbe, 8> pin_probes_{};
   std::function<void(int, bool, std::uint64_t)> port_output_;
+  std::function<void(std::uint8_t, std::uint64_t)> register_write_;
   // Levels driven from outside: [0] port B, [1] port D; mask says which bits we drive.
   std::array<std::uint8_t, 2> driven_mask_{};
   std::array<std::uint8_t, 2> driven_level_{};

@@ -10,6 +10,11 @@ namespace armctl::joint_avr {
 namespace {
 // Idle bus: the Mega and the joints advance this far per step.
 constexpr Duration kIdleStep = std::chrono::microseconds(250);
+// The Mega's UART1 and the joints' UARTs run at the same real rate (both are 16 MHz AVRs).
+AvrArmOptions on_avr_wire(AvrArmOptions options) {
+  options.wire_at_avr_rate = true;
+  return options;
+}
 // A byte time after the last bus activity the bus counts as active still (STATUS follows
 // a select fall after the joint's turnaround).
 constexpr int kActiveWords = 8;
@@ -20,7 +25,7 @@ std::string mega_firmware_elf_115200() { return ARMCTL_MEGA_FIRMWARE_ELF_115200;
 
 AvrMegaArm::AvrMegaArm(joint_sim::ArmConfig config, std::string mega_elf, std::uint32_t upstream_baud,
                        AvrArmOptions joints)
-    : arm_(std::move(config), std::move(joints)),
+    : arm_(std::move(config), on_avr_wire(std::move(joints))),
       mega_(std::make_unique<AvrChip>(mega_elf, atmega2560_model)),
       upstream_baud_(upstream_baud),
       start_(arm_.now()),
@@ -90,6 +95,10 @@ void AvrMegaArm::run_until(TimePoint t) {
   while (now() < t) {
     TimePoint end = std::min(t, now() + (bus_active() ? short_step_ : kIdleStep));
     if (!to_mega_.empty()) end = std::min(end, std::max(now(), to_mega_.front().at));
+    // A joint's byte already on the wire ends at a known instant, whatever the Mega does
+    // meanwhile: the step ends there, so the Mega gets it when its stop bit ends.
+    const TimePoint byte_in = arm_.bus().next_byte_to_master();
+    if (byte_in > now()) end = std::min(end, byte_in);
     step(end);
   }
 }

@@ -9,7 +9,8 @@
 // bus at those instants, the bus and the joints run to the end of the step, and the bytes
 // the bus delivered to the master are handed to the Mega's UART1. Steps are short (a
 // quarter of a byte time) while a joint is selected or bytes are on the wire, longer while
-// the bus is idle; a byte from the joints reaches the Mega at most one short step late.
+// the bus is idle, and a step ends when a joint's byte on the wire ends: a byte from the
+// joints reaches the Mega's UART1 when its stop bit ends, as on the real bus.
 #pragma once
 
 #include <cstdint>

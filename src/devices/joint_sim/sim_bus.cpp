@@ -19,12 +19,12 @@ std::string hex(std::uint8_t b) {
 
 }  // namespace
 
-SimBus::SimBus(std::uint32_t baud, std::vector<BusEndpoint*> endpoints)
+SimBus::SimBus(std::uint32_t baud, std::vector<BusEndpoint*> endpoints, Duration byte_time)
     : baud_(baud), endpoints_(std::move(endpoints)) {
   if (baud_ == 0) {
     throw ArmctlError(ErrorKind::invalid_argument, "simulated bus: baud 0 (allowed: > 0)");
   }
-  byte_time_ = wire_time(1, baud_);
+  byte_time_ = byte_time > Duration::zero() ? byte_time : wire_time(1, baud_);
   lines_.resize(endpoints_.size());
   for (std::size_t i = 0; i < endpoints_.size(); ++i) {
     lines_[i].endpoint = endpoints_[i];
@@ -70,7 +70,18 @@ void SimBus::bring_to(JointLine& line, TimePoint t) {
 }
 
 void SimBus::sync() {
-  for (JointLine& line : lines_) bring_to(line, clock_.now());
+  const TimePoint t = clock_.now();
+  for (std::size_t i = 0; i < lines_.size(); ++i) {
+    JointLine& line = lines_[i];
+    if (line.endpoint == nullptr) continue;
+    bring_to(line, t);
+    // A byte the endpoint began while being brought here goes on the wire now: its event
+    // time is at or before `synced`, so next_event_time() would never look at it again
+    // (an emulated chip stepped in short spans left a reply there until the next select
+    // edge: issue 26, the 115200 move that moved nothing).
+    if (!line.tx.busy) poll_joint_tx(static_cast<int>(i), t);
+  }
+  check_tx_contention(t);
 }
 
 TimePoint SimBus::next_event_time() const {
@@ -85,6 +96,13 @@ TimePoint SimBus::next_event_time() const {
     }
   }
   if (!garbage_.empty()) t = std::min(t, garbage_.front().at);
+  return t;
+}
+
+TimePoint SimBus::next_byte_to_master() const {
+  TimePoint t = TimePoint::max();
+  for (const JointLine& line : lines_)
+    if (line.tx.busy) t = std::min(t, line.tx.end);
   return t;
 }
 

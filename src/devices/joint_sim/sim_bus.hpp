@@ -43,7 +43,9 @@ class SimBus final : public transport::JointBusLink {
  public:
   // endpoints[i] is wired to select line i+1 (nullptr: nothing on that line). Endpoints are
   // not owned and must outlive the bus. baud > 0, else ArmctlError(invalid_argument).
-  SimBus(std::uint32_t baud, std::vector<BusEndpoint*> endpoints);
+  // `byte_time`: how long a byte occupies the wire; zero: 10 bit times at `baud` (a UART
+  // whose real rate differs from the nominal one, e.g. an AVR's, passes its own).
+  SimBus(std::uint32_t baud, std::vector<BusEndpoint*> endpoints, Duration byte_time = Duration::zero());
 
   // transport::JointBusLink
   int joint_count() const override { return static_cast<int>(endpoints_.size()); }
@@ -66,6 +68,10 @@ class SimBus final : public transport::JointBusLink {
   bool select(int joint) const;
   bool master_tx_busy() const { return master_.busy || !master_queue_.empty(); }
   std::size_t rx_available() const { return master_rx_.size(); }
+  // When the earliest byte now on a joint's TX wire ends (the master's UART then has it),
+  // or TimePoint::max(): lets a co-simulated master (an emulated chip run in steps) end its
+  // step exactly there instead of taking the byte up to a step late.
+  TimePoint next_byte_to_master() const;
 
   // Faults: numbering of bytes restarts with each plan. clear_faults() = empty plan.
   void set_fault_plan(FaultPlan plan);
