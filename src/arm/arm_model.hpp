@@ -34,7 +34,7 @@ struct DeviceMap {
   int id = 0;  // the joint's ID on the device: Robot Commands servo ID, joint-bus joint number
   double device_a = 0, actuator_a = 0, device_b = 1, actuator_b = 1;
   // Joint bus only: the joint's own speed at set_speed 100 % and its acceleration, as in
-  // its tuning (config/scara.json), so that moves can be planned to arrive together.
+  // its tuning (the simulator section of config/scara.arm.json), so that moves can be planned to arrive together.
   double max_speed_cps = 0, max_accel_cps2 = 0;
   double device_per_unit() const { return (device_b - device_a) / (actuator_b - actuator_a); }
   double to_device(double actuator) const { return device_a + (actuator - actuator_a) * device_per_unit(); }

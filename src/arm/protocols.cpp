@@ -13,7 +13,7 @@ void add_builtin(NamedRegistry<ProtocolInfo>& table) {
   ProtocolInfo rc{"robot_commands", "servo", 19, {0, 1000}, "servo units", {}};
   ProtocolInfo bus{"joint_bus", "number", 7, {-32768, 32767}, "counts", {}};
   // The joint's own speed at set_speed 100 % and its acceleration, as in its tuning
-  // (config/scara.json), so that moves can be planned to arrive together.
+  // (the simulator section of config/scara.arm.json), so that moves can be planned to arrive together.
   bus.read_extras = [](json_reader::ObjectReader& r, DeviceMap& m) {
     m.max_speed_cps = r.number("max_speed_cps", 1, joint_bus::max_speed_cps_limit);
     m.max_accel_cps2 = r.number("max_accel_cps2", joint_bus::min_accel_cps2_limit, joint_bus::max_accel_cps2_limit);

@@ -38,7 +38,7 @@
 namespace armctl {
 namespace controller {
 
-// One joint as the arm controller sees it (config/scara-arm.json has the same values).
+// One joint as the arm controller sees it (the arm_controller section of config/scara.arm.json has the same values).
 struct JointSetup {
   uint8_t number;          // 1..7: servo ID upstream = select line on the bus
   int16_t clicks_at_0;     // Robot Commands position 0 -> clicks

@@ -1,5 +1,5 @@
 // The retrofitted SCARA's seven joints as the Mega controller firmware knows them: the same
-// values as config/scara-arm.json (a host test keeps the two equal).
+// values as the arm_controller section of config/scara.arm.json (a host test keeps the two equal).
 #pragma once
 
 #include "portable_controller/controller_core.hpp"
