@@ -83,9 +83,10 @@ TEST(ScaraConfig, TheArmModelReadsTheSameFile) {
   const auto sim = joint_sim::load_arm_config(arm::arm_file_path("scara"));
   ASSERT_EQ(sim.joints.size(), model->joints.size());
   for (std::size_t i = 0; i < sim.joints.size(); ++i) {
-    ASSERT_TRUE(model->joints[i].joint_bus);
+    const auto* bus = model->joints[i].map(arm::Protocol::joint_bus);
+    ASSERT_TRUE(bus);
     EXPECT_EQ(sim.joints[i].name, model->joints[i].name);
-    EXPECT_EQ(sim.joints[i].tuning.max_speed_cps, model->joints[i].joint_bus->max_speed_cps);
+    EXPECT_EQ(sim.joints[i].tuning.max_speed_cps, bus->max_speed_cps);
   }
 }
 
