@@ -82,7 +82,10 @@ TimePoint at_rest(joint_sim::SimArm& sim) {
 // position loop to settle.
 Duration worst_braking(const arm::ArmModel& m) {
   double s = 0;
-  for (const auto& j : m.joints) s = std::max(s, j.joint_bus->max_speed_cps / j.joint_bus->max_accel_cps2);
+  for (const auto& j : m.joints) {
+    const auto* bus = j.map(arm::Protocol::joint_bus);
+    s = std::max(s, bus->max_speed_cps / bus->max_accel_cps2);
+  }
   return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(s)) + 50ms;
 }
 

@@ -117,7 +117,7 @@ void run_scara(std::uint32_t baud) {
   (void)arm.wait();
   auto true_joints = [&] {
     std::vector<double> device;
-    for (const auto& j : arm.model().joints) device.push_back(sim.joint(j.joint_bus->id).controller().position());
+    for (const auto& j : arm.model().joints) device.push_back(sim.joint(j.map(arm::Protocol::joint_bus)->id).controller().position());
     return arm.model().from_device(arm::Protocol::joint_bus, device);
   };
   const Duration point = arm.device().stream_period(false);

@@ -20,7 +20,7 @@ namespace {
 
 using namespace armctl;
 using namespace armctl::arm_controller;
-using namespace armctl::motion;
+using namespace armctl::joint_bus;  // the synchronized-move planner (devices/joint_bus/sync_plan.hpp)
 using namespace std::chrono_literals;
 
 struct Bench {

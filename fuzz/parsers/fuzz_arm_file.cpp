@@ -30,10 +30,8 @@ void check_model(const armctl::arm::ArmModel& m) {
     check(std::isfinite(l.lower) && std::isfinite(l.upper) && l.lower < l.upper, "position limits in order");
     check(l.velocity > 0 && l.acceleration > 0 && l.jerk > 0, "rate limits above zero");
     check(std::isfinite(l.velocity) && std::isfinite(l.acceleration) && std::isfinite(l.jerk), "finite rates");
-    for (const auto* map : {&j.robot_commands, &j.joint_bus}) {
-      if (!*map) continue;
-      check(std::isfinite((*map)->device_per_unit()) && (*map)->device_per_unit() != 0, "mapping slope");
-    }
+    for (const auto& [protocol, map] : j.devices)
+      check(std::isfinite(map.device_per_unit()) && map.device_per_unit() != 0, "mapping slope");
   }
   if (m.gripper) {
     const auto& g = m.joints[std::size_t(m.gripper->joint)];

@@ -60,7 +60,7 @@ void body(std::uint8_t kind, std::string_view text) {
       check(r.targets.size() == xarm().joints.size(), "one target per joint");
       for (const auto& t : r.targets) check(!t || std::isfinite(*t), "finite targets");
       check(r.speed > 0 && r.speed <= 1, "speed in (0, 1]");
-      check(!r.duration || (*r.duration > 0 && *r.duration <= web::kMaxMoveSeconds), "duration in range");
+      check(!r.duration || (*r.duration > 0 && *r.duration <= armctl::motion::kMaxMoveDuration), "duration in range");
       break;
     }
     case 1: {
