@@ -102,6 +102,14 @@ TEST(UrdfChain, RefusesAPercentSignOutsideComments) {
   auto c = read_urdf_chain(edited(text, "<robot name=\"xarm\">", "<!-- 100 % kinematics --><robot name=\"xarm\">"),
                            "base_link", "tool");
   EXPECT_TRUE(c.ok()) << c.error().message;
+  // A "<!--" inside a tag is no comment to the XML parser, though a simple scan takes it for
+  // one: the '%' after it must still never reach urdfdom (fuzz_urdf_chain found this; it crashed).
+  const std::string inside_a_tag =
+      edited(edited(text, "<joint name=\"tool_point\" type=\"fixed\">", "<joint name=\"tool_point\" type=<ro<!-->"),
+             "rpy=\"0 -1.5707963267948966 0\"/>", "rpy=\"0 -1.57r%111111n 0\"/>");
+  ASSERT_NE(inside_a_tag.find("<ro<!-->"), std::string::npos);
+  ASSERT_NE(inside_a_tag.find('%'), std::string::npos);
+  EXPECT_FALSE(read_urdf_chain(inside_a_tag, "base_link", "tool").ok());  // refused, not a crash
 }
 
 TEST(UrdfChain, RefusesMissingLinks) {
