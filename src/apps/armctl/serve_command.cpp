@@ -89,7 +89,7 @@ void run_serve(const ServeArgs& a) {
   Interrupted interrupted;
   StopOnSignals on_signals(interrupted);  // before the URL is said: Ctrl-C from then on stops cleanly
   const ServerLog log("armctl serve", a.json, stdout);
-  log.started({{"arm", arm_name}, {"device", printable(options.device.description)}, {"url", server.url()}},
+  log.started({{"arm", arm_name}, {"arm_device", printable(options.device.description)}, {"url", server.url()}},
               fmt::format("armctl serve: arm {} on {}\nopen {}\n(Ctrl-C stops the arm and the server)", arm_name,
                           printable(options.device.description), server.url()));
 
