@@ -290,6 +290,12 @@ void JerkPlan::plan_releases() {
   }
 }
 
+bool JerkPlan::in_family(double t) const {
+  for (int i = 0; i < interval_count_; ++i)
+    if (intervals_[i].lo <= t && t <= intervals_[i].hi) return true;
+  return false;
+}
+
 double JerkPlan::next_possible(double t) const {
   double next = kInf;
   for (int i = 0; i < interval_count_; ++i) {
@@ -297,15 +303,135 @@ double JerkPlan::next_possible(double t) const {
     if (in.lo <= t && t <= in.hi) return t;
     if (in.lo > t) next = std::min(next, in.lo);
   }
+  // Not in the family: possible all the same when the target lies between the extremal
+  // displacements. Otherwise t is in a blocked interval, whose end is the duration of an
+  // extremal motion that lands on the target, a family member: `next`.
+  if (t > min_duration_ && between_extremals(t)) return t;
   return next;
+}
+
+bool JerkPlan::extremal(double duration, double direction, Extremal& out) const {
+  // Worked for the most ground; the least is the same mirrored (v, a, jerk negated).
+  const double s = direction, T = duration, vmax = limits_.velocity;
+  const double v0 = s * task_.velocity, a0 = s * task_.acceleration, vf = s * task_.target_velocity;
+  auto change = [this](double v, double a, double to) {
+    return velocity_change(v, a, to, limits_, inv_jerk_, inv_acceleration_);
+  };
+  auto ramps = [&](double vp) { return change(v0, a0, vp).duration + change(vp, 0, vf).duration; };
+  out.count = 0;
+  auto push = [&](double d, double j) {
+    out.durations[out.count] = d, out.jerks[out.count] = s * j, ++out.count;
+  };
+  // Pontryagin: the most ground in a fixed time is jerk +, -, + with the limits' plateaus
+  // between. Where the acceleration passes 0 the velocity peaks at vp >= max(v_stop, vf):
+  // the fastest change to vp, a cruise only at vmax, the fastest change down to vf; the
+  // duration grows with vp. Below that (only when braking toward vf < v_stop) the
+  // acceleration never reaches 0: a release for tau, then the fastest change to vf, the
+  // duration growing with tau (its derivative is 2 + 2 a / a_peak >= 0).
+  auto peak = [&](double vp, double cruise) {
+    const VelocityChange f = change(v0, a0, vp), l = change(vp, 0, vf);
+    push(f.ramp_up, f.jerk), push(f.hold, 0), push(f.ramp_down, -f.jerk), push(cruise, 0);
+    push(l.ramp_up, l.jerk), push(l.hold, 0), push(l.ramp_down, -l.jerk);
+    out.displacement = s * (f.displacement + l.displacement + vp * cruise);
+  };
+  const double top = ramps(vmax);
+  if (T >= top) {
+    peak(vmax, T - top);
+    return true;
+  }
+  const double v_stop = v0 + a0 * std::abs(a0) * 0.5 * inv_jerk_, low = std::max(v_stop, vf);
+  const double at_low = ramps(low);
+  if (T >= at_low) {
+    const double vp = bracketed_root([&](double v) { return ramps(v) - T; }, low, at_low - T, vmax,
+                                     top - T, 0);
+    peak(vp, 0);
+    return true;
+  }
+  if (a0 >= 0) return false;
+  auto release_of = [&](double tau) {
+    const JerkState st = advance(JerkSegment{0, tau, 0, v0, a0, limits_.jerk}, tau);
+    return change(st.velocity, st.acceleration, vf);
+  };
+  const double at_zero = release_of(0).duration;
+  if (T < at_zero) return false;
+  const double full = -a0 * inv_jerk_;
+  const double tau = bracketed_root([&](double x) { return x + release_of(x).duration - T; }, 0,
+                                    at_zero - T, full, at_low - T, 0);
+  const JerkState st = advance(JerkSegment{0, tau, 0, v0, a0, limits_.jerk}, tau);
+  const VelocityChange c = change(st.velocity, st.acceleration, vf);
+  push(tau, limits_.jerk), push(c.ramp_up, c.jerk), push(c.hold, 0), push(c.ramp_down, -c.jerk);
+  out.displacement = s * (st.position + c.displacement);
+  return true;
+}
+
+bool JerkPlan::between_extremals(double duration) const {
+  Extremal most, least;
+  if (!extremal(duration, 1, most) || !extremal(duration, -1, least)) return false;
+  const double d = task_.target_position - task_.position, r = rounding();
+  return least.displacement - r <= d && d <= most.displacement + r;
+}
+
+void JerkPlan::fill(const double* durations, const double* jerks, int count,
+                    JerkSegments& out) const {
+  JerkSegment s;
+  s.position = task_.position;
+  s.velocity = task_.velocity;
+  s.acceleration = task_.acceleration;
+  double start = 0;
+  for (int k = 0; k < kProfileSegments; ++k) {
+    s.start = start;
+    s.duration = k < count ? durations[k] : 0;
+    s.jerk = k < count ? jerks[k] : 0;
+    out[k] = s;
+    const JerkState next = advance(s, s.duration);
+    s.position = next.position, s.velocity = next.velocity, s.acceleration = next.acceleration;
+    start += s.duration;
+  }
+}
+
+bool JerkPlan::build_blend(double duration, JerkSegments& out) const {
+  // Any mix (1 - w) least + w most of two motions of duration T is one (jerk, a, v within
+  // the limits: they are convex constraints), ending at (vf, 0) and at the mix of their
+  // displacements: w puts it on the target. Its pieces are the union of both motions'.
+  Extremal most, least;
+  if (!extremal(duration, 1, most) || !extremal(duration, -1, least)) return false;
+  const double d = task_.target_position - task_.position;
+  const double span = most.displacement - least.displacement;
+  const double w = span > 0 ? std::clamp((d - least.displacement) / span, 0.0, 1.0) : 0.5;
+  // Each motion's switching times, the last forced to T (the roots leave it a few ulps off).
+  double ends[2][kFamilySegments];
+  const Extremal* both[2] = {&least, &most};
+  for (int m = 0; m < 2; ++m) {
+    double t = 0;
+    for (int k = 0; k < both[m]->count; ++k) ends[m][k] = t += both[m]->durations[k];
+    ends[m][both[m]->count - 1] = duration;
+  }
+  double durations[kProfileSegments], jerks[kProfileSegments];
+  int n = 0, i = 0, k = 0;
+  double t = 0;
+  while (n < kProfileSegments && t < duration) {
+    // Skip pieces of 0 s; the next switch of either motion ends this piece.
+    while (i < least.count - 1 && ends[0][i] <= t) ++i;
+    while (k < most.count - 1 && ends[1][k] <= t) ++k;
+    const double end = std::min(ends[0][i], ends[1][k]);
+    durations[n] = end - t;
+    jerks[n] = (1 - w) * least.jerks[i] + w * most.jerks[k];
+    ++n;
+    t = end;
+  }
+  fill(durations, jerks, n, out);
+  return true;
 }
 
 bool JerkPlan::build(double duration, JerkSegments& out) {
   const Interval* chosen = nullptr;
   for (int i = 0; i < interval_count_ && !chosen; ++i)
     if (intervals_[i].lo <= duration && duration <= intervals_[i].hi) chosen = &intervals_[i];
+  // Outside the family: the blend (next_possible said the duration lies between the
+  // extremal displacements, so it succeeds; were it not to, a cruise at rest as before).
+  if (!chosen && build_blend(duration, out)) return true;
   double vp = 0;
-  double durations[kProfileSegments], jerks[kProfileSegments];
+  double durations[kFamilySegments], jerks[kFamilySegments];
   if (chosen && chosen->b == kRelease) {
     // The release as the first segment, then the change to vf in the last three.
     const double tau = releases_[chosen->a].tau, a0 = task_.acceleration;
@@ -315,8 +441,8 @@ bool JerkPlan::build(double duration, JerkSegments& out) {
         velocity_change(s.velocity, s.acceleration, task_.target_velocity, limits_, inv_jerk_, inv_acceleration_);
     const double d[] = {tau, 0, 0, 0, last.ramp_up, last.hold, last.ramp_down};
     const double jk[] = {j, 0, 0, 0, last.jerk, 0, -last.jerk};
-    std::copy(d, d + kProfileSegments, durations);
-    std::copy(jk, jk + kProfileSegments, jerks);
+    std::copy(d, d + kFamilySegments, durations);
+    std::copy(jk, jk + kFamilySegments, jerks);
     vp = s.velocity;
   } else {
     if (chosen && chosen->b >= 0)
@@ -333,8 +459,8 @@ bool JerkPlan::build(double duration, JerkSegments& out) {
     const double d[] = {first.ramp_up, first.hold, first.ramp_down, cruise,
                         last.ramp_up,  last.hold,  last.ramp_down};
     const double jk[] = {first.jerk, 0, -first.jerk, 0, last.jerk, 0, -last.jerk};
-    std::copy(d, d + kProfileSegments, durations);
-    std::copy(jk, jk + kProfileSegments, jerks);
+    std::copy(d, d + kFamilySegments, durations);
+    std::copy(jk, jk + kFamilySegments, jerks);
   }
   const bool released = chosen && chosen->b == kRelease;
   JerkSegment s;
@@ -344,8 +470,8 @@ bool JerkPlan::build(double duration, JerkSegments& out) {
   double start = 0;
   for (int k = 0; k < kProfileSegments; ++k) {
     s.start = start;
-    s.duration = durations[k];
-    s.jerk = jerks[k];
+    s.duration = k < kFamilySegments ? durations[k] : 0;
+    s.jerk = k < kFamilySegments ? jerks[k] : 0;
     // Plateaus and the cruise hold what the ramp before them reached exactly.
     if ((k == 1 || k == 5) && durations[k] > 0)
       s.acceleration = sign(jerks[k - 1]) * limits_.acceleration;

@@ -8,6 +8,13 @@
 // on the way: jerk toward a = 0 for tau < |a0| / j, then at once the fastest change to vf
 // (they have no cruise, so each is one duration). Pure arithmetic: no I/O, no allocation,
 // no exceptions.
+//
+// The family is an inner approximation of the durations a joint can take. The exact set
+// (docs/trajectories.md "Exact durations"): in exactly T the end state (vf, 0) can be reached
+// with any displacement between the least and the most possible in T (the jerk-limited
+// motions of duration T form a convex set), and those two extremal motions are members of
+// the family or releases (bang-bang jerk +-+ or -+-). A duration the family lacks but that
+// lies inside is built as the blend of the two extremal motions that lands on the target.
 #pragma once
 
 #include <algorithm>
@@ -33,7 +40,10 @@ struct JerkSegment {
   double position = 0, velocity = 0, acceleration = 0, jerk = 0;
 };
 
-inline constexpr int kProfileSegments = 7;
+// Seven for a member of the family; a blend of two extremal motions (seven pieces each) has
+// at most thirteen. Unused trailing segments last 0 s and hold the end state.
+inline constexpr int kProfileSegments = 13;
+inline constexpr int kFamilySegments = 7;
 using JerkSegments = std::array<JerkSegment, kProfileSegments>;
 
 // The durations a joint can take to do its task within the family, as closed intervals
@@ -49,12 +59,27 @@ class JerkPlan {
 
   void plan(const JerkTask& task, const JerkLimits& limits);
   double min_duration() const { return min_duration_; }
-  // The smallest duration >= t this joint can take (t itself if it can).
+  // The smallest duration >= t this joint can take (t itself if it can): a duration the
+  // family claims, or one between the extremal displacements (exact); past a blocked
+  // interval, the family's next claimed duration is its end (every end of a blocked
+  // interval is an extremal motion, and those are in the family).
   double next_possible(double t) const;
   // The profile of exactly `duration` (a value next_possible returned unchanged). False
   // if the plan found it had claimed a duration it cannot make: it has corrected itself
   // (next_possible tells anew) and `out` is unchanged.
   bool build(double duration, JerkSegments& out);
+  // Whether the family itself has a profile of `duration` (no blend needed).
+  bool in_family(double duration) const;
+
+  // The motion that covers the most ground (direction +1) or the least (-1) in exactly
+  // `duration`, as constant-jerk pieces from the start state, and its displacement. False
+  // if `duration` is shorter than the fastest velocity change to the target velocity.
+  struct Extremal {
+    double durations[kFamilySegments], jerks[kFamilySegments];
+    int count;
+    double displacement;
+  };
+  bool extremal(double duration, double direction, Extremal& out) const;
 
  private:
   struct Point {
@@ -83,6 +108,9 @@ class JerkPlan {
   bool refine(double vp);  // one more sample, then derive
   double root_of_remaining(const Point& x, const Point& y) const;
   double vp_for_duration(const Point& x, const Point& y, double duration) const;
+  bool between_extremals(double duration) const;
+  bool build_blend(double duration, JerkSegments& out) const;
+  void fill(const double* durations, const double* jerks, int count, JerkSegments& out) const;
 
   JerkTask task_{};
   JerkLimits limits_{};

@@ -100,33 +100,49 @@ TEST(TrajectoryHandCases, MinDurationStretchesEveryJoint) {
   EXPECT_LT(t.extrema().max_abs_velocity[0], 2.0);
 }
 
-TEST(TrajectoryHandCases, ABlockedIntervalIsSkipped) {
+TEST(TrajectoryHandCases, ADurationOutsideTheFamilyIsBlended) {
   // At 2 m/s, 3.5 m to go, to stop there (vmax 2, amax 1, jerk 1). Fastest: cruise 0.25 s
-  // (0.5 m), brake 2 -> 0 in 3 s over 3 m: 3.25 s. A little slower needs a lower peak, but
-  // braking 2 -> vp -> 0 in two steps covers more ground (too much for any vp until the
-  // cruise is short and slow): the durations just above 3.25 s are blocked up to the
-  // profile with no cruise at all at vp < 1, where 2 -> vp takes 3 - vp s over
-  // (2 + vp)(3 - vp)/2 m (trapezoid) and vp -> 0 takes 2 sqrt(vp) s over vp^1.5 m
-  // (triangle): 3.5 m when -vp^2 + 2 vp^1.5 + vp - 1 = 0, T = 3 - vp + 2 sqrt(vp).
-  double lo = 0.3, hi = 0.8;  // that equation's root by bisection (-0.09 at 0.3, +0.16 at 0.8)
-  for (int i = 0; i < 100; ++i) {
-    const double vp = (lo + hi) / 2;
-    (-vp * vp + 2 * vp * std::sqrt(vp) + vp - 1 < 0 ? lo : hi) = vp;
-  }
-  const double gap_end = 3 - lo + 2 * std::sqrt(lo);  // 3.922 s
+  // (0.5 m), brake 2 -> 0 in 3 s over 3 m: 3.25 s. The family (a peak velocity vp, a
+  // cruise there) has nothing just above 3.25 s: braking 2 -> vp -> 0 in two steps covers
+  // too much ground for any vp until 3.922 s (the profile with no cruise at vp < 1, where
+  // 2 -> vp takes 3 - vp s over (2 + vp)(3 - vp)/2 m and vp -> 0 takes 2 sqrt(vp) s over
+  // vp^1.5 m: 3.5 m when -vp^2 + 2 vp^1.5 + vp - 1 = 0, T = 3 - vp + 2 sqrt(vp)). But 3.5 s
+  // is possible: a longer cruise at 2 m/s covers more (4 m), braking at once covers less
+  // (3 m, then at rest): the blend of those two lands on 3.5 m in 3.5 s.
   TrajectoryInput in = one_joint(2, 1, 1);
   in.velocity[0] = 2, in.target_position[0] = 3.5;
   EXPECT_NEAR(calculated_duration(in), 3.25, 1e-12);
-  in.min_duration = 3.5;  // inside the gap
-  EXPECT_NEAR(calculated_duration(in), gap_end, 1e-9);
-  // Synchronized with a joint whose own minimum falls in the gap: rest to rest over 1.5 m
-  // (triangular: vp = cbrt(1.5^2 / 4), T = 4 sqrt(vp) = 3.63 s): the same.
+  in.min_duration = 3.5;  // the old gap
+  EXPECT_NEAR(calculated_duration(in), 3.5, 1e-12);
+  // Synchronized with a joint whose own minimum falls there: rest to rest over 1.5 m
+  // (triangular: vp = cbrt(1.5^2 / 4), T = 4 sqrt(vp) = 3.63 s): that joint's minimum.
   in.min_duration = 0;
   in.joints = 2;
   in.max_velocity[1] = 2, in.max_acceleration[1] = 1, in.max_jerk[1] = 1;
   in.target_position[1] = 1.5;
-  ASSERT_GT(rest_to_rest_time(1.5, {2, 1, 1}), 3.25);
-  ASSERT_LT(rest_to_rest_time(1.5, {2, 1, 1}), gap_end);
+  EXPECT_NEAR(calculated_duration(in), rest_to_rest_time(1.5, {2, 1, 1}), 1e-12);
+}
+
+TEST(TrajectoryHandCases, ABlockedIntervalIsSkipped) {
+  // Cruising at 2 m/s (vmax 2, amax 1, jerk 1), 1 m ahead, to pass there at 2 m/s: 0.5 s.
+  // Taking longer means dipping below 2 m/s and back up (it cannot go faster); the least
+  // ground in T is the dip 2 -> 2 - u -> 2 with no cruise. Triangles (u <= 1): T = 4 sqrt(u)
+  // over 2 T - T^3 / 32 m, more than 1 m for every T up to 4 s; trapezoids: T = 2 (u + 1)
+  // over (4 - u)(u + 1) m, 1 m at u^2 - 3 u - 3 = 0, u = (3 + sqrt 21) / 2. So the
+  // durations in (0.5 s, 5 + sqrt 21 s = 9.58 s) are blocked: every motion covers too much.
+  const double gap_end = 5 + std::sqrt(21.0);
+  TrajectoryInput in = one_joint(2, 1, 1);
+  in.velocity[0] = 2, in.target_velocity[0] = 2, in.target_position[0] = 1;
+  EXPECT_NEAR(calculated_duration(in), 0.5, 1e-12);
+  in.min_duration = 1;  // inside the gap
+  EXPECT_NEAR(calculated_duration(in), gap_end, 1e-9);
+  // Synchronized with a joint whose own minimum falls in the gap: rest to rest over 5 m
+  // (vp^2 + vp = 5, T = 2 (vp + 1) = 1 + sqrt 21 = 5.58 s): the same.
+  in.min_duration = 0;
+  in.joints = 2;
+  in.max_velocity[1] = 2, in.max_acceleration[1] = 1, in.max_jerk[1] = 1;
+  in.target_position[1] = 5;
+  EXPECT_NEAR(rest_to_rest_time(5, {2, 1, 1}), 1 + std::sqrt(21.0), 1e-12);
   EXPECT_NEAR(calculated_duration(in), gap_end, 1e-9);
 }
 
