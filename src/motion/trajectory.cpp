@@ -294,14 +294,10 @@ Status calculate_trajectory(const TrajectoryInput& in, Trajectory& out) {
   // Storage first (the only allocation), then nothing can fail.
   if (out.sections_.size() < count) out.sections_.resize(count);
   for (std::size_t k = 0; k < count; ++k) out.sections_[k].end = 0;
-  if (count == 1) {
-    run(1);
-  } else {
-    const double fastest = run(1);
-    const double stretch =
-        (in.min_duration > fastest && fastest > 0) ? in.min_duration / fastest : 1;
-    run(stretch);
-  }
+  // Each section is planned once; only a min_duration beyond the sections' sum needs a
+  // second pass, stretching them (a stretch of 1 would only repeat the first pass).
+  const double fastest = run(1);
+  if (count > 1 && in.min_duration > fastest && fastest > 0) run(in.min_duration / fastest);
   for (std::size_t k = 0; k < count; ++k) out.sections_[k].end += out.sections_[k].start;
   out.joints_ = in.joints;
   out.section_count_ = static_cast<int>(count);
