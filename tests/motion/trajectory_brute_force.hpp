@@ -259,4 +259,169 @@ inline void check_two_joint_optimality(std::uint64_t seed, int count) {
       tally.cases, tally.worst, lower_bound_only);
 }
 
+
+// ---------------------------------------------------------------------------------------
+// Synchronized optimality: which durations a joint can take at all, independently of the
+// generator's profile family (docs/trajectories.md "Optimality check").
+//
+// The jerk-limited motions of exactly T from a start state to (vf, 0) form a convex set
+// (linear dynamics, convex limits), so the positions they reach form an interval
+// [least(T), most(T)] and T is possible iff the target lies in it. The most ground in T is
+// bang-bang jerk +, -, + (Pontryagin, with plateaus at the limits): it follows the most
+// eager upward motion U (jerk +j, a plateau at amax, jerk -j to arrive at vmax with a = 0,
+// a cruise there) until a switch time sigma, then the fastest change to (vf, 0). Its
+// duration sigma + change(U(sigma)) does not decrease with sigma, so bisection on sigma
+// finds the one of duration T. The least ground is the same mirrored. Nothing here shares
+// code with the generator.
+
+struct Limits1 {
+  double v, a, j;
+};
+
+// The fastest change from (v, a) to (vf, 0), |a| <= amax: its duration and displacement.
+inline void fastest_change(double v, double a, double vf, const Limits1& l, double& time,
+                           double& distance) {
+  const double stop = v + a * std::abs(a) / (2 * l.j);
+  const double s = vf >= stop ? 1 : -1;
+  const double u = s * v, b = s * a, w = s * vf;
+  double peak = std::sqrt(std::max(0.0, l.j * (w - u) + b * b / 2)), hold = 0;
+  if (peak > l.a) {
+    peak = l.a;
+    hold = std::max(0.0, (w - u - (2 * l.a * l.a - b * b) / (2 * l.j)) / l.a);
+  }
+  const double t[3] = {std::max(0.0, (peak - b) / l.j), hold, peak / l.j};
+  const double jerk[3] = {l.j, 0, -l.j};
+  double p = 0, vv = u, aa = b;
+  for (int k = 0; k < 3; ++k) {
+    if (k == 1) aa = peak;
+    p += t[k] * (vv + t[k] * (aa / 2 + t[k] * jerk[k] / 6));
+    vv += t[k] * (aa + t[k] * jerk[k] / 2);
+    aa += t[k] * jerk[k];
+  }
+  time = t[0] + t[1] + t[2];
+  distance = s * p;
+}
+
+// The state after sigma on the most eager upward motion from (v0, a0).
+inline void eager_up(double v0, double a0, const Limits1& l, double sigma, double& p, double& v,
+                     double& a) {
+  // Jerk +j until a reaches min(amax, a_turn), a_turn being where jerking back at once
+  // arrives exactly at vmax: v + a^2 / (2j) = vmax.
+  const double a_turn = std::sqrt(std::max(0.0, l.j * (l.v - v0) + a0 * a0 / 2));
+  const double a_top = std::min(l.a, a_turn);
+  double t[4], jerk[4] = {l.j, 0, -l.j, 0};
+  t[0] = std::max(0.0, (a_top - a0) / l.j);
+  const double v1 = v0 + t[0] * (a0 + t[0] * l.j / 2);
+  t[1] = a_top < a_turn ? std::max(0.0, (l.v - a_top * a_top / (2 * l.j) - v1) / a_top) : 0;
+  t[2] = a_top / l.j;
+  t[3] = INFINITY;
+  p = 0, v = v0, a = a0;
+  double left = sigma;
+  for (int k = 0; k < 4 && left > 0; ++k) {
+    const double dt = std::min(left, t[k]);
+    if (k == 1) a = a_top;
+    if (k == 3) v = l.v, a = 0;
+    p += dt * (v + dt * (a / 2 + dt * jerk[k] / 6));
+    v += dt * (a + dt * jerk[k] / 2);
+    a += dt * jerk[k];
+    left -= dt;
+  }
+}
+
+// The most ground in exactly T from (v0, a0) to (vf, 0); false if T is too short for the
+// velocity change alone.
+inline bool most_ground(double v0, double a0, double vf, const Limits1& l, double T, double& most) {
+  auto at = [&](double sigma, double& distance) {
+    double p, v, a, time, d;
+    eager_up(v0, a0, l, sigma, p, v, a);
+    fastest_change(v, a, vf, l, time, d);
+    distance = p + d;
+    return sigma + time;
+  };
+  double d0;
+  if (at(0, d0) > T * (1 + 1e-12) + 1e-15) return false;
+  double lo = 0, hi = T;
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * std::max(1.0, T); ++i) {
+    const double mid = 0.5 * (lo + hi);
+    double d;
+    (at(mid, d) <= T ? lo : hi) = mid;
+  }
+  at(lo, most);
+  return true;
+}
+
+// Whether joint i can arrive in exactly T (any jerk-limited motion), to a relative
+// `slack` of the ground it must cover.
+inline bool joint_can_take(const TrajectoryInput& in, int i, double T, double slack) {
+  const Limits1 l{in.max_velocity[i], in.max_acceleration[i], in.max_jerk[i]};
+  const double v0 = in.velocity[i], a0 = in.acceleration[i], vf = in.target_velocity[i];
+  const double d = in.target_position[i] - in.position[i];
+  double most, least;
+  if (!most_ground(v0, a0, vf, l, T, most) || !most_ground(-v0, -a0, -vf, l, T, least)) return false;
+  least = -least;
+  const double tolerance = slack * (std::abs(d) + l.v * T + l.v * l.a / l.j);
+  return least - tolerance <= d && d <= most + tolerance;
+}
+
+// `count` random synchronized cases of 2..7 joints: the generator's trajectory passes every
+// check of trajectory_random_cases.hpp (so its duration is possible), the independent test
+// above agrees that every joint can take it, and no duration 1e-6 s shorter, nor any of
+// `grid` evenly spaced shorter ones, is possible for every joint.
+inline void check_synchronized_optimality(std::uint64_t seed, int count, int grid) {
+  RandomCases cases(seed);
+  std::mt19937_64 pick(seed + 1);
+  Trajectory traj;
+  int failures = 0, bad = 0, disagree = 0, shorter_possible = 0, blended = 0;
+  long joint_checks = 0;
+  for (int c = 0; c < count && failures < 5; ++c) {
+    const TrajectoryInput in = cases.next(std::uniform_int_distribution<int>(2, 7)(pick));
+    if (!calculate_trajectory(in, traj).ok()) {
+      ++failures, ADD_FAILURE() << "refused\n" << describe(in);
+      continue;
+    }
+    const double T = traj.duration();
+    if (const std::string why = check_trajectory(in, traj); !why.empty()) {
+      ++bad, ++failures;
+      ADD_FAILURE() << why << "\n" << describe(in);
+      continue;
+    }
+    // A blend of two extremal motions (jerk_profile.hpp) is the only profile with more
+    // than seven segments.
+    bool blend = false;
+    for (int i = 0; i < in.joints; ++i) blend = blend || traj.segments(0, i)[kFamilySegments].duration > 0;
+    blended += blend;
+    for (int i = 0; i < in.joints; ++i)
+      if (++joint_checks, !joint_can_take(in, i, T, 1e-9)) {
+        ++disagree, ++failures;
+        ADD_FAILURE() << "the independent test says joint " << i << " cannot take " << T << " s\n"
+                      << describe(in);
+        break;
+      }
+    // Shorter durations: some joint must be unable to take each. The joint that refused the
+    // last one is asked first (usually the same joint refuses them all).
+    int first = 0;
+    for (int g = 0; g <= grid; ++g) {
+      const double t = g == 0 ? T - 1e-6 : (T - 1e-6) * g / (grid + 1);
+      if (t <= 0) continue;
+      bool all = true;
+      for (int k = 0; k < in.joints && all; ++k) {
+        const int i = (first + k) % in.joints;
+        ++joint_checks;
+        if (!joint_can_take(in, i, t, -1e-12)) all = false, first = i;
+      }
+      if (all) {
+        ++shorter_possible, ++failures;
+        ADD_FAILURE() << "every joint can take " << t << " s, shorter than " << T << " s\n"
+                      << describe(in);
+        break;
+      }
+    }
+  }
+  std::printf(
+      "synchronized: %d cases of 2..7 joints (%d with a blended profile), %d failing the "
+      "checks, %d where a joint could not take the duration, %d with a shorter duration "
+      "possible (%ld joint tests)\n",
+      count, blended, bad, disagree, shorter_possible, joint_checks);
+}
+
 }  // namespace armctl::motion::testing

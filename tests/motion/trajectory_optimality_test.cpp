@@ -15,6 +15,12 @@ TEST(TrajectoryOptimality, TwoJointsSynchronizeAtTheSlowerOptimum) {
   testing::check_two_joint_optimality(8, 30);
 }
 
+TEST(TrajectoryOptimality, SynchronizedCasesAtTheOptimum) {
+  // 100,000 cases of 2..7 joints, each against the independent test of which durations a
+  // joint can take (trajectory_brute_force.hpp): no shorter duration possible for all.
+  testing::check_synchronized_optimality(9, 100000, 8);
+}
+
 TEST(TrajectoryOptimality, ALongCruise) {
   // Found by the long run: 405 s at 0.067 m/s, where the brute force's Newton tolerance
   // once let it finish 1e-6 s early by ending slightly off the target.

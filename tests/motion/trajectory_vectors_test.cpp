@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "trajectory_brute_force.hpp"
 #include "trajectory_random_cases.hpp"
 #include "trajectory_vectors.hpp"
 
@@ -51,6 +52,25 @@ TEST(TrajectoryVectors, SevenJointsAtRuckigsOptimum) {
       worst_deficit);
   EXPECT_EQ(longer, 0);
   EXPECT_EQ(shorter, 0);
+}
+
+TEST(TrajectoryVectors, TheIndependentTestAgreesWithRuckig) {
+  // The brute force's test of which durations a joint can take (trajectory_brute_force.hpp),
+  // checked on its own against Ruckig: every joint can take Ruckig's duration, and 1e-6 s
+  // less is impossible for at least one joint.
+  int disagree = 0;
+  for (const auto& v : testing::load_sync_vectors(testing::sync_vectors_path())) {
+    bool all_at = true, all_before = true;
+    for (int i = 0; i < v.in.joints; ++i) {
+      all_at = all_at && testing::joint_can_take(v.in, i, v.duration, 1e-9);
+      all_before = all_before && testing::joint_can_take(v.in, i, v.duration - 1e-6, -1e-12);
+    }
+    if (!all_at || all_before) {
+      if (++disagree <= 5)
+        ADD_FAILURE() << v.name << ": " << (all_at ? "shorter possible" : "a joint cannot take it");
+    }
+  }
+  EXPECT_EQ(disagree, 0);
 }
 
 }  // namespace
