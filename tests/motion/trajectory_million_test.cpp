@@ -1,6 +1,6 @@
 // The long run of the trajectory generator's checks (CTest label `long`, not part of
 // `make test`; run with `ctest -L long`): 1,000,000 random cases checked as in
-// trajectory_test, and the time-optimality check on ten times as many cases.
+// trajectory_test, and the time-optimality checks on ten times as many cases.
 #include <gtest/gtest.h>
 
 #include "trajectory_brute_force.hpp"
@@ -19,6 +19,10 @@ TEST(TrajectoryLong, OneJointOptimality) {
 
 TEST(TrajectoryLong, TwoJointOptimality) {
   testing::check_two_joint_optimality(18, 600);
+}
+
+TEST(TrajectoryLong, SynchronizedOptimality) {
+  testing::check_synchronized_optimality(19, 1000000, 8);
 }
 
 }  // namespace
