@@ -468,10 +468,10 @@ bool JerkPlan::build(double duration, JerkSegments& out) {
   s.velocity = task_.velocity;
   s.acceleration = task_.acceleration;
   double start = 0;
-  for (int k = 0; k < kProfileSegments; ++k) {
+  for (int k = 0; k < kFamilySegments; ++k) {
     s.start = start;
-    s.duration = k < kFamilySegments ? durations[k] : 0;
-    s.jerk = k < kFamilySegments ? jerks[k] : 0;
+    s.duration = durations[k];
+    s.jerk = jerks[k];
     // Plateaus and the cruise hold what the ramp before them reached exactly.
     if ((k == 1 || k == 5) && durations[k] > 0)
       s.acceleration = sign(jerks[k - 1]) * limits_.acceleration;
@@ -484,6 +484,9 @@ bool JerkPlan::build(double duration, JerkSegments& out) {
     s.acceleration = next.acceleration;
     start += s.duration;
   }
+  // The unused segments: 0 s at the end state.
+  s.start = start, s.duration = 0, s.jerk = 0;
+  for (int k = kFamilySegments; k < kProfileSegments; ++k) out[k] = s;
   return true;
 }
 
