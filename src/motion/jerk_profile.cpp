@@ -413,7 +413,7 @@ bool JerkPlan::build_blend(double duration, JerkSegments& out) const {
     // Skip pieces of 0 s; the next switch of either motion ends this piece.
     while (i < least.count - 1 && ends[0][i] <= t) ++i;
     while (k < most.count - 1 && ends[1][k] <= t) ++k;
-    const double end = std::min(ends[0][i], ends[1][k]);
+    const double end = std::min({ends[0][i], ends[1][k], duration});
     durations[n] = end - t;
     jerks[n] = (1 - w) * least.jerks[i] + w * most.jerks[k];
     ++n;
