@@ -290,12 +290,6 @@ void JerkPlan::plan_releases() {
   }
 }
 
-bool JerkPlan::in_family(double t) const {
-  for (int i = 0; i < interval_count_; ++i)
-    if (intervals_[i].lo <= t && t <= intervals_[i].hi) return true;
-  return false;
-}
-
 double JerkPlan::next_possible(double t) const {
   double next = kInf;
   for (int i = 0; i < interval_count_; ++i) {

@@ -68,8 +68,6 @@ class JerkPlan {
   // if the plan found it had claimed a duration it cannot make: it has corrected itself
   // (next_possible tells anew) and `out` is unchanged.
   bool build(double duration, JerkSegments& out);
-  // Whether the family itself has a profile of `duration` (no blend needed).
-  bool in_family(double duration) const;
 
   // The motion that covers the most ground (direction +1) or the least (-1) in exactly
   // `duration`, as constant-jerk pieces from the start state, and its displacement. False

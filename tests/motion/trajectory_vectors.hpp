@@ -13,8 +13,8 @@
 namespace armctl::motion::testing {
 
 struct SyncVector {
-  std::string name;  // set and index, for messages
-  bool hard = false;  // armctl was longer than the optimum when the vectors were made
+  std::string name;     // set and index, for messages
+  bool hard = false;    // armctl was longer than the optimum when the vectors were made
   double duration = 0;  // the optimum, s
   TrajectoryInput in;
 };
@@ -32,7 +32,8 @@ inline std::vector<SyncVector> load_sync_vectors(const std::string& path) {
     v.in.joints = int(joints.size());
     for (int i = 0; i < v.in.joints; ++i) {
       const auto& j = joints[std::size_t(i)];
-      v.in.position[i] = j.at("p0"), v.in.velocity[i] = j.at("v0"), v.in.acceleration[i] = j.at("a0");
+      v.in.position[i] = j.at("p0"), v.in.velocity[i] = j.at("v0"),
+      v.in.acceleration[i] = j.at("a0");
       v.in.target_position[i] = j.at("pf"), v.in.target_velocity[i] = j.at("vf");
       v.in.max_velocity[i] = j.at("vmax"), v.in.max_acceleration[i] = j.at("amax");
       v.in.max_jerk[i] = j.at("jmax");
