@@ -23,7 +23,21 @@ Arm::Arm(ArmModel model, std::unique_ptr<ArmDevice> device) : device_(std::move(
     throw ArmctlError(ErrorKind::invalid_argument,
                       fmt::format("arm '{}' has no {} mapping for its joints, so {} cannot drive it", model.name,
                                   to_string(device_->protocol()), device_->description()));
-  kinematics_ = std::make_shared<const ArmKinematics>(std::move(model), device_->protocol());
+  model_kinematics_ = std::make_shared<const ArmKinematics>(std::move(model), device_->protocol());
+  kinematics_ = model_kinematics_;
+}
+
+Status Arm::set_scene(scene::Scene scene) {
+  auto with = model_kinematics_->with_scene(std::move(scene));
+  if (!with) return with.error();
+  std::lock_guard lock(kinematics_mutex_);
+  kinematics_ = std::move(with).value();
+  return Ok{};
+}
+
+scene::Scene Arm::scene() const {
+  auto k = kinematics();
+  return k->collisions() ? k->collisions()->scene() : scene::Scene{};
 }
 
 Result<JointState> Arm::read() {
@@ -39,11 +53,11 @@ Result<JointState> Arm::read() {
 Result<motion::Pose> Arm::pose() {
   auto s = read();
   if (!s) return s.error();
-  return kinematics_->pose_at(s->positions);
+  return model_kinematics_->pose_at(s->positions);
 }
 
 Status Arm::move_joints(const std::vector<std::optional<double>>& targets, const MoveOptions& options) {
-  if (auto ok = kinematics_->check_targets(targets); !ok) return ok;
+  if (auto ok = model_kinematics_->check_targets(targets); !ok) return ok;
   PtpMove move;
   move.target = targets;
   return move_board(std::move(move), options);
@@ -65,7 +79,7 @@ Status Arm::move_board(PtpMove move, const MoveOptions& options) {
   move.duration_words = options.duration_words;
   PlanOptions board;
   board.ptp = PtpRun::board;
-  auto plan = plan_moves(*kinematics_, now->positions, std::vector<Move>{{move}}, board);
+  auto plan = plan_moves(*kinematics(), now->positions, std::vector<Move>{{move}}, board);
   if (!plan) return plan.error();
   if (const std::string note = plan->notes(); !note.empty() && options.on_note) options.on_note(note);
   const PlannedPiece& piece = plan->pieces.front();
@@ -73,7 +87,7 @@ Status Arm::move_board(PtpMove move, const MoveOptions& options) {
 }
 
 Status Arm::send(const std::vector<std::optional<double>>& targets, Duration duration) {
-  if (auto ok = kinematics_->check_targets(targets); !ok) return ok;
+  if (auto ok = model_kinematics_->check_targets(targets); !ok) return ok;
   if (duration.count() < 0) return refuse("a move's duration cannot be negative");
   // A coupled joint's device value depends on its partner: the plan gives both.
   for (const Coupling& c : model().couplings)
@@ -86,7 +100,7 @@ Status Arm::send(const std::vector<std::optional<double>>& targets, Duration dur
     full[i] = targets[i].value_or(0.0);
     carried[i] = targets[i].has_value();
   }
-  auto device_targets = kinematics_->device_targets(full, carried);
+  auto device_targets = model_kinematics_->device_targets(full, carried);
   if (!device_targets) return device_targets.error();
   if (auto sent = device_->move(*device_targets, duration); !sent) return sent;
   last_targets_ = targets;

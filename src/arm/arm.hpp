@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -69,10 +70,20 @@ class Arm {
  public:
   Arm(ArmModel model, std::unique_ptr<ArmDevice> device);
 
-  const ArmModel& model() const { return kinematics_->model(); }
-  // The arm's kinematics (model, FK/IK, target checks with this device's range): an
-  // immutable value other threads and the planner may hold and use while the arm moves.
-  const std::shared_ptr<const ArmKinematics>& kinematics() const { return kinematics_; }
+  const ArmModel& model() const { return model_kinematics_->model(); }
+  // The arm's kinematics (model, FK/IK, target checks with this device's range, the
+  // collision world with the scene): an immutable value other threads and the planner may
+  // hold and use while the arm moves. A new scene makes a new value (set_scene).
+  std::shared_ptr<const ArmKinematics> kinematics() const {
+    std::lock_guard lock(kinematics_mutex_);
+    return kinematics_;
+  }
+  // Every plan made from kinematics() from now on is checked against `scene` (docs/scene.md);
+  // plans made before keep the scene they were checked with. Errors (invalid_config): the
+  // arm has no collision shapes.
+  Status set_scene(scene::Scene scene);
+  // The scene plans are checked against (empty: self-collision only, or no collision model).
+  scene::Scene scene() const;
   ArmDevice& device() { return *device_; }
   const Clock& clock() const { return device_->clock(); }
 
@@ -80,17 +91,17 @@ class Arm {
   // The tool pose where the arm stands now.
   Result<motion::Pose> pose();
   // The kinematics' (ArmKinematics), for callers that hold an Arm.
-  motion::Pose forward(const motion::JointVector& chain) const { return kinematics_->forward(chain); }
+  motion::Pose forward(const motion::JointVector& chain) const { return model_kinematics_->forward(chain); }
   Result<std::vector<motion::IkSolution>> inverse(const CartesianGoal& goal, const JointState& now) const {
-    return kinematics_->inverse(goal, now.positions);
+    return model_kinematics_->inverse(goal, now.positions);
   }
   motion::Rpy tool_rpy(const motion::Pose& pose, const motion::JointVector& chain) const {
-    return kinematics_->tool_rpy(pose, chain);
+    return model_kinematics_->tool_rpy(pose, chain);
   }
   motion::Rpy goal_rpy(const CartesianGoal& goal, const motion::Rpy& current) const {
-    return kinematics_->goal_rpy(goal, current);
+    return model_kinematics_->goal_rpy(goal, current);
   }
-  motion::JointVector chain_of(const std::vector<double>& positions) const { return kinematics_->chain_of(positions); }
+  motion::JointVector chain_of(const std::vector<double>& positions) const { return model_kinematics_->chain_of(positions); }
 
   // Moves the joints that have a target (SI; the vector has one entry per joint): a board
   // move (the device interpolates) planned by arm::plan_moves, then sent (send()).
@@ -116,13 +127,15 @@ class Arm {
   // Checks targets against the joint limits and the device's range (ArmKinematics); the
   // error names the joint, the value and what is allowed.
   Status check_targets(const std::vector<std::optional<double>>& targets) const {
-    return kinematics_->check_targets(targets);
+    return model_kinematics_->check_targets(targets);
   }
 
  private:
   Status move_board(PtpMove move, const MoveOptions& options);
 
-  std::shared_ptr<const ArmKinematics> kinematics_;
+  std::shared_ptr<const ArmKinematics> model_kinematics_;  // as built: model() refers into it
+  mutable std::mutex kinematics_mutex_;
+  std::shared_ptr<const ArmKinematics> kinematics_;  // with the scene; replaced by set_scene
   std::unique_ptr<ArmDevice> device_;
   std::vector<std::optional<double>> last_targets_;  // SI, of the last move
 };

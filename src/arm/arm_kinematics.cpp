@@ -36,8 +36,46 @@ std::string format_joint_value(const ArmModel& model, int index, double si) {
   return format_quantity(model.joints[std::size_t(index)].dimension, si);
 }
 
+namespace {
+
+// The arm's side of its collision world, from its model (arm/arm_model.hpp).
+scene::ArmBodies arm_bodies(const ArmModel& m) {
+  scene::ArmBodies a;
+  a.links = m.bodies;
+  a.allowed = m.allowed_collisions;
+  a.tool_link = m.tool_link;
+  a.tool_frame.linear() = m.tool.orientation.toRotationMatrix();
+  a.tool_frame.translation() = m.tool.position;
+  for (const auto& j : m.joints) a.joint_reach.push_back(std::max(std::abs(j.limits.lower), std::abs(j.limits.upper)));
+  return a;
+}
+
+bool has_shapes(const ArmModel& m) {
+  if (!m.bodies) return false;
+  return std::any_of(m.bodies->bodies.begin(), m.bodies->bodies.end(), [](const auto& b) { return !b.shapes.empty(); });
+}
+
+}  // namespace
+
 ArmKinematics::ArmKinematics(ArmModel model, std::optional<Protocol> device)
-    : model_(std::move(model)), device_(device) {}
+    : model_(std::move(model)), device_(device) {
+  // The arm file's names were checked against the URDF when it was read: value() cannot throw
+  // for a model that parse_arm_model made.
+  if (has_shapes(model_)) collisions_ = scene::CollisionWorld::build(arm_bodies(model_), scene::Scene{}).value();
+}
+
+Result<std::shared_ptr<const ArmKinematics>> ArmKinematics::with_scene(scene::Scene scene) const {
+  if (!has_shapes(model_)) {
+    return Error{ErrorKind::invalid_config,
+                 fmt::format("arm '{}': its URDF ({}) gives no link a <collision> shape, so a scene cannot be checked",
+                             model_.name, model_.urdf.string())};
+  }
+  auto world = scene::CollisionWorld::build(arm_bodies(model_), std::move(scene));
+  if (!world) return world.error();
+  auto out = std::make_shared<ArmKinematics>(*this);
+  out->collisions_ = std::move(world).value();
+  return std::shared_ptr<const ArmKinematics>(std::move(out));
+}
 
 motion::JointVector ArmKinematics::chain_of(const std::vector<double>& positions) const {
   motion::JointVector v(model_.chain_joints());

@@ -19,6 +19,7 @@
 #include "core/clock.hpp"
 #include "core/error.hpp"
 #include "motion/kinematics.hpp"
+#include "scene/collision_world.hpp"
 
 namespace armctl::arm {
 
@@ -38,6 +39,13 @@ class ArmKinematics {
   explicit ArmKinematics(ArmModel model, std::optional<Protocol> device = std::nullopt);
 
   const ArmModel& model() const { return model_; }
+
+  // What the planner checks every motion against (docs/scene.md): the arm's links (self-
+  // collision) and the scene's objects. Null when no link of the URDF has a <collision> shape.
+  const std::shared_ptr<const scene::CollisionWorld>& collisions() const { return collisions_; }
+  // The same kinematics checking against `scene` (an empty scene: self-collision only).
+  // Errors (invalid_config) when the arm has no collision shapes to check a scene against.
+  Result<std::shared_ptr<const ArmKinematics>> with_scene(scene::Scene scene) const;
   std::optional<Protocol> device() const { return device_; }
   int joint_count() const { return model_.joint_count(); }
 
@@ -89,6 +97,7 @@ class ArmKinematics {
  private:
   ArmModel model_;
   std::optional<Protocol> device_;
+  std::shared_ptr<const scene::CollisionWorld> collisions_;
 };
 
 // "30.000 deg" / "120.000 mm" for joint `index` of `model`.

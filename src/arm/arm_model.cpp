@@ -15,6 +15,7 @@
 #include "core/config_files.hpp"
 #include "core/json_reader.hpp"
 #include "motion/urdf_chain.hpp"
+#include "motion/urdf_model.hpp"
 
 namespace armctl::arm {
 
@@ -119,8 +120,11 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
   // The URDF: the chain from base to tool, and every joint the arm file names.
   Result<motion::UrdfChain> chain = motion::read_urdf_chain(urdf_text, base, tip);
   if (!chain) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, chain.error().message));
-  urdf::ModelInterfaceSharedPtr urdf_model = urdf::parseURDF(std::string(urdf_text));
-  if (!urdf_model) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: not a valid URDF", urdf_source));
+  // Through the guards every URDF reader shares (no '%' reaches urdfdom's logger).
+  Result<urdf::ModelInterfaceSharedPtr> parsed_urdf = motion::parse_urdf_model(std::string(urdf_text));
+  if (!parsed_urdf) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, parsed_urdf.error().message));
+  const urdf::ModelInterfaceSharedPtr& urdf_model = *parsed_urdf;
+  m.tool_link = tip;
 
   std::string gripper_name;
   const json* gripper = r.find("gripper");
@@ -264,6 +268,29 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
     m.tool.position = xyz;
     m.tool.orientation = motion::from_rpy({rpy[0], rpy[1], rpy[2]});
   }
+  // Link pairs allowed to touch (docs/scene.md): [{"links": [a, b], "why": "..."}].
+  if (const json* collision = r.find("collision")) {
+    ObjectReader c(source, *collision, "collision");
+    const json& allowed = c.require("allowed");
+    if (!allowed.is_array()) c.fail(c.at("allowed"), "must be an array of {\"links\": [link, link], \"why\": text}");
+    for (std::size_t i = 0; i < allowed.size(); ++i) {
+      ObjectReader a(source, allowed[i], fmt::format("collision.allowed[{}]", i));
+      const json& links = a.require("links");
+      if (!links.is_array() || links.size() != 2) a.fail(a.at("links"), "must be two link names of the URDF");
+      std::string pair[2];
+      for (std::size_t n = 0; n < 2; ++n) {
+        pair[n] = name_of(a, links[n], fmt::format("{}[{}]", a.at("links"), n));
+        if (!urdf_model->getLink(pair[n])) {
+          a.fail(fmt::format("{}[{}]", a.at("links"), n), fmt::format("'{}' is not a link of {}", pair[n], urdf_source));
+        }
+      }
+      const json& why = a.require("why");
+      if (!why.is_string()) a.fail(a.at("why"), "must be text: why the pair may touch (adjacent, always touching)");
+      a.finish();
+      m.allowed_collisions.emplace_back(pair[0], pair[1]);
+    }
+    c.finish();
+  }
   // The sections of the boxes that run the arm, each read by its box (core/arm_file_sections.hpp).
   (void)r.find(std::string(arm_file::kSimulatorSection));
   (void)r.find(std::string(arm_file::kControllerSection));
@@ -279,6 +306,11 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
     if (cj.type == motion::ChainJointType::prismatic)
       m.reach += std::max(std::abs(m.joints[i].limits.lower), std::abs(m.joints[i].limits.upper));
   }
+  std::vector<std::string> joint_names;
+  for (const auto& j : m.joints) joint_names.push_back(j.name);
+  auto bodies = motion::read_link_bodies(urdf_text, base, joint_names);
+  if (!bodies) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, bodies.error().message));
+  m.bodies = std::make_shared<const motion::LinkBodies>(std::move(bodies).value());
   auto kin = arm_family.make(*chain, limits);
   if (!kin) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, kin.error().message));
   m.kinematics = std::shared_ptr<const motion::Kinematics>(std::move(kin.value()));

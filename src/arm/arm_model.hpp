@@ -17,6 +17,7 @@
 #include "core/error.hpp"
 #include "core/quantity.hpp"
 #include "motion/kinematics.hpp"
+#include "motion/link_bodies.hpp"
 
 namespace armctl::arm {
 
@@ -94,6 +95,12 @@ struct ArmModel {
   double reach = 0;
   std::filesystem::path file;  // the arm file it came from ("" if parsed from text)
   std::filesystem::path urdf;
+  // Every link with its URDF <collision> shapes (docs/scene.md), the link pairs the arm
+  // file's "collision" section allows to touch (found by sampling, reviewed in docs/scene.md),
+  // and the tool's link, where parts held by the tool hang.
+  std::shared_ptr<const motion::LinkBodies> bodies;
+  std::vector<std::pair<std::string, std::string>> allowed_collisions;
+  std::string tool_link;
 
   int chain_joints() const { return kinematics ? kinematics->joint_count() : 0; }
   int joint_count() const { return static_cast<int>(joints.size()); }

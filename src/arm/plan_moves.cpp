@@ -7,6 +7,7 @@
 
 #include "core/quantity.hpp"
 #include "motion/move_limits.hpp"
+#include "scene/collision_world.hpp"
 
 namespace armctl::arm {
 
@@ -46,6 +47,7 @@ class Planner {
       else message(k, std::get<MessageMove>(m.what));
       ++k;
     }
+    if (kin_.collisions()) out.clearance = check_collisions(*kin_.collisions(), out.start);
     for (const auto& p : pieces_) {
       out.duration += p.duration();
       out.moves += p.moves;
@@ -55,6 +57,59 @@ class Planner {
   }
 
  private:
+  // Every motion checked against the arm's collision world (docs/scene.md) before anything
+  // moves; the first contact refuses the plan naming the two bodies, the piece, how far into
+  // it and the tool point there. The smallest clearance along all of them otherwise.
+  scene::Clearance check_collisions(const scene::CollisionWorld& world, const std::vector<double>& start) {
+    scene::Clearance least;
+    std::vector<double> from = start;
+    for (PlannedPiece& p : pieces_) {
+      scene::MotionCheck check;
+      if (p.kind == PieceKind::motion) {
+        // A motion's sample writes every joint into vectors sized by the caller.
+        std::vector<double> v(from.size()), a(from.size());
+        check = scene::check_motion(world, p.motion.duration, [&](double t, std::vector<double>& q) {
+          q.resize(from.size());
+          p.motion.sample(t, q, v, a);
+        });
+      } else if (p.kind == PieceKind::board_move) {
+        // The board turns every joint at once along a straight line in joint space.
+        check = scene::check_motion(world, 1.0, [&](double t, std::vector<double>& q) {
+          q.resize(from.size());
+          for (std::size_t i = 0; i < q.size(); ++i) q[i] = from[i] + t * (p.end[i] - from[i]);
+        });
+      } else {
+        continue;
+      }
+      const double duration = p.kind == PieceKind::motion ? p.motion.duration : 1.0;
+      if (check.contact) {
+        CollisionDetail d;
+        d.contact = *check.contact;
+        d.first_move = p.first_move;
+        d.last_move = p.last_move;
+        d.line = p.first_line;
+        d.fraction = duration > 0 ? check.at / duration : 0;
+        d.joints = check.joints;
+        d.tool_point = kin_.pose_at(check.joints).position;
+        // Without the piece's label: callers name the moves a refusal is about (MoveRefusal).
+        const std::string message = fmt::format(
+            "would collide {:.0f}% into the motion, tool point at ({:.1f}, {:.1f}, {:.1f}) mm: {} with {}, {:.1f} mm deep",
+            100 * d.fraction, d.tool_point.x() * 1e3, d.tool_point.y() * 1e3, d.tool_point.z() * 1e3, d.contact.first,
+            d.contact.second, d.contact.depth * 1e3);
+        refuse(p.first_move, p.last_move, Error{ErrorKind::invalid_argument, message, d});
+      }
+      if (check.clearance.distance < least.distance) least = check.clearance;
+      if (!check.started_touching.empty()) {
+        std::string pairs;
+        for (const auto& [a, b] : check.started_touching) pairs += (pairs.empty() ? "" : ", ") + a + " with " + b;
+        p.note += (p.note.empty() ? "" : "; ") +
+                  fmt::format("{}: starts where {} already touch (not checked along it, so that the arm can move out)", p.label, pairs);
+      }
+      from = p.end;
+    }
+    return least;
+  }
+
   std::string label(std::size_t k) const {
     return moves_[k].label.empty() ? fmt::format("move {}", k + 1) : moves_[k].label;
   }

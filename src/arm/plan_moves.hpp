@@ -111,6 +111,9 @@ struct Plan {
   std::vector<PlannedPiece> pieces;
   double duration = 0;  // nominal s at 100 %
   std::size_t moves = 0;
+  // The smallest clearance between two checked bodies along every motion (docs/scene.md);
+  // empty when the arm has no collision model.
+  std::optional<scene::Clearance> clearance;
   const std::vector<double>& end() const { return pieces.empty() ? start : pieces.back().end; }
   // The notes of its pieces ("--time 0.1s is too short for ..."), joined by "; ".
   std::string notes() const;
@@ -121,6 +124,17 @@ struct Plan {
 // unchanged, so that apps map it as they map any other.
 struct MoveRefusal {
   std::size_t first_move = 0, last_move = 0;
+};
+
+// The detail of a refusal because a motion would collide (Error::detail): the two bodies,
+// how deep, where on the motion, and the tool point there.
+struct CollisionDetail {
+  scene::Contact contact;
+  std::size_t first_move = 0, last_move = 0;  // the piece's moves
+  std::size_t line = 0;  // its first move's line in a file (0: not from a file)
+  double fraction = 0;   // how far into the piece's motion, 0..1
+  Eigen::Vector3d tool_point = Eigen::Vector3d::Zero();  // base frame, m
+  std::vector<double> joints;  // every joint there, SI
 };
 
 // `refused`, when given, is set to the moves a refusal is about.

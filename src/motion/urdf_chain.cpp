@@ -1,4 +1,5 @@
 #include "motion/urdf_chain.hpp"
+#include "motion/urdf_model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -116,7 +117,9 @@ std::string line_column(std::string_view text, std::size_t at) {
   return fmt::format("line {}, column {}", line, column);
 }
 
-Result<urdf::ModelInterfaceSharedPtr> parse_model(const std::string& xml) {
+}  // namespace
+
+Result<urdf::ModelInterfaceSharedPtr> parse_urdf_model(const std::string& xml) {
   if (const auto at = bad_utf8_at(xml); at != std::string_view::npos) {
     return config_error(fmt::format("URDF not accepted: byte {} is not UTF-8 text (a URDF is XML, UTF-8 encoded)", at));
   }
@@ -144,23 +147,27 @@ Result<urdf::ModelInterfaceSharedPtr> parse_model(const std::string& xml) {
   return model;
 }
 
+namespace {
 bool finite(const urdf::Vector3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+}  // namespace
 
-Result<Eigen::Isometry3d> to_isometry(const urdf::Pose& pose, const std::string& joint_name) {
+Result<Eigen::Isometry3d> urdf_pose(const urdf::Pose& pose, const std::string& what) {
   const auto& p = pose.position;
   const auto& r = pose.rotation;
   if (!finite(p) || !std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z) || !std::isfinite(r.w)) {
-    return config_error(fmt::format("URDF joint '{}': <origin> xyz and rpy must be finite numbers", joint_name));
+    return config_error(fmt::format("URDF {}: <origin> xyz and rpy must be finite numbers", what));
   }
   Eigen::Quaterniond q(r.w, r.x, r.y, r.z);
   if (q.norm() < 0.5) {
-    return config_error(fmt::format("URDF joint '{}': <origin> rotation is not a rotation", joint_name));
+    return config_error(fmt::format("URDF {}: <origin> rotation is not a rotation", what));
   }
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   t.linear() = q.normalized().toRotationMatrix();
   t.translation() = Eigen::Vector3d(p.x, p.y, p.z);
   return t;
 }
+
+namespace {
 
 const char* urdf_type_name(int type) {
   switch (type) {
@@ -221,7 +228,7 @@ Result<ChainJoint> moving_joint(const urdf::Joint& j) {
 
 Result<UrdfChain> read_urdf_chain(std::string_view urdf_xml, std::string_view base_link,
                                   std::string_view tip_link) {
-  auto parsed = parse_model(std::string(urdf_xml));
+  auto parsed = parse_urdf_model(std::string(urdf_xml));
   if (!parsed) return parsed.error();
   const urdf::ModelInterface& model = **parsed;
   const std::string base(base_link), tip(tip_link);
@@ -259,7 +266,7 @@ Result<UrdfChain> read_urdf_chain(std::string_view urdf_xml, std::string_view ba
       return config_error(fmt::format("URDF joint between links '{}' and '{}' has an empty name; every <joint> "
                                       "on the chain needs a name",
                                       j.parent_link_name, j.child_link_name));
-    auto origin = to_isometry(j.parent_to_joint_origin_transform, j.name);
+    auto origin = urdf_pose(j.parent_to_joint_origin_transform, "joint '" + j.name + "'");
     if (!origin) return origin.error();
     if (j.type == urdf::Joint::FIXED) {
       pending = pending * *origin;

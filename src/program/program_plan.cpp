@@ -65,6 +65,7 @@ class Planner {
     return arm::plan_moves(kin_, state_, moves);
   }
   void append(arm::Plan plan) {
+    if (plan.clearance && (!out_.clearance || plan.clearance->distance < out_.clearance->distance)) out_.clearance = plan.clearance;
     for (auto& p : plan.pieces) {
       out_.duration += p.duration();
       out_.moves += p.moves;

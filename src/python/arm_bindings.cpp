@@ -23,6 +23,7 @@
 #include "bindings.hpp"
 #include "files/action_group_file.hpp"
 #include "python_support.hpp"
+#include "scene/scene.hpp"
 #include "session/arm_session.hpp"
 
 namespace armctl::python {
@@ -112,9 +113,23 @@ std::optional<motion::Elbow> elbow_of(const std::optional<std::string>& e) {
 
 class PyArm {
  public:
-  PyArm(const std::string& arm, const std::string& device) {
+  PyArm(const std::string& arm, const std::string& device, const std::string& scene) {
+    session::SessionOptions options;
+    options.scene = scene;
     // The GIL released while the embedded simulators start and HID boards answer.
-    session_ = must(released([&] { return session::open_arm_session(arm, device); }));
+    session_ = must(released([&] { return session::open_arm_session(arm, device, options); }));
+  }
+
+  // The scene file every plan is checked against (docs/scene.md), or None.
+  std::optional<std::string> scene() {
+    const armctl::scene::Scene s = arm().scene();
+    if (s.file.empty()) return std::nullopt;
+    return s.file.string();
+  }
+  void set_scene(const std::optional<std::string>& file) {
+    armctl::scene::Scene s;
+    if (file && !file->empty()) s = must(armctl::scene::load_scene(*file));
+    must(arm().set_scene(std::move(s)));
   }
 
   // Stops what another thread runs on this arm (a wait ends, a streamed motion stops on its
@@ -741,11 +756,16 @@ void define_arm(py::module_& m) {
                     "Arm(arm='xarm', device='') opens the shipped 'xarm' or 'scara' arm, or an arm file path, on\n"
                     "the device URI: '' = the embedded simulator (an emulated xArm board, or the simulated SCARA on\n"
                     "its joint bus), 'hid', 'serial:/dev/ttyUSB0', 'unix:/tmp/scara.sock', ... exactly as\n"
-                    "`armctl arm --device`. Joints in rad or m in the model's order; every value is checked\n"
+                    "`armctl arm --device`; scene: a scene file (docs/scene.md), as `--scene`. Joints in rad or m in the model's order; every value is checked\n"
                     "before anything moves (armctl.Error, kind 'invalid_argument'). Ctrl-C during a move or a wait\n"
                     "stops the arm, then raises KeyboardInterrupt. Threads may share an Arm: calls take turns on\n"
                     "the device. Use as a context manager to close it.")
-      .def(py::init<const std::string&, const std::string&>(), "arm"_a = "xarm", "device"_a = "")
+      .def(py::init<const std::string&, const std::string&, const std::string&>(), "arm"_a = "xarm", "device"_a = "",
+           "scene"_a = "")
+      .def_property("scene", in_turn(&PyArm::scene), in_turn(&PyArm::set_scene),
+                    "The scene file (docs/scene.md) every motion is checked against before it starts, or None (the arm's\n"
+                    "own links only). Set a path to load one (a bad file raises armctl.Error and keeps the old one),\n"
+                    "None to clear it.")
       .def("close", &PyArm::close, "Closes the device (an embedded simulator ends). What another thread runs is stopped first (a wait\n"
            "ends, a streamed motion stops on its path; that call raises armctl.Error) and waited for. Later\n"
            "calls raise armctl.Error.")

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include "arm/motion_executor.hpp"
+#include "arm/plan_moves.hpp"
 #include "core/source_place.hpp"
 #include "devices/joint_bus/reconnecting_link.hpp"
 #include "motion/cartesian_path.hpp"
@@ -37,7 +38,9 @@ void define_error(py::module_& m) {
       "kind: 'invalid_argument', 'invalid_config', 'io', 'timeout', 'protocol', 'device' or\n"
       "'unsupported', e.message the message. e.detail names what more it carries (None, or\n"
       "'following_error' with e.joint, e.measured, e.planned, e.limit; 'path_refusal' with\n"
-      "e.segment, e.fraction, e.point, e.joint; 'source_place' with e.file, e.line, e.column;\n"
+      "e.segment, e.fraction, e.point, e.joint; 'collision' with e.bodies (the two that would touch),\n"
+      "e.depth (m), e.fraction (of the motion), e.point (the tool point, m); 'source_place' with e.file,\n"
+      "e.line, e.column;\n"
       "'device_lost').",
       PyExc_RuntimeError, nullptr);
   if (!error_type) throw py::error_already_set();
@@ -73,6 +76,12 @@ void set_detail(py::object& e, const Error& error) {
     e.attr("fraction") = r->fraction ? py::object(py::float_(*r->fraction)) : py::none();
     e.attr("point") = r->point ? py::object(py::make_tuple(r->point->x(), r->point->y(), r->point->z())) : py::none();
     e.attr("joint") = r->joint >= 0 ? py::object(py::str(r->joint_name)) : py::none();
+  } else if (const auto* c = error.detail_as<arm::CollisionDetail>()) {
+    e.attr("detail") = "collision";
+    e.attr("bodies") = py::make_tuple(c->contact.first, c->contact.second);
+    e.attr("depth") = c->contact.depth;
+    e.attr("fraction") = c->fraction;
+    e.attr("point") = py::make_tuple(c->tool_point.x(), c->tool_point.y(), c->tool_point.z());
   } else if (const auto* at = source_place(error)) {
     e.attr("detail") = "source_place";
     e.attr("file") = at->file;

@@ -150,6 +150,7 @@ namespace {
 std::unique_ptr<session::ArmSession> open_session(const BridgeOptions& o) {
   session::SessionOptions so;
   so.wall_clock = true;
+  so.scene = o.scene;
   return session::open_arm_session(o.arm, o.device, so).value();  // the bridge's constructor throws it
 }
 
@@ -174,7 +175,7 @@ std::optional<GoalRefusal> ArmBridge::check(const TrajectoryGoal& goal, double* 
   if (!tolerances) return refusal_of(tolerances.error());
   auto from = impl_->here();
   if (!from) return refusal_of(from.error());
-  auto plan = plan_trajectory(model, *from, goal.request);
+  auto plan = plan_trajectory(*impl_->worker.kinematics(), *from, goal.request);
   if (!plan) return refusal_of(plan.error());
   if (duration) *duration = plan->motion.duration;
   return std::nullopt;

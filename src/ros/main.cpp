@@ -38,6 +38,7 @@ int run(int argc, char** argv) {
   BridgeOptions options;
   private_nh.param<std::string>("arm", options.arm, "xarm");
   private_nh.param<std::string>("device", options.device, "");
+  private_nh.param<std::string>("scene", options.scene, "");
   options.goal_time = param_in(private_nh, "goal_time_tolerance", 1.0, 0.01, 60);
   options.move_speed = param_in(private_nh, "speed", options.move_speed, 0.01, 1);
   const double link_timeout = param_in(private_nh, "link_timeout", 5.0, 0, 3600);

@@ -109,6 +109,12 @@ Result<arm::SplineRequest> spline_request(const arm::ArmModel& model, const std:
 
 Result<TrajectoryPlan> plan_trajectory(const arm::ArmModel& model, const std::vector<double>& from,
                                        const TrajectoryRequest& request, const StartTolerance& start) {
+  return plan_trajectory(arm::ArmKinematics(model), from, request, start);
+}
+
+Result<TrajectoryPlan> plan_trajectory(const arm::ArmKinematics& kinematics, const std::vector<double>& from,
+                                       const TrajectoryRequest& request, const StartTolerance& start) {
+  const arm::ArmModel& model = kinematics.model();
   auto joints = map_joint_names(model, request.joint_names);
   if (!joints) return joints.error();
   if (from.size() != std::size_t(model.joint_count()))
@@ -117,7 +123,7 @@ Result<TrajectoryPlan> plan_trajectory(const arm::ArmModel& model, const std::ve
   if (!spline) return spline.error();
   // The one planner (arm::plan_moves): a refusal there has no goal code, so it is invalid_goal.
   const arm::Move move{arm::TrajectoryMove{std::move(spline).value()}};
-  auto plan = arm::plan_moves(arm::ArmKinematics(model), from, std::span<const arm::Move>(&move, 1));
+  auto plan = arm::plan_moves(kinematics, from, std::span<const arm::Move>(&move, 1));
   if (!plan) return plan.error();
   TrajectoryPlan out;
   out.joints = *joints;

@@ -47,6 +47,10 @@ Result<std::vector<int>> map_joint_names(const arm::ArmModel& model, const std::
 // acceleration limits. `from`: where the arm stands (SI, every joint).
 Result<TrajectoryPlan> plan_trajectory(const arm::ArmModel& model, const std::vector<double>& from,
                                        const TrajectoryRequest& request, const StartTolerance& start = {});
+// The same with the arm's kinematics, whose collision world (its scene, docs/scene.md) the
+// plan is checked against; the model's own (self-collision only) in the form above.
+Result<TrajectoryPlan> plan_trajectory(const arm::ArmKinematics& kinematics, const std::vector<double>& from,
+                                       const TrajectoryRequest& request, const StartTolerance& start = {});
 
 // The tolerances of a goal in the model's order; a name that is not a joint of the
 // trajectory, a NaN: refused (invalid_joints / invalid_goal).

@@ -35,11 +35,10 @@ Status fail(TrajectoryOutcome& outcome, GoalError code, const Error& e) {
 Status run_trajectory(arm::Arm& arm, session::JobContext& ctx, const TrajectoryRequest& request,
                       const GoalTolerances& tolerances, const TrajectoryDefaults& defaults,
                       TrajectoryOutcome& outcome) {
-  const auto& model = arm.model();
   auto now = arm.read();
   if (!now) return fail(outcome, GoalError::invalid_goal, now.error());
   ctx.positions(*now);
-  auto plan = plan_trajectory(model, now->positions, request, defaults.start);
+  auto plan = plan_trajectory(*arm.kinematics(), now->positions, request, defaults.start);
   if (!plan) return fail(outcome, refusal_of(plan.error()).code, plan.error());
   {
     std::lock_guard<std::mutex> lock(outcome.mutex);

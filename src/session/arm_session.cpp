@@ -1,10 +1,12 @@
 #include "session/arm_session.hpp"
 
+#include <optional>
 #include <utility>
 
 #include <fmt/core.h>
 
 #include "core/printable.hpp"
+#include "scene/scene.hpp"
 
 #include "transport/device_uri_parts.hpp"
 
@@ -39,7 +41,20 @@ Result<std::unique_ptr<ArmSession>> open_arm_session(const std::string& arm_name
                                                      const SessionOptions& options) {
   auto model = load_arm(arm_name);
   if (!model) return model.error();
-  return catch_error([&] { return open_device(std::move(model).value(), device, options); });
+  std::optional<scene::Scene> scene;
+  if (!options.scene.empty()) {
+    auto loaded = scene::load_scene(options.scene);
+    if (!loaded) return loaded.error();
+    scene = std::move(loaded).value();
+    // Checked against the arm before anything opens: a scene the arm cannot check is refused.
+    auto checked = arm::ArmKinematics(*model).with_scene(*scene);
+    if (!checked) return checked.error();
+  }
+  auto session = catch_error([&] { return open_device(std::move(model).value(), device, options); });
+  if (session && scene) {
+    if (auto ok = (*session)->arm->set_scene(std::move(*scene)); !ok) return ok.error();
+  }
+  return session;
 }
 
 }  // namespace armctl::session

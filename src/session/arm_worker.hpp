@@ -102,6 +102,8 @@ class ArmWorker {
   ArmWorker& operator=(const ArmWorker&) = delete;
 
   const arm::ArmModel& model() const { return session_->arm->model(); }
+  // What plans are made with: the arm's kinematics with its scene (arm::Arm::kinematics).
+  std::shared_ptr<const arm::ArmKinematics> kinematics() const { return session_->arm->kinematics(); }
   // The session, for what only the worker thread may use (jobs run on it).
   ArmSession& session() { return *session_; }
 

@@ -5,6 +5,7 @@
 // one registration, and no app changes (docs/architecture.md "How to add a device").
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
@@ -27,6 +28,9 @@ struct SessionOptions {
   // for days wants. Each call meanwhile fails with the loss ("the joint bus link is lost
   // ...; reconnecting"). Robot Commands devices are not reopened (docs/http-api.md).
   bool reconnect = false;
+  // A scene file (docs/scene.md) every plan of the arm is checked against, read before the
+  // device is opened (a bad file opens nothing). Empty: self-collision only.
+  std::filesystem::path scene{};
 };
 
 // What a factory is asked to open.

@@ -39,7 +39,8 @@ struct MegaArm {
 TEST(MegaArm, PtpMoveArrivesWhereTheArmApiAsked) {
   MegaArm m;
   const std::vector<std::optional<double>> targets{0.15, 0.3, -0.8, 0.2, 0.0, 0.0, std::nullopt};
-  ASSERT_TRUE(m.arm.move_joints(targets));
+  auto moved = m.arm.move_joints(targets);
+  ASSERT_TRUE(moved) << moved.error().message;
   auto w = m.arm.wait();
   ASSERT_TRUE(w) << w.error().message;
   const auto truth = m.true_positions();

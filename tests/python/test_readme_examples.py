@@ -38,6 +38,8 @@ SECTIONS = [
     ("README.md", "Python"),
     ("README.md", "Write robot programs"),
     ("README.md", "Teach by hand, record and replay"),
+    ("README.md", "Keep clear of the table and what stands on it"),
+    ("docs/scene.md", None),
     ("docs/motion.md", "From the command line"),
     ("docs/programs.md", None),
     ("docs/teach.md", None),
@@ -55,6 +57,14 @@ SKIPPED = {
         "listens on every interface; tests stay on the loopback (tests/web covers the token off it)",
     "ARMCTL_CLI=build/armctl node --test tests/browser/dashboard_xarm.test.mjs":
         "the browser test itself, which CTest runs (browser.dashboard_xarm)",
+}
+
+
+# Commands printed to show a refusal: each must exit 1 with these words on stderr (the
+# refusal comes before anything moves).
+REFUSED = {
+    "build/armctl arm --scene examples/scenes/xarm-desk.json move-to x=150 y=-100 z=60": "with box 'box'",
+    "build/armctl arm --scene examples/scenes/xarm-desk.json move-to x=120 y=120 z=-5": "with the table 'desk'",
 }
 
 
@@ -144,6 +154,11 @@ def test_command_runs_as_printed(file, line):
         return
     run = subprocess.run(argv_of(line), cwd=WORK, stdin=subprocess.DEVNULL, capture_output=True, text=True,
                          timeout=180)
+    command = line.split("#")[0].strip()
+    if command in REFUSED:
+        assert run.returncode == 1 and REFUSED[command] in run.stderr, \
+            f"{file}: {line}\nexit {run.returncode} (a refusal naming \"{REFUSED[command]}\" expected)\n{run.stdout}\n{run.stderr}"
+        return
     assert run.returncode == 0, f"{file}: {line}\nexit {run.returncode}\n{run.stdout}\n{run.stderr}"
 
 

@@ -8,6 +8,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "arm/arm_kinematics.hpp"
 #include "arm/arm_model.hpp"
 #include "ros/trajectory_goal.hpp"
 
@@ -59,6 +60,31 @@ GoalRefusal refusal(const arm::ArmModel& m, const TrajectoryRequest& r) {
 }
 
 class TrajectoryGoal : public ::testing::TestWithParam<const char*> {};
+
+// A ROS trajectory is planned with the arm's kinematics and its scene (docs/scene.md): one that
+// passes through a box is refused before anything moves, as an invalid goal naming the bodies.
+TEST(TrajectoryGoalScene, ATrajectoryThroughABoxIsRefused) {
+  const auto m = model("xarm");
+  const auto r = five_points(m);
+  const arm::ArmKinematics plain(m);
+  auto clear = plan_trajectory(plain, middle(m), r);
+  ASSERT_TRUE(clear.ok()) << clear.error().message;
+  // A ball 60 mm across around where the tool point passes halfway to the first point (the
+  // tool point itself has no shape: the ball reaches the fingers and the hand).
+  std::vector<double> p(m.joints.size()), v(m.joints.size()), a(m.joints.size());
+  clear->motion.sample(1.0, p, v, a);
+  const Eigen::Vector3d tool = plain.pose_at(p).position;
+  scene::SceneObject ball;
+  ball.name = "ball";
+  ball.shape.kind = motion::Shape::Kind::sphere;
+  ball.shape.size = {0.03, 0, 0};
+  ball.shape.pose.translation() = tool;
+  auto with = plain.with_scene(scene::Scene{{ball}, {}}).value();
+  auto plan = plan_trajectory(*with, middle(m), r);
+  ASSERT_FALSE(plan.ok());
+  EXPECT_EQ(refusal_of(plan.error()).code, GoalError::invalid_goal);
+  EXPECT_THAT(plan.error().message, HasSubstr("with sphere 'ball'"));
+}
 
 TEST_P(TrajectoryGoal, PassesThroughEveryPointWithinTheLimits) {
   const auto m = model(GetParam());

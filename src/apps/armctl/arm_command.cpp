@@ -11,6 +11,8 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "apps/armctl/clearance_words.hpp"
+#include "apps/armctl/scene_option.hpp"
 #include "apps/armctl/arm_motion.hpp"
 #include "session/arm_session.hpp"
 #include "apps/armctl/commands.hpp"
@@ -34,6 +36,7 @@ namespace {
 using nlohmann::json;
 
 struct ArmArgs {
+  std::string scene;  // --scene FILE
   std::string arm = "xarm";
   std::string device;
   bool json = false;
@@ -205,8 +208,13 @@ void run_board_move(const ArmArgs& a, session::ArmSession& s, const arm::PtpMove
   if (const std::string note = plan.notes(); !note.empty()) fmt::print(stderr, "note: {}\n", note);
   Interrupted interrupted;
   StopOnSignals on_signals(interrupted);  // before the plan is said: a Ctrl-C after it stops the move
-  if (a.json)  // what every app answers for a move: how long it takes and where it ends
-    print_json_event("planned", {{"duration_s", plan.duration}, {"targets", joint_values_json(s.arm->model(), plan.end())}});
+  if (a.json) {  // what every app answers for a move: how long it takes and where it ends
+    json planned{{"duration_s", plan.duration}, {"targets", joint_values_json(s.arm->model(), plan.end())}};
+    add_clearance_json(planned, plan.clearance);
+    print_json_event("planned", std::move(planned));
+  } else if (!a.scene.empty()) {
+    fmt::print("{}\n", clearance_words(plan.clearance));
+  }
   arm::RunHooks hooks;
   hooks.command = [&] { return interrupted ? arm::MotionCommand::stop : arm::MotionCommand::none; };
   hooks.wait = wait_options(a);
@@ -222,12 +230,12 @@ void run_board_move(const ArmArgs& a, session::ArmSession& s, const arm::PtpMove
 }
 
 void run_joints(const ArmArgs& a) {
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   print_joints(a, s->arm->model(), must(s->arm->read()));
 }
 
 void run_pose(const ArmArgs& a) {
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   const motion::JointVector q = s->arm->chain_of(must(s->arm->read()).positions);
   const motion::Pose p = s->arm->forward(q);
   const motion::Rpy rpy = s->arm->tool_rpy(p, q);
@@ -247,7 +255,7 @@ void run_move_joints(const ArmArgs& a) {
   }
   arm::PtpMove move = ptp_move(a);
   move.target = targets;
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   must(s->arm->check_targets(targets));
   run_board_move(a, *s, move, std::nullopt);
 }
@@ -274,7 +282,7 @@ void run_move_linear(const ArmArgs& a) {
   if (!a.zone.empty()) m.zone = must(parse_quantity(a.zone, Dimension::length, "--zone", 0, "mm"));
   if (m.zone < 0) usage(fmt::format("--zone '{}' is not allowed: 0 or more (e.g. 5mm)", a.zone));
   const MotionCliOptions options = motion_cli_options(a);
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   print_arrived(a, *s, goal, run_path_moves(*s, {m}, options));
 }
 
@@ -284,14 +292,14 @@ void run_path(const ArmArgs& a) {
   MotionCliOptions options = motion_cli_options(a);
   std::optional<MotionTrace> trace;  // opened before anything moves: a bad path is refused first
   if (!a.trace.empty()) options.trace = &trace.emplace(a.trace);
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   const arm::JointState arrived = run_path_moves(*s, file.moves, options);
   if (trace) trace->finish();
   print_arrived(a, *s, std::nullopt, arrived);
 }
 
 void run_stop(const ArmArgs& a) {
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   must(s->arm->stop());
   if (a.json) print_json_line(json{{"stopped", true}});
   else fmt::print("stopped\n");
@@ -303,13 +311,13 @@ void run_move_to(const ArmArgs& a) {
   const arm::CartesianGoal goal = parse_goal(a);
   arm::PtpMove move = ptp_move(a);
   move.target = goal;
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   run_board_move(a, *s, move, goal);
 }
 
 void run_ik(const ArmArgs& a) {
   const arm::CartesianGoal goal = parse_goal(a);
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   const arm::JointState now = must(s->arm->read());
   const auto solutions = must(s->arm->inverse(goal, now));
   const arm::ArmModel& m = s->arm->model();
@@ -335,7 +343,7 @@ void run_ik(const ArmArgs& a) {
 
 void run_torque(const ArmArgs& a) {
   if (a.onoff != "on" && a.onoff != "off") usage(fmt::format("torque: '{}' is not allowed: on or off", a.onoff));
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   must(s->arm->set_torque(a.onoff == "on"));
   if (a.json) print_json_line(json{{"torque", a.onoff}});
   else fmt::print("torque {}\n", a.onoff);
@@ -356,7 +364,7 @@ void run_gripper(const ArmArgs& a) {
     fraction = v / 100;
   }
   arm::PtpMove move = ptp_move(a);
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   const arm::ArmModel& model = s->arm->model();
   if (!model.gripper) throw ArmctlError(ErrorKind::unsupported, fmt::format("arm '{}' has no gripper", model.name));
   std::vector<std::optional<double>> targets(std::size_t(model.joint_count()));
@@ -366,7 +374,7 @@ void run_gripper(const ArmArgs& a) {
 }
 
 void run_calibrate_zero(const ArmArgs& a) {
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   const arm::ArmModel& m = s->arm->model();
   std::vector<int> joints;
   for (const auto& w : a.words) joints.push_back(find_joint(m, w));
@@ -402,6 +410,7 @@ void add_arm_command(CLI::App& app) {
   cmd->add_option("--device", a->device,
                   "xArm: hid | serial:/dev/X[?baud=N] | /dev/PATH; SCARA: sim[?...] | unix:PATH | "
                   "serial:...&select=... (joint bus) or any Robot Commands URI (arm controller)");
+  add_scene_option(cmd, a->scene);
   cmd->add_flag("--json", a->json, "Machine-readable output (one JSON object per line)");
 
   auto add_motion_options = [a](CLI::App* sub) {

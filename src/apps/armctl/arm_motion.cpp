@@ -1,3 +1,4 @@
+#include "apps/armctl/clearance_words.hpp"
 #include "apps/armctl/arm_motion.hpp"
 
 #include <unistd.h>
@@ -129,13 +130,16 @@ arm::JointState run_path_moves(session::ArmSession& session, const std::vector<f
   const std::size_t pieces = plan.pieces.size();
   Interrupted interrupted;
   StopOnSignals on_signals(interrupted);  // before the plan is said: a Ctrl-C after it stops the motion
-  if (options.json)
-    print_json_line(json{{"event", "planned"}, {"moves", moves.size()}, {"pieces", pieces},
-                            {"duration_s", total / options.speed_override},
-                            {"targets", joint_values_json(arm.model(), plan.end())}});
-  else
-    fmt::print("planned {} move{} ({} piece{}), {:.1f} s\n", moves.size(), moves.size() == 1 ? "" : "s", pieces,
-               pieces == 1 ? "" : "s", total / options.speed_override);
+  if (options.json) {
+    json planned{{"event", "planned"}, {"moves", moves.size()}, {"pieces", pieces},
+                 {"duration_s", total / options.speed_override}, {"targets", joint_values_json(arm.model(), plan.end())}};
+    add_clearance_json(planned, plan.clearance);
+    print_json_line(planned);
+  } else {
+    fmt::print("planned {} move{} ({} piece{}), {:.1f} s{}\n", moves.size(), moves.size() == 1 ? "" : "s", pieces,
+               pieces == 1 ? "" : "s", total / options.speed_override,
+               arm.scene().objects.empty() ? std::string() : "; " + clearance_words(plan.clearance));
+  }
   std::fflush(stdout);
 
   const bool progress_line = !options.json && isatty(STDERR_FILENO);

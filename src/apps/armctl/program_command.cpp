@@ -17,6 +17,8 @@
 #include <nlohmann/json.hpp>
 
 #include "session/arm_session.hpp"
+#include "apps/armctl/clearance_words.hpp"
+#include "apps/armctl/scene_option.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/json_output.hpp"
@@ -43,6 +45,7 @@ namespace {
 using nlohmann::json;
 
 struct ProgramArgs {
+  std::string scene;  // --scene FILE
   std::string file;
   std::string arm = "xarm";
   std::string device;
@@ -78,8 +81,10 @@ void print_check(const ProgramArgs& a, const Loaded& l, const program::ProgramPl
                         {"last_line", piece.last_line},
                         {"what", piece.label},
                         {"seconds", piece.kind == program::PieceKind::motion ? piece.motion.duration : piece.seconds}});
-    print_json_line(json{{"event", "checked"}, {"arm", arm.model().name}, {"moves", p.moves},
-                            {"pieces", pieces}, {"statements", l.flow.statements}, {"duration_s", p.duration}});
+    json checked{{"event", "checked"}, {"arm", arm.model().name}, {"moves", p.moves},
+                 {"pieces", pieces}, {"statements", l.flow.statements}, {"duration_s", p.duration}};
+    add_clearance_json(checked, p.clearance);
+    print_json_line(checked);
     return;
   }
   for (const auto& piece : p.pieces) {
@@ -90,11 +95,12 @@ void print_check(const ProgramArgs& a, const Loaded& l, const program::ProgramPl
   fmt::print("{}: OK on arm '{}': {} move{} in {} piece{}, {} statements run; estimated run time {:.1f} s at 100 %\n",
              l.program.source, arm.model().name, p.moves, p.moves == 1 ? "" : "s", p.pieces.size(),
              p.pieces.size() == 1 ? "" : "s", l.flow.statements, p.duration);
+  if (!a.scene.empty()) fmt::print("{}\n", clearance_words(p.clearance));
 }
 
 void run_check(const ProgramArgs& a) {
   const Loaded l = load(a);
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   const auto p = plan(l, *s->arm, true);
   print_check(a, l, p, *s->arm);
 }
@@ -106,18 +112,21 @@ void run_run(const ProgramArgs& a) {
   const Loaded l = load(a);
   std::optional<MotionTrace> trace;  // opened before anything moves: a bad path is refused first
   if (!a.trace.empty()) trace.emplace(a.trace);
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   arm::Arm& arm = *s->arm;
   const auto p = plan(l, arm, !a.step);  // refuses before anything moves
   // The estimate at the override the run uses (it said 81.8 s for a run of 164.4 s at 50 %).
   const double estimate = program::estimated_duration(p, speed_override);
-  if (a.json)
-    print_json_line(json{{"event", "planned"}, {"moves", p.moves}, {"pieces", p.pieces.size()},
-                            {"duration_s", estimate}, {"dry_run", a.dry_run}});
-  else
+  if (a.json) {
+    json planned{{"event", "planned"}, {"moves", p.moves}, {"pieces", p.pieces.size()}, {"duration_s", estimate}, {"dry_run", a.dry_run}};
+    add_clearance_json(planned, p.clearance);
+    print_json_line(planned);
+  } else {
+    if (!a.scene.empty()) fmt::print("{}\n", clearance_words(p.clearance));
     fmt::print("{}planned {} move{} ({} piece{}), about {:.1f} s{}\n", a.dry_run ? "dry run on the simulated arm: " : "",
                p.moves, p.moves == 1 ? "" : "s", p.pieces.size(), p.pieces.size() == 1 ? "" : "s", estimate,
                speed_override < 1 ? fmt::format(" at {:g} %", speed_override * 100) : std::string());
+  }
   std::fflush(stdout);
 
   Interrupted interrupted;
@@ -197,7 +206,7 @@ void run_compile(const ProgramArgs& a) {
       usage(fmt::format("--path-error '{}' is not allowed: 0.1mm up to 50mm", a.path_error));
   }
   const Loaded l = load(a);
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   arm::ActionGroups* groups = s->arm->device().action_groups();
   if (!groups)
     usage(fmt::format("arm '{}' on device '{}' is driven over the joint bus: action groups need a Robot Commands "
@@ -230,6 +239,7 @@ void add_program_command(CLI::App& app) {
   auto common = [a](CLI::App* sub) {
     sub->add_option("file", a->file, "Program file")->required();
     add_arm_options(sub, a->arm, a->device);
+    add_scene_option(sub, a->scene);
     sub->add_option("--points", a->points, "Points file (default: FILE with .points, if it exists)");
     sub->add_flag("--json", a->json, "Machine-readable output (one JSON object per line)");
   };

@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include "session/arm_session.hpp"
+#include "apps/armctl/scene_option.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/json_output.hpp"
 #include "apps/armctl/number_options.hpp"
@@ -22,6 +23,7 @@ namespace armctl::cli {
 namespace {
 
 struct ReplayArgs {
+  std::string scene;  // --scene FILE
   std::string file;
   std::string arm;
   std::string device;
@@ -34,7 +36,7 @@ void run_replay(const ReplayArgs& a) {
   auto recording = files::read_recording(a.file);
   if (!recording) throw ArmctlError(recording.error());
   // The recording names its arm: the shipped model of that name unless --arm says otherwise.
-  auto s = session::open_arm_session(a.arm.empty() ? recording->arm : a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm.empty() ? recording->arm : a.arm, a.device, with_scene(a.scene)).value();
   arm::Arm& arm = *s->arm;
   auto here = arm.read();
   if (!here) throw ArmctlError(here.error());
@@ -93,6 +95,7 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("file", a->file, "Recording file")->required();
   cmd->add_option("--arm", a->arm, "xarm | scara | an arm file (default: the arm the recording names)");
   cmd->add_option("--device", a->device, "As for `armctl arm` (default: the embedded simulated arm)");
+  add_scene_option(cmd, a->scene);
   cmd->add_option("--speed", a->speed, "Percent of the velocity limits (default 100%)");
   cmd->add_flag("--json", a->json, "One JSON object per line: planned, then done (or stopped) per motion");
   cmd->callback([a] { run_replay(*a); });

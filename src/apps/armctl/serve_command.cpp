@@ -11,6 +11,7 @@
 #include <fmt/core.h>
 
 #include "session/arm_session.hpp"
+#include "apps/armctl/scene_option.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/server_log.hpp"
@@ -26,6 +27,7 @@ namespace armctl::cli {
 namespace {
 
 struct ServeArgs {
+  std::string scene;  // --scene FILE
   std::string arm = "xarm";
   std::string device;
   std::string listen = "127.0.0.1:8080";
@@ -74,7 +76,7 @@ void run_serve(const ServeArgs& a) {
   options.points_file = a.points;
 
   // The embedded simulated bus in step with the wall clock, like a real arm: people watch it.
-  session::SessionOptions session_options;
+  session::SessionOptions session_options = with_scene(a.scene);
   session_options.wall_clock = true;
   session_options.reconnect = true;  // a restarted simulator or a replugged adapter is picked up again
   auto session = armctl::session::open_arm_session(a.arm, a.device, session_options).value();
@@ -110,6 +112,7 @@ void add_serve_command(CLI::App& app) {
       "token (made up at start unless --token gives one; part of the printed URL). Without\n"
       "--device: the embedded simulated arm (see armctl arm --help).");
   add_arm_options(cmd, a->arm, a->device);
+  add_scene_option(cmd, a->scene);
   cmd->add_option("--listen", a->listen, "HOST:PORT (default 127.0.0.1:8080; port 0: any free port)");
   cmd->add_option("--token", a->token, "The access token (default: made up off the loopback address)");
   cmd->add_option("--points", a->points, "Points file the dashboard records points into (program format)");

@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include "session/arm_session.hpp"
+#include "apps/armctl/scene_option.hpp"
 #include "apps/armctl/arm_json.hpp"
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/json_output.hpp"
@@ -24,6 +25,7 @@ namespace armctl::cli {
 namespace {
 
 struct TeachArgs {
+  std::string scene;  // --scene FILE
   std::string arm = "xarm";
   std::string device;
   std::string points;
@@ -73,7 +75,7 @@ void run_teach(const TeachArgs& a) {
   if (recording)
     if (auto w = check_writable(a.out); !w)
       throw ArmctlError(w.error().kind, w.error().message + "; nothing recorded, torque not switched off");
-  auto s = session::open_arm_session(a.arm, a.device).value();
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   arm::Arm& arm = *s->arm;
   Interrupted interrupted;
   StopOnSignals on_signals(interrupted);
@@ -138,6 +140,7 @@ void add_teach_command(CLI::App& app) {
   auto a = std::make_shared<TeachArgs>();
   auto* cmd = app.add_subcommand("teach", "Move the arm by hand (torque off) and record points or a motion (docs/teach.md)");
   add_arm_options(cmd, a->arm, a->device);
+  add_scene_option(cmd, a->scene);
   cmd->add_option("--points", a->points, "Points file to add the points to (written after each point)");
   cmd->add_option("--record", a->record, "Record a continuous motion at this rate instead (e.g. 20Hz)");
   cmd->add_option("--out", a->out, "With --record: the recording file to write");

@@ -19,9 +19,10 @@ class Error(RuntimeError):
 
     kind: ErrorKindName
     message: str
-    detail: Optional[Literal["following_error", "path_refusal", "source_place", "device_lost"]]
+    detail: Optional[Literal["following_error", "path_refusal", "collision", "source_place", "device_lost"]]
     # following_error: joint, measured, planned, limit; path_refusal: segment (0-based),
-    # fraction, point (m), joint; source_place: file, line, column.
+    # fraction, point (m), joint; collision: bodies, depth (m), fraction, point (the tool point,
+    # m); source_place: file, line, column.
     joint: Optional[str]
     measured: float
     planned: float
@@ -29,6 +30,8 @@ class Error(RuntimeError):
     segment: int
     fraction: Optional[float]
     point: Optional[Tuple[float, float, float]]
+    bodies: Tuple[str, str]
+    depth: float
     file: str
     line: int
     column: int
@@ -173,7 +176,14 @@ class Arm:
 
     Safe to share between threads: calls take turns on the device, one at a time."""
 
-    def __init__(self, arm: str = "xarm", device: str = "") -> None: ...
+    def __init__(self, arm: str = "xarm", device: str = "", scene: str = "") -> None: ...
+    @property
+    def scene(self) -> Optional[str]:
+        """The scene file (docs/scene.md) every motion is checked against before it starts, or None
+        (the arm's own links only)."""
+    @scene.setter
+    def scene(self, file: Optional[str]) -> None:
+        """Loads a scene file (a bad one raises Error and keeps the old scene); None clears it."""
     def close(self) -> None:
         """Stops what another thread runs on the arm (a wait, a streamed motion: it raises Error), waits
         for it, then closes the device; later calls raise Error."""

@@ -1,0 +1,193 @@
+// The planning scene's costs (docs/scene.md), against issue 23's targets and a naive baseline
+// measured in the same run:
+// - one configuration checked (collides), per arm, the arm alone and with 20 objects around
+//   it: target 5 us; naive: FCL on every checked pair, no bounding-box test first;
+// - a whole 500 mm LIN of the SCARA checked (check_motion, 2 mm resolution): target 1 ms;
+//   naive: a check every millisecond of the motion.
+// Times are thread CPU time (the machine is shared).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <fcl/geometry/shape/box.h>
+#include <fmt/core.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+
+#include "arm/arm_kinematics.hpp"
+#include "arm/plan_moves.hpp"
+#include "scene/collision_world.hpp"
+
+namespace {
+
+using namespace armctl;
+
+double thread_cpu_ns() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e9 + double(t.tv_nsec);
+}
+
+void print(const std::string& name, double value, const char* unit, double limit) {
+  std::printf("BENCH %s %.3f %s limit %.3f ratio %.3f\n", name.c_str(), value, unit, limit, value / limit);
+}
+
+std::shared_ptr<fcl::CollisionGeometryd> geometry(const motion::Shape& s) {
+  switch (s.kind) {
+    case motion::Shape::Kind::box: return std::make_shared<fcl::Boxd>(s.size.x(), s.size.y(), s.size.z());
+    case motion::Shape::Kind::cylinder: return std::make_shared<fcl::Cylinderd>(s.size.x(), s.size.y());
+    case motion::Shape::Kind::sphere: return std::make_shared<fcl::Sphered>(s.size.x());
+  }
+  return nullptr;
+}
+
+// Objects around the arm, none touching it at zero (placed in a ring outside its base).
+scene::Scene ring_of(int count, double reach, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0, 1);
+  scene::Scene s;
+  for (int k = 0; k < count; ++k) {
+    scene::SceneObject o;
+    o.name = "o" + std::to_string(k);
+    o.shape.kind = static_cast<motion::Shape::Kind>(k % 3);
+    o.shape.size = {0.01 + 0.03 * unit(rng), 0.01 + 0.03 * unit(rng), 0.01 + 0.03 * unit(rng)};
+    const double r = reach * (0.4 + 0.6 * unit(rng)), a = 2 * M_PI * unit(rng);
+    o.shape.pose.translation() = Eigen::Vector3d(r * std::cos(a), r * std::sin(a), reach * unit(rng));
+    s.objects.push_back(o);
+  }
+  return s;
+}
+
+// Random configurations that touch nothing (a check's usual case: it runs to the end).
+std::vector<std::vector<double>> free_configurations(const arm::ArmModel& m, const scene::CollisionWorld& w, int n) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<std::vector<double>> out;
+  while (int(out.size()) < n) {
+    std::vector<double> q;
+    for (const auto& j : m.joints) q.push_back(j.limits.lower + (j.limits.upper - j.limits.lower) * unit(rng));
+    if (!w.collides(q)) out.push_back(q);
+  }
+  return out;
+}
+
+// The naive check: every moving link shape against every object and every link shape of a
+// link it is not joined to, straight to FCL.
+struct Naive {
+  struct Item {
+    int body;
+    motion::Shape shape;
+    std::shared_ptr<fcl::CollisionGeometryd> g;
+  };
+  std::vector<Item> links, objects;
+  std::shared_ptr<const motion::LinkBodies> bodies;
+  bool collides(const std::vector<double>& q, std::vector<Eigen::Isometry3d>& poses) const {
+    bodies->poses(q, poses);
+    fcl::CollisionRequestd req;
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const auto& a = links[i];
+      const Eigen::Isometry3d ta = poses[std::size_t(a.body)] * a.shape.pose;
+      if (!bodies->moves(a.body)) continue;
+      for (const auto& o : objects) {
+        fcl::CollisionResultd res;
+        if (fcl::collide(a.g.get(), ta, o.g.get(), o.shape.pose, req, res)) return true;
+      }
+      for (std::size_t j = 0; j < links.size(); ++j) {
+        const auto& b = links[j];
+        if (b.body == a.body || bodies->bodies[std::size_t(b.body)].parent == a.body ||
+            bodies->bodies[std::size_t(a.body)].parent == b.body)
+          continue;
+        fcl::CollisionResultd res;
+        if (fcl::collide(a.g.get(), ta, b.g.get(), poses[std::size_t(b.body)] * b.shape.pose, req, res)) return true;
+      }
+    }
+    return false;
+  }
+};
+
+Naive naive_of(const arm::ArmModel& m, const scene::Scene& s) {
+  Naive n;
+  n.bodies = m.bodies;
+  for (std::size_t b = 0; b < m.bodies->bodies.size(); ++b)
+    for (const auto& sh : m.bodies->bodies[b].shapes) n.links.push_back({int(b), sh, geometry(sh)});
+  for (const auto& o : s.objects) n.objects.push_back({-1, o.shape, geometry(o.shape)});
+  return n;
+}
+
+void bench_configurations(const char* name) {
+  const arm::ArmKinematics kin(arm::load_arm_model(arm::arm_file_path(name)).value());
+  for (int objects : {0, 20}) {
+    const scene::Scene s = ring_of(objects, kin.model().reach, 5);
+    auto with = kin.with_scene(s).value();
+    const auto& w = *with->collisions();
+    const auto qs = free_configurations(kin.model(), w, 20000);
+    for (int i = 0; i < 1000; ++i) benchmark::DoNotOptimize(w.collides(qs[std::size_t(i)]));
+    double t0 = thread_cpu_ns();
+    for (const auto& q : qs) benchmark::DoNotOptimize(w.collides(q));
+    const double us = (thread_cpu_ns() - t0) / double(qs.size()) / 1e3;
+    const Naive naive = naive_of(kin.model(), s);
+    std::vector<Eigen::Isometry3d> poses;
+    t0 = thread_cpu_ns();
+    for (const auto& q : qs) benchmark::DoNotOptimize(naive.collides(q, poses));
+    const double naive_us = (thread_cpu_ns() - t0) / double(qs.size()) / 1e3;
+    const std::string figure = fmt::format("scene_check_{}_{}_objects", name, objects);
+    print(figure, us, "us", 5.0);
+    print(figure + "_vs_naive", us, "us", naive_us);
+  }
+}
+
+void bench_lin() {
+  const arm::ArmKinematics kin(arm::load_arm_model(arm::arm_file_path("scara")).value());
+  const scene::Scene s = ring_of(20, kin.model().reach, 5);
+  auto with = kin.with_scene(scene::Scene{}).value();  // the line's own check: the arm and a table far below
+  std::vector<double> start(std::size_t(kin.joint_count()), 0.0);
+  start[1] = 0.8;
+  start[2] = -1.6;
+  const Eigen::Vector3d from = kin.pose_at(start).position;
+  arm::CartesianMove lin;
+  lin.goal.position = from + Eigen::Vector3d(0, 0.5, 0);
+  lin.speed = 0.25;
+  auto plan = arm::plan_moves(*with, start, std::vector<arm::Move>{arm::Move{lin}});
+  if (!plan) {
+    std::printf("bench_scene: the 500 mm LIN does not plan: %s\n", plan.error().message.c_str());
+    return;
+  }
+  const auto& motion = plan->pieces.back().motion;
+  std::vector<double> v, a;
+  auto sample = [&](double t, std::vector<double>& q) { motion.sample(t, q, v, a); };
+  const auto& w = *with->collisions();
+  const int n = 50;
+  std::size_t checks = 0;
+  double t0 = thread_cpu_ns();
+  for (int i = 0; i < n; ++i) checks = scene::check_motion(w, motion.duration, sample).checks;
+  const double ms = (thread_cpu_ns() - t0) / n / 1e6;
+  t0 = thread_cpu_ns();
+  std::vector<double> q;
+  for (int i = 0; i < n; ++i) {
+    for (double t = 0; t <= motion.duration; t += 0.001) {
+      sample(t, q);
+      benchmark::DoNotOptimize(w.collides(q));
+      (void)w.clearance(q);
+    }
+  }
+  const double naive_ms = (thread_cpu_ns() - t0) / n / 1e6;
+  std::printf("bench_scene: the 500 mm LIN takes %.2f s; %zu checks\n", motion.duration, checks);
+  print("scene_check_lin_500mm", ms, "ms", 1.0);
+  print("scene_check_lin_500mm_vs_naive", ms, "ms", naive_ms);
+  (void)s;
+}
+
+}  // namespace
+
+int main() {
+  bench_configurations("xarm");
+  bench_configurations("scara");
+  bench_lin();
+  return 0;
+}

@@ -1,0 +1,119 @@
+// The arm's links and the scene as one collision world (FCL underneath): whether the arm at
+// given joint values touches itself or something of the scene, which two bodies, how deep,
+// and how far it stays from everything. Built once per arm and scene; const and shared
+// across threads (a query keeps its transforms on its own stack).
+//
+// What is checked: every pair of links except the arm file's allowed pairs and links that
+// are joined (parent and child, whose shapes meet at the joint); every link that moves
+// against every scene object; parts held by the tool against the scene and every link but
+// the ones that hold them (the tool's link, its parent and that parent's other children:
+// the fingers). Links fixed to the base never move, so they are not checked against the
+// scene (the base stands on the table).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "core/error.hpp"
+#include "motion/link_bodies.hpp"
+#include "scene/scene.hpp"
+
+namespace armctl::scene {
+
+// Clearances beyond this are not measured ("more than 50 mm"): a distance query costs ten
+// collision checks, and nobody steers by the clearance of things that far apart.
+inline constexpr double kClearanceHorizon = 0.05;  // m
+
+struct Contact {
+  std::string first, second;  // "link 'hand'", "the table 'table'", "box 'feeder'"
+  double depth = 0;           // m: how far they overlap
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // base frame
+};
+
+struct Clearance {
+  double distance = kClearanceHorizon;  // m; kClearanceHorizon: nothing nearer
+  std::string first, second;            // empty when nothing is nearer than the horizon
+};
+
+// The arm's side of the world: its links, the pairs never checked, where held parts hang.
+struct ArmBodies {
+  std::shared_ptr<const motion::LinkBodies> links;
+  std::vector<std::pair<std::string, std::string>> allowed;  // link names
+  std::string tool_link;
+  Eigen::Isometry3d tool_frame = Eigen::Isometry3d::Identity();  // in the tool link
+  // Per joint, the largest |value| it reaches (m for a prismatic joint): bounds how far a
+  // point of a link can move when the joints turn (displacement_bound).
+  std::vector<double> joint_reach;
+};
+
+class CollisionWorld {
+ public:
+  // Errors (invalid_config): an allowed pair or the tool link naming no link.
+  static Result<std::shared_ptr<const CollisionWorld>> build(ArmBodies arm, Scene scene);
+
+  const Scene& scene() const { return scene_; }
+  const ArmBodies& arm() const { return arm_; }
+  std::size_t pairs_checked() const { return pairs_.size(); }
+
+  // Whether anything touches at `joints` (every joint of the arm, SI). The fast question.
+  // `skip`: pairs (touching's indices) not asked about.
+  bool collides(std::span<const double> joints, std::span<const int> skip = {}) const;
+  // The deepest contact at `joints`, or nothing.
+  std::optional<Contact> contact(std::span<const double> joints, std::span<const int> skip = {}) const;
+  // The pairs in contact at `joints` (indices for `skip`), and how they are named.
+  std::vector<int> touching(std::span<const double> joints) const;
+  std::pair<std::string, std::string> pair_names(int pair) const;
+  // The smallest distance between two bodies that are checked, when below `below` (at most
+  // kClearanceHorizon): pairs whose bounding boxes are farther apart are not measured.
+  Clearance clearance(std::span<const double> joints, double below = kClearanceHorizon,
+                      std::span<const int> skip = {}) const;
+  // An upper bound on how far any point of any checked body moves when the joints go from
+  // `from` to `to` along a straight line in joint space (m).
+  double displacement_bound(std::span<const double> from, std::span<const double> to) const;
+
+  struct Item;  // one shape (collision_world.cpp)
+  ~CollisionWorld();
+  CollisionWorld(const CollisionWorld&) = delete;
+  CollisionWorld& operator=(const CollisionWorld&) = delete;
+
+ private:
+  CollisionWorld() = default;
+  struct Frames;
+  void place(std::span<const double> joints, Frames& f) const;
+  ArmBodies arm_;
+  Scene scene_;
+  std::vector<Item> items_;
+  std::vector<std::pair<int, int>> pairs_;  // item indices
+  // reach_[body][joint]: how far a point of that body can be from the joint's axis (m);
+  // for a prismatic joint 1 (the point moves as far as the joint).
+  std::vector<std::vector<double>> reach_;
+};
+
+// A motion checked against the world at a resolution that moves no point of any body more
+// than `resolution` between two checks.
+struct MotionCheck {
+  std::optional<Contact> contact;
+  // Pairs already in contact where the motion starts (an arm switched on in a bent pose, an
+  // object placed where the arm stands): not checked along it, so that the arm can move
+  // out; said in the plan's note.
+  std::vector<std::pair<std::string, std::string>> started_touching;
+  double at = 0;  // s into the motion where the contact is (or where the clearance is smallest)
+  std::vector<double> joints;  // there
+  Clearance clearance;         // the smallest along the motion (no contact)
+  std::size_t checks = 0;      // configurations checked
+};
+inline constexpr double kCheckResolution = 0.002;  // m
+
+// `sample(t, joints)`: every joint at t (s) of a motion lasting `duration` s.
+MotionCheck check_motion(const CollisionWorld& world, double duration,
+                         const std::function<void(double, std::vector<double>&)>& sample,
+                         double resolution = kCheckResolution);
+
+}  // namespace armctl::scene

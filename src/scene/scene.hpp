@@ -1,0 +1,50 @@
+// What stands around the arm: a table, boxes, cylinders, spheres and keep-out zones, each
+// named and placed in the arm's base frame, and parts held by the tool, which move with it.
+// Read from a scene file (docs/scene.md): JSON, lengths in millimetres, angles in degrees;
+// held here in SI (m, rad) like every other value of the arm layer. Pure: text in, value out.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/error.hpp"
+#include "motion/link_bodies.hpp"
+
+namespace armctl::scene {
+
+enum class ObjectRole {
+  obstacle,  // something that stands there: a box, a can, a fixture
+  table,     // what the arm stands on
+  keep_out,  // space the arm must not enter (a person's side of the bench, a camera's view)
+};
+const char* to_string(ObjectRole role);  // "obstacle", "table", "keep-out zone"
+
+struct SceneObject {
+  std::string name;
+  ObjectRole role = ObjectRole::obstacle;
+  // Its pose: in the base frame, or in the tool frame when `attached` (a part the tool holds).
+  motion::Shape shape;
+  bool attached = false;
+};
+
+// How messages name an object: "the table 'table'", "box 'feeder'", "keep-out zone 'door'".
+std::string describe(const SceneObject& object);
+
+struct Scene {
+  std::vector<SceneObject> objects;
+  std::filesystem::path file;  // where it was read from ("" when built in code)
+};
+
+// A scene file's text; `source` names it in errors. Every error (invalid_config) names the
+// key path, the value and what is allowed; nothing of a refused file is kept.
+Result<Scene> parse_scene(std::string_view json_text, std::string_view source);
+// Reads and parses a scene file (a regular file of at most 1 MiB).
+Result<Scene> load_scene(const std::filesystem::path& file);
+
+// The scene as a scene file's text (millimetres, degrees): what parse_scene reads back to
+// the same objects.
+std::string scene_json(const Scene& scene);
+
+}  // namespace armctl::scene

@@ -1,0 +1,80 @@
+// --scene end to end (docs/scene.md): the README's scene walk-through on the embedded xArm
+// (a move into the box refused before anything moves, a move onto it planned with its
+// clearance), a program line through the table refused with its file and line, and a bad
+// scene file refused with the key before the device opens.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "run_armctl.hpp"
+
+namespace {
+
+using armctl::cli_test::contains;
+using armctl::cli_test::run_armctl;
+
+const std::string kScene = std::string(ARMCTL_SOURCE_DIR) + "/examples/scenes/xarm-desk.json";
+
+std::filesystem::path temp_dir() {
+  auto d = std::filesystem::temp_directory_path() / ("armctl-scene-cli-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+void write(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+TEST(SceneCli, AMoveIntoTheBoxIsRefusedAndOneOnTopOfItIsPlanned) {
+  auto into = run_armctl("arm --arm xarm --scene " + kScene + " move-to x=150 y=-100 z=60");
+  EXPECT_EQ(into.status, 1) << into.out;
+  EXPECT_TRUE(contains(into.out, "would collide")) << into.out;
+  EXPECT_TRUE(contains(into.out, "with box 'box'")) << into.out;
+  EXPECT_FALSE(contains(into.out, "moving")) << into.out;
+  // The same target without the scene moves.
+  auto bare = run_armctl("arm --arm xarm move-to x=150 y=-100 z=60");
+  EXPECT_EQ(bare.status, 0) << bare.out;
+
+  auto beside = run_armctl("arm --arm xarm --scene " + kScene + " --json move-to x=150 y=-100 z=130", "2>/dev/null");
+  ASSERT_EQ(beside.status, 0) << beside.out;
+  const auto planned = nlohmann::json::parse(beside.out.substr(0, beside.out.find('\n')));
+  EXPECT_EQ(planned.at("event"), "planned");
+  EXPECT_GT(planned.at("clearance_mm").get<double>(), 0.0);
+  EXPECT_LE(planned.at("clearance_mm").get<double>(), 50.0);
+}
+
+TEST(SceneCli, AProgramLineThroughTheTableIsRefusedWithItsLine) {
+  const auto dir = temp_dir();
+  write(dir / "down.prog", "# into the desk\nptp p1\nlin p1 + base(z=-80mm) speed=50mm/s\n");
+  write(dir / "down.points", "p1 x=120mm y=120mm z=60mm\n");
+  const std::string prog = (dir / "down.prog").string();
+  auto check = run_armctl("program check " + prog + " --arm xarm --scene " + kScene);
+  EXPECT_EQ(check.status, 1) << check.out;
+  EXPECT_TRUE(contains(check.out, "down.prog:3")) << check.out;
+  EXPECT_TRUE(contains(check.out, "the table 'desk'")) << check.out;
+  // Without the scene the same program checks: only the table refuses it.
+  auto bare = run_armctl("program check " + prog + " --arm xarm");
+  EXPECT_EQ(bare.status, 0) << bare.out;
+  auto run = run_armctl("program run " + prog + " --arm xarm --scene " + kScene + " --json", "2>&1");
+  EXPECT_EQ(run.status, 1) << run.out;
+  EXPECT_FALSE(contains(run.out, "\"planned\"")) << run.out;  // refused before anything moved
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SceneCli, ABadSceneFileNamesTheKeyAndOpensNothing) {
+  const auto dir = temp_dir();
+  write(dir / "bad.json", R"({"objects": [{"name": "box", "box": [60, 0, 100], "at": [170, 0, 50]}]})");
+  auto r = run_armctl("arm --arm xarm --scene " + (dir / "bad.json").string() + " move-to x=120 y=120 z=60");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_TRUE(contains(r.out, "bad.json: objects[0].box[1]: 0 is outside the allowed range 0.1..10000")) << r.out;
+  auto missing = run_armctl("arm --arm xarm --scene " + (dir / "none.json").string() + " joints");
+  EXPECT_EQ(missing.status, 1) << missing.out;
+  EXPECT_TRUE(contains(missing.out, "scene file")) << missing.out;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
