@@ -71,18 +71,13 @@ class MegaBus final : public ctl::BusPort {
 
 class MegaUpstream final : public ctl::UpstreamPort {
  public:
-  void send_frame(uint8_t command, const uint8_t* data, uint8_t length) override {
-    put(0x55);
-    put(0x55);
-    put(static_cast<uint8_t>(length + 2));
-    put(command);
-    for (uint8_t i = 0; i < length; ++i) put(data[i]);
-  }
-
- private:
   // A reply never waits for the host: if the ring is full the rest is dropped (64-byte
   // frames into a 128-byte ring; the host reads continuously).
-  static void put(uint8_t byte) { mega::uart_send(mega::Port::upstream, byte); }
+  void send_frame(uint8_t command, const uint8_t* data, uint8_t length) override {
+    const uint8_t head[4] = {0x55, 0x55, static_cast<uint8_t>(length + 2), command};
+    if (mega::uart_send_bytes(mega::Port::upstream, head, 4) == 4)
+      mega::uart_send_bytes(mega::Port::upstream, data, length);
+  }
 };
 
 // Action groups in the whole 4 KiB EEPROM (group_store.hpp has the layout). A byte write
@@ -130,14 +125,23 @@ int main() {
     // Heartbeat: one write per pass to a register with no pin (one cycle), so the benchmark
     // times every pass of this loop on emulated silicon (bench_mega_controller).
     GPIOR0 = 0;
+    // One clock read a pass (a pass is about 12 us), again after a request, which may
+    // have planned a move (milliseconds).
+    uint32_t now = board::tick_timer_us();
     uint8_t byte;
-    while (mega::uart_receive(mega::Port::upstream, &byte)) {
-      const uint32_t now = board::tick_timer_us();
-      if (reader.on_byte(byte, now)) core.on_frame(reader.command(), reader.data(), reader.data_length(), now);
+    bool framed = false;
+    while (!framed && mega::uart_receive(mega::Port::upstream, &byte)) {
+      if (reader.on_byte(byte, now)) {
+        core.on_frame(reader.command(), reader.data(), reader.data_length(), now);
+        framed = true;
+        now = board::tick_timer_us();
+      }
     }
-    while (mega::uart_receive(mega::Port::bus, &byte)) core.on_bus_byte(byte, board::tick_timer_us());
+    while (mega::uart_receive(mega::Port::bus, &byte)) core.on_bus_byte(byte, now);
     bus.service();
-    core.poll(board::tick_timer_us());
+    // A pass that handled a request (up to ~1,800 cycles for a reply of seven positions)
+    // leaves the bus work to the next pass: no pass is longer than a word at 115200.
+    if (!framed) core.poll(now);
     if ((PORTA & 0x7Fu) != 0) PORTB = static_cast<uint8_t>(PORTB | _BV(PB7));
     else PORTB = static_cast<uint8_t>(PORTB & ~_BV(PB7));
   }

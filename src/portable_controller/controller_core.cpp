@@ -75,6 +75,7 @@ void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus
   op_count_ = 0;
   pending_count_ = 0;
   poll_index_ = 0;
+  convert_ = no_convert;
   stats_ = CoreStats{};
   for (uint8_t i = 0; i < max_joints; ++i) {
     state_[i] = JointState{};
@@ -94,6 +95,8 @@ void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus
 }
 
 int8_t ControllerCore::index_of(uint8_t joint) const {
+  // Joints are usually configured in order (joint n at index n - 1): no search then.
+  if (joint >= 1 && joint <= count_ && joints_[joint - 1].number == joint) return static_cast<int8_t>(joint - 1);
   for (uint8_t i = 0; i < count_; ++i)
     if (joints_[i].number == joint) return static_cast<int8_t>(i);
   return -1;
@@ -171,13 +174,28 @@ void ControllerCore::poll(uint32_t now_us) {
   // on the Mega that `now_us` is stale afterwards: the next transaction starts at the next
   // poll, with a fresh time (else its timeout would run from before the planning).
   if (!master_.busy()) {
-    if (plan_pending(now_us)) return;
+    if (plan_pending(now_us)) {
+      convert_polled();
+      return;
+    }
     if (playing_ && reached(now_us, play_due_us_)) {
       play_next(now_us);
+      convert_polled();
       return;
     }
   }
   if (master_.can_start(now_us)) start_next(now_us);
+  convert_polled();
+}
+
+void ControllerCore::convert_polled() {
+  // The polled reading in Robot Commands units: a 32-bit division (about 700 cycles on the
+  // Mega), done once the next joint is selected, while that joint prepares its READY, not
+  // between the two transactions. Nothing reads `position` before poll() returns.
+  if (convert_ == no_convert) return;
+  JointState& s = state_[convert_];
+  s.position = to_position(joints_[convert_].number, s.clicks);
+  convert_ = no_convert;
 }
 
 bool ControllerCore::plan_pending(uint32_t now_us) {
@@ -240,9 +258,10 @@ void ControllerCore::take_result(const BusResult& r) {
   if (!inflight_is_op_) {
     if (r.ok) {
       s.clicks = r.response;
-      // In position units now, one division per poll: a ServoPositionRead then only copies
-      // (seven divisions in the reply's pass took the Mega 0.5 ms of its round trip).
-      s.position = to_position(r.joint, r.response);
+      // In position units once per poll (at the end of this poll(), after the next
+      // transaction has started): a ServoPositionRead then only copies (seven divisions in
+      // the reply's pass took the Mega 0.5 ms of its round trip).
+      convert_ = index;
       s.read = true;
       s.answering = true;
       count_up(s.reads);

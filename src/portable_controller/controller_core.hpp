@@ -151,6 +151,7 @@ class ControllerCore {
   void cancel_ops(uint8_t index, bool drives_only);
   void start_next(uint32_t now_us);
   void take_result(const BusResult& r);
+  void convert_polled();
   void note_fault(uint8_t index, int16_t status);
   // Where joint `index` is taken to be at `now_us` when a move is planned (see JointState).
   float start_clicks(uint8_t index, uint32_t now_us) const;
@@ -191,6 +192,9 @@ class ControllerCore {
   bool inflight_is_op_ = false;
   OpKind inflight_kind_ = OpKind::set_zone;
   uint8_t poll_index_ = 0;
+  // The joint whose polled clicks still wait for their conversion to position (poll()).
+  static const uint8_t no_convert = 0xFF;
+  uint8_t convert_ = no_convert;
   uint16_t battery_mv_ = 0;
   uint32_t planned_ms_ = 0;
   CoreStats stats_{};
