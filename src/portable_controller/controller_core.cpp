@@ -80,6 +80,7 @@ void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus
   for (uint8_t i = 0; i < max_joints; ++i) {
     state_[i] = JointState{};
     state_[i].loop_on = true;
+    state_[i].following = true;
     percent_[i] = 0;
   }
   for (uint8_t i = 0; i < count_; ++i) state_[i].position = to_position(joints_[i].number, 0);
@@ -159,7 +160,10 @@ bool ControllerCore::schedule(uint32_t due_us, uint8_t index, OpKind kind, int16
 void ControllerCore::cancel_ops(uint8_t index, bool drives_only) {
   uint8_t kept = 0;
   for (uint8_t i = 0; i < op_count_; ++i) {
-    const bool drop = ops_[i].joint == joints_[index].number && (!drives_only || ops_[i].kind == OpKind::drive_to);
+    // A read of the joint's diagnostic words is kept: a new move does not answer why it
+    // stopped following.
+    const bool drop = ops_[i].joint == joints_[index].number && ops_[i].kind != OpKind::diagnostic &&
+                      (!drives_only || ops_[i].kind == OpKind::drive_to);
     if (!drop) ops_[kept++] = ops_[i];
   }
   op_count_ = kept;
@@ -169,7 +173,7 @@ void ControllerCore::poll(uint32_t now_us) {
   if (have_groups_) service_groups();
   master_.poll(now_us);
   BusResult r;
-  if (master_.take_result(&r)) take_result(r);
+  if (master_.take_result(&r)) take_result(r, now_us);
   // Moves are planned between transactions (see plan_pending). Planning takes long enough
   // on the Mega that `now_us` is stale afterwards: the next transaction starts at the next
   // poll, with a fresh time (else its timeout would run from before the planning).
@@ -219,9 +223,11 @@ void ControllerCore::start_next(uint32_t now_us) {
       case OpKind::loop_off: command = jb::cmd_set_pid_state; break;
       case OpKind::speed: command = jb::cmd_set_speed; break;
       case OpKind::drive_to: command = jb::cmd_drive_to; break;
+      case OpKind::diagnostic: command = jb::cmd_read_diagnostic; break;
     }
     inflight_is_op_ = true;
     inflight_kind_ = op.kind;
+    inflight_value_ = op.value;
     count_up(stats_.commands);
     master_.start(op.joint, command, op.value, now_us);
     return;
@@ -250,13 +256,104 @@ void ControllerCore::note_fault(uint8_t index, int16_t status) {
   s.last_fault = status;
 }
 
-void ControllerCore::take_result(const BusResult& r) {
+// ------------------------------------------------------------------ joint faults
+
+void ControllerCore::check_following(uint8_t index, int16_t before, uint32_t now_us) {
+  JointState& s = state_[index];
+  if (!s.planned || !s.loop_on || s.jogging) return;
+  const int32_t at = s.clicks;
+  // Closer to its target than at the poll before: on its way, if late (the plan of a move
+  // that starts while the joint moves is a straight line, not its ramp: a streamed move can
+  // end later than planned). A faulted joint is at rest or runs away.
+  int32_t was_off = int32_t(before) - s.plan_to;
+  int32_t off = at - s.plan_to;
+  if (was_off < 0) was_off = -was_off;
+  if (off < 0) off = -off;
+  const bool approaching = was_off - off >= approaching_clicks;
+  int32_t gap = 0;
+  if (reached(now_us, s.plan_end_us + settle_us)) {
+    gap = at - s.plan_to;
+    if (gap < 0) gap = -gap;
+  } else {
+    // Under way: anywhere between where its plan starts (the straight line's point and
+    // the last poll, widened, for a joint still moving then, by what it may run on while
+    // it turns at full speed) and its target. Not a model of its ramp (the daemon replays
+    // the joint's ramp): a joint that stalls is found when its move ends, one that runs
+    // away when it leaves that stretch.
+    int32_t low = s.plan_to, high = s.plan_to;
+    const int16_t from[2] = {s.plan_from, s.plan_seen};
+    for (uint8_t i = 0; i < 2; ++i) {
+      if (from[i] < low) low = from[i];
+      if (from[i] > high) high = from[i];
+    }
+    if (s.plan_slack != 0) {
+      low -= s.plan_slack;
+      high += s.plan_slack;
+    }
+    gap = at < low ? low - at : at > high ? at - high : 0;
+  }
+  if (gap > not_following_clicks && !approaching) {
+    if (s.following) {
+      lost_following(index, now_us);
+    } else if (!(s.diagnostics_read && s.diagnostics[jb::diagnostic_faults] != 0) &&
+               static_cast<uint32_t>(now_us - s.faults_read_us) >= fault_recheck_us) {
+      // Still off its plan with no fault yet: the joint may raise one any moment (its
+      // runaway and following-error checks take 100 and 500 ms).
+      read_diagnostics(index, now_us);
+    }
+  } else if (gap <= not_following_clicks / 2 && !s.following) {
+    s.following = true;
+    s.diagnostics[jb::diagnostic_faults] = 0;  // following again: its faults were cleared
+  }
+}
+
+void ControllerCore::lost_following(uint8_t index, uint32_t now_us) {
+  JointState& s = state_[index];
+  s.following = false;
+  count_up(s.following_lost);
+  count_up(stats_.following_lost);
+  read_diagnostics(index, now_us);
+}
+
+void ControllerCore::read_diagnostics(uint8_t index, uint32_t now_us) {
+  for (uint8_t i = 0; i < op_count_; ++i)
+    if (ops_[i].joint == joints_[index].number && ops_[i].kind == OpKind::diagnostic) return;  // under way
+  JointState& s = state_[index];
+  s.faults_read_us = now_us;
+  s.diagnostics_read = false;
+  for (uint8_t k = 0; k < jb::diagnostic_count; ++k) schedule(now_us, index, OpKind::diagnostic, k);
+}
+
+void ControllerCore::on_joint_fault_read(const uint8_t* data, uint8_t length) {
+  const int8_t found = length == 1 ? index_of(data[0]) : -1;
+  if (found < 0) {
+    count_up(stats_.ignored_frames);
+    return;
+  }
+  const JointState& s = state_[found];
+  // servo, flags, last bus failure, following lost, the 7 diagnostic words.
+  uint8_t reply[6 + 2 * jb::diagnostic_count];
+  reply[0] = data[0];
+  reply[1] = static_cast<uint8_t>((s.answering ? 1u : 0u) | (s.following ? 2u : 0u) | (s.diagnostics_read ? 4u : 0u));
+  reply[2] = static_cast<uint8_t>(uint16_t(s.last_fault) & 0xFFu);
+  reply[3] = static_cast<uint8_t>(uint16_t(s.last_fault) >> 8);
+  reply[4] = static_cast<uint8_t>(s.following_lost & 0xFFu);
+  reply[5] = static_cast<uint8_t>(s.following_lost >> 8);
+  for (uint8_t k = 0; k < jb::diagnostic_count; ++k) {
+    reply[6 + 2 * k] = static_cast<uint8_t>(s.diagnostics[k] & 0xFFu);
+    reply[7 + 2 * k] = static_cast<uint8_t>(s.diagnostics[k] >> 8);
+  }
+  upstream_->send_frame(rc_joint_fault_read, reply, sizeof reply);
+}
+
+void ControllerCore::take_result(const BusResult& r, uint32_t now_us) {
   const int8_t found = index_of(r.joint);
   if (found < 0) return;
   const uint8_t index = static_cast<uint8_t>(found);
   JointState& s = state_[index];
   if (!inflight_is_op_) {
     if (r.ok) {
+      const int16_t before = s.read ? s.clicks : r.response;
       s.clicks = r.response;
       // In position units once per poll (at the end of this poll(), after the next
       // transaction has started): a ServoPositionRead then only copies (seven divisions in
@@ -265,6 +362,7 @@ void ControllerCore::take_result(const BusResult& r) {
       s.read = true;
       s.answering = true;
       count_up(s.reads);
+      check_following(index, before, now_us);
     } else {
       count_up(stats_.poll_failures);
       note_fault(index, r.status);
@@ -278,10 +376,23 @@ void ControllerCore::take_result(const BusResult& r) {
   if (r.ok) {
     s.answering = true;
     if (inflight_kind_ == OpKind::loop_on) s.loop_on = true;
+    if (inflight_kind_ == OpKind::diagnostic && inflight_value_ >= 0 && inflight_value_ < jb::diagnostic_count) {
+      s.diagnostics[inflight_value_] = static_cast<uint16_t>(r.response);
+      if (inflight_value_ == jb::diagnostic_count - 1) {
+        s.diagnostics_read = true;
+        count_up(stats_.fault_reads);
+        if ((s.diagnostics[jb::diagnostic_faults] & jb::fault_runaway) != 0) count_up(stats_.runaway_faults);
+        if ((s.diagnostics[jb::diagnostic_faults] & jb::fault_following_error) != 0)
+          count_up(stats_.following_error_faults);
+      }
+    }
     return;
   }
   count_up(stats_.command_failures);
   note_fault(index, r.status);
+  // A joint holding a fault refuses every drive with 940: find out why.
+  if (inflight_kind_ == OpKind::drive_to && r.status == jb::status_bad_data && s.following)
+    lost_following(index, now_us);
   // A drive after a failed speed change or loop-on would run at the wrong speed, or not
   // at all: drop it.
   if (inflight_kind_ == OpKind::speed || inflight_kind_ == OpKind::loop_on) cancel_ops(index, true);
@@ -330,6 +441,7 @@ void ControllerCore::on_frame(uint8_t command, const uint8_t* data, uint8_t leng
       if (!have_groups_) break;
       on_group_speed(data, length);
       return;
+    case rc_joint_fault_read: on_joint_fault_read(data, length); return;
     case rc_get_battery_voltage:
       if (length != 0) break;
       reply_u16(rc_get_battery_voltage, battery_mv_);
@@ -413,11 +525,21 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
   float effect_s[max_joints];
   float distance[max_joints];
   float from[max_joints];
+  uint16_t slack[max_joints];
   float arrive_s = float(time_ms) / 1000.0f;
   for (uint8_t k = 0; k < n; ++k) {
     const JointSetup& j = joints_[targets[k].index];
     effect_s[k] = float(uint32_t(loop_ons + n + k) * txn) / 1e6f + latency_s;
     from[k] = start_clicks(targets[k].index, now_us);
+    {
+      // A joint still moving may be anywhere near `from` (a straight line, not its ramp) and
+      // run on while it turns: v^2 / 2a at its full speed.
+      const JointState& st = state_[targets[k].index];
+      const bool moving = st.planned && !reached(now_us, st.plan_end_us);
+      const float v = moving ? float(j.max_speed_cps) : 0.0f;
+      const float over = v * v / (2.0f * ramp_accel(j.max_accel_cps2));
+      slack[k] = over > 30000.0f ? 30000 : static_cast<uint16_t>(over);
+    }
     const float d = float(targets[k].clicks) - from[k];
     distance[k] = d < 0.0f ? -d : d;
     const float earliest = effect_s[k] + shortest_time_s(distance[k], j.max_speed_cps, ramp_accel(j.max_accel_cps2));
@@ -465,6 +587,8 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
     s.plan_to = targets[k].clicks;
     s.plan_start_us = now_us + static_cast<uint32_t>((start_s + latency_s) * 1e6f);
     s.plan_end_us = now_us + static_cast<uint32_t>(arrive_s * 1e6f);
+    s.plan_slack = slack[k];
+    s.plan_seen = s.clicks;
   }
 }
 
