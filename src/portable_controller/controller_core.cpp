@@ -157,6 +157,17 @@ bool ControllerCore::schedule(uint32_t due_us, uint8_t index, OpKind kind, int16
   return true;
 }
 
+bool ControllerCore::upsert(uint32_t due_us, uint8_t index, OpKind kind, int16_t value) {
+  for (uint8_t i = 0; i < op_count_; ++i) {
+    Op& op = ops_[i];
+    if (op.joint != joints_[index].number || op.kind != kind) continue;
+    op.value = value;
+    if (static_cast<int32_t>(due_us - op.due_us) < 0) op.due_us = due_us;
+    return true;
+  }
+  return schedule(due_us, index, kind, value);
+}
+
 void ControllerCore::cancel_ops(uint8_t index, bool drives_only) {
   uint8_t kept = 0;
   for (uint8_t i = 0; i < op_count_; ++i) {
@@ -202,8 +213,13 @@ void ControllerCore::convert_polled() {
   convert_ = no_convert;
 }
 
-bool ControllerCore::plan_pending(uint32_t now_us) {
+bool ControllerCore::plan_pending(uint32_t now_us, bool now_or_never) {
   if (pending_count_ == 0) return false;
+  // Moves streamed faster than they can be planned: the bus work of the last plan gets a
+  // few transactions first (else, at 115200, plans of 8 ms each would follow each other
+  // and no command would ever go out).
+  if (!now_or_never && op_count_ > 0 && txns_since_plan_ < min_txns_between_plans) return false;
+  txns_since_plan_ = 0;
   const uint8_t n = pending_count_;
   pending_count_ = 0;
   plan_move(pending_, n, pending_ms_, now_us);
@@ -221,10 +237,12 @@ void ControllerCore::start_next(uint32_t now_us) {
       case OpKind::set_zone: command = jb::cmd_set_zone; break;
       case OpKind::loop_on:
       case OpKind::loop_off: command = jb::cmd_set_pid_state; break;
-      case OpKind::speed: command = jb::cmd_set_speed; break;
+      case OpKind::speed:
+      case OpKind::speed_switch: command = jb::cmd_set_speed; break;
       case OpKind::drive_to: command = jb::cmd_drive_to; break;
       case OpKind::diagnostic: command = jb::cmd_read_diagnostic; break;
     }
+    if (txns_since_plan_ < 255) ++txns_since_plan_;
     inflight_is_op_ = true;
     inflight_kind_ = op.kind;
     inflight_value_ = op.value;
@@ -405,11 +423,10 @@ void ControllerCore::on_frame(uint8_t command, const uint8_t* data, uint8_t leng
   // A request that changes what the joints do comes after a move still waiting to be
   // planned: that move first, so that requests take effect in the order they came.
   switch (command) {
-    case rc_multi_servo_move:
     case rc_multi_servo_off:
     case rc_servo_speed:
     case rc_group_run:
-    case rc_group_erase: plan_pending(now_us); break;
+    case rc_group_erase: plan_pending(now_us, true); break;
     default: break;
   }
   switch (command) {
@@ -501,8 +518,15 @@ void ControllerCore::on_move(const uint8_t* data, uint8_t length) {
   count_up(stats_.moves);
   // Planned at the end of the transaction under way (poll): planning takes milliseconds on
   // the Mega, and a joint waiting that long mid-transaction for COMMAND would give up on it.
-  for (uint8_t k = 0; k < moving; ++k) pending_[k] = targets[k];
-  pending_count_ = moving;
+  // A move still waiting to be planned is merged with this one (streamed moves come faster
+  // than a plan of seven joints takes on the Mega): the newest target of each joint, and
+  // this move's time.
+  for (uint8_t k = 0; k < moving; ++k) {
+    uint8_t at = 0;
+    while (at < pending_count_ && pending_[at].index != targets[k].index) ++at;
+    pending_[at] = targets[k];
+    if (at == pending_count_) ++pending_count_;
+  }
   pending_ms_ = time_ms;
 }
 
@@ -547,16 +571,28 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
   }
   planned_ms_ = static_cast<uint32_t>(arrive_s * 1000.0f + 0.5f);
   for (uint8_t i = 0; i < max_joints; ++i) percent_[i] = 0;
+  // Streamed moves come faster than a move's bus commands go out (seven speeds and seven
+  // drives take 150 ms at 9600 baud, a point comes every 27 ms): a joint's speed and drive
+  // still queued from the move before keep their place and take the new values, so every
+  // joint gets its latest target in turn (cancelling them let the next move cancel its
+  // commands again, and the joints last in bus order never moved).
   for (uint8_t k = 0; k < n; ++k) {
     const uint8_t index = targets[k].index;
-    cancel_ops(index, false);
-    if (!state_[index].loop_on) schedule(now_us, index, OpKind::loop_on, 1);
+    uint8_t kept = 0;
+    for (uint8_t i = 0; i < op_count_; ++i) {
+      const Op& op = ops_[i];
+      const bool drop = op.joint == joints_[index].number &&
+                        (op.kind == OpKind::loop_off || op.kind == OpKind::speed_switch);
+      if (!drop) ops_[kept++] = op;
+    }
+    op_count_ = kept;
+    if (!state_[index].loop_on) upsert(now_us, index, OpKind::loop_on, 1);
   }
   for (uint8_t k = 0; k < n; ++k) {
     const uint8_t index = targets[k].index;
     const JointSetup& j = joints_[index];
     percent_[index] = percent_for(distance[k], arrive_s - effect_s[k], j.max_speed_cps, ramp_accel(j.max_accel_cps2));
-    schedule(now_us, index, OpKind::speed, percent_[index]);
+    upsert(now_us, index, OpKind::speed, percent_[index]);
     state_[index].loop_on = true;
     state_[index].jogging = false;
   }
@@ -576,9 +612,9 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
     }
     float start_s = arrive_s - ramp_s - latency_s;
     if (start_s < 0.0f) start_s = 0.0f;
-    schedule(now_us + static_cast<uint32_t>(start_s * 1e6f), index, OpKind::drive_to, targets[k].clicks);
+    upsert(now_us + static_cast<uint32_t>(start_s * 1e6f), index, OpKind::drive_to, targets[k].clicks);
     if (switch_s > 0.0f) {
-      schedule(now_us + static_cast<uint32_t>((start_s + switch_s) * 1e6f), index, OpKind::speed,
+      schedule(now_us + static_cast<uint32_t>((start_s + switch_s) * 1e6f), index, OpKind::speed_switch,
                static_cast<int16_t>(percent - 1));
     }
     JointState& s = state_[index];

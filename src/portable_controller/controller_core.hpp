@@ -158,7 +158,8 @@ class ControllerCore {
   bool playing() const { return playing_; }
 
  private:
-  enum class OpKind : uint8_t { set_zone, loop_on, loop_off, speed, drive_to, diagnostic };
+  // speed_switch: the part-way set_speed of a move (plan_move).
+  enum class OpKind : uint8_t { set_zone, loop_on, loop_off, speed, drive_to, diagnostic, speed_switch };
   struct Op {
     uint32_t due_us;
     uint8_t joint;
@@ -175,6 +176,9 @@ class ControllerCore {
   int8_t index_of(uint8_t joint) const;
   bool schedule(uint32_t due_us, uint8_t index, OpKind kind, int16_t value);
   void cancel_ops(uint8_t index, bool drives_only);
+  // The joint's queued op of this kind gets the new value and goes out no later than
+  // either due time, keeping its place in the queue; else a new one is queued.
+  bool upsert(uint32_t due_us, uint8_t index, OpKind kind, int16_t value);
   void start_next(uint32_t now_us);
   void take_result(const BusResult& r, uint32_t now_us);
   void convert_polled();
@@ -209,7 +213,9 @@ class ControllerCore {
   void on_servo_speed(const uint8_t* data, uint8_t length, uint32_t now_us);
   void halt(uint32_t now_us);
   void plan_move(const Target* targets, uint8_t count, uint16_t time_ms, uint32_t now_us);
-  bool plan_pending(uint32_t now_us);  // true if a move was planned
+  // True if a move was planned; `now_or_never`: even right after another plan (a request
+  // that must come after it).
+  bool plan_pending(uint32_t now_us, bool now_or_never = false);
   void reply_u16(uint8_t command, uint16_t value);
 
   const JointSetup* joints_ = nullptr;
@@ -234,6 +240,8 @@ class ControllerCore {
   Target pending_[max_joints];
   uint8_t pending_count_ = 0;
   uint16_t pending_ms_ = 0;
+  static const uint8_t min_txns_between_plans = 4;
+  uint8_t txns_since_plan_ = 255;  // commands started since the last plan
 
   GroupStore groups_;
   bool have_groups_ = false;

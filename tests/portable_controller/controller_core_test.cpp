@@ -352,6 +352,29 @@ TEST(ScaraJoints, MatchTheArmControllerConfig) {
   }
 }
 
+TEST(ControllerCore, StreamedMovesReachEveryJointInTurn) {
+  // A point every 27 ms (a 7-joint MultiServoMove at 9600 baud) while a move's 14 commands
+  // take ~150 ms of bus: each joint's queued speed and drive take the newest values and
+  // keep their place, so every joint is driven, toward its newest target.
+  CoreRig rig;
+  rig.joints.drives_move = false;
+  for (int i = 0; i < 20; ++i) {
+    const int p = 500 + 5 * (i + 1);
+    rig.request(rc_multi_servo_move, CoreRig::move(27, {{1, p}, {2, p}, {3, p}, {4, p}, {5, p}, {6, p}, {7, p}}));
+    rig.run_us(27000);
+  }
+  rig.run_us(300000);
+  std::set<int> driven;
+  for (const auto& c : rig.joints.commands_of(jb::cmd_drive_to)) driven.insert(c.joint);
+  EXPECT_EQ(driven.size(), 7u) << "every joint got drives, not only the first in bus order";
+  for (int j = 1; j <= 7; ++j) {
+    int last = 0;
+    for (const auto& c : rig.joints.commands_of(jb::cmd_drive_to))
+      if (c.joint == j) last = c.data;
+    EXPECT_EQ(last, rig.core.to_clicks(j, 600)) << "joint " << j << ": its last drive is the newest target";
+  }
+}
+
 // ------------------------------------------------------------------ joint faults
 
 std::vector<int> diagnostic_indexes(const FakeJoints& joints, int joint) {
