@@ -7,6 +7,9 @@
 // Build-time settings (make flash-controller RC_BAUD=... JOINT_BAUD=...):
 //   ARMCTL_RC_BAUD     upstream baud (9600 default, 115200)
 //   ARMCTL_JOINT_BAUD  joint bus baud (9600 default, 115200): must match the joints'
+//   ARMCTL_BATTERY_ADC 0 (default): GetBatteryVoltage answers the fixed supply value of
+//                      scara_arm.cpp; 1: it is measured on A0 through a 47k/10k divider
+//                      (make ... BATTERY=a0; docs/mega-controller.md "Wiring")
 #include <avr/eeprom.h>
 #include <avr/interrupt.h>
 #include <avr/io.h>
@@ -23,6 +26,9 @@
 #endif
 #ifndef ARMCTL_JOINT_BAUD
 #define ARMCTL_JOINT_BAUD 9600UL
+#endif
+#ifndef ARMCTL_BATTERY_ADC
+#define ARMCTL_BATTERY_ADC 0
 #endif
 
 namespace ctl = armctl::controller;
@@ -71,18 +77,13 @@ class MegaBus final : public ctl::BusPort {
 
 class MegaUpstream final : public ctl::UpstreamPort {
  public:
-  void send_frame(uint8_t command, const uint8_t* data, uint8_t length) override {
-    put(0x55);
-    put(0x55);
-    put(static_cast<uint8_t>(length + 2));
-    put(command);
-    for (uint8_t i = 0; i < length; ++i) put(data[i]);
-  }
-
- private:
   // A reply never waits for the host: if the ring is full the rest is dropped (64-byte
   // frames into a 128-byte ring; the host reads continuously).
-  static void put(uint8_t byte) { mega::uart_send(mega::Port::upstream, byte); }
+  void send_frame(uint8_t command, const uint8_t* data, uint8_t length) override {
+    const uint8_t head[4] = {0x55, 0x55, static_cast<uint8_t>(length + 2), command};
+    if (mega::uart_send_bytes(mega::Port::upstream, head, 4) == 4)
+      mega::uart_send_bytes(mega::Port::upstream, data, length);
+  }
 };
 
 // Action groups in the whole 4 KiB EEPROM (group_store.hpp has the layout). A byte write
@@ -108,6 +109,48 @@ MegaEeprom eeprom;
 ctl::ControllerCore core;
 ctl::RcFrameReader reader;
 
+#if ARMCTL_BATTERY_ADC
+// The motor supply on A0 (PF0, ADC0) through a divider: supply -- 47 kOhm -- A0 -- 10 kOhm
+// -- GND, against AVcc (5 V): A0 = supply x 10/57, full scale 5000 x 57/10 = 28,500 mV (24 V
+// reads 4.21 V at the pin; 28.5 V and above read as 28,500 mV). Conversions are started
+// and collected by the main loop, never waited for: 16 of them (104 us each at 125 kHz)
+// make one reading, their mean in mV, about every 1.7 ms. No float, no interrupt.
+class BatteryAdc {
+ public:
+  static const uint32_t full_scale_mv = 28500;
+  static const uint8_t samples = 16;
+  void begin() {
+    ADMUX = _BV(REFS0);   // AVcc reference, ADC0, right adjusted
+    ADCSRB = 0;           // MUX5 = 0: ADC0..7
+    DIDR0 = _BV(ADC0D);   // no digital input buffer on A0
+    ADCSRA = static_cast<uint8_t>(_BV(ADEN) | _BV(ADSC) | _BV(ADPS2) | _BV(ADPS1) | _BV(ADPS0));  // 16 MHz / 128
+  }
+  // True when a new reading is in *millivolts.
+  bool service(uint16_t* millivolts) {
+    if ((ADCSRA & _BV(ADSC)) != 0) return false;  // converting
+    sum_ = static_cast<uint16_t>(sum_ + ADC);
+    ADCSRA = static_cast<uint8_t>(ADCSRA | _BV(ADSC));
+    if (++count_ < samples) return false;
+    *millivolts = static_cast<uint16_t>((uint32_t(sum_) * full_scale_mv + samples * 512UL) / (samples * 1024UL));
+    sum_ = 0;
+    count_ = 0;
+    return true;
+  }
+
+ private:
+  uint16_t sum_ = 0;  // at most 16 x 1023
+  uint8_t count_ = 0;
+};
+BatteryAdc battery;
+
+void measure_battery() {
+  uint16_t millivolts;
+  if (battery.service(&millivolts)) core.set_battery_millivolts(millivolts);
+}
+#else
+void measure_battery() {}
+#endif
+
 }  // namespace
 
 int main() {
@@ -120,24 +163,41 @@ int main() {
   core.begin(ctl::scara_joints, ctl::scara_joint_count, &bus, &upstream, ARMCTL_JOINT_BAUD, board::tick_timer_us(),
              &eeprom);
   core.set_battery_millivolts(ctl::scara_supply_millivolts);
+#if ARMCTL_BATTERY_ADC
+  battery.begin();
+#endif
   // Watchdog: a main loop stuck for 250 ms resets the board (selects LOW, joints halted).
   wdt_enable(WDTO_250MS);
   // After a common power-up the joints need a few ms to read their EEPROM: give them 100 ms
   // before the first transaction (upstream bytes wait in the ring meanwhile).
-  while (board::tick_timer_ms() < joint_start_ms) wdt_reset();
+  // The battery is measured meanwhile (its first reading is ready long before).
+  while (board::tick_timer_ms() < joint_start_ms) {
+    wdt_reset();
+    measure_battery();
+  }
   for (;;) {
     wdt_reset();
     // Heartbeat: one write per pass to a register with no pin (one cycle), so the benchmark
     // times every pass of this loop on emulated silicon (bench_mega_controller).
     GPIOR0 = 0;
+    // One clock read a pass (a pass is about 12 us), again after a request, which may
+    // have planned a move (milliseconds).
+    uint32_t now = board::tick_timer_us();
     uint8_t byte;
-    while (mega::uart_receive(mega::Port::upstream, &byte)) {
-      const uint32_t now = board::tick_timer_us();
-      if (reader.on_byte(byte, now)) core.on_frame(reader.command(), reader.data(), reader.data_length(), now);
+    bool framed = false;
+    while (!framed && mega::uart_receive(mega::Port::upstream, &byte)) {
+      if (reader.on_byte(byte, now)) {
+        core.on_frame(reader.command(), reader.data(), reader.data_length(), now);
+        framed = true;
+        now = board::tick_timer_us();
+      }
     }
-    while (mega::uart_receive(mega::Port::bus, &byte)) core.on_bus_byte(byte, board::tick_timer_us());
+    while (mega::uart_receive(mega::Port::bus, &byte)) core.on_bus_byte(byte, now);
     bus.service();
-    core.poll(board::tick_timer_us());
+    measure_battery();
+    // A pass that handled a request (up to ~1,800 cycles for a reply of seven positions)
+    // leaves the bus work to the next pass: no pass is longer than a word at 115200.
+    if (!framed) core.poll(now);
     if ((PORTA & 0x7Fu) != 0) PORTB = static_cast<uint8_t>(PORTB | _BV(PB7));
     else PORTB = static_cast<uint8_t>(PORTB & ~_BV(PB7));
   }

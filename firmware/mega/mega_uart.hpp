@@ -14,6 +14,8 @@ enum class Port : uint8_t { upstream = 0, bus = 1 };
 void uart_begin(Port port, uint32_t baud);
 bool uart_receive(Port port, uint8_t* byte);  // false if nothing is waiting
 bool uart_send(Port port, uint8_t byte);      // false if the TX ring is full
+// Queues bytes up to a full ring; the number queued.
+uint8_t uart_send_bytes(Port port, const uint8_t* bytes, uint8_t count);
 // Every queued byte has fully left the shift register.
 bool uart_tx_idle(Port port);
 uint8_t uart_rx_errors(Port port);  // framing or overrun errors (saturating)

@@ -39,13 +39,15 @@ bool BusMaster::start(uint8_t joint, int16_t command, int16_t data, uint32_t now
   const jb::CommandShape shape = jb::command_shape(command);
   if (!shape.known || state_ != State::idle || result_ready_ || joint < 1 || joint > jb::max_joints)
     return false;
+  // Select first: the joint's turnaround to READY runs while the rest is set up (nothing
+  // received is handled before start() returns).
+  port_->set_select(joint, true);
   quiet_ = false;
   current_ = BusResult{joint, command, data, jb::status_no_answer, 0, false};
   takes_data_ = shape.takes_data;
   returns_value_ = shape.returns_value;
   state_ = State::await_ready;
   arm(now_us, 0);
-  port_->set_select(joint, true);
   return true;
 }
 

@@ -75,10 +75,12 @@ void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus
   op_count_ = 0;
   pending_count_ = 0;
   poll_index_ = 0;
+  convert_ = no_convert;
   stats_ = CoreStats{};
   for (uint8_t i = 0; i < max_joints; ++i) {
     state_[i] = JointState{};
     state_[i].loop_on = true;
+    state_[i].following = true;
     percent_[i] = 0;
   }
   for (uint8_t i = 0; i < count_; ++i) state_[i].position = to_position(joints_[i].number, 0);
@@ -94,6 +96,8 @@ void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus
 }
 
 int8_t ControllerCore::index_of(uint8_t joint) const {
+  // Joints are usually configured in order (joint n at index n - 1): no search then.
+  if (joint >= 1 && joint <= count_ && joints_[joint - 1].number == joint) return static_cast<int8_t>(joint - 1);
   for (uint8_t i = 0; i < count_; ++i)
     if (joints_[i].number == joint) return static_cast<int8_t>(i);
   return -1;
@@ -153,10 +157,24 @@ bool ControllerCore::schedule(uint32_t due_us, uint8_t index, OpKind kind, int16
   return true;
 }
 
+bool ControllerCore::upsert(uint32_t due_us, uint8_t index, OpKind kind, int16_t value) {
+  for (uint8_t i = 0; i < op_count_; ++i) {
+    Op& op = ops_[i];
+    if (op.joint != joints_[index].number || op.kind != kind) continue;
+    op.value = value;
+    if (static_cast<int32_t>(due_us - op.due_us) < 0) op.due_us = due_us;
+    return true;
+  }
+  return schedule(due_us, index, kind, value);
+}
+
 void ControllerCore::cancel_ops(uint8_t index, bool drives_only) {
   uint8_t kept = 0;
   for (uint8_t i = 0; i < op_count_; ++i) {
-    const bool drop = ops_[i].joint == joints_[index].number && (!drives_only || ops_[i].kind == OpKind::drive_to);
+    // A read of the joint's diagnostic words is kept: a new move does not answer why it
+    // stopped following.
+    const bool drop = ops_[i].joint == joints_[index].number && ops_[i].kind != OpKind::diagnostic &&
+                      (!drives_only || ops_[i].kind == OpKind::drive_to);
     if (!drop) ops_[kept++] = ops_[i];
   }
   op_count_ = kept;
@@ -166,22 +184,42 @@ void ControllerCore::poll(uint32_t now_us) {
   if (have_groups_) service_groups();
   master_.poll(now_us);
   BusResult r;
-  if (master_.take_result(&r)) take_result(r);
+  if (master_.take_result(&r)) take_result(r, now_us);
   // Moves are planned between transactions (see plan_pending). Planning takes long enough
   // on the Mega that `now_us` is stale afterwards: the next transaction starts at the next
   // poll, with a fresh time (else its timeout would run from before the planning).
   if (!master_.busy()) {
-    if (plan_pending(now_us)) return;
+    if (plan_pending(now_us)) {
+      convert_polled();
+      return;
+    }
     if (playing_ && reached(now_us, play_due_us_)) {
       play_next(now_us);
+      convert_polled();
       return;
     }
   }
   if (master_.can_start(now_us)) start_next(now_us);
+  convert_polled();
 }
 
-bool ControllerCore::plan_pending(uint32_t now_us) {
+void ControllerCore::convert_polled() {
+  // The polled reading in Robot Commands units: a 32-bit division (about 700 cycles on the
+  // Mega), done once the next joint is selected, while that joint prepares its READY, not
+  // between the two transactions. Nothing reads `position` before poll() returns.
+  if (convert_ == no_convert) return;
+  JointState& s = state_[convert_];
+  s.position = to_position(joints_[convert_].number, s.clicks);
+  convert_ = no_convert;
+}
+
+bool ControllerCore::plan_pending(uint32_t now_us, bool now_or_never) {
   if (pending_count_ == 0) return false;
+  // Moves streamed faster than they can be planned: the bus work of the last plan gets a
+  // few transactions first (else, at 115200, plans of 8 ms each would follow each other
+  // and no command would ever go out).
+  if (!now_or_never && op_count_ > 0 && txns_since_plan_ < min_txns_between_plans) return false;
+  txns_since_plan_ = 0;
   const uint8_t n = pending_count_;
   pending_count_ = 0;
   plan_move(pending_, n, pending_ms_, now_us);
@@ -199,11 +237,15 @@ void ControllerCore::start_next(uint32_t now_us) {
       case OpKind::set_zone: command = jb::cmd_set_zone; break;
       case OpKind::loop_on:
       case OpKind::loop_off: command = jb::cmd_set_pid_state; break;
-      case OpKind::speed: command = jb::cmd_set_speed; break;
+      case OpKind::speed:
+      case OpKind::speed_switch: command = jb::cmd_set_speed; break;
       case OpKind::drive_to: command = jb::cmd_drive_to; break;
+      case OpKind::diagnostic: command = jb::cmd_read_diagnostic; break;
     }
+    if (txns_since_plan_ < 255) ++txns_since_plan_;
     inflight_is_op_ = true;
     inflight_kind_ = op.kind;
+    inflight_value_ = op.value;
     count_up(stats_.commands);
     master_.start(op.joint, command, op.value, now_us);
     return;
@@ -232,20 +274,113 @@ void ControllerCore::note_fault(uint8_t index, int16_t status) {
   s.last_fault = status;
 }
 
-void ControllerCore::take_result(const BusResult& r) {
+// ------------------------------------------------------------------ joint faults
+
+void ControllerCore::check_following(uint8_t index, int16_t before, uint32_t now_us) {
+  JointState& s = state_[index];
+  if (!s.planned || !s.loop_on || s.jogging) return;
+  const int32_t at = s.clicks;
+  // Closer to its target than at the poll before: on its way, if late (the plan of a move
+  // that starts while the joint moves is a straight line, not its ramp: a streamed move can
+  // end later than planned). A faulted joint is at rest or runs away.
+  int32_t was_off = int32_t(before) - s.plan_to;
+  int32_t off = at - s.plan_to;
+  if (was_off < 0) was_off = -was_off;
+  if (off < 0) off = -off;
+  const bool approaching = was_off - off >= approaching_clicks;
+  int32_t gap = 0;
+  if (reached(now_us, s.plan_end_us + settle_us)) {
+    gap = at - s.plan_to;
+    if (gap < 0) gap = -gap;
+  } else {
+    // Under way: anywhere between where its plan starts (the straight line's point and
+    // the last poll, widened, for a joint still moving then, by what it may run on while
+    // it turns at full speed) and its target. Not a model of its ramp (the daemon replays
+    // the joint's ramp): a joint that stalls is found when its move ends, one that runs
+    // away when it leaves that stretch.
+    int32_t low = s.plan_to, high = s.plan_to;
+    const int16_t from[2] = {s.plan_from, s.plan_seen};
+    for (uint8_t i = 0; i < 2; ++i) {
+      if (from[i] < low) low = from[i];
+      if (from[i] > high) high = from[i];
+    }
+    if (s.plan_slack != 0) {
+      low -= s.plan_slack;
+      high += s.plan_slack;
+    }
+    gap = at < low ? low - at : at > high ? at - high : 0;
+  }
+  if (gap > not_following_clicks && !approaching) {
+    if (s.following) {
+      lost_following(index, now_us);
+    } else if (!(s.diagnostics_read && s.diagnostics[jb::diagnostic_faults] != 0) &&
+               static_cast<uint32_t>(now_us - s.faults_read_us) >= fault_recheck_us) {
+      // Still off its plan with no fault yet: the joint may raise one any moment (its
+      // runaway and following-error checks take 100 and 500 ms).
+      read_diagnostics(index, now_us);
+    }
+  } else if (gap <= not_following_clicks / 2 && !s.following) {
+    s.following = true;
+    s.diagnostics[jb::diagnostic_faults] = 0;  // following again: its faults were cleared
+  }
+}
+
+void ControllerCore::lost_following(uint8_t index, uint32_t now_us) {
+  JointState& s = state_[index];
+  s.following = false;
+  count_up(s.following_lost);
+  count_up(stats_.following_lost);
+  read_diagnostics(index, now_us);
+}
+
+void ControllerCore::read_diagnostics(uint8_t index, uint32_t now_us) {
+  for (uint8_t i = 0; i < op_count_; ++i)
+    if (ops_[i].joint == joints_[index].number && ops_[i].kind == OpKind::diagnostic) return;  // under way
+  JointState& s = state_[index];
+  s.faults_read_us = now_us;
+  s.diagnostics_read = false;
+  for (uint8_t k = 0; k < jb::diagnostic_count; ++k) schedule(now_us, index, OpKind::diagnostic, k);
+}
+
+void ControllerCore::on_joint_fault_read(const uint8_t* data, uint8_t length) {
+  const int8_t found = length == 1 ? index_of(data[0]) : -1;
+  if (found < 0) {
+    count_up(stats_.ignored_frames);
+    return;
+  }
+  const JointState& s = state_[found];
+  // servo, flags, last bus failure, following lost, the 7 diagnostic words.
+  uint8_t reply[6 + 2 * jb::diagnostic_count];
+  reply[0] = data[0];
+  reply[1] = static_cast<uint8_t>((s.answering ? 1u : 0u) | (s.following ? 2u : 0u) | (s.diagnostics_read ? 4u : 0u));
+  reply[2] = static_cast<uint8_t>(uint16_t(s.last_fault) & 0xFFu);
+  reply[3] = static_cast<uint8_t>(uint16_t(s.last_fault) >> 8);
+  reply[4] = static_cast<uint8_t>(s.following_lost & 0xFFu);
+  reply[5] = static_cast<uint8_t>(s.following_lost >> 8);
+  for (uint8_t k = 0; k < jb::diagnostic_count; ++k) {
+    reply[6 + 2 * k] = static_cast<uint8_t>(s.diagnostics[k] & 0xFFu);
+    reply[7 + 2 * k] = static_cast<uint8_t>(s.diagnostics[k] >> 8);
+  }
+  upstream_->send_frame(rc_joint_fault_read, reply, sizeof reply);
+}
+
+void ControllerCore::take_result(const BusResult& r, uint32_t now_us) {
   const int8_t found = index_of(r.joint);
   if (found < 0) return;
   const uint8_t index = static_cast<uint8_t>(found);
   JointState& s = state_[index];
   if (!inflight_is_op_) {
     if (r.ok) {
+      const int16_t before = s.read ? s.clicks : r.response;
       s.clicks = r.response;
-      // In position units now, one division per poll: a ServoPositionRead then only copies
-      // (seven divisions in the reply's pass took the Mega 0.5 ms of its round trip).
-      s.position = to_position(r.joint, r.response);
+      // In position units once per poll (at the end of this poll(), after the next
+      // transaction has started): a ServoPositionRead then only copies (seven divisions in
+      // the reply's pass took the Mega 0.5 ms of its round trip).
+      convert_ = index;
       s.read = true;
       s.answering = true;
       count_up(s.reads);
+      check_following(index, before, now_us);
     } else {
       count_up(stats_.poll_failures);
       note_fault(index, r.status);
@@ -259,10 +394,23 @@ void ControllerCore::take_result(const BusResult& r) {
   if (r.ok) {
     s.answering = true;
     if (inflight_kind_ == OpKind::loop_on) s.loop_on = true;
+    if (inflight_kind_ == OpKind::diagnostic && inflight_value_ >= 0 && inflight_value_ < jb::diagnostic_count) {
+      s.diagnostics[inflight_value_] = static_cast<uint16_t>(r.response);
+      if (inflight_value_ == jb::diagnostic_count - 1) {
+        s.diagnostics_read = true;
+        count_up(stats_.fault_reads);
+        if ((s.diagnostics[jb::diagnostic_faults] & jb::fault_runaway) != 0) count_up(stats_.runaway_faults);
+        if ((s.diagnostics[jb::diagnostic_faults] & jb::fault_following_error) != 0)
+          count_up(stats_.following_error_faults);
+      }
+    }
     return;
   }
   count_up(stats_.command_failures);
   note_fault(index, r.status);
+  // A joint holding a fault refuses every drive with 940: find out why.
+  if (inflight_kind_ == OpKind::drive_to && r.status == jb::status_bad_data && s.following)
+    lost_following(index, now_us);
   // A drive after a failed speed change or loop-on would run at the wrong speed, or not
   // at all: drop it.
   if (inflight_kind_ == OpKind::speed || inflight_kind_ == OpKind::loop_on) cancel_ops(index, true);
@@ -275,11 +423,10 @@ void ControllerCore::on_frame(uint8_t command, const uint8_t* data, uint8_t leng
   // A request that changes what the joints do comes after a move still waiting to be
   // planned: that move first, so that requests take effect in the order they came.
   switch (command) {
-    case rc_multi_servo_move:
     case rc_multi_servo_off:
     case rc_servo_speed:
     case rc_group_run:
-    case rc_group_erase: plan_pending(now_us); break;
+    case rc_group_erase: plan_pending(now_us, true); break;
     default: break;
   }
   switch (command) {
@@ -311,6 +458,7 @@ void ControllerCore::on_frame(uint8_t command, const uint8_t* data, uint8_t leng
       if (!have_groups_) break;
       on_group_speed(data, length);
       return;
+    case rc_joint_fault_read: on_joint_fault_read(data, length); return;
     case rc_get_battery_voltage:
       if (length != 0) break;
       reply_u16(rc_get_battery_voltage, battery_mv_);
@@ -370,8 +518,15 @@ void ControllerCore::on_move(const uint8_t* data, uint8_t length) {
   count_up(stats_.moves);
   // Planned at the end of the transaction under way (poll): planning takes milliseconds on
   // the Mega, and a joint waiting that long mid-transaction for COMMAND would give up on it.
-  for (uint8_t k = 0; k < moving; ++k) pending_[k] = targets[k];
-  pending_count_ = moving;
+  // A move still waiting to be planned is merged with this one (streamed moves come faster
+  // than a plan of seven joints takes on the Mega): the newest target of each joint, and
+  // this move's time.
+  for (uint8_t k = 0; k < moving; ++k) {
+    uint8_t at = 0;
+    while (at < pending_count_ && pending_[at].index != targets[k].index) ++at;
+    pending_[at] = targets[k];
+    if (at == pending_count_) ++pending_count_;
+  }
   pending_ms_ = time_ms;
 }
 
@@ -394,11 +549,21 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
   float effect_s[max_joints];
   float distance[max_joints];
   float from[max_joints];
+  uint16_t slack[max_joints];
   float arrive_s = float(time_ms) / 1000.0f;
   for (uint8_t k = 0; k < n; ++k) {
     const JointSetup& j = joints_[targets[k].index];
     effect_s[k] = float(uint32_t(loop_ons + n + k) * txn) / 1e6f + latency_s;
     from[k] = start_clicks(targets[k].index, now_us);
+    {
+      // A joint still moving may be anywhere near `from` (a straight line, not its ramp) and
+      // run on while it turns: v^2 / 2a at its full speed.
+      const JointState& st = state_[targets[k].index];
+      const bool moving = st.planned && !reached(now_us, st.plan_end_us);
+      const float v = moving ? float(j.max_speed_cps) : 0.0f;
+      const float over = v * v / (2.0f * ramp_accel(j.max_accel_cps2));
+      slack[k] = over > 30000.0f ? 30000 : static_cast<uint16_t>(over);
+    }
     const float d = float(targets[k].clicks) - from[k];
     distance[k] = d < 0.0f ? -d : d;
     const float earliest = effect_s[k] + shortest_time_s(distance[k], j.max_speed_cps, ramp_accel(j.max_accel_cps2));
@@ -406,16 +571,28 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
   }
   planned_ms_ = static_cast<uint32_t>(arrive_s * 1000.0f + 0.5f);
   for (uint8_t i = 0; i < max_joints; ++i) percent_[i] = 0;
+  // Streamed moves come faster than a move's bus commands go out (seven speeds and seven
+  // drives take 150 ms at 9600 baud, a point comes every 27 ms): a joint's speed and drive
+  // still queued from the move before keep their place and take the new values, so every
+  // joint gets its latest target in turn (cancelling them let the next move cancel its
+  // commands again, and the joints last in bus order never moved).
   for (uint8_t k = 0; k < n; ++k) {
     const uint8_t index = targets[k].index;
-    cancel_ops(index, false);
-    if (!state_[index].loop_on) schedule(now_us, index, OpKind::loop_on, 1);
+    uint8_t kept = 0;
+    for (uint8_t i = 0; i < op_count_; ++i) {
+      const Op& op = ops_[i];
+      const bool drop = op.joint == joints_[index].number &&
+                        (op.kind == OpKind::loop_off || op.kind == OpKind::speed_switch);
+      if (!drop) ops_[kept++] = op;
+    }
+    op_count_ = kept;
+    if (!state_[index].loop_on) upsert(now_us, index, OpKind::loop_on, 1);
   }
   for (uint8_t k = 0; k < n; ++k) {
     const uint8_t index = targets[k].index;
     const JointSetup& j = joints_[index];
     percent_[index] = percent_for(distance[k], arrive_s - effect_s[k], j.max_speed_cps, ramp_accel(j.max_accel_cps2));
-    schedule(now_us, index, OpKind::speed, percent_[index]);
+    upsert(now_us, index, OpKind::speed, percent_[index]);
     state_[index].loop_on = true;
     state_[index].jogging = false;
   }
@@ -435,9 +612,9 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
     }
     float start_s = arrive_s - ramp_s - latency_s;
     if (start_s < 0.0f) start_s = 0.0f;
-    schedule(now_us + static_cast<uint32_t>(start_s * 1e6f), index, OpKind::drive_to, targets[k].clicks);
+    upsert(now_us + static_cast<uint32_t>(start_s * 1e6f), index, OpKind::drive_to, targets[k].clicks);
     if (switch_s > 0.0f) {
-      schedule(now_us + static_cast<uint32_t>((start_s + switch_s) * 1e6f), index, OpKind::speed,
+      schedule(now_us + static_cast<uint32_t>((start_s + switch_s) * 1e6f), index, OpKind::speed_switch,
                static_cast<int16_t>(percent - 1));
     }
     JointState& s = state_[index];
@@ -446,6 +623,8 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
     s.plan_to = targets[k].clicks;
     s.plan_start_us = now_us + static_cast<uint32_t>((start_s + latency_s) * 1e6f);
     s.plan_end_us = now_us + static_cast<uint32_t>(arrive_s * 1e6f);
+    s.plan_slack = slack[k];
+    s.plan_seen = s.clicks;
   }
 }
 

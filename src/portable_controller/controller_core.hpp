@@ -20,6 +20,8 @@
 //                      are map(position + offset); volatile (ServoOffsetWrite: not yet)
 //   ServoSpeed         motor mode: a velocity jog (set_speed ceil(|speed| / 10) %) toward
 //                      the soft limit in that direction; servo mode (or a move) ends it
+//   JointFaultRead     (CMD 40, an armctl extension) one joint's fault state: a joint that
+//                      stops following its plan has its 7 read_diagnostic words read
 // Between commands the joints are polled round robin (get_position), so positions are
 // fresh and a joint that stops answering is known before a move names it.
 //
@@ -77,6 +79,18 @@ struct JointState {
   int16_t plan_to;
   uint32_t plan_start_us;
   uint32_t plan_end_us;
+  int16_t plan_seen;    // its last polled position when the plan was made
+  uint16_t plan_slack;  // clicks a joint still moving when planned may be off its plan's line
+  // Its own faults (docs/mega-controller.md "Joint faults"): a joint that leaves its plan
+  // (or refuses a drive with 940, what a faulted joint answers) is not `following`, and its
+  // read_diagnostic words are read (again every 250 ms while it stays off its plan with no
+  // fault held).
+  bool following;
+  bool diagnostics_read;        // diagnostics[] holds a complete read since it stopped following
+  uint16_t diagnostics[7];      // read_diagnostic 0..6: faults, bus events lost, encoder
+                                // edges lost, UART errors, reset cause, abandoned, settings
+  uint16_t following_lost;      // times it stopped following (saturating)
+  uint32_t faults_read_us;      // when the last read was started
 };
 
 struct CoreStats {
@@ -94,13 +108,25 @@ struct CoreStats {
   uint16_t download_too_big;   // refused at sub 2: no room in the group memory
   uint16_t actions_played;
   uint16_t actions_skipped;    // a stored action that no longer fits, or a joint not answering
+  uint16_t following_lost;     // a joint stopped following its plan
+  uint16_t fault_reads;        // complete reads of a joint's 7 diagnostic words
+  uint16_t runaway_faults;     // reads that found a runaway fault
+  uint16_t following_error_faults;  // reads that found a following-error fault
 };
 
 class ControllerCore {
  public:
   static const uint8_t max_joints = 7;
   // A move of seven joints: loop-on, speed, drive and a part-way speed switch each.
-  static const uint8_t max_ops = 32;
+  static const uint8_t max_ops = 40;
+  // A polled position this far from the joint's plan: it is not following (the daemon's
+  // kNotFollowingClicks); back within half of it, it follows again.
+  static const int16_t not_following_clicks = 500;
+  static const uint32_t fault_recheck_us = 250000;
+  // After the planned end, a joint has this long to settle before it counts as not arrived.
+  static const uint32_t settle_us = 500000;
+  // A joint this much closer to its target than at its previous poll is on its way.
+  static const int16_t approaching_clicks = 8;
 
   // `joints` (count <= 7, numbers distinct) must outlive the core. Queues set_speed 0 and
   // then set_zone for every joint: after a reset nothing keeps moving on an old command.
@@ -132,7 +158,8 @@ class ControllerCore {
   bool playing() const { return playing_; }
 
  private:
-  enum class OpKind : uint8_t { set_zone, loop_on, loop_off, speed, drive_to };
+  // speed_switch: the part-way set_speed of a move (plan_move).
+  enum class OpKind : uint8_t { set_zone, loop_on, loop_off, speed, drive_to, diagnostic, speed_switch };
   struct Op {
     uint32_t due_us;
     uint8_t joint;
@@ -149,9 +176,18 @@ class ControllerCore {
   int8_t index_of(uint8_t joint) const;
   bool schedule(uint32_t due_us, uint8_t index, OpKind kind, int16_t value);
   void cancel_ops(uint8_t index, bool drives_only);
+  // The joint's queued op of this kind gets the new value and goes out no later than
+  // either due time, keeping its place in the queue; else a new one is queued.
+  bool upsert(uint32_t due_us, uint8_t index, OpKind kind, int16_t value);
   void start_next(uint32_t now_us);
-  void take_result(const BusResult& r);
+  void take_result(const BusResult& r, uint32_t now_us);
+  void convert_polled();
   void note_fault(uint8_t index, int16_t status);
+  // Joint faults: the polled `clicks` against the plan; queues a read of the 7 words.
+  void check_following(uint8_t index, int16_t before, uint32_t now_us);
+  void lost_following(uint8_t index, uint32_t now_us);
+  void read_diagnostics(uint8_t index, uint32_t now_us);
+  void on_joint_fault_read(const uint8_t* data, uint8_t length);
   // Where joint `index` is taken to be at `now_us` when a move is planned (see JointState).
   float start_clicks(uint8_t index, uint32_t now_us) const;
 
@@ -177,7 +213,9 @@ class ControllerCore {
   void on_servo_speed(const uint8_t* data, uint8_t length, uint32_t now_us);
   void halt(uint32_t now_us);
   void plan_move(const Target* targets, uint8_t count, uint16_t time_ms, uint32_t now_us);
-  bool plan_pending(uint32_t now_us);  // true if a move was planned
+  // True if a move was planned; `now_or_never`: even right after another plan (a request
+  // that must come after it).
+  bool plan_pending(uint32_t now_us, bool now_or_never = false);
   void reply_u16(uint8_t command, uint16_t value);
 
   const JointSetup* joints_ = nullptr;
@@ -190,7 +228,11 @@ class ControllerCore {
   uint8_t op_count_ = 0;
   bool inflight_is_op_ = false;
   OpKind inflight_kind_ = OpKind::set_zone;
+  int16_t inflight_value_ = 0;
   uint8_t poll_index_ = 0;
+  // The joint whose polled clicks still wait for their conversion to position (poll()).
+  static const uint8_t no_convert = 0xFF;
+  uint8_t convert_ = no_convert;
   uint16_t battery_mv_ = 0;
   uint32_t planned_ms_ = 0;
   CoreStats stats_{};
@@ -198,6 +240,8 @@ class ControllerCore {
   Target pending_[max_joints];
   uint8_t pending_count_ = 0;
   uint16_t pending_ms_ = 0;
+  static const uint8_t min_txns_between_plans = 4;
+  uint8_t txns_since_plan_ = 255;  // commands started since the last plan
 
   GroupStore groups_;
   bool have_groups_ = false;

@@ -20,6 +20,9 @@ const uint8_t rc_servo_offset_write = 22;
 const uint8_t rc_servo_offset_read = 23;
 const uint8_t rc_servo_offset_adjust = 24;
 const uint8_t rc_servo_speed = 26;
+// An armctl extension, not in the xArm protocol (an xArm board ignores it as unknown): a
+// joint's fault state and diagnostic words (docs/mega-controller.md "Joint faults").
+const uint8_t rc_joint_fault_read = 40;
 
 const uint16_t rc_null_position = 0xFF00;  // MultiServoMove: leave this servo alone
 const uint16_t rc_max_position = 1000;

@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include <fmt/core.h>
 
 #include "devices/robot_commands/arrival.hpp"
 #include "mega_rig.hpp"
+#include "portable/joint_bus_codes.hpp"
 
 namespace armctl::hil {
 namespace {
@@ -49,6 +51,30 @@ TEST(MegaController, AnswersBatteryAndPositionsAfterPowerUp) {
   ASSERT_TRUE(positions.ok()) << positions.error().message;
   ASSERT_EQ(positions->size(), 7u);
   for (const auto& p : *positions) EXPECT_EQ(p.position, 500) << "joint " << int(p.servo) << " starts at 0 clicks";
+}
+
+TEST(MegaController, BatteryIsMeasuredOnA0ThroughTheDivider) {
+  // The BATTERY=a0 image: A0 = supply x 10/57 (47k over 10k), against AVcc = 5 V.
+  MegaRig rig(9600, {}, joint_avr::mega_firmware_elf_battery());
+  for (const int supply_mv : {24000, 12000, 26500}) {
+    const int pin_mv = supply_mv * 10 / 57;
+    rig.mega.mega().set_adc_millivolts(0, std::uint32_t(pin_mv));
+    rig.mega.advance(20ms);  // a reading every ~1.7 ms
+    auto mv = rig.client->battery_millivolts();
+    ASSERT_TRUE(mv.ok()) << mv.error().message;
+    // The ADC's step is 27.8 mV of supply (28,500 / 1024); the pin voltage above is rounded down.
+    EXPECT_NEAR(int(*mv), supply_mv, 60) << "supply " << supply_mv;
+  }
+  // Above the divider's full scale (28.5 V): the ADC saturates.
+  rig.mega.mega().set_adc_millivolts(0, 5000);
+  rig.mega.advance(20ms);
+  auto top = rig.client->battery_millivolts();
+  ASSERT_TRUE(top.ok());
+  EXPECT_NEAR(int(*top), 28472, 30) << "1023 of 1024 steps of 28,500 mV";
+  // The move path is unchanged in this image.
+  ASSERT_TRUE(rig.client->move({{1, 520}}, 300).ok());
+  rig.mega.advance(800ms);
+  EXPECT_NEAR(rig.clicks(1), clicks_for(1, 520), 20);
 }
 
 TEST(MegaController, SynchronizedMoveArrivesTogetherAndReadsBack) {
@@ -220,6 +246,86 @@ TEST(MegaController, JointKilledMidMoveLeavesTheOthersRunning) {
   EXPECT_NEAR(rig.clicks(1), clicks_for(1, 700), 20) << "joint 1 completes its move";
   auto read = rig.client->read_positions({1, 2});
   ASSERT_TRUE(read.ok()) << "the controller keeps answering: " << read.error().message;
+}
+
+// The armctl extension CMD 40 (docs/mega-controller.md "Joint faults"): one joint's fault
+// state, raw, since the SDK does not know it.
+struct JointFaultReply {
+  int servo = 0;
+  int flags = 0;  // bit 0 answering, 1 following, 2 diagnostic words read
+  int last_failure = 0;
+  int following_lost = 0;
+  int words[7] = {};
+};
+
+std::optional<JointFaultReply> read_joint_faults(MegaRig& rig, int servo) {
+  rig.link.send_bytes({0x55, 0x55, 3, 40, std::uint8_t(servo)});
+  for (;;) {
+    auto f = rig.link.receive(rig.now() + 200ms);
+    if (!f) return std::nullopt;
+    if (f->cmd != 40) continue;  // a notification meanwhile
+    if (f->data.size() != 20) return std::nullopt;
+    auto u16 = [&](int at) { return int(f->data[at] | (f->data[at + 1] << 8)); };
+    JointFaultReply r;
+    r.servo = f->data[0];
+    r.flags = f->data[1];
+    r.last_failure = u16(2);
+    r.following_lost = u16(4);
+    for (int k = 0; k < 7; ++k) r.words[k] = u16(6 + 2 * k);
+    return r;
+  }
+}
+
+TEST(MegaController, JointThatRunsAwayMidMoveHasItsFaultsReadAndReported) {
+  // Joint 3's motor leads are swapped: driven up, it runs down, raises a runaway fault and
+  // stops itself (bridge braked, then off). The Mega finds it off its plan, reads its 7
+  // diagnostic words, and answers them upstream; joint 2 carries on.
+  MegaRig rig(115200, {3});
+  ASSERT_TRUE(rig.client->move({{2, 700}, {3, 700}}, 1500).ok());
+  rig.mega.advance(2500ms);
+  EXPECT_LT(rig.clicks(3), -64) << "it ran the wrong way";
+  EXPECT_NEAR(rig.clicks(2), clicks_for(2, 700), 20) << "joint 2 completes its move";
+  const auto j3 = read_joint_faults(rig, 3);
+  ASSERT_TRUE(j3.has_value());
+  EXPECT_EQ(j3->servo, 3);
+  EXPECT_EQ(j3->flags & 2, 0) << "not following";
+  EXPECT_EQ(j3->flags & 4, 4) << "its words were read";
+  EXPECT_EQ(j3->flags & 1, 1) << "it still answers its polls";
+  EXPECT_EQ(j3->following_lost, 1);
+  EXPECT_EQ(j3->words[0], joint_bus::fault_runaway);
+  EXPECT_EQ(j3->words[4] & 1, 1) << "reset cause: power-on";
+  EXPECT_EQ(j3->words[3], 0) << "no UART errors";
+  const auto j2 = read_joint_faults(rig, 2);
+  ASSERT_TRUE(j2.has_value());
+  EXPECT_EQ(j2->flags, 1 | 2) << "answering, following, never read";
+  EXPECT_EQ(j2->following_lost, 0);
+  // A new move for the faulted joint: refused by the joint (940), still reported; the
+  // other joint moves.
+  ASSERT_TRUE(rig.client->move({{2, 600}, {3, 600}}, 1000).ok());
+  rig.mega.advance(1500ms);
+  EXPECT_NEAR(rig.clicks(2), clicks_for(2, 600), 20);
+  const auto again = read_joint_faults(rig, 3);
+  ASSERT_TRUE(again.has_value());
+  EXPECT_EQ(again->words[0], joint_bus::fault_runaway);
+  EXPECT_EQ(again->last_failure, 940) << "the refused drive";
+}
+
+TEST(MegaController, StreamedMovesOnAHealthyArmReadNoFaults) {
+  // Moves streamed every 150 ms, reversing: a joint still moving when the next move is
+  // planned is never taken for one that stopped following.
+  MegaRig rig(115200);
+  for (int i = 0; i < 12; ++i) {
+    const int p = i % 2 == 0 ? 650 : 400;
+    ASSERT_TRUE(rig.client->move({{1, p}, {2, 1000 - p}, {3, p}}, 400).ok());
+    rig.mega.advance(150ms);
+  }
+  rig.mega.advance(1500ms);
+  for (int j = 1; j <= 3; ++j) {
+    const auto r = read_joint_faults(rig, j);
+    ASSERT_TRUE(r.has_value());
+    EXPECT_EQ(r->flags, 1 | 2) << "joint " << j;
+    EXPECT_EQ(r->following_lost, 0) << "joint " << j;
+  }
 }
 
 TEST(MegaController, ResetMidMoveHaltsTheJoints) {

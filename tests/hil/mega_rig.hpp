@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "arm_backends.hpp"
@@ -41,9 +42,15 @@ class MegaRcLink final : public robot_commands::RcLink {
 };
 
 struct MegaRig {
-  explicit MegaRig(std::uint32_t baud = 9600)
-      : mega(hil_arm_config(baud),
-             baud == 115200 ? joint_avr::mega_firmware_elf_115200() : joint_avr::default_mega_firmware_elf(), baud),
+  // `leads_swapped`: joints whose motor leads are swapped (they run away, and stop
+  // themselves with a fault).
+  // `elf`: another Mega image built for `baud` (e.g. mega_firmware_elf_battery()).
+  explicit MegaRig(std::uint32_t baud = 9600, const std::set<int>& leads_swapped = {}, std::string elf = {})
+      : mega(hil_arm_config(baud, leads_swapped),
+             !elf.empty()      ? elf
+             : baud == 115200 ? joint_avr::mega_firmware_elf_115200()
+                              : joint_avr::default_mega_firmware_elf(),
+             baud),
         link(mega) {
     robot_commands::ClientOptions options;
     options.servo_count = 7;

@@ -352,5 +352,126 @@ TEST(ScaraJoints, MatchTheArmControllerConfig) {
   }
 }
 
+TEST(ControllerCore, StreamedMovesReachEveryJointInTurn) {
+  // A point every 27 ms (a 7-joint MultiServoMove at 9600 baud) while a move's 14 commands
+  // take ~150 ms of bus: each joint's queued speed and drive take the newest values and
+  // keep their place, so every joint is driven, toward its newest target.
+  CoreRig rig;
+  rig.joints.drives_move = false;
+  for (int i = 0; i < 20; ++i) {
+    const int p = 500 + 5 * (i + 1);
+    rig.request(rc_multi_servo_move, CoreRig::move(27, {{1, p}, {2, p}, {3, p}, {4, p}, {5, p}, {6, p}, {7, p}}));
+    rig.run_us(27000);
+  }
+  rig.run_us(300000);
+  std::set<int> driven;
+  for (const auto& c : rig.joints.commands_of(jb::cmd_drive_to)) driven.insert(c.joint);
+  EXPECT_EQ(driven.size(), 7u) << "every joint got drives, not only the first in bus order";
+  for (int j = 1; j <= 7; ++j) {
+    int last = 0;
+    for (const auto& c : rig.joints.commands_of(jb::cmd_drive_to))
+      if (c.joint == j) last = c.data;
+    EXPECT_EQ(last, rig.core.to_clicks(j, 600)) << "joint " << j << ": its last drive is the newest target";
+  }
+}
+
+// ------------------------------------------------------------------ joint faults
+
+std::vector<int> diagnostic_indexes(const FakeJoints& joints, int joint) {
+  std::vector<int> out;
+  for (const auto& c : joints.commands_of(jb::cmd_read_diagnostic))
+    if (c.joint == joint) out.push_back(c.data);
+  return out;
+}
+
+TEST(ControllerCoreFaults, AJointThatRefusesItsDriveHasItsFaultWordsReadAndReported) {
+  CoreRig rig;
+  rig.joints.refuses_drives[3] = true;  // a joint holding a fault answers drives with 940
+  const std::int16_t words[7] = {jb::fault_runaway, 0, 3, 0, 1, 2, 0};
+  std::copy(words, words + 7, rig.joints.diagnostics[3]);
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{2, 600}, {3, 600}}));
+  rig.run_us(300000);
+  EXPECT_EQ(diagnostic_indexes(rig.joints, 3), (std::vector<int>{0, 1, 2, 3, 4, 5, 6}));
+  EXPECT_TRUE(diagnostic_indexes(rig.joints, 2).empty()) << "joint 2 follows its plan";
+  const JointState& s = rig.core.joint_state(3);
+  EXPECT_FALSE(s.following);
+  EXPECT_TRUE(s.diagnostics_read);
+  for (int k = 0; k < 7; ++k) EXPECT_EQ(s.diagnostics[k], words[k]) << k;
+  EXPECT_EQ(s.following_lost, 1);
+  EXPECT_EQ(rig.core.stats().following_lost, 1);
+  EXPECT_EQ(rig.core.stats().fault_reads, 1);
+  EXPECT_EQ(rig.core.stats().runaway_faults, 1);
+  EXPECT_EQ(rig.core.stats().following_error_faults, 0);
+  EXPECT_TRUE(rig.core.joint_state(2).following);
+
+  // Upstream: the armctl extension CMD 40 answers a joint's fault state.
+  rig.upstream.frames.clear();
+  rig.request(rc_joint_fault_read, {3});
+  ASSERT_EQ(rig.upstream.frames.size(), 1u);
+  const Reply& r = rig.upstream.frames[0];
+  EXPECT_EQ(r.command, rc_joint_fault_read);
+  ASSERT_EQ(r.data.size(), 20u);
+  EXPECT_EQ(r.data[0], 3);
+  EXPECT_EQ(r.data[1], 1 | 4) << "answering (it answered its polls since), not following, words read";
+  EXPECT_EQ(r.data[2] | (r.data[3] << 8), 940) << "the last bus failure: the refused drive";
+  EXPECT_EQ(r.data[4] | (r.data[5] << 8), 1) << "stopped following once";
+  for (int k = 0; k < 7; ++k) EXPECT_EQ(r.data[6 + 2 * k] | (r.data[7 + 2 * k] << 8), words[k]) << k;
+  // Not a configured joint, or a malformed request: ignored.
+  rig.upstream.frames.clear();
+  rig.request(rc_joint_fault_read, {9});
+  rig.request(rc_joint_fault_read, {3, 4});
+  EXPECT_TRUE(rig.upstream.frames.empty());
+  // Its faults are known: not read again.
+  rig.run_us(1000000);
+  EXPECT_EQ(diagnostic_indexes(rig.joints, 3).size(), 7u);
+}
+
+TEST(ControllerCoreFaults, AJointThatRunsTheWrongWayIsReadAgainUntilItsFaultShows) {
+  CoreRig rig;
+  rig.joints.drives_move = false;
+  rig.request(rc_multi_servo_move, CoreRig::move(2000, {{3, 750}}));  // 0 -> 10000 clicks
+  rig.run_us(100000);
+  rig.joints.position[3] = -2000;  // runs away the other way, its fault not raised yet
+  rig.run_us(100000);
+  EXPECT_EQ(diagnostic_indexes(rig.joints, 3).size(), 7u);
+  EXPECT_FALSE(rig.core.joint_state(3).following);
+  EXPECT_EQ(rig.core.joint_state(3).diagnostics[0], 0);
+  rig.joints.diagnostics[3][0] = jb::fault_runaway;  // the joint raises it
+  rig.run_us(300000);
+  EXPECT_EQ(diagnostic_indexes(rig.joints, 3).size(), 14u) << "read again after 250 ms";
+  EXPECT_EQ(rig.core.joint_state(3).diagnostics[0], jb::fault_runaway);
+  EXPECT_EQ(rig.core.stats().runaway_faults, 1);
+  rig.run_us(1000000);
+  EXPECT_EQ(diagnostic_indexes(rig.joints, 3).size(), 14u) << "the fault is known: no more reads";
+  EXPECT_EQ(rig.core.stats().following_lost, 1) << "counted once";
+}
+
+TEST(ControllerCoreFaults, AJointThatNeverArrivesIsFoundWhenItsMoveEnds) {
+  CoreRig rig;
+  rig.joints.drives_move = false;  // stalled: it stays at 0
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 600}}));  // 0 -> 4000 clicks
+  rig.run_us(1300000);
+  EXPECT_TRUE(diagnostic_indexes(rig.joints, 1).empty()) << "between start and target during the move";
+  rig.run_us(500000);
+  EXPECT_GE(diagnostic_indexes(rig.joints, 1).size(), 7u) << "off its target 0.5 s after the planned end";
+  EXPECT_FALSE(rig.core.joint_state(1).following);
+  // Back on its target (moved by hand, or cleared and driven): following again.
+  rig.joints.position[1] = 4000;
+  rig.run_us(200000);
+  EXPECT_TRUE(rig.core.joint_state(1).following);
+}
+
+TEST(ControllerCoreFaults, HealthyMovesNeverReadFaults) {
+  // (These scripted joints jump to their target at once; streamed moves are checked on
+  // emulated silicon, tests/hil/mega_controller_test.cpp.)
+  CoreRig rig;
+  rig.request(rc_multi_servo_move, CoreRig::move(1500, {{1, 300}, {2, 700}, {3, 700}}));
+  rig.run_us(2000000);
+  rig.request(rc_multi_servo_move, CoreRig::move(800, {{1, 600}, {2, 400}}));
+  rig.run_us(2000000);
+  EXPECT_TRUE(rig.joints.commands_of(jb::cmd_read_diagnostic).empty());
+  EXPECT_EQ(rig.core.stats().following_lost, 0);
+}
+
 }  // namespace
 }  // namespace armctl::controller::testing

@@ -47,10 +47,14 @@ class FakeJoints final : public BusPort {
     std::int16_t response = 0;
     if (command == joint_bus::cmd_get_position) response = position[j];
     // Instant, for these tests (or never: a joint whose polls lag behind its motion).
-    if (command == joint_bus::cmd_drive_to && drives_move) position[j] = static_cast<std::int16_t>(data);
+    if (command == joint_bus::cmd_drive_to && drives_move && !refuses_drives[j]) position[j] = static_cast<std::int16_t>(data);
     if (command == joint_bus::cmd_ping) response = static_cast<std::int16_t>(data);
+    if (command == joint_bus::cmd_read_diagnostic && data >= 0 && data < joint_bus::diagnostic_count)
+      response = diagnostics[j][data];
     if (shape.returns_value) queue_word(response);
     pending_status_ = joint_bus::success_status(command);
+    // A joint holding a fault refuses every drive (its target follows its position).
+    if (refuses_drives[j] && command == joint_bus::cmd_drive_to) pending_status_ = joint_bus::status_bad_data;
     received_.clear();
   }
   // Hands every queued byte to `sink` (the master or the core).
@@ -73,6 +77,8 @@ class FakeJoints final : public BusPort {
   bool dead[8] = {};
   int answers_as[8] = {};  // != 0: READY says this number instead
   bool drives_move = true;
+  bool refuses_drives[8] = {};
+  std::int16_t diagnostics[8][joint_bus::diagnostic_count] = {};
   std::vector<SentCommand> log;
 
  private:

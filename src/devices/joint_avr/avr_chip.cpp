@@ -12,6 +12,7 @@
 #include "devices/joint_avr/atmega328p.hpp"
 
 extern "C" {
+#include <avr_adc.h>
 #include <avr_eeprom.h>
 #include <avr_extint.h>
 #include <avr_ioport.h>
@@ -83,6 +84,8 @@ AvrChip::AvrChip(const std::string& elf_path, const ChipModel& model) : model_(m
   avr_load_firmware(avr_, &firmware);
   free_firmware(firmware);
   avr_->frequency = m::clock_hz;
+  // 5 V supply and ADC reference (AVcc) as on the boards: the ADC model needs them.
+  avr_->vcc = avr_->avcc = avr_->aref = 5000;
   avr_->sleep = no_wall_clock_sleep;
   // INT0/INT1 start in "low level" mode (EICRA = 0 at reset); simavr then polls the pin on
   // every cycle while it is low, and keeps polling after the firmware switches to "any
@@ -91,6 +94,14 @@ AvrChip::AvrChip(const std::string& elf_path, const ChipModel& model) : model_(m
   avr_extint_set_strict_lvl_trig(avr_, 1, 0);
   connect();
   apply_reset_values();
+}
+
+void AvrChip::set_adc_millivolts(int channel, std::uint32_t millivolts) {
+  if (channel < 0 || channel > 15)
+    throw ArmctlError(ErrorKind::invalid_argument, "AvrChip: ADC channel must be 0..15");
+  avr_irq_t* irq = avr_io_getirq(avr_, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + channel);
+  if (irq == nullptr) throw ArmctlError(ErrorKind::unsupported, std::string("simavr ") + model_.mcu + " without ADC");
+  avr_raise_irq(irq, millivolts);
 }
 
 AvrChip::~AvrChip() {

@@ -71,6 +71,9 @@ class AvrChip {
   // An input pin driven from outside ('B' or 'D', bit 0..7). Only changes reach the chip.
   void drive_pin(char port, int bit, bool level);
 
+  // The voltage on analog input `channel` (ADC0..15) from now on, in mV (AVcc = 5000 mV).
+  void set_adc_millivolts(int channel, std::uint32_t millivolts);
+
   // A byte whose stop bit ends now: UART `uart` flags it received at once (RXC).
   void uart_receive(std::uint8_t byte, int uart = 0);
   // Called for each byte the firmware writes to UDRn with the transmitter on, with the

@@ -22,6 +22,7 @@ constexpr int kActiveWords = 8;
 
 std::string default_mega_firmware_elf() { return ARMCTL_MEGA_FIRMWARE_ELF; }
 std::string mega_firmware_elf_115200() { return ARMCTL_MEGA_FIRMWARE_ELF_115200; }
+std::string mega_firmware_elf_battery() { return ARMCTL_MEGA_FIRMWARE_ELF_BATTERY; }
 
 AvrMegaArm::AvrMegaArm(joint_sim::ArmConfig config, std::string mega_elf, std::uint32_t upstream_baud,
                        AvrArmOptions joints)

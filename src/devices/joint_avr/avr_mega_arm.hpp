@@ -28,6 +28,9 @@ namespace armctl::joint_avr {
 // sides) and the one built for 115200 upstream and on the bus.
 std::string default_mega_firmware_elf();
 std::string mega_firmware_elf_115200();
+// 9600 baud both sides, the battery measured on A0 through the 47k/10k divider
+// (ARMCTL_BATTERY_ADC=1): feed it with mega().set_adc_millivolts(0, ...).
+std::string mega_firmware_elf_battery();
 
 struct UpstreamByte {
   std::uint8_t value;
