@@ -223,6 +223,17 @@ TEST_F(RcStream, FollowingErrorHaltsAndNamesTheJoint) {
   EXPECT_LE(f->t, 2.0);
 }
 
+// A gripper closing on a part stops short of its plan: that is a grasp, not a fault.
+TEST_F(RcStream, AGripperThatStopsShortDoesNotHaltTheMotion) {
+  auto b = here();
+  b[5] = 60 * kDeg;  // servo1, the gripper, closing
+  auto m = cosine_motion(here(), b, 1.0);
+  link.emulator().servos().set_blocked(1, true);  // held open by the part
+  auto r = execute_motion(arm, m);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->completed);
+}
+
 TEST_F(RcStream, RefusesAMotionThatDoesNotStartWhereTheArmIs) {
   auto g = goal();
   auto m = cosine_motion(g, g, 1.0);
