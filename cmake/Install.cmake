@@ -26,4 +26,5 @@ configure_package_config_file(${CMAKE_SOURCE_DIR}/cmake/armctl-config.cmake.in
 write_basic_package_version_file(${CMAKE_BINARY_DIR}/armctl-config-version.cmake
   VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_BINARY_DIR}/armctl-config.cmake ${CMAKE_BINARY_DIR}/armctl-config-version.cmake
+  ${CMAKE_SOURCE_DIR}/cmake/ompl-target.cmake
   DESTINATION ${ARMCTL_PACKAGE_DIR})
