@@ -47,6 +47,35 @@ TEST(SceneCli, AMoveIntoTheBoxIsRefusedAndOneOnTopOfItIsPlanned) {
   EXPECT_LE(planned.at("clearance_mm").get<double>(), 50.0);
 }
 
+TEST(SceneCli, BehindTheBoxIsRefusedDirectAndPlannedAroundWithAvoid) {
+  const std::string behind = "arm --arm xarm --scene " + kScene + " move-to x=150 y=-190 z=40";
+  auto direct = run_armctl(behind);
+  EXPECT_EQ(direct.status, 1) << direct.out;
+  EXPECT_TRUE(contains(direct.out, "with box 'box'")) << direct.out;
+
+  auto around = run_armctl(behind + " --avoid --wait");
+  ASSERT_EQ(around.status, 0) << around.out;
+  EXPECT_TRUE(contains(around.out, "around obstacles: ")) << around.out;
+  EXPECT_TRUE(contains(around.out, " waypoints, planned in ")) << around.out;
+  EXPECT_TRUE(contains(around.out, "no collision: smallest clearance")) << around.out;
+  EXPECT_TRUE(contains(around.out, "position error: 0.")) << around.out;
+
+  auto json_run = run_armctl("arm --arm xarm --scene " + kScene + " --json move-to x=150 y=-190 z=40 --avoid --avoid-time 2s",
+                             "2>/dev/null");
+  ASSERT_EQ(json_run.status, 0) << json_run.out;
+  const auto planned = nlohmann::json::parse(json_run.out.substr(0, json_run.out.find('\n')));
+  EXPECT_EQ(planned.at("event"), "planned");
+  EXPECT_GE(planned.at("avoided").at("waypoints").get<int>(), 1);
+  EXPECT_GT(planned.at("avoided").at("planning_s").get<double>(), 0.0);
+  EXPECT_LT(planned.at("avoided").at("planning_s").get<double>(), 2.0);
+
+  auto bad = run_armctl(behind + " --avoid --avoid-time 2h");
+  EXPECT_EQ(bad.status, 1) << bad.out;
+  auto linear = run_armctl(behind + " --avoid --linear");
+  EXPECT_EQ(linear.status, 1) << linear.out;
+  EXPECT_TRUE(contains(linear.out, "--avoid is not allowed with --linear")) << linear.out;
+}
+
 TEST(SceneCli, AProgramLineThroughTheTableIsRefusedWithItsLine) {
   const auto dir = temp_dir();
   write(dir / "down.prog", "# into the desk\nptp p1\nlin p1 + base(z=-80mm) speed=50mm/s\n");

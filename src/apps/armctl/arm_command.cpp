@@ -22,6 +22,7 @@
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "arm/arm_calibration.hpp"
+#include "arm/avoid_path.hpp"
 #include "arm/plan_moves.hpp"
 #include "arm/run_motion.hpp"
 #include "core/error.hpp"
@@ -54,6 +55,8 @@ struct ArmArgs {
   std::string speed_override;
   std::string path_file;
   std::string trace;  // path --trace FILE
+  bool avoid = false;       // move-to --avoid
+  std::string avoid_time;   // --avoid-time
 };
 
 [[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
@@ -91,18 +94,23 @@ std::pair<std::string, std::string> split_assignment(const std::string& word, co
   return {word.substr(0, eq), word.substr(eq + 1)};
 }
 
+// A duration option: 2s, 1.5s, 800ms or a bare number of seconds, 0 or more.
+double seconds_option(const std::string& text, const char* option) {
+  double v = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  const std::string unit(end, text.data() + text.size());
+  if (ec != std::errc() || !std::isfinite(v) || v < 0 || (unit != "s" && unit != "ms" && !unit.empty()))
+    usage(fmt::format("{} '{}' is not allowed: a duration like 2s, 1.5s or 800ms (bare numbers are seconds)", option, text));
+  return unit == "ms" ? v / 1000 : v;
+}
+
 // A PTP as the command line asks it: --time (the one duration rule: stretched to what the
 // arm file allows, with a note) or --speed.
 arm::PtpMove ptp_move(const ArmArgs& a) {
   arm::PtpMove m;
   if (!a.time.empty() && !a.speed.empty()) usage("--time and --speed cannot be used together");
   if (!a.time.empty()) {
-    double v = 0;
-    auto [end, ec] = std::from_chars(a.time.data(), a.time.data() + a.time.size(), v);
-    const std::string unit(end, a.time.data() + a.time.size());
-    if (ec != std::errc() || !std::isfinite(v) || v < 0 || (unit != "s" && unit != "ms" && !unit.empty()))
-      usage(fmt::format("--time '{}' is not allowed: a duration like 2s, 1.5s or 800ms (bare numbers are seconds)", a.time));
-    const double seconds = unit == "ms" ? v / 1000 : v;
+    const double seconds = seconds_option(a.time, "--time");
     if (seconds > motion::kMaxMoveDuration)
       usage(fmt::format("--time '{}' is longer than {:g} s", a.time, motion::kMaxMoveDuration));
     m.duration = seconds;
@@ -196,14 +204,31 @@ void print_arrived(const ArmArgs& a, session::ArmSession& s, const std::optional
   if (goal) fmt::print("position error: {:.2f} mm\n", (pose.position - goal->position).norm() * 1e3);
 }
 
+// move-to --avoid-time: how long the search around obstacles may take (default 1 s).
+arm::AvoidOptions avoid_options(const ArmArgs& a) {
+  arm::AvoidOptions o;
+  if (a.avoid_time.empty()) return o;
+  o.time_budget = seconds_option(a.avoid_time, "--avoid-time");
+  if (o.time_budget < 0.01 || o.time_budget > 60)
+    usage(fmt::format("--avoid-time '{}' is not allowed: 10ms..60s", a.avoid_time));
+  return o;
+}
+
 // A PTP as one board move (the device interpolates), planned and run by the one planner and
 // runner (arm::plan_moves, arm::run_motion); with --wait, until the arm arrives. Ctrl-C
-// while waiting halts the arm (the board would otherwise finish the move alone).
-void run_board_move(const ArmArgs& a, session::ArmSession& s, const arm::PtpMove& move,
+// while waiting halts the arm (the board would otherwise finish the move alone). With
+// --avoid, a move whose direct motion would collide goes around (arm/avoid_path.hpp): through
+// waypoints, host-planned and streamed.
+void run_board_move(const ArmArgs& a, session::ArmSession& s, arm::PtpMove move,
                     const std::optional<arm::CartesianGoal>& goal) {
   const arm::JointState here = must(s.arm->read());
   arm::PlanOptions o;
   o.ptp = arm::PtpRun::board;
+  std::optional<arm::AvoidingMove> avoided;
+  if (a.avoid) {
+    avoided = must(arm::avoiding_move(*s.arm->kinematics(), here.positions, move, avoid_options(a), o));
+    move = avoided->move;
+  }
   const arm::Plan plan = must(arm::plan_moves(*s.arm->kinematics(), here.positions, std::vector<arm::Move>{{move}}, o));
   if (const std::string note = plan.notes(); !note.empty()) fmt::print(stderr, "note: {}\n", note);
   Interrupted interrupted;
@@ -211,9 +236,14 @@ void run_board_move(const ArmArgs& a, session::ArmSession& s, const arm::PtpMove
   if (a.json) {  // what every app answers for a move: how long it takes and where it ends
     json planned{{"duration_s", plan.duration}, {"targets", joint_values_json(s.arm->model(), plan.end())}};
     add_clearance_json(planned, plan.clearance);
+    if (avoided) planned["avoided"] = json{{"waypoints", avoided->waypoints}, {"planning_s", avoided->planning_s}};
     print_json_event("planned", std::move(planned));
-  } else if (!a.scene.empty()) {
-    fmt::print("{}\n", clearance_words(plan.clearance));
+  } else {
+    if (avoided)
+      fmt::print("{}\n", avoided->avoided ? fmt::format("around obstacles: {} waypoints, planned in {:.0f} ms", avoided->waypoints,
+                                                        avoided->planning_s * 1e3)
+                                          : std::string("the direct move is clear: no detour"));
+    if (!a.scene.empty()) fmt::print("{}\n", clearance_words(plan.clearance));
   }
   arm::RunHooks hooks;
   hooks.command = [&] { return interrupted ? arm::MotionCommand::stop : arm::MotionCommand::none; };
@@ -306,11 +336,14 @@ void run_stop(const ArmArgs& a) {
 }
 
 void run_move_to(const ArmArgs& a) {
+  if (a.linear && a.avoid) usage("--avoid is not allowed with --linear: a line cannot go around (a PTP can)");
+  if (!a.avoid && !a.avoid_time.empty()) usage("--avoid-time needs --avoid");
   if (a.linear) return run_move_linear(a);
   if (!a.zone.empty()) usage("--zone needs --linear (a fly-by zone belongs to a Cartesian move)");
   const arm::CartesianGoal goal = parse_goal(a);
   arm::PtpMove move = ptp_move(a);
   move.target = goal;
+  avoid_options(a);  // a bad --avoid-time is refused before the device opens
   auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   run_board_move(a, *s, move, goal);
 }
@@ -441,6 +474,9 @@ void add_arm_command(CLI::App& app) {
                "Along a straight line, planned on the host and streamed (--speed is then the tool's, e.g. 50mm/s)");
   mt->add_option("--zone", a->zone, "With --linear: fly-by radius at the end (a single move ends at rest)");
   mt->add_option("--override", a->speed_override, "With --linear: percent of the programmed speed, 0.1..100% (default 100%)");
+  mt->add_flag("--avoid", a->avoid,
+               "When the direct move would collide, go around: a collision-free joint path (OMPL), streamed");
+  mt->add_option("--avoid-time", a->avoid_time, "With --avoid: how long the search may take, 10ms..60s (default 1s)");
   mt->callback([a] { run_move_to(*a); });
 
   auto* path = cmd->add_subcommand("path", "Run a path file: PTP, LIN and CIRC moves with speeds and fly-by zones");
