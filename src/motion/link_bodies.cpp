@@ -30,7 +30,7 @@ double bounding_radius(const Shape& s) {
 
 void world_bounds(const Shape& s, const Eigen::Isometry3d& pose, Eigen::Vector3d& low, Eigen::Vector3d& high) {
   const Eigen::Matrix3d& r = pose.linear();
-  Eigen::Vector3d half;
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();  // every kind sets it: g++ 12 -O2 cannot see that (-Wmaybe-uninitialized)
   switch (s.kind) {
     case Shape::Kind::box:
       half = r.cwiseAbs() * (0.5 * s.size);
