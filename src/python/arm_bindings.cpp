@@ -15,6 +15,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include "arm/avoid_path.hpp"
 #include "arm/plan_moves.hpp"
 #include "arm/run_motion.hpp"
 #include "program/program_load.hpp"
@@ -379,11 +380,14 @@ class PyArm {
   }
 
   // A board move (the device interpolates; arm::PtpRun::board) from where the arm stands,
-  // then, with wait=True, until it arrives (as wait(timeout)).
-  PyPlannedMove board_move(const arm::PtpMove& move, bool wait_for_it, double timeout) {
+  // then, with wait=True, until it arrives (as wait(timeout)). With `avoid`, a move whose
+  // direct motion would collide goes around (arm/avoid_path.hpp): through waypoints, streamed.
+  PyPlannedMove board_move(arm::PtpMove move, bool wait_for_it, double timeout,
+                           const std::optional<arm::AvoidOptions>& avoid = std::nullopt) {
     const std::vector<double> from = here();
     arm::PlanOptions board;
     board.ptp = arm::PtpRun::board;
+    if (avoid) move = must(arm::avoiding_move(*arm().kinematics(), from, move, *avoid, board)).move;
     auto plan = must(arm::plan_moves(*arm().kinematics(), from, std::vector<arm::Move>{{move}}, board));
     std::optional<arm::WaitOptions> wait;
     if (wait_for_it) wait = wait_options(timeout, std::nullopt, arm::kArrivalAngleTolerance, arm::kArrivalLengthTolerance);
@@ -403,10 +407,17 @@ class PyArm {
 
   PyPlannedMove move_to(const std::vector<double>& position, std::optional<double> roll, std::optional<double> pitch,
                std::optional<double> yaw, const std::optional<std::string>& elbow, bool nearest,
-               std::optional<double> duration, double speed, bool wait_for_it, double timeout) {
+               std::optional<double> duration, double speed, bool wait_for_it, double timeout, bool avoid,
+               double avoid_time) {
     arm::PtpMove m = ptp_move(duration, speed);
     m.target = goal_of(position, roll, pitch, yaw, elbow, nearest);
-    return board_move(m, wait_for_it, timeout);
+    std::optional<arm::AvoidOptions> around;
+    if (avoid) {
+      if (!(avoid_time >= 0.01 && avoid_time <= 60))
+        raise(ErrorKind::invalid_argument, fmt::format("avoid_time {:g} s is outside 0.01..60 s", avoid_time));
+      around.emplace().time_budget = avoid_time;
+    }
+    return board_move(m, wait_for_it, timeout, around);
   }
 
   PyPlannedMove gripper(double closed_fraction, std::optional<double> duration, double speed, bool wait_for_it,
@@ -804,7 +815,10 @@ void define_arm(py::module_& m) {
       .def("move_to", in_turn(&PyArm::move_to), "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
            "yaw"_a = py::none(), "elbow"_a = py::none(), "nearest_orientation"_a = false, "duration"_a = py::none(),
            "speed"_a = motion::kDefaultJointSpeed, "wait"_a = false, "timeout"_a = seconds(arm::kArrivalTimeout),
-           "PTP: moves the tool to `position` (m) through the IK solution nearest the current joints (as move_joints).")
+           "avoid"_a = false, "avoid_time"_a = 1.0,
+           "PTP: moves the tool to `position` (m) through the IK solution nearest the current joints (as move_joints).\n"
+           "avoid=True: when the direct move would collide, around the obstacles through a collision-free path\n"
+           "found within `avoid_time` s (docs/scene.md \"Around obstacles\"), streamed; else Error.")
       .def("move_linear", in_turn(&PyArm::move_linear), "position"_a, "roll"_a = py::none(), "pitch"_a = py::none(),
            "yaw"_a = py::none(), "speed"_a = motion::kDefaultToolSpeed, "angular_speed"_a = motion::kDefaultToolAngularSpeed, "speed_override"_a = 1.0,
            "LIN: the tool along a straight line to `position` (m) at `speed` m/s, planned and checked on the host and\n"

@@ -2,6 +2,7 @@
 refusal raising armctl.Error with its kind, before anything moves."""
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -189,3 +190,16 @@ def test_action_groups_on_the_emulated_xarm(xarm):
     assert e.kind == "invalid_argument"
     xarm.erase_group(3)
     xarm.stop_group()
+
+
+def test_move_to_avoid_goes_around_the_box():
+    # The README's scene: behind the box the direct move swings the wrist through it.
+    scene = str(Path(__file__).resolve().parents[2] / "examples" / "scenes" / "xarm-desk.json")
+    with armctl.Arm(scene=scene) as arm:
+        with pytest.raises(armctl.Error, match="with box 'box'"):
+            arm.move_to([0.15, -0.19, 0.04])
+        planned = arm.move_to([0.15, -0.19, 0.04], avoid=True, wait=True)
+        assert planned.duration > 0
+        assert np.allclose(arm.pose().position, [0.15, -0.19, 0.04], atol=0.003)
+        with pytest.raises(armctl.Error, match="avoid_time"):
+            arm.move_to([0.15, -0.19, 0.04], avoid=True, avoid_time=0)

@@ -218,8 +218,9 @@ class Arm:
     def move_to(self, position: Vector, roll: Optional[float] = None, pitch: Optional[float] = None,
                 yaw: Optional[float] = None, elbow: Optional[str] = None, nearest_orientation: bool = False,
                 duration: Optional[float] = None, speed: float = 0.25, wait: bool = False,
-                timeout: float = 10.0) -> PlannedMove:
-        """PTP: the tool to ``position`` (m) through the IK solution nearest the current joints."""
+                timeout: float = 10.0, avoid: bool = False, avoid_time: float = 1.0) -> PlannedMove:
+        """PTP: the tool to ``position`` (m) through the IK solution nearest the current joints;
+        ``avoid=True``: around obstacles when the direct move would collide (within ``avoid_time`` s)."""
     def move_linear(self, position: Vector, roll: Optional[float] = None, pitch: Optional[float] = None,
                     yaw: Optional[float] = None, speed: float = 0.05, angular_speed: float = 0.7853981633974483,
                     speed_override: float = 1.0) -> MotionReport:
