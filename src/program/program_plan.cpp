@@ -133,6 +133,11 @@ class Planner {
     move.speed = std::clamp(a.move.speed.value_or(motion::kDefaultJointSpeed) * a.move.override_fraction,
                             motion::kMinSpeedFraction, motion::kMaxSpeedFraction);
     move.acceleration_scale = a.move.acceleration.value_or(1.0);
+    if (options_.avoid) {
+      auto around = arm::avoiding_move(kin_, state_, move, *options_.avoid);
+      if (!around) refuse(a, around.error().message);
+      move = around->move;
+    }
     add(a, {arm::Move{move, what(a), a.at.line, a.at.column}});
   }
 

@@ -7,10 +7,12 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "arm/arm_kinematics.hpp"
+#include "arm/avoid_path.hpp"
 #include "arm/plan_moves.hpp"
 #include "core/error.hpp"
 #include "program/program_flow.hpp"
@@ -25,6 +27,9 @@ struct PlanOptions {
   // Blend consecutive LIN/CIRC moves into one path. Off (--step): every move is its own
   // piece and ends at rest (zones are then not used).
   bool blend = true;
+  // PTPs whose direct motion would collide go around the obstacles (arm/avoid_path.hpp,
+  // docs/scene.md "Around obstacles"); each gets this budget.
+  std::optional<arm::AvoidOptions> avoid;
 };
 
 // A program's plan is the planner's (arm/plan_moves.hpp): its pieces' lines are the

@@ -94,6 +94,23 @@ TEST(SceneCli, AProgramLineThroughTheTableIsRefusedWithItsLine) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(SceneCli, AProgramGoesAroundTheBoxWithAvoid) {
+  const auto dir = temp_dir();
+  write(dir / "behind.prog", "# behind the box\nptp p1\nptp p2\n");
+  write(dir / "behind.points", "p1 x=120mm y=120mm z=60mm\np2 x=150mm y=-190mm z=40mm\n");
+  const std::string prog = (dir / "behind.prog").string();
+  auto direct = run_armctl("program check " + prog + " --arm xarm --scene " + kScene);
+  EXPECT_EQ(direct.status, 1) << direct.out;
+  EXPECT_TRUE(contains(direct.out, "behind.prog:3")) << direct.out;
+  EXPECT_TRUE(contains(direct.out, "with box 'box'")) << direct.out;
+  auto around = run_armctl("program check " + prog + " --arm xarm --scene " + kScene + " --avoid --avoid-time 5s");
+  EXPECT_EQ(around.status, 0) << around.out;
+  EXPECT_TRUE(contains(around.out, "OK on arm 'xarm'")) << around.out;
+  auto run = run_armctl("program run " + prog + " --arm xarm --scene " + kScene + " --avoid --avoid-time 5s");
+  EXPECT_EQ(run.status, 0) << run.out;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(SceneCli, ABadSceneFileNamesTheKeyAndOpensNothing) {
   const auto dir = temp_dir();
   write(dir / "bad.json", R"({"objects": [{"name": "box", "box": [60, 0, 100], "at": [170, 0, 50]}]})");

@@ -94,16 +94,6 @@ std::pair<std::string, std::string> split_assignment(const std::string& word, co
   return {word.substr(0, eq), word.substr(eq + 1)};
 }
 
-// A duration option: 2s, 1.5s, 800ms or a bare number of seconds, 0 or more.
-double seconds_option(const std::string& text, const char* option) {
-  double v = 0;
-  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  const std::string unit(end, text.data() + text.size());
-  if (ec != std::errc() || !std::isfinite(v) || v < 0 || (unit != "s" && unit != "ms" && !unit.empty()))
-    usage(fmt::format("{} '{}' is not allowed: a duration like 2s, 1.5s or 800ms (bare numbers are seconds)", option, text));
-  return unit == "ms" ? v / 1000 : v;
-}
-
 // A PTP as the command line asks it: --time (the one duration rule: stretched to what the
 // arm file allows, with a note) or --speed.
 arm::PtpMove ptp_move(const ArmArgs& a) {
@@ -207,10 +197,7 @@ void print_arrived(const ArmArgs& a, session::ArmSession& s, const std::optional
 // move-to --avoid-time: how long the search around obstacles may take (default 1 s).
 arm::AvoidOptions avoid_options(const ArmArgs& a) {
   arm::AvoidOptions o;
-  if (a.avoid_time.empty()) return o;
-  o.time_budget = seconds_option(a.avoid_time, "--avoid-time");
-  if (o.time_budget < 0.01 || o.time_budget > 60)
-    usage(fmt::format("--avoid-time '{}' is not allowed: 10ms..60s", a.avoid_time));
+  o.time_budget = avoid_time_option(a.avoid_time, o.time_budget);
   return o;
 }
 

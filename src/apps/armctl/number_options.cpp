@@ -19,6 +19,25 @@ double percent_option(const std::string& text, const std::string& what, double o
   return must(parse_percent(text, what, motion::kMinSpeedFraction, motion::kMaxSpeedFraction));
 }
 
+double seconds_option(const std::string& text, const std::string& option) {
+  double v = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  const std::string unit(end, text.data() + text.size());
+  if (ec != std::errc() || !std::isfinite(v) || v < 0 || (unit != "s" && unit != "ms" && !unit.empty()))
+    throw ArmctlError(ErrorKind::invalid_argument,
+                      fmt::format("{} '{}' is not allowed: a duration like 2s, 1.5s or 800ms (bare numbers are seconds)",
+                                  option, text));
+  return unit == "ms" ? v / 1000 : v;
+}
+
+double avoid_time_option(const std::string& text, double otherwise) {
+  if (text.empty()) return otherwise;
+  const double s = seconds_option(text, "--avoid-time");
+  if (s < 0.01 || s > 60)
+    throw ArmctlError(ErrorKind::invalid_argument, fmt::format("--avoid-time '{}' is not allowed: 10ms..60s", text));
+  return s;
+}
+
 CLI::Validator whole_number_in(long long min, long long max) {
   const std::string range = fmt::format("{}..{}", min, max);
   return CLI::Validator(

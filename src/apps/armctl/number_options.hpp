@@ -21,6 +21,13 @@ CLI::Validator number_in(double min, double max, const std::string& unit, bool a
 // parser of them all (core/quantity.hpp's parse_percent); errors throw invalid_argument.
 double percent_option(const std::string& text, const std::string& what, double otherwise);
 
+// A duration option: 2s, 1.5s, 800ms or a bare number of seconds, 0 or more; errors throw
+// invalid_argument naming `option`.
+double seconds_option(const std::string& text, const std::string& option);
+// --avoid-time (arm move-to, program check/run): how long the search around obstacles may
+// take, 10 ms..60 s; empty: `otherwise` s.
+double avoid_time_option(const std::string& text, double otherwise);
+
 // A standard serial line rate (0, 12345 and 99999999999 all get the one message listing them).
 CLI::Validator standard_baud();
 

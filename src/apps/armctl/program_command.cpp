@@ -57,6 +57,8 @@ struct ProgramArgs {
   std::string group;
   std::string path_error;
   std::string trace;  // run --trace FILE
+  bool avoid = false;      // check/run --avoid
+  std::string avoid_time;  // --avoid-time
 };
 
 [[noreturn]] void usage(const std::string& message) { throw ArmctlError(ErrorKind::invalid_argument, message); }
@@ -66,10 +68,11 @@ using Loaded = program::LoadedProgram;
 
 Loaded load(const ProgramArgs& a) { return must(program::load_program(a.file, a.points)); }
 
-program::ProgramPlan plan(const Loaded& l, arm::Arm& arm, bool blend) {
+program::ProgramPlan plan(const ProgramArgs& a, const Loaded& l, arm::Arm& arm, bool blend) {
   const auto here = must(arm.read());
   program::PlanOptions o;
   o.blend = blend;
+  if (a.avoid) o.avoid.emplace().time_budget = avoid_time_option(a.avoid_time, 1.0);
   return must(program::plan_program(*arm.kinematics(), here.positions, l.flow, l.program.source, o));
 }
 
@@ -101,7 +104,7 @@ void print_check(const ProgramArgs& a, const Loaded& l, const program::ProgramPl
 void run_check(const ProgramArgs& a) {
   const Loaded l = load(a);
   auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
-  const auto p = plan(l, *s->arm, true);
+  const auto p = plan(a, l, *s->arm, true);
   print_check(a, l, p, *s->arm);
 }
 
@@ -114,7 +117,7 @@ void run_run(const ProgramArgs& a) {
   if (!a.trace.empty()) trace.emplace(a.trace);
   auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   arm::Arm& arm = *s->arm;
-  const auto p = plan(l, arm, !a.step);  // refuses before anything moves
+  const auto p = plan(a, l, arm, !a.step);  // refuses before anything moves
   // The estimate at the override the run uses (it said 81.8 s for a run of 164.4 s at 50 %).
   const double estimate = program::estimated_duration(p, speed_override);
   if (a.json) {
@@ -212,7 +215,7 @@ void run_compile(const ProgramArgs& a) {
     usage(fmt::format("arm '{}' on device '{}' is driven over the joint bus: action groups need a Robot Commands "
                       "board (an xArm, or armctl's arm controller)",
                       s->arm->model().name, a.device.empty() ? "sim" : a.device));
-  const auto p = plan(l, *s->arm, true);
+  const auto p = plan(a, l, *s->arm, true);
   const auto g = must(program::compile_to_group(*s->arm, p, co));
   if (auto ok = groups->download(group, g.actions); !ok) throw ArmctlError(ok.error());
   for (const auto& n : g.notes) fmt::print(stderr, "note: {}\n", n);
@@ -243,11 +246,18 @@ void add_program_command(CLI::App& app) {
     sub->add_option("--points", a->points, "Points file (default: FILE with .points, if it exists)");
     sub->add_flag("--json", a->json, "Machine-readable output (one JSON object per line)");
   };
+  auto add_avoid = [a](CLI::App* sub) {
+    sub->add_flag("--avoid", a->avoid,
+                  "A PTP whose direct move would collide goes around the obstacles (a collision-free joint path, OMPL)");
+    sub->add_option("--avoid-time", a->avoid_time, "With --avoid: how long each search may take, 10ms..60s (default 1s)");
+  };
   auto* check = cmd->add_subcommand("check", "Check every move before anything moves; estimate the run time");
   common(check);
+  add_avoid(check);
   check->callback([a] { run_check(*a); });
   auto* run = cmd->add_subcommand("run", "Check, then run the program");
   common(run);
+  add_avoid(run);
   run->add_option("--override", a->speed_override, "Percent of the programmed speeds, 0.1..100% (default 100%)");
   run->add_flag("--step", a->step, "Wait for Enter before each move (moves are not blended)");
   run->add_flag("--dry-run", a->dry_run, "Run on the embedded simulated arm and print what would happen");
