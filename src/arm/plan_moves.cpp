@@ -100,15 +100,9 @@ class Planner {
       }
       if (check.clearance.distance < least.distance) least = check.clearance;
       if (!check.started_touching.empty()) {
-        // Each pair of bodies once (a link of several shapes touches with more than one).
+        // Each pair of bodies once already (check_motion names them by body, not by shape).
         std::string pairs;
-        std::vector<std::string> named;
-        for (const auto& [a, b] : check.started_touching) {
-          std::string pair = a + " with " + b;
-          if (std::find(named.begin(), named.end(), pair) != named.end()) continue;
-          pairs += (pairs.empty() ? "" : ", ") + pair;
-          named.push_back(std::move(pair));
-        }
+        for (const auto& [a, b] : check.started_touching) pairs += (pairs.empty() ? "" : ", ") + a + " with " + b;
         p.note += (p.note.empty() ? "" : "; ") +
                   fmt::format("{}: starts where {} already touch (not checked along it, so that the arm can move out)", p.label, pairs);
       }
