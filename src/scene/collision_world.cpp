@@ -248,6 +248,35 @@ double CollisionWorld::displacement_bound(std::span<const double> from, std::spa
   return worst;
 }
 
+double CollisionWorld::step_displacement_bound(std::span<const double> from, std::span<const double> to, double pad) const {
+  const motion::LinkBodies& links = *arm_.links;
+  thread_local std::vector<Eigen::Isometry3d> poses;
+  links.poses(from, poses);
+  const std::size_t n = std::min({from.size(), to.size(), arm_.joint_reach.size()});
+  double worst = 0;
+  for (const Item& item : items_) {
+    if (item.body < 0) continue;
+    const Eigen::Vector3d centre = poses[std::size_t(item.body)] * item.shape.pose.translation();
+    const double own = motion::bounding_radius(item.shape);
+    double d = 0;
+    for (int b = item.body; b >= 0; b = links.bodies[std::size_t(b)].parent) {
+      const motion::LinkBody& body = links.bodies[std::size_t(b)];
+      if (body.joint < 0 || std::size_t(body.joint) >= n) continue;
+      const double dq = std::abs(to[std::size_t(body.joint)] - from[std::size_t(body.joint)]);
+      if (body.prismatic) {
+        d += dq;
+        continue;
+      }
+      // The joint's axis passes through its link's origin (URDF: the joint frame is the child's).
+      const Eigen::Vector3d axis = poses[std::size_t(b)].linear() * body.axis;
+      const double r = axis.cross(centre - poses[std::size_t(b)].translation()).norm() + own + pad;
+      d += dq * r;
+    }
+    worst = std::max(worst, d);
+  }
+  return std::min(worst, displacement_bound(from, to));
+}
+
 MotionCheck check_motion(const CollisionWorld& world, double duration,
                          const std::function<void(double, std::vector<double>&)>& sample, double resolution) {
   MotionCheck out;
@@ -287,7 +316,8 @@ MotionCheck check_motion(const CollisionWorld& world, double duration,
     const double t1 = std::min(duration, t + h);
     sample(0.5 * (t + t1), mid);
     sample(t1, q1);
-    const double moved = world.displacement_bound(q0, mid) + world.displacement_bound(mid, q1);
+    const double moved = world.step_displacement_bound(q0, mid, 2 * resolution) +
+                         world.step_displacement_bound(mid, q1, 2 * resolution);
     if (moved > resolution && h > 1e-6) {
       h *= 0.5;
       continue;

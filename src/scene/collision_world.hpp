@@ -77,6 +77,12 @@ class CollisionWorld {
   // An upper bound on how far any point of any checked body moves when the joints go from
   // `from` to `to` along a straight line in joint space (m).
   double displacement_bound(std::span<const double> from, std::span<const double> to) const;
+  // The same for a short step, from the arm's geometry at `from` (how far each shape is from
+  // each joint's axis there) instead of the farthest it can ever be: far tighter when the arm
+  // is folded. Valid for steps whose result is at most `pad` / 2: along the step no point
+  // comes nearer to or farther from an axis than that (check_motion's steps, pad twice the
+  // resolution). Never more than displacement_bound.
+  double step_displacement_bound(std::span<const double> from, std::span<const double> to, double pad) const;
 
   struct Item;  // one shape (collision_world.cpp)
   ~CollisionWorld();
