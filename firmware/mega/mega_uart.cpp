@@ -46,10 +46,11 @@ void uart_begin(Port port, uint32_t baud) {
 
 bool uart_receive(Port port, uint8_t* byte) { return channels[uint8_t(port)].rx.pop(byte); }
 
-bool uart_send(Port port, uint8_t byte) {
-  Channel& c = channels[uint8_t(port)];
-  if (!c.tx.push(byte)) return false;
-  // TXC is cleared by writing 1: it is set again only when this byte has left.
+namespace {
+
+// Bytes are queued: clear TXC (by writing 1: it is set again only when the last byte has
+// left) and let the data-register-empty interrupt send them.
+void start_sending(Port port) {
   if (port == Port::upstream) {
     UCSR0A = static_cast<uint8_t>(UCSR0A | _BV(TXC0));
     UCSR0B = static_cast<uint8_t>(UCSR0B | _BV(UDRIE0));
@@ -57,6 +58,14 @@ bool uart_send(Port port, uint8_t byte) {
     UCSR1A = static_cast<uint8_t>(UCSR1A | _BV(TXC1));
     UCSR1B = static_cast<uint8_t>(UCSR1B | _BV(UDRIE1));
   }
+}
+
+}  // namespace
+
+bool uart_send(Port port, uint8_t byte) {
+  Channel& c = channels[uint8_t(port)];
+  if (!c.tx.push(byte)) return false;
+  start_sending(port);
   return true;
 }
 
@@ -65,15 +74,8 @@ uint8_t uart_send_bytes(Port port, const uint8_t* bytes, uint8_t count) {
   uint8_t queued = 0;
   while (queued < count && c.tx.push(bytes[queued])) ++queued;
   if (queued == 0) return 0;
-  // As uart_send, once for the whole run (a 30-byte reply byte by byte took the Mega's loop
-  // 3,000 cycles).
-  if (port == Port::upstream) {
-    UCSR0A = static_cast<uint8_t>(UCSR0A | _BV(TXC0));
-    UCSR0B = static_cast<uint8_t>(UCSR0B | _BV(UDRIE0));
-  } else {
-    UCSR1A = static_cast<uint8_t>(UCSR1A | _BV(TXC1));
-    UCSR1B = static_cast<uint8_t>(UCSR1B | _BV(UDRIE1));
-  }
+  // Once for the whole run (a 30-byte reply byte by byte took the Mega's loop 3,000 cycles).
+  start_sending(port);
   return queued;
 }
 

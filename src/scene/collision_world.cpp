@@ -154,38 +154,41 @@ bool skipped(std::span<const int> skip, std::size_t pair) {
 }
 }  // namespace
 
-bool CollisionWorld::collides(std::span<const double> joints, std::span<const int> skip) const {
+// Calls visit(pair index, result) for every checked pair not in `skip` whose shapes touch at
+// `joints`, until it returns false. The bounding boxes first: FCL only for those that overlap.
+template <typename Visit>
+void CollisionWorld::each_touching(std::span<const double> joints, std::span<const int> skip, bool with_contact,
+                                   Visit&& visit) const {
   // Per thread: a check runs millions of times and allocates nothing.
   thread_local Frames f;
   place(joints, f);
-  fcl::CollisionRequestd request;
+  const fcl::CollisionRequestd request(1, with_contact);
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
-    const auto [i, j] = pairs_[k];
-    if (skipped(skip, k)) continue;
-    if (!overlap(f.low[std::size_t(i)], f.high[std::size_t(i)], f.low[std::size_t(j)], f.high[std::size_t(j)], 0)) continue;
+    const auto i = std::size_t(pairs_[k].first), j = std::size_t(pairs_[k].second);
+    if (skipped(skip, k) || !overlap(f.low[i], f.high[i], f.low[j], f.high[j], 0)) continue;
     fcl::CollisionResultd result;
-    if (fcl::collide(items_[std::size_t(i)].geometry.get(), f.items[std::size_t(i)], items_[std::size_t(j)].geometry.get(),
-                     f.items[std::size_t(j)], request, result) > 0) {
-      return true;
+    if (fcl::collide(items_[i].geometry.get(), f.items[i], items_[j].geometry.get(), f.items[j], request, result) == 0) {
+      continue;
     }
+    if (!visit(k, result)) return;
   }
-  return false;
+}
+
+bool CollisionWorld::collides(std::span<const double> joints, std::span<const int> skip) const {
+  bool any = false;
+  each_touching(joints, skip, false, [&](std::size_t, const fcl::CollisionResultd&) {
+    any = true;
+    return false;  // the first is enough
+  });
+  return any;
 }
 
 std::vector<int> CollisionWorld::touching(std::span<const double> joints) const {
   std::vector<int> out;
-  thread_local Frames f;
-  place(joints, f);
-  fcl::CollisionRequestd request;
-  for (std::size_t k = 0; k < pairs_.size(); ++k) {
-    const auto [i, j] = pairs_[k];
-    if (!overlap(f.low[std::size_t(i)], f.high[std::size_t(i)], f.low[std::size_t(j)], f.high[std::size_t(j)], 0)) continue;
-    fcl::CollisionResultd result;
-    if (fcl::collide(items_[std::size_t(i)].geometry.get(), f.items[std::size_t(i)], items_[std::size_t(j)].geometry.get(),
-                     f.items[std::size_t(j)], request, result) > 0) {
-      out.push_back(int(k));
-    }
-  }
+  each_touching(joints, {}, false, [&](std::size_t k, const fcl::CollisionResultd&) {
+    out.push_back(int(k));
+    return true;
+  });
   return out;
 }
 
@@ -195,24 +198,15 @@ std::pair<std::string, std::string> CollisionWorld::pair_names(int pair) const {
 }
 
 std::optional<Contact> CollisionWorld::contact(std::span<const double> joints, std::span<const int> skip) const {
-  thread_local Frames f;
-  place(joints, f);
-  fcl::CollisionRequestd request(1, true);
   std::optional<Contact> deepest;
-  for (std::size_t k = 0; k < pairs_.size(); ++k) {
-    const auto [i, j] = pairs_[k];
-    if (skipped(skip, k)) continue;
-    if (!overlap(f.low[std::size_t(i)], f.high[std::size_t(i)], f.low[std::size_t(j)], f.high[std::size_t(j)], 0)) continue;
-    fcl::CollisionResultd result;
-    if (fcl::collide(items_[std::size_t(i)].geometry.get(), f.items[std::size_t(i)], items_[std::size_t(j)].geometry.get(),
-                     f.items[std::size_t(j)], request, result) == 0) {
-      continue;
-    }
+  each_touching(joints, skip, true, [&](std::size_t k, const fcl::CollisionResultd& result) {
     const fcl::Contactd& c = result.getContact(0);
     if (!deepest || c.penetration_depth > deepest->depth) {
+      const auto [i, j] = pairs_[k];
       deepest = Contact{items_[std::size_t(i)].label, items_[std::size_t(j)].label, c.penetration_depth, c.pos};
     }
-  }
+    return true;
+  });
   return deepest;
 }
 

@@ -93,6 +93,8 @@ class CollisionWorld {
   CollisionWorld() = default;
   struct Frames;
   void place(std::span<const double> joints, Frames& f) const;
+  template <typename Visit>
+  void each_touching(std::span<const double> joints, std::span<const int> skip, bool with_contact, Visit&& visit) const;
   ArmBodies arm_;
   Scene scene_;
   std::vector<Item> items_;
