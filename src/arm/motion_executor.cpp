@@ -51,8 +51,9 @@ class RateRamp {
   bool active_ = false;
 };
 
-// Device units per joint, and device units/s for velocities (the maps are affine, so the
-// difference of two points is the linear part).
+}  // namespace
+
+// The maps are affine, so the difference of two points is the linear part.
 void to_device(const ArmModel& model, Protocol p, const std::vector<double>& q, const std::vector<double>& v,
                std::vector<double>& dq, std::vector<double>& dv) {
   dq = model.to_device(p, q);
@@ -62,12 +63,34 @@ void to_device(const ArmModel& model, Protocol p, const std::vector<double>& q, 
   for (std::size_t i = 0; i < dv.size(); ++i) dv[i] -= dq[i];
 }
 
-double threshold(const ArmModel& model, std::size_t joint, const ExecutorOptions& o) {
+double following_threshold(const ArmModel& model, std::size_t joint, const ExecutorOptions& o) {
   if (joint < o.following_error.size() && o.following_error[joint] > 0) return o.following_error[joint];
   return model.joints[joint].dimension == Dimension::length ? o.following_error_length : o.following_error_angle;
 }
 
-}  // namespace
+Status check_following(const ArmModel& model, const std::vector<double>& measured, const std::vector<double>& planned,
+                       const ExecutorOptions& options, std::string_view what, double t, double& largest,
+                       int& largest_joint) {
+  for (std::size_t i = 0; i < planned.size() && i < measured.size(); ++i) {
+    // A gripper that closes on a part stops short of its plan by design (and a bus servo
+    // gripper starts late when the host is slow): only the arm's joints follow the plan.
+    if (model.gripper && model.gripper->joint == int(i)) continue;
+    const double err = std::abs(measured[i] - planned[i]);
+    if (err > largest) {
+      largest = err;
+      largest_joint = int(i);
+    }
+    if (const double limit = following_threshold(model, i, options); err > limit)
+      return Error{ErrorKind::device,
+                   fmt::format("{}: following error on joint {}: it is at {} but should be at {} ({} behind the "
+                               "plan, the limit is {}); the arm was halted",
+                               what, model.joints[i].name, format_joint_value(model, int(i), measured[i]),
+                               format_joint_value(model, int(i), planned[i]), format_joint_value(model, int(i), err),
+                               format_joint_value(model, int(i), limit)),
+                   FollowingError{int(i), model.joints[i].name, measured[i], planned[i], limit, t}};
+  }
+  return Ok{};
+}
 
 double rate_ramp_seconds(const std::vector<double>& nominal_velocity, const std::vector<double>& accel_budget,
                          double rate_change) {
@@ -201,7 +224,7 @@ class Execution {
     if (!now) return now.error();
     motion_.sample(0, pos_, vel_, acc_);
     for (std::size_t i = 0; i < pos_.size(); ++i)
-      if (std::abs(now->positions[i] - pos_[i]) > threshold(model_, i, options_))
+      if (std::abs(now->positions[i] - pos_[i]) > following_threshold(model_, i, options_))
         return Error{ErrorKind::invalid_argument,
                      fmt::format("{}: joint {} is at {}, but the motion starts at {}: plan it from where the arm "
                                  "stands", motion_.what, model_.joints[i].name,
@@ -247,26 +270,8 @@ class Execution {
         std::min({motion_.duration, last_due_, t_now + rate * 0.5 * seconds(clock_.now() - before)});
     motion_.sample(t_read, pos_, vel_, acc_);
     report_.reads_log.push_back({clock_.now() - start, pos_, s->positions});
-    for (std::size_t i = 0; i < pos_.size(); ++i) {
-      // A gripper that closes on a part stops short of its plan by design (and a bus servo
-      // gripper starts late when the host is slow): only the arm's joints follow the plan.
-      if (model_.gripper && model_.gripper->joint == int(i)) continue;
-      const double err = std::abs(s->positions[i] - pos_[i]);
-      if (err > report_.largest_following_error) {
-        report_.largest_following_error = err;
-        report_.largest_following_joint = int(i);
-      }
-      if (const double limit = threshold(model_, i, options_); err > limit)
-        return Error{ErrorKind::device,
-                     fmt::format("{}: following error on joint {}: it is at {} but should be at {} ({} behind the "
-                                 "plan, the limit is {}); the arm was halted",
-                                 motion_.what, model_.joints[i].name,
-                                 format_joint_value(model_, int(i), s->positions[i]),
-                                 format_joint_value(model_, int(i), pos_[i]), format_joint_value(model_, int(i), err),
-                                 format_joint_value(model_, int(i), limit)),
-                     FollowingError{int(i), model_.joints[i].name, s->positions[i], pos_[i], limit, t_read}};
-    }
-    return Ok{};
+    return check_following(model_, s->positions, pos_, options_, motion_.what, t_read,
+                           report_.largest_following_error, report_.largest_following_joint);
   }
 
   Error halted(const Error& e) {

@@ -17,6 +17,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "arm/arm.hpp"
@@ -105,6 +106,21 @@ inline const FollowingError* following_error_of(const Error& error) { return err
 // device "following error" naming the joint, where it is and where it should be (detail
 // FollowingError).
 Result<MotionReport> execute_motion(Arm& arm, const PlannedMotion& motion, const ExecutorOptions& options = {});
+
+// What the executor and the servo loop (arm/run_servo.hpp) share.
+// Device units per joint of a stream point (SI positions `q`), and device units/s for its
+// velocities `v`.
+void to_device(const ArmModel& model, Protocol p, const std::vector<double>& q, const std::vector<double>& v,
+               std::vector<double>& dq, std::vector<double>& dv);
+// The following-error threshold of `joint` under `options` (SI).
+double following_threshold(const ArmModel& model, std::size_t joint, const ExecutorOptions& options);
+// A read-back `measured` against where the arm should be (`planned`, SI, every joint): the
+// error execute_motion returns (kind device, detail FollowingError; `what` starts it, `t` is
+// the nominal time) for the first joint beyond its threshold, else Ok. Updates the largest
+// error seen and its joint. The gripper is not held to the plan (it stops on a part).
+Status check_following(const ArmModel& model, const std::vector<double>& measured, const std::vector<double>& planned,
+                       const ExecutorOptions& options, std::string_view what, double t, double& largest,
+                       int& largest_joint);
 
 // The smallest stop (or pause) ramp length, s of device time, that keeps every joint's extra
 // acceleration |dq/dt_nominal| * |dr/dt| within `budget` of its limit, from rate `rate`.

@@ -100,27 +100,80 @@ bool ServoGenerator::at_rest() const {
   return true;
 }
 
+JointArray ServoGenerator::resting_place() const {
+  JointArray rest = position_;
+  for (int i = 0; i < count_; ++i)
+    rest[i] += stopping_displacement(velocity_[i], acceleration_[i], joints_[i].limits);
+  return rest;
+}
+
 double ServoGenerator::velocity_cap(int joint, double direction) const {
   const ServoJoint& j = joints_[joint];
   const double distance = direction > 0 ? j.upper - position_[joint] : position_[joint] - j.lower;
   return stopping_speed(distance, half(j.limits));
 }
 
-void ServoGenerator::step(std::span<const ServoGoal> goals, double dt) {
+namespace {
+
+bool is_position_goal(std::span<const ServoGoal> goals, int i) {
+  return i < int(goals.size()) && goals[i].kind == ServoGoal::Kind::position && std::isfinite(goals[i].value);
+}
+
+double asked_velocity(std::span<const ServoGoal> goals, int i) {
+  return i < int(goals.size()) && std::isfinite(goals[i].value) ? goals[i].value : 0.0;
+}
+
+}  // namespace
+
+void ServoGenerator::step(std::span<const ServoGoal> goals, double dt, bool together) {
   if (!(dt > 0) || !std::isfinite(dt)) return;
+  JerkLimits limits[kMaxTrajectoryJoints];
+  for (int i = 0; i < count_; ++i) limits[i] = joints_[i].limits;
+  if (together) synchronize(goals, limits);
   bool any_position = false;
   for (int i = 0; i < count_; ++i) {
-    const bool position_goal = i < int(goals.size()) && goals[i].kind == ServoGoal::Kind::position &&
-                               std::isfinite(goals[i].value);
-    any_position = any_position || position_goal;
-    if (position_goal) continue;
-    const double goal = i < int(goals.size()) && std::isfinite(goals[i].value) ? goals[i].value : 0.0;
-    step_velocity(i, goal, dt);
+    if (is_position_goal(goals, i)) {
+      any_position = true;
+      continue;
+    }
+    step_velocity(i, asked_velocity(goals, i), dt, limits[i]);
   }
   if (any_position) step_positions(goals, dt);
 }
 
-void ServoGenerator::step_velocity(int i, double goal, double dt) {
+void ServoGenerator::synchronize(std::span<const ServoGoal> goals, JerkLimits* limits) const {
+  // The slowest change sets the pace: a joint whose change is r times as large gets r times
+  // its acceleration and jerk, so that its profile is the slowest one's scaled by r.
+  int slowest = -1;
+  double longest = 0;
+  double change[kMaxTrajectoryJoints]{};
+  for (int i = 0; i < count_; ++i) {
+    if (is_position_goal(goals, i)) continue;
+    const double asked = asked_velocity(goals, i);
+    const double cap = velocity_cap(i, asked >= 0 ? 1 : -1);
+    const double goal = std::clamp(asked, -cap, cap);
+    change[i] = goal - velocity_[i];
+    const double t = change_to(velocity_[i], acceleration_[i], goal, joints_[i].limits).duration;
+    if (t > longest) {
+      longest = t;
+      slowest = i;
+    }
+  }
+  if (slowest < 0 || change[slowest] == 0) return;
+  const JerkLimits& pace = joints_[slowest].limits;
+  for (int i = 0; i < count_; ++i) {
+    if (i == slowest || is_position_goal(goals, i)) continue;
+    const double r = std::abs(change[i] / change[slowest]);
+    const JerkLimits& own = joints_[i].limits;
+    // Never beyond the joint's own limits, never below what its acceleration now needs.
+    const double a_now = std::abs(acceleration_[i]);
+    limits[i].acceleration = std::clamp(pace.acceleration * r, std::max(a_now, kMinTrajectoryLimit),
+                                        std::max(own.acceleration, a_now));
+    limits[i].jerk = std::clamp(pace.jerk * r, kMinTrajectoryLimit, own.jerk);
+  }
+}
+
+void ServoGenerator::step_velocity(int i, double goal, double dt, const JerkLimits& limits) {
   const ServoJoint& j = joints_[i];
   const double cap = velocity_cap(i, goal >= 0 ? 1 : -1);
   limited_[i] = std::abs(goal) > cap;
@@ -128,7 +181,7 @@ void ServoGenerator::step_velocity(int i, double goal, double dt) {
   // Never further out than the range, or than where the joint stands if it is outside.
   const double lo = std::min(j.lower, position_[i]), hi = std::max(j.upper, position_[i]);
   double p = position_[i], v = velocity_[i], a = acceleration_[i];
-  follow_change(p, v, a, goal, j.limits, dt);
+  follow_change(p, v, a, goal, limits, dt);
   const double rest = p + stopping_displacement(v, a, j.limits);
   if (rest > hi || rest < lo) {
     // This step would leave the joint unable to stop inside: brake now instead (from a state
@@ -167,7 +220,7 @@ void ServoGenerator::step_positions(std::span<const ServoGoal> goals, double dt)
   in.joints = m;
   if (!calculate_trajectory(in, trajectory_)) {
     // A start the generator cannot plan from (the velocity limit cannot be kept): brake.
-    for (int k = 0; k < m; ++k) step_velocity(index[k], 0, dt);
+    for (int k = 0; k < m; ++k) step_velocity(index[k], 0, dt, joints_[index[k]].limits);
     return;
   }
   const TrajectoryState s = trajectory_.at(dt);

@@ -50,8 +50,25 @@ class ServoGenerator {
   Status reset(std::span<const ServoJoint> joints, std::span<const double> positions);
 
   // Advances every joint `dt` s (> 0) toward its goal (one per joint). A goal that is not
-  // finite counts as velocity 0.
-  void step(std::span<const ServoGoal> goals, double dt);
+  // finite counts as velocity 0. `together`: the velocity goals' changes are synchronized
+  // (each joint's acceleration and jerk scaled to the slowest joint's profile), so that
+  // joints whose velocities stand in a ratio keep it while they change: a tool moving on a
+  // line starts and stops on it.
+  void step(std::span<const ServoGoal> goals, double dt, bool together = false);
+
+  // The joints' state, to go back to when a step turned out unwanted (the servo loop brakes
+  // instead when the step's resting place would touch something).
+  struct State {
+    JointArray position{}, velocity{}, acceleration{};
+  };
+  State state() const { return {position_, velocity_, acceleration_}; }
+  void restore(const State& s) {
+    position_ = s.position;
+    velocity_ = s.velocity;
+    acceleration_ = s.acceleration;
+  }
+  // Where each joint comes to rest if it brakes as hard as its limits allow from now.
+  JointArray resting_place() const;
 
   int joints() const { return count_; }
   const JointArray& position() const { return position_; }
@@ -66,7 +83,9 @@ class ServoGenerator {
   double velocity_cap(int joint, double direction) const;
 
  private:
-  void step_velocity(int joint, double goal, double dt);
+  void step_velocity(int joint, double goal, double dt, const JerkLimits& limits);
+  // Per velocity-goal joint, the limits that make its change as long as the slowest one's.
+  void synchronize(std::span<const ServoGoal> goals, JerkLimits* limits) const;
   void step_positions(std::span<const ServoGoal> goals, double dt);
 
   int count_ = 0;

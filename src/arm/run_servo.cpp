@@ -1,0 +1,354 @@
+#include "arm/run_servo.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "arm/servo_twist.hpp"
+#include "core/quantity.hpp"
+#include "motion/servo_generator.hpp"
+#include "scene/collision_world.hpp"
+
+namespace armctl::arm {
+
+const char* to_string(ServoSlowdown why) {
+  switch (why) {
+    case ServoSlowdown::none: return "none";
+    case ServoSlowdown::joint_limit: return "joint limit";
+    case ServoSlowdown::singularity: return "singularity";
+    case ServoSlowdown::collision: return "collision";
+    case ServoSlowdown::unreachable: return "unreachable";
+    case ServoSlowdown::command_timeout: return "command timeout";
+  }
+  return "?";
+}
+
+namespace {
+
+double seconds(Duration d) { return std::chrono::duration<double>(d).count(); }
+
+// How far ahead a command's direction is looked at to tell whether it moves toward a
+// singularity or an obstacle, and how near they are there (s of motion at the commanded
+// velocity: about the time the joints take to stop).
+constexpr double kLookAhead = 0.2;
+// Nearer than this within the look-ahead counts as moving toward something (m).
+constexpr double kCloser = 1e-4;
+
+Status check_options(const ServoOptions& o) {
+  if (auto ok = check_fraction_in(o.speed, "servo speed", motion::kMinSpeedFraction, motion::kMaxSpeedFraction); !ok)
+    return ok;
+  if (o.command_timeout <= Duration{0})
+    return Error{ErrorKind::invalid_argument, "servo command timeout: a time above 0 is needed"};
+  if (o.period && *o.period <= Duration{0})
+    return Error{ErrorKind::invalid_argument, "servo period: a time above 0 is needed"};
+  if (!(o.max_linear_speed > 0) || !(o.max_angular_speed > 0) || !std::isfinite(o.max_linear_speed) ||
+      !std::isfinite(o.max_angular_speed))
+    return Error{ErrorKind::invalid_argument, "servo speed caps: finite linear (m/s) and angular (rad/s) speeds above 0"};
+  if (!(o.singularity_slow >= 1 && o.singularity_stop > o.singularity_slow))
+    return Error{ErrorKind::invalid_argument, "servo singularity thresholds: 1 <= slow < stop"};
+  if (!(o.collision_stop >= 0 && o.collision_slow > o.collision_stop && o.collision_slow <= scene::kClearanceHorizon))
+    return Error{ErrorKind::invalid_argument,
+                 fmt::format("servo collision distances: 0 <= stop < slow <= {} m", scene::kClearanceHorizon)};
+  return Ok{};
+}
+
+Eigen::Vector3d clipped(const Eigen::Vector3d& v, double most) {
+  const double n = v.norm();
+  return n > most ? Eigen::Vector3d(v * (most / n)) : v;
+}
+
+class ServoLoop {
+ public:
+  ServoLoop(Arm& arm, ServoInput& input, const ServoOptions& options)
+      : arm_(arm), input_(input), options_(options), kinematics_(arm.kinematics()), model_(kinematics_->model()),
+        device_(arm.device()), clock_(arm.clock()), n_(std::size_t(model_.joint_count())), goals_(n_),
+        positions_(n_), velocities_(n_), sent_(n_) {}
+
+  Result<ServoReport> run() {
+    if (auto ok = check_options(options_); !ok) return ok.error();
+    if (n_ > std::size_t(motion::kMaxTrajectoryJoints))
+      return Error{ErrorKind::invalid_config,
+                   fmt::format("arm '{}' has {} joints; the servo mode drives at most {}", model_.name, n_,
+                               motion::kMaxTrajectoryJoints)};
+    auto start_state = arm_.read();
+    if (!start_state) return start_state.error();
+    std::vector<motion::ServoJoint> joints(n_);
+    for (std::size_t i = 0; i < n_; ++i) {
+      const JointLimits& l = model_.joints[i].limits;
+      joints[i] = {l.lower, l.upper, motion::JerkLimits{l.velocity * options_.speed, l.acceleration, l.jerk}};
+    }
+    if (auto ok = generator_.reset(joints, start_state->positions); !ok) return ok.error();
+    sent_ = start_state->positions;
+    world_ = kinematics_->collisions();
+    // Pairs already touching at the start may move apart: they are not held against it.
+    if (world_) skip_ = world_->touching(start_state->positions);
+    if (model_.gripper) gripper_ = start_state->positions[std::size_t(model_.gripper->joint)];
+
+    report_.period = options_.period.value_or(device_.stream_period(false));
+    if (report_.period <= Duration{0}) report_.period = std::chrono::milliseconds(1);
+    const Duration read_time = device_.stream_period(true) - device_.stream_period(false);
+    const Duration read_every =
+        options_.executor.read_interval.value_or(std::max(device_.poll_interval(), 4 * report_.period));
+    const TimePoint start = clock_.now();
+    TimePoint next_read = start + read_every;
+
+    for (;;) {
+      const TimePoint now = clock_.now();
+      if (options_.before_cycle) options_.before_cycle(now);
+      const ServoInput::Newest newest = input_.take(seen_);
+      if (newest.sequence != seen_ && newest.command) receive(*newest.command, now);
+      seen_ = newest.sequence;
+      const bool commanded = command_ && !newest.finish && now - received_ <= options_.command_timeout;
+
+      ServoStatus status;
+      goals_for(commanded, status);
+      if (command_ && !commanded && !newest.finish) status.slowdown = ServoSlowdown::command_timeout;
+      // The point goes out now and is reached `in` from now (a cycle with a read-back lasts
+      // longer): the generator steps by as much.
+      const bool read_now = now >= next_read;
+      const Duration in = report_.period + (read_now ? read_time : Duration{0});
+      step(seconds(in), status);
+
+      for (std::size_t i = 0; i < n_; ++i) {
+        positions_[i] = generator_.position()[i];
+        velocities_[i] = generator_.velocity()[i];
+      }
+      std::vector<double> dq, dv;
+      to_device(model_, device_.protocol(), positions_, velocities_, dq, dv);
+      if (auto s = device_.stream(dq, dv, in); !s) return halted(s.error());
+      ++report_.cycles;
+      if (status.slowdown != ServoSlowdown::none) ++report_.slowed[std::size_t(status.slowdown)];
+      if (read_now) {
+        if (auto f = read_back(); !f) return halted(f.error());
+        next_read = clock_.now() + read_every;
+      }
+      sent_ = positions_;
+      status.elapsed = clock_.now() - start;
+      status.positions = positions_;
+      status.velocities = velocities_;
+      status.commanded = commanded;
+      status.at_rest = generator_.at_rest();
+      status.commands = report_.commands;
+      if (options_.on_cycle) options_.on_cycle(status);
+      if (newest.finish && status.at_rest) break;
+      const TimePoint due_next = now + in;
+      if (due_next > clock_.now())
+        if (auto s = device_.idle(due_next - clock_.now()); !s) return halted(s.error());
+    }
+    arm_.expect_at(positions_);
+    report_.positions = positions_;
+    report_.elapsed = clock_.now() - start;
+    return report_;
+  }
+
+ private:
+  void receive(const ServoCommand& command, TimePoint now) {
+    command_ = command;
+    received_ = now;
+    ++report_.commands;
+    if (command.gripper && model_.gripper) gripper_ = model_.gripper->at(*command.gripper);
+    targets_.clear();
+    unreachable_.clear();
+    if (const auto* p = std::get_if<PoseTarget>(&command_->motion)) {
+      // Solved when the goal changes, near where the arm is now: every cycle then steers to
+      // it (a goal renewed as it is keeps its solution instead of wandering among others).
+      if (!same_goal(pose_goal_, p->goal)) solve(p->goal);
+      targets_ = pose_targets_;
+      if (targets_.empty()) unreachable_ = pose_error_;
+    } else if (const auto* t = std::get_if<JointTargets>(&command_->motion)) {
+      targets_.resize(n_);
+      for (std::size_t i = 0; i < n_; ++i) targets_[i] = t->values[i].value_or(NAN);
+    }
+  }
+
+  static bool same_goal(const std::optional<CartesianGoal>& a, const CartesianGoal& b) {
+    return a && a->position == b.position && a->roll == b.roll && a->pitch == b.pitch && a->yaw == b.yaw &&
+           a->elbow == b.elbow && a->nearest_orientation == b.nearest_orientation;
+  }
+
+  // A goal without an orientation keeps the tool's (a hand moving a leader, a point picked
+  // on a screen mean "there, as it is"), or takes any that reaches when that one does not.
+  void solve(const CartesianGoal& goal) {
+    pose_goal_ = goal;
+    pose_targets_.clear();
+    CartesianGoal kept = goal;
+    if (!goal.roll && !goal.pitch && !goal.yaw) {
+      const motion::Rpy now = kinematics_->tool_rpy_at(sent_);
+      kept = kinematics_->keeping_orientation(goal.position, now);
+      kept.elbow = goal.elbow;
+    }
+    auto solved = kinematics_->nearest_joints(kept, sent_);
+    if (!solved) solved = kinematics_->nearest_joints(goal, sent_);
+    if (solved) pose_targets_.assign(solved->begin(), solved->end());
+    else pose_error_ = solved.error().message;
+  }
+
+  // One goal per joint for this cycle, and why it is slower than asked.
+  void goals_for(bool commanded, ServoStatus& status) {
+    using Kind = motion::ServoGoal::Kind;
+    for (auto& g : goals_) g = {Kind::velocity, 0};
+    // A twist's joints change their velocities together (the tool stays on its line); so do
+    // they when they stop (the command ended, timed out): the ratio they had is kept.
+    together_ = !commanded || std::holds_alternative<ToolTwist>(command_->motion);
+    if (commanded) {
+      if (const auto* t = std::get_if<ToolTwist>(&command_->motion)) {
+        twist_goals(*t, status);
+      } else if (const auto* v = std::get_if<JointVelocities>(&command_->motion)) {
+        for (std::size_t i = 0; i < n_; ++i) goals_[i] = {Kind::velocity, v->values[i]};
+        scale_near_obstacles(status);
+      } else if (!unreachable_.empty()) {
+        status.slowdown = ServoSlowdown::unreachable;
+        status.detail = unreachable_;
+      } else {
+        for (std::size_t i = 0; i < n_ && i < targets_.size(); ++i)
+          if (std::isfinite(targets_[i])) goals_[i] = {Kind::position, targets_[i]};
+      }
+    }
+    // The gripper goes to its last target whether commands come or not: it is a place,
+    // not a motion that must be renewed.
+    if (model_.gripper && std::isfinite(gripper_)) goals_[std::size_t(model_.gripper->joint)] = {Kind::position, gripper_};
+  }
+
+  void twist_goals(const ToolTwist& twist, ServoStatus& status) {
+    const motion::JointVector chain = kinematics_->chain_of(sent_);
+    Eigen::Vector3d linear = clipped(twist.linear, options_.max_linear_speed);
+    Eigen::Vector3d angular = clipped(twist.angular, options_.max_angular_speed);
+    if (twist.frame == ServoFrame::tool) {
+      const Eigen::Matrix3d r = kinematics_->forward(chain).orientation.toRotationMatrix();
+      linear = r * linear;
+      angular = r * angular;
+    }
+    const motion::Jacobian jacobian = tool_jacobian(*kinematics_, chain);
+    const motion::JointVector q = joint_velocities_for(jacobian, linear, angular);
+    double scale = 1;
+    // Every joint within its velocity limit and what lets it stop before the end of its
+    // range: the whole twist is scaled, so the tool keeps its direction.
+    for (int i = 0; i < q.size(); ++i) {
+      if (q[i] == 0) continue;
+      const double vmax = model_.joints[std::size_t(i)].limits.velocity * options_.speed;
+      const double cap = generator_.velocity_cap(i, q[i] > 0 ? 1 : -1);
+      const double s = std::min(vmax, cap) / std::abs(q[i]);
+      if (s < scale) {
+        scale = s;
+        status.slowdown = ServoSlowdown::joint_limit;
+        status.detail = model_.joints[std::size_t(i)].name +
+                        (cap < vmax ? " near the end of its range" : " at its velocity limit");
+      }
+    }
+    // Toward a singularity (only then: moving away is how one leaves it), slowed by how near
+    // it is where the command leads within the look-ahead.
+    const double here = position_condition(jacobian);
+    const motion::JointVector ahead = chain + q * (scale * kLookAhead);
+    const double there = position_condition(tool_jacobian(*kinematics_, ahead));
+    if (there > here && there > options_.singularity_slow) {
+      const double s = std::clamp(
+          (options_.singularity_stop - there) / (options_.singularity_stop - options_.singularity_slow), 0.0, 1.0);
+      if (s < scale) {
+        scale = s;
+        status.slowdown = ServoSlowdown::singularity;
+        status.detail = fmt::format("condition {:.1f}", there);
+      }
+    }
+    for (int i = 0; i < q.size(); ++i) goals_[std::size_t(i)] = {motion::ServoGoal::Kind::velocity, q[i] * scale};
+    status.scale = scale;
+    scale_near_obstacles(status);
+  }
+
+  // Velocity goals toward something nearer than collision_slow are scaled down with the
+  // clearance (only toward it: moving away is not held back).
+  void scale_near_obstacles(ServoStatus& status) {
+    if (!world_) return;
+    const scene::Clearance now = world_->clearance(sent_, options_.collision_slow, skip_);
+    if (now.distance >= options_.collision_slow) return;
+    std::vector<double> ahead = sent_;
+    for (std::size_t i = 0; i < n_; ++i)
+      if (goals_[i].kind == motion::ServoGoal::Kind::velocity) ahead[i] += goals_[i].value * kLookAhead;
+    // Toward it means nearer by more than rounding (links that keep their distance, such as
+    // a joint's two sides, are not slowed for).
+    if (world_->clearance(ahead, options_.collision_slow, skip_).distance >= now.distance - kCloser) return;
+    const double s = std::clamp((now.distance - options_.collision_stop) /
+                                    (options_.collision_slow - options_.collision_stop),
+                                0.0, 1.0);
+    for (std::size_t i = 0; i < n_; ++i)
+      if (goals_[i].kind == motion::ServoGoal::Kind::velocity) goals_[i].value *= s;
+    if (s < status.scale) {
+      status.scale *= s;
+      status.slowdown = ServoSlowdown::collision;
+      status.detail = fmt::format("{} and {} {:.1f} mm apart", now.first, now.second, now.distance * 1000);
+    }
+  }
+
+  // One step; if where the arm would come to rest from there touches anything, a braking
+  // step instead (from a resting place that was clear, braking keeps it clear).
+  void step(double dt, ServoStatus& status) {
+    const motion::ServoGenerator::State before = generator_.state();
+    generator_.step(goals_, dt, together_);
+    for (std::size_t i = 0; i < n_; ++i)
+      if (generator_.limited(int(i)) && status.slowdown == ServoSlowdown::none) {
+        status.slowdown = ServoSlowdown::joint_limit;
+        status.detail = model_.joints[i].name;
+      }
+    if (!world_) return;
+    const motion::JointArray rest = generator_.resting_place();
+    if (!world_->collides(std::span<const double>(rest.data(), n_), skip_)) return;
+    generator_.restore(before);
+    std::vector<motion::ServoGoal> brake(n_);
+    // The gripper keeps going where it was sent: it is not part of what is checked moving.
+    if (model_.gripper) brake[std::size_t(model_.gripper->joint)] = goals_[std::size_t(model_.gripper->joint)];
+    generator_.step(brake, dt);
+    status.scale = 0;
+    status.slowdown = ServoSlowdown::collision;
+    if (auto c = world_->contact(std::span<const double>(rest.data(), n_), skip_))
+      status.detail = fmt::format("{} would touch {}", c->first, c->second);
+  }
+
+  Status read_back() {
+    auto s = arm_.read();
+    if (!s) return s.error();
+    ++report_.reads;
+    if (options_.executor.on_read) options_.executor.on_read(*s);
+    // The device is on its way to the point sent last; it was sent the one before it.
+    return check_following(model_, s->positions, sent_, options_.executor, "servo", 0,
+                           report_.largest_following_error, report_.largest_following_joint);
+  }
+
+  Error halted(const Error& e) {
+    (void)device_.stop();  // best effort: the error is what the caller needs
+    return e;
+  }
+
+  Arm& arm_;
+  ServoInput& input_;
+  const ServoOptions& options_;
+  std::shared_ptr<const ArmKinematics> kinematics_;
+  const ArmModel& model_;
+  ArmDevice& device_;
+  const Clock& clock_;
+  const std::size_t n_;
+  motion::ServoGenerator generator_;
+  std::vector<motion::ServoGoal> goals_;
+  std::vector<double> positions_, velocities_, sent_;
+  std::shared_ptr<const scene::CollisionWorld> world_;
+  std::vector<int> skip_;
+  std::optional<ServoCommand> command_;
+  TimePoint received_{};
+  std::uint64_t seen_ = 0;
+  std::vector<double> targets_;  // of a joint or pose target (NaN: keep still)
+  std::string unreachable_;      // why a pose target has no solution
+  std::optional<CartesianGoal> pose_goal_;  // the last pose target solved, its joints, or why not
+  std::vector<double> pose_targets_;
+  std::string pose_error_;
+  double gripper_ = NAN;         // its target
+  bool together_ = false;        // velocity changes synchronized this cycle
+  ServoReport report_;
+};
+
+}  // namespace
+
+Result<ServoReport> run_servo(Arm& arm, ServoInput& input, const ServoOptions& options) {
+  return ServoLoop(arm, input, options).run();
+}
+
+}  // namespace armctl::arm
