@@ -15,7 +15,7 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
   clang libclang-rt-14-dev ccache \
   liburdfdom-dev liborocos-kdl-dev libkdl-parser-dev libeigen3-dev libfcl-dev libompl-dev \
   pybind11-dev python3-dev python3-pytest python3-numpy \
-  libcpp-httplib-dev \
+  libcpp-httplib-dev libevdev-dev tmux \
   libroscpp-dev libactionlib-dev libactionlib-msgs-dev libsensor-msgs-dev libtrajectory-msgs-dev \
   libgeometry-msgs-dev libdiagnostic-msgs-dev libstd-msgs-dev libstd-srvs-dev libtf2-ros-dev \
   python3-genmsg python3-gencpp python3-genpy python3-rosmaster ros-robot-state-publisher python3-roslaunch \
@@ -26,7 +26,7 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
 # firmware, Python-module or ROS packages above: the demo builds none of that.
 DEMO_PACKAGES := build-essential cmake ninja-build pkg-config \
   libcli11-dev libfmt-dev nlohmann-json3-dev libhidapi-dev libgpiod-dev \
-  libeigen3-dev liburdfdom-dev libfcl-dev libompl-dev libcpp-httplib-dev python3
+  libeigen3-dev liburdfdom-dev libfcl-dev libompl-dev libcpp-httplib-dev libevdev-dev python3
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 JOBS ?= 2
