@@ -25,6 +25,7 @@
 #include "files/action_group_file.hpp"
 #include "python_support.hpp"
 #include "scene/scene.hpp"
+#include "servo_bindings.hpp"
 #include "session/arm_session.hpp"
 
 namespace armctl::python {
@@ -762,6 +763,7 @@ void define_arm(py::module_& m) {
       "angular_speed"_a = motion::kDefaultToolAngularSpeed, "zone"_a = 0.0,
       "A circular arc of the tool through `via` to `position` (m); the rest as for Lin.");
 
+  PyServo::define(m);
   py::class_<PyArm>(m, "Arm",
                     "One arm in SI units over any device (the C++ armctl::arm::Arm).\n\n"
                     "Arm(arm='xarm', device='') opens the shipped 'xarm' or 'scara' arm, or an arm file path, on\n"
@@ -846,6 +848,19 @@ void define_arm(py::module_& m) {
       .def("stop", &PyArm::stop_now,
            "Stops every joint where it is and holds it. A wait another thread runs ends (armctl.Error), a\n"
            "streamed motion stops on its path (its MotionReport: stopped), before the stop is sent.")
+      .def(
+          "servo",
+          [](PyArm& a, double speed, double timeout, double max_linear_speed, double max_angular_speed) {
+            const auto turn = a.gate_.enter();  // the arm is open
+            return std::make_unique<PyServo>(a.arm(), a.gate_,
+                                             servo_options(speed, timeout, max_linear_speed, max_angular_speed));
+          },
+          "speed"_a = 1.0, "timeout"_a = 0.2, "max_linear_speed"_a = 0.25, "max_angular_speed"_a = 1.5,
+          py::keep_alive<0, 1>(),
+          "A servo session (armctl.Servo), for a with block: the arm follows twists, joint velocities and targets\n"
+          "as they are sent, within every limit, slowing near the ends of the joints' ranges, singularities and the\n"
+          "scene; commands not renewed within `timeout` s bring it to rest. `speed`: fraction of the joints' velocity\n"
+          "limits; the twist's speeds are clipped to max_linear_speed (m/s) and max_angular_speed (rad/s).")
       .def("set_torque", in_turn(&PyArm::set_torque), "on"_a, "off: the arm can be moved by hand; on: hold where it stands.")
       .def("gripper", in_turn(&PyArm::gripper), "closed_fraction"_a, "duration"_a = py::none(), "speed"_a = motion::kDefaultGripperSpeed,
            "wait"_a = false, "timeout"_a = seconds(arm::kArrivalTimeout), "The gripper: 0 = open, 1 = closed, anything between.")

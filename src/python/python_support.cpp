@@ -133,6 +133,11 @@ void InterruptWatch::rethrow() {
 }
 
 void DeviceGate::refuse_nesting() const {
+  if (const char* session = session_.load(); session && held_here())
+    raise(ErrorKind::invalid_argument,
+          fmt::format("this {} is in {} on this thread: its calls wait until the session ends (use the "
+                      "session's status for where the arm is)",
+                      what_, session));
   if (held_here())
     raise(ErrorKind::invalid_argument,
           fmt::format("this {} is already running a call on this thread (a signal handler or a callback called it "

@@ -93,6 +93,9 @@ class DeviceGate {
   // A stop's turn: until it comes, the calls before it stop at their next check. From a
   // signal handler on the thread that has the turn: nullopt, that call alone is asked.
   std::optional<Turn> stop();
+  // While a long session holds the turn across calls (a servo session), what it is: a call
+  // from its own thread is refused naming it. nullptr when it ends.
+  void set_session(const char* session) { session_ = session; }
   // True once close() has begun: a running call stops at its next check. Any thread.
   bool closing() const { return closing_.load(); }
   // True while a stop waits for its turn (or was asked during the running call).
@@ -115,6 +118,7 @@ class DeviceGate {
   std::atomic<bool> closing_{false};
   std::atomic<int> stops_waiting_{0};
   std::atomic<bool> stop_here_{false};  // asked by a signal handler during the running call
+  std::atomic<const char*> session_{nullptr};
   const char* what_;
 };
 

@@ -25,6 +25,7 @@ from ._armctl import (  # noqa: F401  (the package's API)
     Pose,
     RobotCommands,
     Segment,
+    Servo,
     __version__,
 )
 
@@ -41,4 +42,5 @@ __all__ = [
     "Pose",
     "RobotCommands",
     "Segment",
+    "Servo",
 ]

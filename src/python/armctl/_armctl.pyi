@@ -171,6 +171,29 @@ def Circ(via: Vector, position: Vector, roll: Optional[float] = None, pitch: Opt
          zone: float = 0.0) -> Segment:
     """A circular arc of the tool through ``via`` to ``position`` (m)."""
 
+class Servo:
+    """A servo session (Arm.servo()), for a with block: the arm follows the commands sent, each
+    replacing the last, and slows to rest when they stop for ``timeout`` s or the block ends."""
+
+    def __enter__(self) -> "Servo": ...
+    def __exit__(self, *exc: object) -> None: ...
+    def twist(self, linear: Vector = ..., angular: Vector = ..., frame: Literal["base", "tool"] = "base") -> None:
+        """The tool at ``linear`` m/s, turning at ``angular`` rad/s (x, y, z) in the base or tool frame."""
+    def joint_velocities(self, values: Sequence[float]) -> None:
+        """Every joint's velocity (rad/s or m/s, the model's order; the gripper's is ignored)."""
+    def joint_targets(self, values: Sequence[Optional[float]]) -> None:
+        """Where the joints should go (SI; None keeps one still); beyond a limit: to the limit."""
+    def pose_target(self, position: Vector, roll: Optional[float] = None, pitch: Optional[float] = None,
+                    yaw: Optional[float] = None) -> None:
+        """Where the tool should go (m; rad), by the nearest IK solution."""
+    def gripper(self, closed_fraction: float) -> None:
+        """The gripper to 0 = open .. 1 = closed (the arm still)."""
+    def stop(self) -> None:
+        """The arm slows to rest and holds; the session goes on."""
+    @property
+    def status(self) -> Dict[str, Any]:
+        """The last cycle: positions, velocities, scale, slowdown, detail, commanded, at_rest, commands, elapsed."""
+
 class Arm:
     """One arm in SI units over any device: Arm(arm='xarm', device='') ('' = the embedded simulator).
 
@@ -235,6 +258,10 @@ class Arm:
     def joint_move(self, target: Targets, waypoints: Sequence[Targets] = ..., speed: float = 0.25,
                    min_duration: float = 0.0, speed_override: float = 1.0) -> MotionReport:
         """A jerk-limited joint move through ``waypoints`` to ``target``, streamed."""
+    def servo(self, speed: float = 1.0, timeout: float = 0.2, max_linear_speed: float = 0.25,
+              max_angular_speed: float = 1.5) -> Servo:
+        """A servo session for a with block (docs/servo.md): twists, joint velocities and targets followed
+        as they come, within every limit; the arm's other calls wait until the block ends."""
     def wait(self, timeout: float = 10.0, poll: Optional[float] = None, angle_tolerance: float = 0.0087,
              length_tolerance: float = 0.0005) -> JointState:
         """Until every joint of the last move is there and at rest; Error (timeout) names the late joints."""
