@@ -91,6 +91,15 @@ struct JointState {
                                 // edges lost, UART errors, reset cause, abandoned, settings
   uint16_t following_lost;      // times it stopped following (saturating)
   uint32_t faults_read_us;      // when the last read was started
+  // The setpoint ramp of a move started at rest (check_ramp): armed when its drive_to
+  // went out; `ramp_percent` the slower of the move's speeds (0: no ramp check, e.g. a
+  // joint still moving when the move was planned). `behind_ramp`: it fell behind that
+  // ramp mid-move (a stall) and the move was stopped; until a move names it again.
+  bool ramp_armed;
+  bool behind_ramp;
+  uint8_t ramp_percent;
+  uint32_t ramp_start_us;       // when its drive_to was answered (the ramp began before)
+  uint32_t stalled_us;          // when it was found behind its ramp
 };
 
 struct CoreStats {
@@ -112,6 +121,7 @@ struct CoreStats {
   uint16_t fault_reads;        // complete reads of a joint's 7 diagnostic words
   uint16_t runaway_faults;     // reads that found a runaway fault
   uint16_t following_error_faults;  // reads that found a following-error fault
+  uint16_t stalls;             // a joint behind its setpoint ramp mid-move: its move stopped
 };
 
 class ControllerCore {
@@ -123,6 +133,9 @@ class ControllerCore {
   // kNotFollowingClicks); back within half of it, it follows again.
   static const int16_t not_following_clicks = 500;
   static const uint32_t fault_recheck_us = 250000;
+  // A stalled joint's words are read again (every fault_recheck_us) this long after its
+  // move was stopped, until a fault shows: a runaway shows 100 to 150 ms after it begins.
+  static const uint32_t stall_watch_us = 1000000;
   // After the planned end, a joint has this long to settle before it counts as not arrived.
   static const uint32_t settle_us = 500000;
   // A joint this much closer to its target than at its previous poll is on its way.
@@ -185,6 +198,12 @@ class ControllerCore {
   void note_fault(uint8_t index, int16_t status);
   // Joint faults: the polled `clicks` against the plan; queues a read of the 7 words.
   void check_following(uint8_t index, int16_t before, uint32_t now_us);
+  // A joint of a move started at rest more than not_following_clicks behind the least its
+  // setpoint ramp can have covered: stalled. Its move is stopped (stop_move). True then.
+  bool check_ramp(uint8_t index, uint32_t now_us);
+  // Every joint of the move that `index` belongs to (same planned end) brought to rest
+  // (set_speed 0), and a playing group stopped (CMD 7).
+  void stop_move(uint8_t index, uint32_t now_us);
   void lost_following(uint8_t index, uint32_t now_us);
   void read_diagnostics(uint8_t index, uint32_t now_us);
   void on_joint_fault_read(const uint8_t* data, uint8_t length);
