@@ -71,7 +71,10 @@ void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus
   }
   for (uint8_t i = 0; i < count_; ++i) state_[i].position = to_position(joints_[i].number, 0);
   have_groups_ = groups != nullptr;
-  if (have_groups_) groups_.begin(groups);
+  memory_ = groups;
+  info_index_ = 0;
+  if (have_groups_) groups_.begin(groups, static_cast<uint16_t>(groups->size() - settings_bytes));
+  load_settings();
   awaiting_ = Awaiting::nothing;
   download_stage_ = 0;
   playing_ = false;
@@ -343,6 +346,9 @@ void ControllerCore::on_frame(uint8_t command, const uint8_t* data, uint8_t leng
       return;
     case rc_servo_offset_adjust: on_offset_adjust(data, length); return;
     case rc_servo_offset_read: on_offset_read(data, length); return;
+    case rc_servo_offset_write: on_offset_write(data, length); return;
+    case rc_bus_servo_info_write: on_bus_servo_info_write(data, length); return;
+    case rc_bus_servo_info_read: on_bus_servo_info_read(length); return;
     case rc_servo_speed: on_servo_speed(data, length, now_us); return;
     case rc_group_download:
       if (!have_groups_) break;
@@ -387,6 +393,8 @@ ControllerCore::Check ControllerCore::check_targets(const uint8_t* servos, const
       return Check::invalid;
     if (positions[k] == rc_null_position) continue;
     const JointSetup& j = joints_[index];
+    const JointState& st = state_[index];
+    if (positions[k] < st.position_min || positions[k] > st.position_max) return Check::invalid;
     const int16_t clicks = target_clicks(static_cast<uint8_t>(index), positions[k]);
     if (clicks < j.soft_min || clicks > j.soft_max) return Check::invalid;
     answering = answering && state_[index].answering && state_[index].read;

@@ -17,7 +17,11 @@
 //   GroupRun/Erase/Speed  playback (each action one synchronized move), notifications
 //                      CMD 6 started, 7 stopped, 8 finished; erase replies CMD 8 once written
 //   ServoOffsetAdjust/Read  a zero offset per joint in position units (-125..125): targets
-//                      are map(position + offset); volatile (ServoOffsetWrite: not yet)
+//                      are map(position + offset); ServoOffsetWrite keeps it in the group
+//                      memory's settings record (servo_settings.cpp), loaded at begin()
+//   BusServoInfoWrite/Read  address one joint (the last written; joint 1 at start): its
+//                      position limits narrow what a move may ask, the voltage, temperature
+//                      and LED fields are kept; persisted with the offset
 //   ServoSpeed         motor mode: a velocity jog (set_speed ceil(|speed| / 10) %) toward
 //                      the soft limit in that direction; servo mode (or a move) ends it
 //   JointFaultRead     (CMD 40, an armctl extension) one joint's fault state: a joint that
@@ -74,7 +78,16 @@ struct JointState {
   // which is up to a sweep old on a moving joint (streamed moves).
   bool planned;
   bool jogging;       // ServoSpeed motor mode
-  int8_t offset;      // ServoOffsetAdjust
+  int8_t offset;      // ServoOffsetAdjust (ServoOffsetWrite: persisted)
+  // BusServoInfoWrite (persisted): position_min/max narrow the moves allowed; the rest is
+  // kept and read back (the joints have no such sensors or LEDs).
+  uint16_t position_min;
+  uint16_t position_max;
+  uint16_t millivolts_min;
+  uint16_t millivolts_max;
+  uint16_t temp_max;
+  uint8_t led_status;
+  uint8_t led_warning;
   int16_t plan_from;
   int16_t plan_to;
   uint32_t plan_start_us;
@@ -144,6 +157,9 @@ class ControllerCore {
   // `joints` (count <= 7, numbers distinct) must outlive the core. Queues set_speed 0 and
   // then set_zone for every joint: after a reset nothing keeps moving on an old command.
   // `groups`: where action groups are kept (nullptr: group requests are ignored).
+  // The last `settings_bytes` of `groups` hold each joint's persisted offset and
+  // BusServoInfo limits (servo_settings.cpp); groups use the rest.
+  static const uint16_t settings_bytes = 96;
   void begin(const JointSetup* joints, uint8_t count, BusPort* bus, UpstreamPort* upstream,
              uint32_t bus_baud, uint32_t now_us, GroupMemory* groups = nullptr);
 
@@ -230,6 +246,14 @@ class ControllerCore {
   void on_offset_adjust(const uint8_t* data, uint8_t length);
   void on_offset_read(const uint8_t* data, uint8_t length);
   void on_servo_speed(const uint8_t* data, uint8_t length, uint32_t now_us);
+  // Persisted servo settings (servo_settings.cpp).
+  void load_settings();
+  void default_settings(JointState& s) const;
+  uint16_t settings_at(uint8_t index) const;
+  bool save_settings(uint8_t index);  // queued; false (nothing queued) if no room
+  void on_offset_write(const uint8_t* data, uint8_t length);
+  void on_bus_servo_info_write(const uint8_t* data, uint8_t length);
+  void on_bus_servo_info_read(uint8_t length);
   void halt(uint32_t now_us);
   void plan_move(const Target* targets, uint8_t count, uint16_t time_ms, uint32_t now_us);
   // True if a move was planned; `now_or_never`: even right after another plan (a request
@@ -264,6 +288,8 @@ class ControllerCore {
 
   GroupStore groups_;
   bool have_groups_ = false;
+  GroupMemory* memory_ = nullptr;
+  uint8_t info_index_ = 0;  // the joint BusServoInfoWrite/Read address
   Awaiting awaiting_ = Awaiting::nothing;
   // The download in progress (docs/action-groups.md): stage = last sub accepted.
   uint8_t download_stage_ = 0;

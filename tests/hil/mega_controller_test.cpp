@@ -21,11 +21,6 @@ namespace {
 using namespace std::chrono_literals;
 using robot_commands::ServoTarget;
 
-// Position -> clicks on the SCARA's lines (config/scara-arm.json).
-int clicks_for(int joint, int position) {
-  const int span = joint <= 3 ? 40000 : joint <= 6 ? 20000 : 10000;
-  return -span / 2 + span * position / 1000;
-}
 
 double ms_between(TimePoint a, TimePoint b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
 
