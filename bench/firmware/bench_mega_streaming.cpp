@@ -162,7 +162,20 @@ LinResult run_mega(std::uint32_t baud) {
   hil::MegaRig rig(baud);
   const arm::ArmModel model = scara_model();
   arm::Arm arm(model, std::make_unique<arm::RcArmDevice>(model, *rig.client));
-  return run(arm, [&](int j) { return rig.clicks(j); });
+  const LinResult r = run(arm, [&](int j) { return rig.clicks(j); });
+  // A healthy arm: no joint was taken for one that stopped following (or stalled, which
+  // would have stopped a move and spoilt the figure).
+  int lost = 0;
+  for (std::uint8_t servo = 1; servo <= 7; ++servo) {
+    const auto faults = rig.client->read_joint_faults(servo);
+    if (!faults || !*faults) {
+      std::fprintf(stderr, "bench_mega_streaming: JointFaultRead of servo %d failed\n", servo);
+      std::exit(1);
+    }
+    lost += (*faults)->following_lost;
+  }
+  std::printf("# %u Mega: joints that stopped following during the run: %d\n", baud, lost);
+  return r;
 }
 
 LinResult run_daemon(std::uint32_t baud) {

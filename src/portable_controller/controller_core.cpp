@@ -179,27 +179,30 @@ void ControllerCore::poll(uint32_t now_us) {
   // poll, with a fresh time (else its timeout would run from before the planning).
   if (!master_.busy()) {
     if (plan_pending(now_us)) {
-      convert_polled();
+      after_poll(now_us);
       return;
     }
     if (playing_ && reached(now_us, play_due_us_)) {
       play_next(now_us);
-      convert_polled();
+      after_poll(now_us);
       return;
     }
   }
   if (master_.can_start(now_us)) start_next(now_us);
-  convert_polled();
+  after_poll(now_us);
 }
 
-void ControllerCore::convert_polled() {
-  // The polled reading in Robot Commands units: a 32-bit division (about 700 cycles on the
-  // Mega), done once the next joint is selected, while that joint prepares its READY, not
-  // between the two transactions. Nothing reads `position` before poll() returns.
+void ControllerCore::after_poll(uint32_t now_us) {
+  // The polled reading in Robot Commands units (a 32-bit division, about 700 cycles on the
+  // Mega) and its check against the joint's plan (floating point while it moves: the ramp
+  // check), done once the next joint is selected, while that joint prepares its READY,
+  // not between the two transactions. Nothing reads `position` before poll() returns.
   if (convert_ == no_convert) return;
-  JointState& s = state_[convert_];
-  s.position = to_position(joints_[convert_].number, s.clicks);
+  const uint8_t index = convert_;
   convert_ = no_convert;
+  JointState& s = state_[index];
+  s.position = to_position(joints_[index].number, s.clicks);
+  check_following(index, polled_before_, now_us);
 }
 
 bool ControllerCore::plan_pending(uint32_t now_us, bool now_or_never) {
@@ -270,7 +273,7 @@ void ControllerCore::take_result(const BusResult& r, uint32_t now_us) {
   JointState& s = state_[index];
   if (!inflight_is_op_) {
     if (r.ok) {
-      const int16_t before = s.read ? s.clicks : r.response;
+      polled_before_ = s.read ? s.clicks : r.response;
       s.clicks = r.response;
       // In position units once per poll (at the end of this poll(), after the next
       // transaction has started): a ServoPositionRead then only copies (seven divisions in
@@ -279,7 +282,6 @@ void ControllerCore::take_result(const BusResult& r, uint32_t now_us) {
       s.read = true;
       s.answering = true;
       count_up(s.reads);
-      check_following(index, before, now_us);
     } else {
       count_up(stats_.poll_failures);
       note_fault(index, r.status);
@@ -538,6 +540,8 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
     s.ramp_armed = false;
     s.behind_ramp = false;
     s.ramp_percent = slack[k] != 0 ? 0 : switch_s > 0.0f ? static_cast<uint8_t>(percent - 1) : percent;
+    if (s.ramp_percent != 0)
+      s.ramp = ramp_shape(distance[k], float(j.max_speed_cps) * float(s.ramp_percent) / 100.0f, accel);
     s.plan_seen = s.clicks;
   }
 }

@@ -40,6 +40,7 @@
 
 #include "portable_controller/bus_master.hpp"
 #include "portable_controller/group_store.hpp"
+#include "portable_controller/ramp_model.hpp"
 
 namespace armctl {
 namespace controller {
@@ -111,6 +112,7 @@ struct JointState {
   bool ramp_armed;
   bool behind_ramp;
   uint8_t ramp_percent;
+  RampShape ramp;               // its ramp at ramp_percent, shaped when planned
   uint32_t ramp_start_us;       // when its drive_to was answered (the ramp began before)
   uint32_t stalled_us;          // when it was found behind its ramp
 };
@@ -210,7 +212,8 @@ class ControllerCore {
   bool upsert(uint32_t due_us, uint8_t index, OpKind kind, int16_t value);
   void start_next(uint32_t now_us);
   void take_result(const BusResult& r, uint32_t now_us);
-  void convert_polled();
+  // The last poll's reading converted and checked (after the next transaction started).
+  void after_poll(uint32_t now_us);
   void note_fault(uint8_t index, int16_t status);
   // Joint faults: the polled `clicks` against the plan; queues a read of the 7 words.
   void check_following(uint8_t index, int16_t before, uint32_t now_us);
@@ -273,9 +276,11 @@ class ControllerCore {
   OpKind inflight_kind_ = OpKind::set_zone;
   int16_t inflight_value_ = 0;
   uint8_t poll_index_ = 0;
-  // The joint whose polled clicks still wait for their conversion to position (poll()).
+  // The joint whose polled clicks still wait for their conversion to position and their
+  // check against its plan (after_poll), and its reading before.
   static const uint8_t no_convert = 0xFF;
   uint8_t convert_ = no_convert;
+  int16_t polled_before_ = 0;
   uint16_t battery_mv_ = 0;
   uint32_t planned_ms_ = 0;
   CoreStats stats_{};

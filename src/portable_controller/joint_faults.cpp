@@ -76,17 +76,14 @@ void ControllerCore::check_following(uint8_t index, int16_t before, uint32_t now
 bool ControllerCore::check_ramp(uint8_t index, uint32_t now_us) {
   JointState& s = state_[index];
   if (!s.ramp_armed || s.behind_ramp) return false;
-  const JointSetup& j = joints_[index];
   // The reading is from the joint's RESPONSE, up to a transaction before now: judged at
-  // that earlier instant, the model is behind the setpoint, never ahead.
+  // that earlier instant, the model is behind the setpoint, never ahead. (Shaped when the
+  // move was planned: here only multiplications, as this runs on every poll of a moving
+  // joint, between two transactions.)
   const uint32_t read_us = now_us - master_.transaction_estimate_us();
   if (static_cast<int32_t>(read_us - s.ramp_start_us) <= 0) return false;
-  const float t_s = float(read_us - s.ramp_start_us) / 1e6f;
-  const int32_t span = int32_t(s.plan_to) - s.plan_from;
-  const float distance = float(span < 0 ? -span : span);
-  const float speed = float(j.max_speed_cps) * float(s.ramp_percent) / 100.0f;
-  const float least = ramp_covered(t_s, distance, speed, ramp_accel(j.max_accel_cps2));
-  const int32_t moved = span < 0 ? int32_t(s.plan_from) - s.clicks : int32_t(s.clicks) - s.plan_from;
+  const float least = ramp_covered(s.ramp, float(read_us - s.ramp_start_us) * 1e-6f);
+  const int32_t moved = s.plan_to < s.plan_from ? int32_t(s.plan_from) - s.clicks : int32_t(s.clicks) - s.plan_from;
   // Tracking lag stays under 300 clicks on a healthy joint (docs/arm-controller.md).
   if (least - float(moved) <= float(not_following_clicks)) return false;
   s.behind_ramp = true;

@@ -16,17 +16,22 @@ float shortest_time_s(float distance, float speed, float accel) {
   return 2.0f * sqrtf(distance / accel);
 }
 
-float ramp_covered(float t_s, float distance, float speed, float accel) {
-  if (t_s <= 0.0f || distance <= 0.0f || speed <= 0.0f) return 0.0f;
-  const float total_s = shortest_time_s(distance, speed, accel);
-  if (t_s >= total_s) return distance;
-  // Accelerating for `reach_s` (to the speed, or to the peak of a triangle), braking as
-  // long at the end: before the half-way point of a triangle, or the cruise, a t^2 / 2.
-  const float reach_s = distance * accel >= speed * speed ? speed / accel : total_s / 2.0f;
-  if (t_s <= reach_s) return accel * t_s * t_s / 2.0f;
-  const float left_s = total_s - t_s;
-  if (left_s <= reach_s) return distance - accel * left_s * left_s / 2.0f;
-  return speed * speed / (2.0f * accel) + speed * (t_s - reach_s);
+RampShape ramp_shape(float distance, float speed, float accel) {
+  RampShape r{distance, speed, accel / 2.0f, 0.0f, 0.0f};
+  if (distance <= 0.0f || speed <= 0.0f) return r;
+  r.total_s = shortest_time_s(distance, speed, accel);
+  // A trapezoid accelerates until it cruises; a triangle until half-way.
+  r.reach_s = distance * accel >= speed * speed ? speed / accel : r.total_s / 2.0f;
+  return r;
+}
+
+float ramp_covered(const RampShape& r, float t_s) {
+  if (t_s <= 0.0f) return 0.0f;
+  if (t_s >= r.total_s) return r.distance;
+  if (t_s <= r.reach_s) return r.half_accel * t_s * t_s;
+  const float left_s = r.total_s - t_s;
+  if (left_s <= r.reach_s) return r.distance - r.half_accel * left_s * left_s;
+  return r.half_accel * r.reach_s * r.reach_s + r.speed * (t_s - r.reach_s);
 }
 
 }  // namespace controller

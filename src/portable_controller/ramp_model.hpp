@@ -17,10 +17,22 @@ float ramp_accel(uint32_t cps2);
 // Seconds a joint at rest needs for `distance` clicks at `speed` and `accel`.
 float shortest_time_s(float distance, float speed, float accel);
 
-// Clicks a setpoint starting at rest covers `t_s` seconds after its drive took effect, at
-// most `distance` (where it rests). With the slower of a move's speeds this is a lower
-// bound of where the setpoint is (the controller's stall check, ControllerCore::check_ramp).
-float ramp_covered(float t_s, float distance, float speed, float accel);
+// One rest-to-rest ramp, its divisions and square root done once (when a move is
+// planned), so that where it stands at an instant costs a few multiplications: the
+// controller evaluates it on every poll of a moving joint, between two transactions.
+struct RampShape {
+  float distance;    // clicks
+  float speed;       // clicks/s
+  float half_accel;  // clicks/s^2 / 2
+  float reach_s;     // accelerating (and braking) this long
+  float total_s;     // at rest on the target from then on
+};
+RampShape ramp_shape(float distance, float speed, float accel);
+
+// Clicks the setpoint has covered `t_s` seconds after its drive took effect. With the
+// slower of a move's speeds this is a lower bound of where the setpoint is (the
+// controller's stall check, ControllerCore::check_ramp).
+float ramp_covered(const RampShape& ramp, float t_s);
 
 }  // namespace controller
 }  // namespace armctl

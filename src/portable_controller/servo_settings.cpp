@@ -26,6 +26,37 @@ void put_u16(uint8_t* at, uint16_t v) {
   at[0] = static_cast<uint8_t>(v & 0xFFu);
   at[1] = static_cast<uint8_t>(v >> 8);
 }
+
+// The 12 bytes of limits and LED fields, as BusServoInfoWrite sends them after its servo
+// byte and as a record keeps them after its offset: into `s` if all are in the spec's
+// ranges, else nothing changes (false).
+bool take_limits(const uint8_t* p, JointState* s) {
+  const uint16_t pmin = rc_u16(p), pmax = rc_u16(p + 2), vmin = rc_u16(p + 4), vmax = rc_u16(p + 6),
+                 temp = rc_u16(p + 8);
+  const bool valid = pmin <= pmax && pmax <= rc_max_position && vmin >= rc_min_millivolts && vmin <= vmax &&
+                     vmax <= rc_max_millivolts && temp >= rc_min_temp_max && temp <= rc_max_temp_max && p[10] <= 1 &&
+                     p[11] <= rc_max_led_warning;
+  if (!valid) return false;
+  s->position_min = pmin;
+  s->position_max = pmax;
+  s->millivolts_min = vmin;
+  s->millivolts_max = vmax;
+  s->temp_max = temp;
+  s->led_status = p[10];
+  s->led_warning = p[11];
+  return true;
+}
+
+// The same 12 bytes from `s` (a record, BusServoInfoRead's reply).
+void put_limits(const JointState& s, uint8_t* p) {
+  put_u16(p, s.position_min);
+  put_u16(p + 2, s.position_max);
+  put_u16(p + 4, s.millivolts_min);
+  put_u16(p + 6, s.millivolts_max);
+  put_u16(p + 8, s.temp_max);
+  p[10] = s.led_status;
+  p[11] = s.led_warning;
+}
 }  // namespace
 
 void ControllerCore::default_settings(JointState& s) const {
@@ -55,22 +86,9 @@ void ControllerCore::load_settings() {
   for (uint8_t i = 0; i < count_; ++i) {
     uint8_t r[record_bytes];
     for (uint8_t k = 0; k < record_bytes; ++k) r[k] = memory_->read(static_cast<uint16_t>(settings_at(i) + k));
-    JointState& s = state_[i];
     const int8_t offset = static_cast<int8_t>(r[0]);
-    const uint16_t pmin = rc_u16(r + 1), pmax = rc_u16(r + 3), vmin = rc_u16(r + 5), vmax = rc_u16(r + 7),
-                   temp = rc_u16(r + 9);
-    const bool sane = offset >= -rc_max_offset && offset <= rc_max_offset && pmin <= pmax && pmax <= rc_max_position &&
-                      vmin >= rc_min_millivolts && vmin <= vmax && vmax <= rc_max_millivolts &&
-                      temp >= rc_min_temp_max && temp <= rc_max_temp_max && r[11] <= 1 && r[12] <= rc_max_led_warning;
-    if (!sane) continue;  // the defaults
-    s.offset = offset;
-    s.position_min = pmin;
-    s.position_max = pmax;
-    s.millivolts_min = vmin;
-    s.millivolts_max = vmax;
-    s.temp_max = temp;
-    s.led_status = r[11];
-    s.led_warning = r[12];
+    if (offset < -rc_max_offset || offset > rc_max_offset) continue;  // the defaults
+    if (take_limits(r + 1, &state_[i])) state_[i].offset = offset;
   }
 }
 
@@ -79,13 +97,7 @@ bool ControllerCore::save_settings(uint8_t index) {
   const JointState& s = state_[index];
   uint8_t r[record_bytes];
   r[0] = static_cast<uint8_t>(s.offset);
-  put_u16(r + 1, s.position_min);
-  put_u16(r + 3, s.position_max);
-  put_u16(r + 5, s.millivolts_min);
-  put_u16(r + 7, s.millivolts_max);
-  put_u16(r + 9, s.temp_max);
-  r[11] = s.led_status;
-  r[12] = s.led_warning;
+  put_limits(s, r + 1);
   return groups_.write(settings_at(index), r, record_bytes);
 }
 
@@ -103,28 +115,12 @@ void ControllerCore::on_offset_write(const uint8_t* data, uint8_t length) {
 
 void ControllerCore::on_bus_servo_info_write(const uint8_t* data, uint8_t length) {
   const int8_t found = length == 13 ? index_of(data[0]) : -1;
-  if (found < 0) {
-    count_up(stats_.ignored_frames);
-    return;
-  }
-  const uint16_t pmin = rc_u16(data + 1), pmax = rc_u16(data + 3), vmin = rc_u16(data + 5), vmax = rc_u16(data + 7),
-                 temp = rc_u16(data + 9);
-  const bool valid = pmin <= pmax && pmax <= rc_max_position && vmin >= rc_min_millivolts && vmin <= vmax &&
-                     vmax <= rc_max_millivolts && temp >= rc_min_temp_max && temp <= rc_max_temp_max &&
-                     data[11] <= 1 && data[12] <= rc_max_led_warning;
-  if (!valid || (memory_ != nullptr && groups_.queue_room() < record_bytes)) {
+  // Room first: a write that cannot be saved changes nothing.
+  if (found < 0 || (memory_ != nullptr && groups_.queue_room() < record_bytes) || !take_limits(data + 1, &state_[found])) {
     count_up(stats_.ignored_frames);
     return;
   }
   info_index_ = static_cast<uint8_t>(found);
-  JointState& s = state_[found];
-  s.position_min = pmin;
-  s.position_max = pmax;
-  s.millivolts_min = vmin;
-  s.millivolts_max = vmax;
-  s.temp_max = temp;
-  s.led_status = data[11];
-  s.led_warning = data[12];
   save_settings(info_index_);
 }
 
@@ -136,13 +132,7 @@ void ControllerCore::on_bus_servo_info_read(uint8_t length) {
   const JointState& s = state_[info_index_];
   uint8_t r[19];
   r[0] = joints_[info_index_].number;
-  put_u16(r + 1, s.position_min);
-  put_u16(r + 3, s.position_max);
-  put_u16(r + 5, s.millivolts_min);
-  put_u16(r + 7, s.millivolts_max);
-  put_u16(r + 9, s.temp_max);
-  r[11] = s.led_status;
-  r[12] = s.led_warning;
+  put_limits(s, r + 1);
   r[13] = static_cast<uint8_t>(s.offset);
   put_u16(r + 14, static_cast<uint16_t>(s.position));
   r[16] = 0;  // the joint controllers have no temperature sensor

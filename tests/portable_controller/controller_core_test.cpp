@@ -27,14 +27,7 @@ struct CoreRig {
     run_us(200000);  // start-up commands and a first sweep of polls
     joints.log.clear();
   }
-  void run_us(std::uint32_t us) {
-    const std::uint32_t end = now + us;
-    while (static_cast<std::int32_t>(now - end) < 0) {
-      joints.pump([&](std::uint8_t b) { core.on_bus_byte(b, now); });
-      core.poll(now);
-      now += 100;
-    }
-  }
+  void run_us(std::uint32_t us) { run_core(core, joints, now, us, 100); }
   void request(std::uint8_t command, std::vector<std::uint8_t> data) {
     core.on_frame(command, data.data(), static_cast<std::uint8_t>(data.size()), now);
   }

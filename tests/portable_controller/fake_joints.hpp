@@ -109,4 +109,16 @@ class RecordingUpstream final : public UpstreamPort {
   std::vector<SentFrame> frames;
 };
 
+// Runs `core` against `joints` from `now` for `us`, a main-loop pass every `step_us`: the
+// joints' bytes in, then the core's bus work (as firmware/mega/main.cpp does).
+inline void run_core(ControllerCore& core, FakeJoints& joints, std::uint32_t& now, std::uint32_t us,
+                     std::uint32_t step_us) {
+  const std::uint32_t end = now + us;
+  while (static_cast<std::int32_t>(now - end) < 0) {
+    joints.pump([&](std::uint8_t b) { core.on_bus_byte(b, now); });
+    core.poll(now);
+    now += step_us;
+  }
+}
+
 }  // namespace armctl::controller::testing

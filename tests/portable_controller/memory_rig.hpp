@@ -44,14 +44,7 @@ struct GroupRig {
     joints.log.clear();
     upstream.frames.clear();
   }
-  void run_us(std::uint32_t us) {
-    const std::uint32_t end = now + us;
-    while (static_cast<std::int32_t>(now - end) < 0) {
-      joints.pump([&](std::uint8_t b) { core.on_bus_byte(b, now); });
-      core.poll(now);
-      now += 50;
-    }
-  }
+  void run_us(std::uint32_t us) { run_core(core, joints, now, us, 50); }
   void send(std::uint8_t command, std::vector<std::uint8_t> data) {
     core.on_frame(command, data.data(), static_cast<std::uint8_t>(data.size()), now);
     run_us(2000);
