@@ -148,6 +148,25 @@ TEST(Groups, RunPlaysEachActionAsAMoveAndNotifies) {
   EXPECT_FALSE(rig.core.playing());
 }
 
+TEST(Groups, AJointThatStallsStopsThePlaybackWithCmd7) {
+  // A stall mid-action stops the move (ControllerCore::check_ramp), and with it the group:
+  // the host gets CMD 7, no further action is played.
+  RamMemory memory;
+  GroupRig rig(memory);
+  ASSERT_TRUE(rig.download(2, {{1000, {{1, 600}, {2, 600}}}, {1000, {{1, 400}, {2, 400}}}}));
+  rig.joints.stuck[1] = true;
+  rig.upstream.frames.clear();
+  rig.send(rc_group_run, {2, 1, 0});
+  rig.run_us(3000000);
+  ASSERT_GE(rig.upstream.frames.size(), 2u);
+  EXPECT_EQ(rig.upstream.frames.front().command, rc_group_run) << "started";
+  EXPECT_EQ(rig.upstream.frames.back().command, rc_group_stop) << "CMD 7: stopped";
+  EXPECT_TRUE(rig.upstream.frames.back().data.empty());
+  EXPECT_FALSE(rig.core.playing());
+  EXPECT_EQ(rig.core.stats().stalls, 1);
+  EXPECT_EQ(rig.core.stats().actions_played, 1) << "the second action never started";
+}
+
 TEST(Groups, SpeedScalesTheActionTime) {
   RamMemory memory;
   GroupRig rig(memory);
