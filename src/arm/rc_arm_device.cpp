@@ -5,6 +5,8 @@
 
 #include <fmt/core.h>
 
+#include "devices/joint_bus/joint_diagnostics.hpp"
+
 namespace armctl::arm {
 
 RcArmDevice::RcArmDevice(const ArmModel& model, robot_commands::Client& client) : client_(client) {
@@ -109,7 +111,27 @@ Status RcArmDevice::idle(Duration d) {
 DeviceHealth RcArmDevice::health() {
   DeviceHealth h;
   if (auto mv = client_.battery_millivolts()) h.battery_volts = *mv / 1000.0;
+  for (std::uint8_t servo : servos_) {
+    auto report = client_.read_joint_faults(servo);
+    // Not answered (a board without the extension) or unreadable: left out, as the
+    // battery is; the rest would only cost more timeouts.
+    if (!report || !*report) break;
+    if (auto line = describe_joint_faults(**report)) h.faults.push_back(*line);
+  }
   return h;
+}
+
+std::optional<std::string> describe_joint_faults(const rc::JointFaultReport& r) {
+  std::vector<std::string> parts;
+  if (!r.answering) parts.push_back(fmt::format("not answering (last bus failure {})", r.last_failure));
+  const std::uint16_t held = r.words_read ? r.words[0] : 0;
+  if (held != 0) parts.push_back(fmt::format("{} (bridge off until clear-faults)", joint_bus::describe_faults(held)));
+  if (r.behind_ramp) parts.push_back("fell behind its move's ramp (the move was stopped)");
+  else if (!r.following && held == 0) parts.push_back("not following its move");
+  if (parts.empty()) return std::nullopt;
+  std::string out = fmt::format("servo {}: {}", r.servo, parts.front());
+  for (std::size_t i = 1; i < parts.size(); ++i) out += ", " + parts[i];
+  return out;
 }
 
 }  // namespace armctl::arm

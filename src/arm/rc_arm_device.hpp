@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "arm/arm_device.hpp"
@@ -33,7 +35,10 @@ class RcArmDevice final : public ArmDevice {
   Status stream(const std::vector<double>& targets, const std::vector<double>& velocities, Duration in) override;
   Status idle(Duration d) override;
   ActionGroups* action_groups() override { return &groups_; }
-  DeviceHealth health() override;  // the battery
+  // The battery; on a board with armctl's JointFaultRead extension (the Mega arm
+  // controller) also each servo's faults. A board without it (an xArm) costs one
+  // extension_timeout on the first call, none after.
+  DeviceHealth health() override;
 
  private:
   Status hold_where_they_stand();  // a move to where every servo reads, in no time
@@ -42,5 +47,9 @@ class RcArmDevice final : public ArmDevice {
   RcActionGroups groups_{client_};
   std::vector<std::uint8_t> servos_;  // per joint, in the model's order
 };
+
+// One line of DeviceHealth::faults for a JointFaultRead report ("servo 3: runaway (bridge
+// off until clear-faults)"); nothing for a servo that answers, follows and holds no fault.
+std::optional<std::string> describe_joint_faults(const rc::JointFaultReport& report);
 
 }  // namespace armctl::arm

@@ -4,6 +4,7 @@
 
 #include "portable/joint_bus_codes.hpp"
 #include "portable_controller/counting.hpp"
+#include "portable_controller/ramp_model.hpp"
 #include "portable_controller/rc_codes.hpp"
 
 namespace armctl {
@@ -19,21 +20,6 @@ const JointState no_joint{};
 // a / b rounded to nearest, halves away from zero (b > 0).
 int32_t divide_rounded(int32_t a, int32_t b) { return a >= 0 ? (a + b / 2) / b : -((-a + b / 2) / b); }
 
-
-// The acceleration a joint's setpoint ramp really runs (portable/setpoint_ramp.hpp): Q8
-// clicks per tick^2 = (cps2 * 32 + 62500) / 125000, at least 1; 40,000 clicks/s^2 is
-// 39,062, 15,000 is 15,625. Planning with the configured figure would misjudge every ramp.
-float ramp_accel(uint32_t cps2) {
-  uint32_t q8 = (cps2 * 32u + 62500u) / 125000u;
-  if (q8 < 1) q8 = 1;
-  return float(q8) * (1e6f / 256.0f);
-}
-
-// Seconds a joint at rest needs for `distance` clicks at its full speed and acceleration.
-float shortest_time_s(float distance, float speed, float accel) {
-  if (distance * accel >= speed * speed) return distance / speed + speed / accel;
-  return 2.0f * sqrtf(distance / accel);
-}
 
 // The speed percent (1..100) that makes a joint at rest cover `distance` in `time_s`
 // (a trapezoid: accelerate to v, cruise, decelerate; distance/v + v/accel = time).
@@ -85,7 +71,10 @@ void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus
   }
   for (uint8_t i = 0; i < count_; ++i) state_[i].position = to_position(joints_[i].number, 0);
   have_groups_ = groups != nullptr;
-  if (have_groups_) groups_.begin(groups);
+  memory_ = groups;
+  info_index_ = 0;
+  if (have_groups_) groups_.begin(groups, static_cast<uint16_t>(groups->size() - settings_bytes));
+  load_settings();
   awaiting_ = Awaiting::nothing;
   download_stage_ = 0;
   playing_ = false;
@@ -190,27 +179,30 @@ void ControllerCore::poll(uint32_t now_us) {
   // poll, with a fresh time (else its timeout would run from before the planning).
   if (!master_.busy()) {
     if (plan_pending(now_us)) {
-      convert_polled();
+      after_poll(now_us);
       return;
     }
     if (playing_ && reached(now_us, play_due_us_)) {
       play_next(now_us);
-      convert_polled();
+      after_poll(now_us);
       return;
     }
   }
   if (master_.can_start(now_us)) start_next(now_us);
-  convert_polled();
+  after_poll(now_us);
 }
 
-void ControllerCore::convert_polled() {
-  // The polled reading in Robot Commands units: a 32-bit division (about 700 cycles on the
-  // Mega), done once the next joint is selected, while that joint prepares its READY, not
-  // between the two transactions. Nothing reads `position` before poll() returns.
+void ControllerCore::after_poll(uint32_t now_us) {
+  // The polled reading in Robot Commands units (a 32-bit division, about 700 cycles on the
+  // Mega) and its check against the joint's plan (floating point while it moves: the ramp
+  // check), done once the next joint is selected, while that joint prepares its READY,
+  // not between the two transactions. Nothing reads `position` before poll() returns.
   if (convert_ == no_convert) return;
-  JointState& s = state_[convert_];
-  s.position = to_position(joints_[convert_].number, s.clicks);
+  const uint8_t index = convert_;
   convert_ = no_convert;
+  JointState& s = state_[index];
+  s.position = to_position(joints_[index].number, s.clicks);
+  check_following(index, polled_before_, now_us);
 }
 
 bool ControllerCore::plan_pending(uint32_t now_us, bool now_or_never) {
@@ -274,96 +266,6 @@ void ControllerCore::note_fault(uint8_t index, int16_t status) {
   s.last_fault = status;
 }
 
-// ------------------------------------------------------------------ joint faults
-
-void ControllerCore::check_following(uint8_t index, int16_t before, uint32_t now_us) {
-  JointState& s = state_[index];
-  if (!s.planned || !s.loop_on || s.jogging) return;
-  const int32_t at = s.clicks;
-  // Closer to its target than at the poll before: on its way, if late (the plan of a move
-  // that starts while the joint moves is a straight line, not its ramp: a streamed move can
-  // end later than planned). A faulted joint is at rest or runs away.
-  int32_t was_off = int32_t(before) - s.plan_to;
-  int32_t off = at - s.plan_to;
-  if (was_off < 0) was_off = -was_off;
-  if (off < 0) off = -off;
-  const bool approaching = was_off - off >= approaching_clicks;
-  int32_t gap = 0;
-  if (reached(now_us, s.plan_end_us + settle_us)) {
-    gap = at - s.plan_to;
-    if (gap < 0) gap = -gap;
-  } else {
-    // Under way: anywhere between where its plan starts (the straight line's point and
-    // the last poll, widened, for a joint still moving then, by what it may run on while
-    // it turns at full speed) and its target. Not a model of its ramp (the daemon replays
-    // the joint's ramp): a joint that stalls is found when its move ends, one that runs
-    // away when it leaves that stretch.
-    int32_t low = s.plan_to, high = s.plan_to;
-    const int16_t from[2] = {s.plan_from, s.plan_seen};
-    for (uint8_t i = 0; i < 2; ++i) {
-      if (from[i] < low) low = from[i];
-      if (from[i] > high) high = from[i];
-    }
-    if (s.plan_slack != 0) {
-      low -= s.plan_slack;
-      high += s.plan_slack;
-    }
-    gap = at < low ? low - at : at > high ? at - high : 0;
-  }
-  if (gap > not_following_clicks && !approaching) {
-    if (s.following) {
-      lost_following(index, now_us);
-    } else if (!(s.diagnostics_read && s.diagnostics[jb::diagnostic_faults] != 0) &&
-               static_cast<uint32_t>(now_us - s.faults_read_us) >= fault_recheck_us) {
-      // Still off its plan with no fault yet: the joint may raise one any moment (its
-      // runaway and following-error checks take 100 and 500 ms).
-      read_diagnostics(index, now_us);
-    }
-  } else if (gap <= not_following_clicks / 2 && !s.following) {
-    s.following = true;
-    s.diagnostics[jb::diagnostic_faults] = 0;  // following again: its faults were cleared
-  }
-}
-
-void ControllerCore::lost_following(uint8_t index, uint32_t now_us) {
-  JointState& s = state_[index];
-  s.following = false;
-  count_up(s.following_lost);
-  count_up(stats_.following_lost);
-  read_diagnostics(index, now_us);
-}
-
-void ControllerCore::read_diagnostics(uint8_t index, uint32_t now_us) {
-  for (uint8_t i = 0; i < op_count_; ++i)
-    if (ops_[i].joint == joints_[index].number && ops_[i].kind == OpKind::diagnostic) return;  // under way
-  JointState& s = state_[index];
-  s.faults_read_us = now_us;
-  s.diagnostics_read = false;
-  for (uint8_t k = 0; k < jb::diagnostic_count; ++k) schedule(now_us, index, OpKind::diagnostic, k);
-}
-
-void ControllerCore::on_joint_fault_read(const uint8_t* data, uint8_t length) {
-  const int8_t found = length == 1 ? index_of(data[0]) : -1;
-  if (found < 0) {
-    count_up(stats_.ignored_frames);
-    return;
-  }
-  const JointState& s = state_[found];
-  // servo, flags, last bus failure, following lost, the 7 diagnostic words.
-  uint8_t reply[6 + 2 * jb::diagnostic_count];
-  reply[0] = data[0];
-  reply[1] = static_cast<uint8_t>((s.answering ? 1u : 0u) | (s.following ? 2u : 0u) | (s.diagnostics_read ? 4u : 0u));
-  reply[2] = static_cast<uint8_t>(uint16_t(s.last_fault) & 0xFFu);
-  reply[3] = static_cast<uint8_t>(uint16_t(s.last_fault) >> 8);
-  reply[4] = static_cast<uint8_t>(s.following_lost & 0xFFu);
-  reply[5] = static_cast<uint8_t>(s.following_lost >> 8);
-  for (uint8_t k = 0; k < jb::diagnostic_count; ++k) {
-    reply[6 + 2 * k] = static_cast<uint8_t>(s.diagnostics[k] & 0xFFu);
-    reply[7 + 2 * k] = static_cast<uint8_t>(s.diagnostics[k] >> 8);
-  }
-  upstream_->send_frame(rc_joint_fault_read, reply, sizeof reply);
-}
-
 void ControllerCore::take_result(const BusResult& r, uint32_t now_us) {
   const int8_t found = index_of(r.joint);
   if (found < 0) return;
@@ -371,7 +273,7 @@ void ControllerCore::take_result(const BusResult& r, uint32_t now_us) {
   JointState& s = state_[index];
   if (!inflight_is_op_) {
     if (r.ok) {
-      const int16_t before = s.read ? s.clicks : r.response;
+      polled_before_ = s.read ? s.clicks : r.response;
       s.clicks = r.response;
       // In position units once per poll (at the end of this poll(), after the next
       // transaction has started): a ServoPositionRead then only copies (seven divisions in
@@ -380,7 +282,6 @@ void ControllerCore::take_result(const BusResult& r, uint32_t now_us) {
       s.read = true;
       s.answering = true;
       count_up(s.reads);
-      check_following(index, before, now_us);
     } else {
       count_up(stats_.poll_failures);
       note_fault(index, r.status);
@@ -394,6 +295,12 @@ void ControllerCore::take_result(const BusResult& r, uint32_t now_us) {
   if (r.ok) {
     s.answering = true;
     if (inflight_kind_ == OpKind::loop_on) s.loop_on = true;
+    // Its ramp began when DATA arrived, a little before this answer: a late start keeps the
+    // ramp check's model behind the joint's setpoint, never ahead.
+    if (inflight_kind_ == OpKind::drive_to && s.planned && inflight_value_ == s.plan_to && s.ramp_percent != 0) {
+      s.ramp_armed = true;
+      s.ramp_start_us = now_us;
+    }
     if (inflight_kind_ == OpKind::diagnostic && inflight_value_ >= 0 && inflight_value_ < jb::diagnostic_count) {
       s.diagnostics[inflight_value_] = static_cast<uint16_t>(r.response);
       if (inflight_value_ == jb::diagnostic_count - 1) {
@@ -441,6 +348,9 @@ void ControllerCore::on_frame(uint8_t command, const uint8_t* data, uint8_t leng
       return;
     case rc_servo_offset_adjust: on_offset_adjust(data, length); return;
     case rc_servo_offset_read: on_offset_read(data, length); return;
+    case rc_servo_offset_write: on_offset_write(data, length); return;
+    case rc_bus_servo_info_write: on_bus_servo_info_write(data, length); return;
+    case rc_bus_servo_info_read: on_bus_servo_info_read(length); return;
     case rc_servo_speed: on_servo_speed(data, length, now_us); return;
     case rc_group_download:
       if (!have_groups_) break;
@@ -485,6 +395,8 @@ ControllerCore::Check ControllerCore::check_targets(const uint8_t* servos, const
       return Check::invalid;
     if (positions[k] == rc_null_position) continue;
     const JointSetup& j = joints_[index];
+    const JointState& st = state_[index];
+    if (positions[k] < st.position_min || positions[k] > st.position_max) return Check::invalid;
     const int16_t clicks = target_clicks(static_cast<uint8_t>(index), positions[k]);
     if (clicks < j.soft_min || clicks > j.soft_max) return Check::invalid;
     answering = answering && state_[index].answering && state_[index].read;
@@ -624,6 +536,12 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
     s.plan_start_us = now_us + static_cast<uint32_t>((start_s + latency_s) * 1e6f);
     s.plan_end_us = now_us + static_cast<uint32_t>(arrive_s * 1e6f);
     s.plan_slack = slack[k];
+    // The ramp check needs a ramp from rest; the slower speed keeps its model a lower bound.
+    s.ramp_armed = false;
+    s.behind_ramp = false;
+    s.ramp_percent = slack[k] != 0 ? 0 : switch_s > 0.0f ? static_cast<uint8_t>(percent - 1) : percent;
+    if (s.ramp_percent != 0)
+      s.ramp = ramp_shape(distance[k], float(j.max_speed_cps) * float(s.ramp_percent) / 100.0f, accel);
     s.plan_seen = s.clicks;
   }
 }

@@ -17,7 +17,11 @@
 //   GroupRun/Erase/Speed  playback (each action one synchronized move), notifications
 //                      CMD 6 started, 7 stopped, 8 finished; erase replies CMD 8 once written
 //   ServoOffsetAdjust/Read  a zero offset per joint in position units (-125..125): targets
-//                      are map(position + offset); volatile (ServoOffsetWrite: not yet)
+//                      are map(position + offset); ServoOffsetWrite keeps it in the group
+//                      memory's settings record (servo_settings.cpp), loaded at begin()
+//   BusServoInfoWrite/Read  address one joint (the last written; joint 1 at start): its
+//                      position limits narrow what a move may ask, the voltage, temperature
+//                      and LED fields are kept; persisted with the offset
 //   ServoSpeed         motor mode: a velocity jog (set_speed ceil(|speed| / 10) %) toward
 //                      the soft limit in that direction; servo mode (or a move) ends it
 //   JointFaultRead     (CMD 40, an armctl extension) one joint's fault state: a joint that
@@ -36,6 +40,7 @@
 
 #include "portable_controller/bus_master.hpp"
 #include "portable_controller/group_store.hpp"
+#include "portable_controller/ramp_model.hpp"
 
 namespace armctl {
 namespace controller {
@@ -74,7 +79,16 @@ struct JointState {
   // which is up to a sweep old on a moving joint (streamed moves).
   bool planned;
   bool jogging;       // ServoSpeed motor mode
-  int8_t offset;      // ServoOffsetAdjust
+  int8_t offset;      // ServoOffsetAdjust (ServoOffsetWrite: persisted)
+  // BusServoInfoWrite (persisted): position_min/max narrow the moves allowed; the rest is
+  // kept and read back (the joints have no such sensors or LEDs).
+  uint16_t position_min;
+  uint16_t position_max;
+  uint16_t millivolts_min;
+  uint16_t millivolts_max;
+  uint16_t temp_max;
+  uint8_t led_status;
+  uint8_t led_warning;
   int16_t plan_from;
   int16_t plan_to;
   uint32_t plan_start_us;
@@ -91,6 +105,16 @@ struct JointState {
                                 // edges lost, UART errors, reset cause, abandoned, settings
   uint16_t following_lost;      // times it stopped following (saturating)
   uint32_t faults_read_us;      // when the last read was started
+  // The setpoint ramp of a move started at rest (check_ramp): armed when its drive_to
+  // went out; `ramp_percent` the slower of the move's speeds (0: no ramp check, e.g. a
+  // joint still moving when the move was planned). `behind_ramp`: it fell behind that
+  // ramp mid-move (a stall) and the move was stopped; until a move names it again.
+  bool ramp_armed;
+  bool behind_ramp;
+  uint8_t ramp_percent;
+  RampShape ramp;               // its ramp at ramp_percent, shaped when planned
+  uint32_t ramp_start_us;       // when its drive_to was answered (the ramp began before)
+  uint32_t stalled_us;          // when it was found behind its ramp
 };
 
 struct CoreStats {
@@ -112,6 +136,7 @@ struct CoreStats {
   uint16_t fault_reads;        // complete reads of a joint's 7 diagnostic words
   uint16_t runaway_faults;     // reads that found a runaway fault
   uint16_t following_error_faults;  // reads that found a following-error fault
+  uint16_t stalls;             // a joint behind its setpoint ramp mid-move: its move stopped
 };
 
 class ControllerCore {
@@ -123,6 +148,9 @@ class ControllerCore {
   // kNotFollowingClicks); back within half of it, it follows again.
   static const int16_t not_following_clicks = 500;
   static const uint32_t fault_recheck_us = 250000;
+  // A stalled joint's words are read again (every fault_recheck_us) this long after its
+  // move was stopped, until a fault shows: a runaway shows 100 to 150 ms after it begins.
+  static const uint32_t stall_watch_us = 1000000;
   // After the planned end, a joint has this long to settle before it counts as not arrived.
   static const uint32_t settle_us = 500000;
   // A joint this much closer to its target than at its previous poll is on its way.
@@ -131,6 +159,9 @@ class ControllerCore {
   // `joints` (count <= 7, numbers distinct) must outlive the core. Queues set_speed 0 and
   // then set_zone for every joint: after a reset nothing keeps moving on an old command.
   // `groups`: where action groups are kept (nullptr: group requests are ignored).
+  // The last `settings_bytes` of `groups` hold each joint's persisted offset and
+  // BusServoInfo limits (servo_settings.cpp); groups use the rest.
+  static const uint16_t settings_bytes = 96;
   void begin(const JointSetup* joints, uint8_t count, BusPort* bus, UpstreamPort* upstream,
              uint32_t bus_baud, uint32_t now_us, GroupMemory* groups = nullptr);
 
@@ -181,10 +212,17 @@ class ControllerCore {
   bool upsert(uint32_t due_us, uint8_t index, OpKind kind, int16_t value);
   void start_next(uint32_t now_us);
   void take_result(const BusResult& r, uint32_t now_us);
-  void convert_polled();
+  // The last poll's reading converted and checked (after the next transaction started).
+  void after_poll(uint32_t now_us);
   void note_fault(uint8_t index, int16_t status);
   // Joint faults: the polled `clicks` against the plan; queues a read of the 7 words.
   void check_following(uint8_t index, int16_t before, uint32_t now_us);
+  // A joint of a move started at rest more than not_following_clicks behind the least its
+  // setpoint ramp can have covered: stalled. Its move is stopped (stop_move). True then.
+  bool check_ramp(uint8_t index, uint32_t now_us);
+  // Every joint of the move that `index` belongs to (same planned end) brought to rest
+  // (set_speed 0), and a playing group stopped (CMD 7).
+  void stop_move(uint8_t index, uint32_t now_us);
   void lost_following(uint8_t index, uint32_t now_us);
   void read_diagnostics(uint8_t index, uint32_t now_us);
   void on_joint_fault_read(const uint8_t* data, uint8_t length);
@@ -211,6 +249,14 @@ class ControllerCore {
   void on_offset_adjust(const uint8_t* data, uint8_t length);
   void on_offset_read(const uint8_t* data, uint8_t length);
   void on_servo_speed(const uint8_t* data, uint8_t length, uint32_t now_us);
+  // Persisted servo settings (servo_settings.cpp).
+  void load_settings();
+  void default_settings(JointState& s) const;
+  uint16_t settings_at(uint8_t index) const;
+  bool save_settings(uint8_t index);  // queued; false (nothing queued) if no room
+  void on_offset_write(const uint8_t* data, uint8_t length);
+  void on_bus_servo_info_write(const uint8_t* data, uint8_t length);
+  void on_bus_servo_info_read(uint8_t length);
   void halt(uint32_t now_us);
   void plan_move(const Target* targets, uint8_t count, uint16_t time_ms, uint32_t now_us);
   // True if a move was planned; `now_or_never`: even right after another plan (a request
@@ -230,9 +276,11 @@ class ControllerCore {
   OpKind inflight_kind_ = OpKind::set_zone;
   int16_t inflight_value_ = 0;
   uint8_t poll_index_ = 0;
-  // The joint whose polled clicks still wait for their conversion to position (poll()).
+  // The joint whose polled clicks still wait for their conversion to position and their
+  // check against its plan (after_poll), and its reading before.
   static const uint8_t no_convert = 0xFF;
   uint8_t convert_ = no_convert;
+  int16_t polled_before_ = 0;
   uint16_t battery_mv_ = 0;
   uint32_t planned_ms_ = 0;
   CoreStats stats_{};
@@ -245,6 +293,8 @@ class ControllerCore {
 
   GroupStore groups_;
   bool have_groups_ = false;
+  GroupMemory* memory_ = nullptr;
+  uint8_t info_index_ = 0;  // the joint BusServoInfoWrite/Read address
   Awaiting awaiting_ = Awaiting::nothing;
   // The download in progress (docs/action-groups.md): stage = last sub accepted.
   uint8_t download_stage_ = 0;

@@ -12,8 +12,9 @@ uint16_t read_u16(GroupMemory* m, uint16_t at) {
 bool newer(uint8_t a, uint8_t b) { return static_cast<int8_t>(a - b) > 0; }
 }  // namespace
 
-void GroupStore::begin(GroupMemory* memory) {
+void GroupStore::begin(GroupMemory* memory, uint16_t end) {
   memory_ = memory;
+  end_ = end == 0 || end > memory->size() ? memory->size() : end;
   head_ = 0;
   count_ = 0;
   bool formatted = true;
@@ -27,7 +28,7 @@ void GroupStore::begin(GroupMemory* memory) {
     e.start = read_u16(memory_, static_cast<uint16_t>(at + 4));
     e.seq = memory_->read(static_cast<uint16_t>(at + 6));
     const bool sane = e.servo_count >= 1 && e.servo_count <= 7 && e.action_count >= 1 && e.start >= data_at &&
-                      uint32_t(e.start) + uint32_t(e.action_count) * action_bytes(e.servo_count) <= memory_->size();
+                      uint32_t(e.start) + uint32_t(e.action_count) * action_bytes(e.servo_count) <= end_;
     if (e.group != no_group && !sane) {
       e.group = no_group;
       queue(at, no_group);
@@ -60,7 +61,7 @@ bool GroupStore::find(uint8_t group, GroupInfo* info) const {
 }
 
 uint16_t GroupStore::capacity_bytes() const {
-  return memory_ == nullptr ? 0 : static_cast<uint16_t>(memory_->size() - data_at);
+  return memory_ == nullptr ? 0 : static_cast<uint16_t>(end_ - data_at);
 }
 
 bool GroupStore::allocate(uint16_t bytes, uint16_t* start) const {
@@ -74,7 +75,7 @@ bool GroupStore::allocate(uint16_t bytes, uint16_t* start) const {
       if (dir_[candidate].group == no_group) continue;
       from = end_of(dir_[candidate]);
     }
-    if (uint32_t(from) + bytes > memory_->size()) continue;
+    if (uint32_t(from) + bytes > end_) continue;
     bool overlaps = false;
     for (uint8_t i = 0; i < entries && !overlaps; ++i) {
       if (dir_[i].group == no_group) continue;

@@ -2,7 +2,7 @@
 // in tests), written one byte at a time without ever blocking the main loop.
 //
 // Layout: bytes 0..2 "AG" + format 1; a directory of 16 entries of 8 bytes at 4; group data
-// from 132 to the end. Entry: group (0xFF = free), servo count, action count u16, start
+// from 132 to `end` (begin(); the bytes after it are the owner's, e.g. the servo settings). Entry: group (0xFF = free), servo count, action count u16, start
 // u16, sequence, spare. An action is stored as received: ms u16, then {servo u8, position
 // u16} x servo count (2 + 3n bytes; little-endian).
 //
@@ -46,8 +46,11 @@ class GroupStore {
 
   static uint16_t action_bytes(uint8_t servo_count) { return static_cast<uint16_t>(2 + 3 * servo_count); }
 
-  // Reads the directory; a memory without the header is formatted (queued writes).
-  void begin(GroupMemory* memory);
+  // Reads the directory; a memory without the header is formatted (queued writes). Groups
+  // live below `end` (0: the whole memory); a stored group reaching past it is dropped.
+  // write() may also queue bytes above it (the owner's own records share the queue, so
+  // all writes land in the order asked).
+  void begin(GroupMemory* memory, uint16_t end = 0);
 
   bool find(uint8_t group, GroupInfo* info) const;
   // Start of `bytes` of space that no stored group uses, and a free directory entry for
@@ -87,6 +90,7 @@ class GroupStore {
   static uint16_t entry_at(uint8_t i) { return static_cast<uint16_t>(directory_at + 8 * i); }
 
   GroupMemory* memory_ = nullptr;
+  uint16_t end_ = 0;
   Entry dir_[entries];
   Pending queue_[queue_capacity];
   uint8_t head_ = 0;

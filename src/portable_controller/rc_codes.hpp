@@ -20,6 +20,8 @@ const uint8_t rc_servo_offset_write = 22;
 const uint8_t rc_servo_offset_read = 23;
 const uint8_t rc_servo_offset_adjust = 24;
 const uint8_t rc_servo_speed = 26;
+const uint8_t rc_bus_servo_info_write = 27;
+const uint8_t rc_bus_servo_info_read = 28;
 // An armctl extension, not in the xArm protocol (an xArm board ignores it as unknown): a
 // joint's fault state and diagnostic words (docs/mega-controller.md "Joint faults").
 const uint8_t rc_joint_fault_read = 40;
@@ -29,6 +31,12 @@ const uint16_t rc_max_position = 1000;
 const uint16_t rc_max_move_ms = 30000;
 const int16_t rc_max_offset = 125;      // ServoOffsetAdjust: -125..125 position units
 const int16_t rc_max_motor_speed = 1000;  // ServoSpeed motor mode: -1000..1000
+// BusServoInfoWrite ranges (spec "Units and ranges").
+const uint16_t rc_min_millivolts = 4500;
+const uint16_t rc_max_millivolts = 12000;
+const uint16_t rc_min_temp_max = 50;
+const uint16_t rc_max_temp_max = 100;
+const uint8_t rc_max_led_warning = 7;  // bit0 overheat, bit1 overvoltage, bit2 overposition
 
 inline uint16_t rc_u16(const uint8_t* p) { return static_cast<uint16_t>(p[0] | (p[1] << 8)); }
 

@@ -1,6 +1,7 @@
 // The Arm API over Robot Commands: the emulated xArm in process, on simulated time.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -8,6 +9,7 @@
 #include "arm/motion_planning.hpp"
 #include "arm/rc_arm_device.hpp"
 #include "arm_files.hpp"
+#include "portable/joint_bus_codes.hpp"
 #include "robot_commands/sim_links.hpp"
 
 namespace armctl::arm {
@@ -191,6 +193,53 @@ TEST_F(RcArm, StopHoldsWhereTheServosAre) {
   EXPECT_TRUE(arm.device().idle(std::chrono::milliseconds(2000)));
   EXPECT_NEAR(arm.read()->positions[0], at_stop, 0.5 * kDeg);
   EXPECT_LT(at_stop, 60 * kDeg);
+}
+
+// An xArm ignores JointFaultRead (CMD 40, an armctl extension): health() is the battery
+// alone, the first call waits one extension_timeout for nothing, later calls never ask.
+TEST_F(RcArm, HealthOnABoardWithoutJointFaultsIsTheBatteryAndAsksOnlyOnce) {
+  const double t0 = seconds();
+  const DeviceHealth first = arm.device().health();
+  ASSERT_TRUE(first.battery_volts.has_value());
+  EXPECT_TRUE(first.faults.empty());
+  const double took = seconds() - t0;
+  EXPECT_NEAR(took, 0.25, 0.01) << "one extension_timeout (250 ms), no error";
+  auto asked = [&] {
+    return std::count_if(link.sent.begin(), link.sent.end(), [](const rc::Frame& f) { return f.cmd == 40; });
+  };
+  EXPECT_EQ(asked(), 1);
+  const double t1 = seconds();
+  const DeviceHealth second = arm.device().health();
+  EXPECT_TRUE(second.battery_volts.has_value());
+  EXPECT_EQ(asked(), 1) << "known not to answer: not asked again";
+  EXPECT_LT(seconds() - t1, 0.01);
+}
+
+TEST(RcJointFaults, EachStateIsOneLineAndAHealthyServoNone) {
+  rc::JointFaultReport r;
+  r.servo = 3;
+  r.answering = true;
+  r.following = true;
+  EXPECT_FALSE(describe_joint_faults(r).has_value());
+  r.following = false;
+  EXPECT_EQ(describe_joint_faults(r), "servo 3: not following its move");
+  r.words_read = true;
+  r.words[0] = joint_bus::fault_runaway;
+  EXPECT_EQ(describe_joint_faults(r), "servo 3: runaway (bridge off until clear-faults)");
+  r = rc::JointFaultReport{};
+  r.servo = 5;
+  r.last_failure = 990;
+  r.following = true;
+  EXPECT_EQ(describe_joint_faults(r), "servo 5: not answering (last bus failure 990)");
+  r.answering = true;
+  r.following = false;
+  r.behind_ramp = true;
+  EXPECT_EQ(describe_joint_faults(r), "servo 5: fell behind its move's ramp (the move was stopped)");
+  r.words_read = true;
+  r.words[0] = joint_bus::fault_following_error;
+  EXPECT_EQ(describe_joint_faults(r),
+            "servo 5: following error (bridge off until clear-faults), fell behind its move's ramp (the move was "
+            "stopped)");
 }
 
 }  // namespace

@@ -52,6 +52,20 @@ TEST_F(ArmCli, JointsAndPoseOfBothArms) {
   EXPECT_NEAR(doc["pose"]["x_mm"].get<double>(), 685.0, 1e-6);  // 255 + 255 + 175, stretched out
 }
 
+TEST_F(ArmCli, HealthOfBothArmsAsTheDashboardShowsIt) {
+  // The emulated xArm: its battery; it ignores JointFaultRead, so no faults and no error.
+  auto x = run_armctl("arm --json health", "2>/dev/null");
+  ASSERT_EQ(x.status, 0) << x.out;
+  const auto xd = nlohmann::json::parse(x.out);
+  EXPECT_GT(xd["health"]["battery_volts"].get<double>(), 6.0);
+  EXPECT_TRUE(xd["health"]["faults"].empty());
+  // The SCARA on the embedded joint bus: no supply reading, every joint's fault words clear.
+  auto s = run_armctl("arm --arm scara health");
+  EXPECT_EQ(s.status, 0) << s.out;
+  EXPECT_TRUE(contains(s.out, "battery  n/a")) << s.out;
+  EXPECT_TRUE(contains(s.out, "faults   none")) << s.out;
+}
+
 TEST_F(ArmCli, MoveToAPointInMillimetresOnBothArms) {
   for (const char* cmd : {"arm --json move-to x=150 y=50 z=150 --wait",
                           "arm --arm scara --json move-to x=400 y=100 z=300 --wait --time 2s"}) {

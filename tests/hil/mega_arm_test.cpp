@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "arm/arm.hpp"
@@ -24,7 +25,10 @@ using arm::Protocol;
 using arm::RcArmDevice;
 
 struct MegaArm {
-  MegaArm() : model(arm::testing::shipped("scara")), arm(model, std::make_unique<RcArmDevice>(model, *rig.client)) {}
+  explicit MegaArm(std::uint32_t baud = 9600, const std::set<int>& leads_swapped = {})
+      : rig(baud, leads_swapped),
+        model(arm::testing::shipped("scara")),
+        arm(model, std::make_unique<RcArmDevice>(model, *rig.client)) {}
   // Where the joints truly are (emulated encoders), in SI through the arm file's joint-bus map.
   std::vector<double> true_positions() {
     std::vector<double> device;
@@ -66,6 +70,25 @@ TEST(MegaArm, StopHaltsTheArmShortOfItsTarget) {
   for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(later[i], held[i], 0.005) << m.model.joints[i].name << " at rest";
   EXPECT_LT(held[1], 1.1) << "SHOULDER stopped short of 1.2 rad";
   EXPECT_GT(held[1], 0.05) << "SHOULDER had started";
+}
+
+// What the dashboard and ROS show (ArmDevice::health, read by the session's status poll):
+// the battery, and each servo's faults that JointFaultRead answers. UAE (servo 3) has its
+// motor leads swapped: driven, it runs away and stops itself with a runaway fault.
+TEST(MegaArm, HealthReportsTheJointFaultsTheMegaFound) {
+  MegaArm m(115200, {3});
+  const auto before = m.arm.device().health();
+  ASSERT_TRUE(before.battery_volts.has_value());
+  EXPECT_NEAR(*before.battery_volts, 24.0, 1e-9);
+  EXPECT_TRUE(before.faults.empty()) << before.faults.front();
+  ASSERT_TRUE(m.arm.move_joints({std::nullopt, 0.3, -0.8, std::nullopt, std::nullopt, std::nullopt, std::nullopt},
+                                arm::MoveOptions{}));
+  m.rig.mega.advance(2500ms);
+  const auto after = m.arm.device().health();
+  ASSERT_EQ(after.faults.size(), 1u);
+  EXPECT_EQ(after.faults[0],
+            "servo 3: runaway (bridge off until clear-faults), fell behind its move's ramp (the move was stopped)");
+  EXPECT_EQ(m.rig.client->has_joint_faults(), true);
 }
 
 }  // namespace

@@ -21,11 +21,6 @@ namespace {
 using namespace std::chrono_literals;
 using robot_commands::ServoTarget;
 
-// Position -> clicks on the SCARA's lines (config/scara-arm.json).
-int clicks_for(int joint, int position) {
-  const int span = joint <= 3 ? 40000 : joint <= 6 ? 20000 : 10000;
-  return -span / 2 + span * position / 1000;
-}
 
 double ms_between(TimePoint a, TimePoint b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
 
@@ -248,56 +243,39 @@ TEST(MegaController, JointKilledMidMoveLeavesTheOthersRunning) {
   ASSERT_TRUE(read.ok()) << "the controller keeps answering: " << read.error().message;
 }
 
-// The armctl extension CMD 40 (docs/mega-controller.md "Joint faults"): one joint's fault
-// state, raw, since the SDK does not know it.
-struct JointFaultReply {
-  int servo = 0;
-  int flags = 0;  // bit 0 answering, 1 following, 2 diagnostic words read
-  int last_failure = 0;
-  int following_lost = 0;
-  int words[7] = {};
-};
-
-std::optional<JointFaultReply> read_joint_faults(MegaRig& rig, int servo) {
-  rig.link.send_bytes({0x55, 0x55, 3, 40, std::uint8_t(servo)});
-  for (;;) {
-    auto f = rig.link.receive(rig.now() + 200ms);
-    if (!f) return std::nullopt;
-    if (f->cmd != 40) continue;  // a notification meanwhile
-    if (f->data.size() != 20) return std::nullopt;
-    auto u16 = [&](int at) { return int(f->data[at] | (f->data[at + 1] << 8)); };
-    JointFaultReply r;
-    r.servo = f->data[0];
-    r.flags = f->data[1];
-    r.last_failure = u16(2);
-    r.following_lost = u16(4);
-    for (int k = 0; k < 7; ++k) r.words[k] = u16(6 + 2 * k);
-    return r;
-  }
+// The armctl extension CMD 40 (docs/mega-controller.md "Joint faults") through the SDK.
+std::optional<rc::JointFaultReport> read_joint_faults(MegaRig& rig, int servo) {
+  auto r = rig.client->read_joint_faults(std::uint8_t(servo));
+  EXPECT_TRUE(r.ok()) << r.error().message;
+  if (!r.ok() || !*r) return std::nullopt;
+  return **r;
 }
 
-TEST(MegaController, JointThatRunsAwayMidMoveHasItsFaultsReadAndReported) {
+TEST(MegaController, JointThatRunsAwayMidMoveStopsItsMoveAndHasItsFaultsRead) {
   // Joint 3's motor leads are swapped: driven up, it runs down, raises a runaway fault and
-  // stops itself (bridge braked, then off). The Mega finds it off its plan, reads its 7
-  // diagnostic words, and answers them upstream; joint 2 carries on.
+  // stops itself (bridge braked, then off). The Mega finds it behind its setpoint ramp
+  // within the first moments, stops the move (joint 2 rests short of its target), reads
+  // its 7 diagnostic words until the runaway shows, and answers them upstream.
   MegaRig rig(115200, {3});
   ASSERT_TRUE(rig.client->move({{2, 700}, {3, 700}}, 1500).ok());
   rig.mega.advance(2500ms);
   EXPECT_LT(rig.clicks(3), -64) << "it ran the wrong way";
-  EXPECT_NEAR(rig.clicks(2), clicks_for(2, 700), 20) << "joint 2 completes its move";
+  EXPECT_LT(rig.clicks(2), clicks_for(2, 700) - 2000) << "joint 2's move was stopped";
+  EXPECT_GT(rig.clicks(2), 20) << "joint 2 had started";
   const auto j3 = read_joint_faults(rig, 3);
   ASSERT_TRUE(j3.has_value());
   EXPECT_EQ(j3->servo, 3);
-  EXPECT_EQ(j3->flags & 2, 0) << "not following";
-  EXPECT_EQ(j3->flags & 4, 4) << "its words were read";
-  EXPECT_EQ(j3->flags & 1, 1) << "it still answers its polls";
+  EXPECT_FALSE(j3->following);
+  EXPECT_TRUE(j3->words_read);
+  EXPECT_TRUE(j3->answering) << "it still answers its polls";
+  EXPECT_TRUE(j3->behind_ramp);
   EXPECT_EQ(j3->following_lost, 1);
-  EXPECT_EQ(j3->words[0], joint_bus::fault_runaway);
+  EXPECT_EQ(j3->words[0], joint_bus::fault_runaway) << "read again until the joint's own fault showed";
   EXPECT_EQ(j3->words[4] & 1, 1) << "reset cause: power-on";
   EXPECT_EQ(j3->words[3], 0) << "no UART errors";
   const auto j2 = read_joint_faults(rig, 2);
   ASSERT_TRUE(j2.has_value());
-  EXPECT_EQ(j2->flags, 1 | 2) << "answering, following, never read";
+  EXPECT_TRUE(j2->answering && j2->following && !j2->words_read && !j2->behind_ramp);
   EXPECT_EQ(j2->following_lost, 0);
   // A new move for the faulted joint: refused by the joint (940), still reported; the
   // other joint moves.
@@ -323,9 +301,52 @@ TEST(MegaController, StreamedMovesOnAHealthyArmReadNoFaults) {
   for (int j = 1; j <= 3; ++j) {
     const auto r = read_joint_faults(rig, j);
     ASSERT_TRUE(r.has_value());
-    EXPECT_EQ(r->flags, 1 | 2) << "joint " << j;
+    EXPECT_TRUE(r->answering && r->following && !r->words_read && !r->behind_ramp) << "joint " << j;
     EXPECT_EQ(r->following_lost, 0) << "joint " << j;
   }
+}
+
+TEST(MegaController, JointBlockedMidMoveIsFoundBehindItsRampAndItsMoveStopped) {
+  // Joint 3 meets an obstacle 400 ms into a 2 s move: the Mega finds it behind its setpoint
+  // ramp while the move is under way (not when it ends), stops the move (joint 2 comes to
+  // rest short of its target) and answers JointFaultRead.
+  MegaRig rig;
+  ASSERT_TRUE(rig.client->move({{2, 700}, {3, 700}}, 2000).ok());
+  const TimePoint start = rig.now();
+  rig.mega.advance(400ms);
+  const int blocked_at = rig.clicks(3);
+  ASSERT_GT(blocked_at, 300) << "joint 3 was on its way";
+  rig.mega.arm().joint(3).set_obstacle({blocked_at - 1, blocked_at + 1});
+  std::optional<rc::JointFaultReport> found;
+  while (!found && rig.now() < start + 2000ms) {
+    rig.mega.advance(50ms);
+    const auto r = read_joint_faults(rig, 3);
+    if (r && r->behind_ramp) found = r;
+  }
+  ASSERT_TRUE(found.has_value()) << "never found behind its ramp";
+  const double found_ms = ms_between(start, rig.now());
+  std::printf("joint 3 blocked at 400 ms of a 2000 ms move: found behind its ramp by %.0f ms\n", found_ms);
+  EXPECT_LT(found_ms, 1000) << "mid-move";
+  EXPECT_FALSE(found->following);
+  EXPECT_TRUE(found->answering);
+  EXPECT_EQ(found->following_lost, 1);
+  rig.mega.advance(1000ms);
+  const int two = rig.clicks(2);
+  rig.mega.advance(500ms);
+  EXPECT_NEAR(rig.clicks(2), two, 20) << "joint 2 at rest: the move was stopped";
+  EXPECT_LT(two, clicks_for(2, 700) - 1000) << "short of its target";
+  EXPECT_NEAR(rig.clicks(3), blocked_at, 2);
+  const auto later = read_joint_faults(rig, 3);
+  ASSERT_TRUE(later.has_value());
+  EXPECT_TRUE(later->words_read) << "its diagnostic words were read";
+  // Freed, the next move works (and clears the finding).
+  rig.mega.arm().joint(3).set_obstacle({-30000, 30000});
+  ASSERT_TRUE(rig.client->move({{3, 600}}, 1000).ok());
+  rig.mega.advance(1500ms);
+  EXPECT_NEAR(rig.clicks(3), clicks_for(3, 600), 20);
+  const auto cleared = read_joint_faults(rig, 3);
+  ASSERT_TRUE(cleared.has_value());
+  EXPECT_FALSE(cleared->behind_ramp);
 }
 
 TEST(MegaController, ResetMidMoveHaltsTheJoints) {

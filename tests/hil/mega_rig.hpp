@@ -41,6 +41,12 @@ class MegaRcLink final : public robot_commands::RcLink {
   rc::FrameReceiver receiver_;
 };
 
+// Position -> clicks on the SCARA's lines (config/scara-arm.json).
+inline int clicks_for(int joint, int position) {
+  const int span = joint <= 3 ? 40000 : joint <= 6 ? 20000 : 10000;
+  return -span / 2 + span * position / 1000;
+}
+
 struct MegaRig {
   // `leads_swapped`: joints whose motor leads are swapped (they run away, and stop
   // themselves with a fault).

@@ -27,14 +27,7 @@ struct CoreRig {
     run_us(200000);  // start-up commands and a first sweep of polls
     joints.log.clear();
   }
-  void run_us(std::uint32_t us) {
-    const std::uint32_t end = now + us;
-    while (static_cast<std::int32_t>(now - end) < 0) {
-      joints.pump([&](std::uint8_t b) { core.on_bus_byte(b, now); });
-      core.poll(now);
-      now += 100;
-    }
-  }
+  void run_us(std::uint32_t us) { run_core(core, joints, now, us, 100); }
   void request(std::uint8_t command, std::vector<std::uint8_t> data) {
     core.on_frame(command, data.data(), static_cast<std::uint8_t>(data.size()), now);
   }
@@ -156,10 +149,10 @@ TEST(ControllerCore, EachJointGetsTheSlowestSpeedThatArrivesInTime) {
 }
 
 TEST(ControllerCore, MoveWhileTheJointIsUnderWayStartsFromWhereItIsPlannedToBe) {
-  // The polls of a moving joint are up to a sweep old (here: never updated at all); a move
-  // planned half way through the previous one must start from its half-way point.
+  // The polls of a moving joint are up to a sweep old (here: at the target at once, no
+  // guide at all); a move planned half way through the previous one must start from its
+  // half-way point.
   CoreRig moving;
-  moving.joints.drives_move = false;
   moving.request(rc_multi_servo_move, CoreRig::move(2000, {{1, 750}}));  // 0 -> 10000 clicks
   moving.run_us(1000000);
   moving.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 750}}));
@@ -446,17 +439,83 @@ TEST(ControllerCoreFaults, AJointThatRunsTheWrongWayIsReadAgainUntilItsFaultShow
   EXPECT_EQ(rig.core.stats().following_lost, 1) << "counted once";
 }
 
-TEST(ControllerCoreFaults, AJointThatNeverArrivesIsFoundWhenItsMoveEnds) {
+TEST(ControllerCoreFaults, AJointThatStallsIsFoundMidMoveAndItsMoveIsStopped) {
   CoreRig rig;
-  rig.joints.drives_move = false;  // stalled: it stays at 0
-  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 600}}));  // 0 -> 4000 clicks
-  rig.run_us(1300000);
-  EXPECT_TRUE(diagnostic_indexes(rig.joints, 1).empty()) << "between start and target during the move";
+  rig.joints.stuck[1] = true;  // blocked at 0; joint 2 moves
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 600}, {2, 600}}));  // 4000 clicks each
+  // Joint 1's ramp (39,062 clicks/s^2) is 500 clicks on after ~0.16 s plus a poll.
+  rig.run_us(150000);
+  EXPECT_FALSE(rig.core.joint_state(1).behind_ramp) << "not yet 500 clicks behind its ramp";
+  rig.run_us(250000);
+  const JointState& s = rig.core.joint_state(1);
+  EXPECT_TRUE(s.behind_ramp) << "found 0.4 s into a 1 s move, not when it ends";
+  EXPECT_FALSE(s.following);
+  EXPECT_FALSE(s.planned) << "its move is stopped";
+  EXPECT_FALSE(rig.core.joint_state(2).planned) << "the whole move";
+  EXPECT_EQ(rig.core.stats().stalls, 1);
+  EXPECT_EQ(diagnostic_indexes(rig.joints, 1), (std::vector<int>{0, 1, 2, 3, 4, 5, 6}));
+  // Safe state: set_speed 0 to both joints of the move, after their drives.
+  auto speeds = rig.joints.commands_of(jb::cmd_set_speed);
+  ASSERT_GE(speeds.size(), 4u);
+  EXPECT_EQ(speeds[speeds.size() - 2].data, 0);
+  EXPECT_EQ(speeds[speeds.size() - 1].data, 0);
+  EXPECT_EQ(rig.joints.commands_of(jb::cmd_drive_to).size(), 2u);
+  rig.upstream.frames.clear();
+  rig.request(rc_joint_fault_read, {1});
+  ASSERT_EQ(rig.upstream.frames.size(), 1u);
+  EXPECT_EQ(rig.upstream.frames[0].data[1], 1 | 4 | 8) << "answering, words read, behind its ramp";
+  // Counted once; with no fault of its own showing, its words are read again every 250 ms
+  // for a second after the stop (a runaway shows 100-150 ms after it begins), then no more.
+  rig.run_us(1000000);
+  EXPECT_EQ(rig.core.stats().stalls, 1);
+  EXPECT_EQ(diagnostic_indexes(rig.joints, 1).size(), 28u);
+  rig.run_us(1000000);
+  EXPECT_EQ(diagnostic_indexes(rig.joints, 1).size(), 28u);
+  // A new move naming it clears the finding.
+  rig.joints.stuck[1] = false;
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 600}}));
+  rig.run_us(100000);
+  EXPECT_FALSE(rig.core.joint_state(1).behind_ramp);
+}
+
+TEST(ControllerCoreFaults, AJointThatKeepsUpWithItsRampIsNotStalled) {
+  // A joint that follows its ramp (here: always 400 clicks behind the fastest it could be)
+  // is never taken for a stalled one.
+  CoreRig rig;
+  rig.joints.drives_move = false;
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{3, 700}}));  // 0 -> 8000 clicks
+  for (int ms = 0; ms < 1600; ms += 10) {
+    const double t = ms / 1000.0;
+    // 8000 clicks in 1 s from the request: d/v + v/a = 1 s gives v = 11,228 clicks/s (the
+    // plan starts the drive a little later, so it runs a little faster).
+    const double a = 39062, v = 11228, reach = v / a;
+    double x = t < reach ? a * t * t / 2 : v * v / (2 * a) + v * (t - reach);
+    x = std::min(8000.0, x) - 400;
+    rig.joints.position[3] = static_cast<std::int16_t>(std::max(0.0, x));
+    rig.run_us(10000);
+  }
+  EXPECT_EQ(rig.core.stats().stalls, 0);
+  EXPECT_TRUE(rig.core.joint_state(3).following);
+}
+
+TEST(ControllerCoreFaults, AJointPlannedWhileMovingIsCheckedWhenItsMoveEnds) {
+  // A move planned while the joint still moves has no ramp from rest to compare with: a
+  // joint that stops short is found when the move ends.
+  CoreRig rig;
+  rig.request(rc_multi_servo_move, CoreRig::move(2000, {{1, 750}}));  // 0 -> 10000 clicks
   rig.run_us(500000);
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 700}}));  // planned while moving
+  rig.run_us(20000);
+  rig.joints.drives_move = false;
+  rig.joints.position[1] = 5000;  // stopped short of 8000
+  rig.run_us(1200000);
+  EXPECT_TRUE(diagnostic_indexes(rig.joints, 1).empty()) << "between start and target during the move";
+  EXPECT_EQ(rig.core.stats().stalls, 0);
+  rig.run_us(600000);
   EXPECT_GE(diagnostic_indexes(rig.joints, 1).size(), 7u) << "off its target 0.5 s after the planned end";
   EXPECT_FALSE(rig.core.joint_state(1).following);
   // Back on its target (moved by hand, or cleared and driven): following again.
-  rig.joints.position[1] = 4000;
+  rig.joints.position[1] = 8000;
   rig.run_us(200000);
   EXPECT_TRUE(rig.core.joint_state(1).following);
 }

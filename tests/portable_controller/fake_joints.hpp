@@ -47,7 +47,7 @@ class FakeJoints final : public BusPort {
     std::int16_t response = 0;
     if (command == joint_bus::cmd_get_position) response = position[j];
     // Instant, for these tests (or never: a joint whose polls lag behind its motion).
-    if (command == joint_bus::cmd_drive_to && drives_move && !refuses_drives[j]) position[j] = static_cast<std::int16_t>(data);
+    if (command == joint_bus::cmd_drive_to && drives_move && !refuses_drives[j] && !stuck[j]) position[j] = static_cast<std::int16_t>(data);
     if (command == joint_bus::cmd_ping) response = static_cast<std::int16_t>(data);
     if (command == joint_bus::cmd_read_diagnostic && data >= 0 && data < joint_bus::diagnostic_count)
       response = diagnostics[j][data];
@@ -78,6 +78,7 @@ class FakeJoints final : public BusPort {
   int answers_as[8] = {};  // != 0: READY says this number instead
   bool drives_move = true;
   bool refuses_drives[8] = {};
+  bool stuck[8] = {};  // blocked: its drives never move it (its STATUS says success)
   std::int16_t diagnostics[8][joint_bus::diagnostic_count] = {};
   std::vector<SentCommand> log;
 
@@ -107,5 +108,17 @@ class RecordingUpstream final : public UpstreamPort {
   }
   std::vector<SentFrame> frames;
 };
+
+// Runs `core` against `joints` from `now` for `us`, a main-loop pass every `step_us`: the
+// joints' bytes in, then the core's bus work (as firmware/mega/main.cpp does).
+inline void run_core(ControllerCore& core, FakeJoints& joints, std::uint32_t& now, std::uint32_t us,
+                     std::uint32_t step_us) {
+  const std::uint32_t end = now + us;
+  while (static_cast<std::int32_t>(now - end) < 0) {
+    joints.pump([&](std::uint8_t b) { core.on_bus_byte(b, now); });
+    core.poll(now);
+    now += step_us;
+  }
+}
 
 }  // namespace armctl::controller::testing

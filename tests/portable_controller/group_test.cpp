@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "fake_joints.hpp"
+#include "memory_rig.hpp"
 #include "portable_controller/controller_core.hpp"
 #include "portable_controller/rc_codes.hpp"
 #include "portable_controller/scara_arm.hpp"
@@ -13,91 +13,6 @@ namespace armctl::controller::testing {
 namespace {
 
 namespace jb = joint_bus;
-
-// RAM standing in for the EEPROM. `writes_left` < 0: unlimited; else the memory takes that
-// many more byte writes and then ignores the rest (power lost mid-way).
-class RamMemory final : public GroupMemory {
- public:
-  explicit RamMemory(std::uint16_t size = 4096) : bytes(size, 0xFF) {}
-  std::uint16_t size() const override { return static_cast<std::uint16_t>(bytes.size()); }
-  std::uint8_t read(std::uint16_t a) override { return bytes.at(a); }
-  bool ready() override { return true; }
-  void write(std::uint16_t a, std::uint8_t v) override {
-    ++writes;
-    if (writes_left == 0) return;
-    if (writes_left > 0) --writes_left;
-    bytes.at(a) = v;
-  }
-  std::vector<std::uint8_t> bytes;
-  long writes_left = -1;
-  long writes = 0;
-};
-
-struct Action {
-  std::uint16_t ms;
-  std::vector<std::pair<int, int>> targets;  // servo, position
-};
-
-struct GroupRig {
-  explicit GroupRig(RamMemory& m) : memory(m) {
-    core.begin(scara_joints, scara_joint_count, &joints, &upstream, 115200, now, &memory);
-    run_us(100000);
-    joints.log.clear();
-    upstream.frames.clear();
-  }
-  void run_us(std::uint32_t us) {
-    const std::uint32_t end = now + us;
-    while (static_cast<std::int32_t>(now - end) < 0) {
-      joints.pump([&](std::uint8_t b) { core.on_bus_byte(b, now); });
-      core.poll(now);
-      now += 50;
-    }
-  }
-  void send(std::uint8_t command, std::vector<std::uint8_t> data) {
-    core.on_frame(command, data.data(), static_cast<std::uint8_t>(data.size()), now);
-    run_us(2000);
-  }
-  // The SDK's download sequence; true if every sub was acknowledged.
-  bool download(std::uint8_t group, const std::vector<Action>& actions) {
-    upstream.frames.clear();
-    std::vector<std::uint8_t> begin{1, group};
-    for (std::size_t left = actions.size(); left > 0;) {
-      const std::size_t b = std::min<std::size_t>(left, 255);
-      begin.push_back(static_cast<std::uint8_t>(b));
-      left -= b;
-    }
-    send(rc_group_download, begin);
-    send(rc_group_download, {2, group, 0, static_cast<std::uint8_t>(actions[0].targets.size()), 0});
-    std::vector<std::uint8_t> blocks{3, group, 0};
-    for (std::size_t b = 0; b * 255 < actions.size(); ++b) blocks.push_back(static_cast<std::uint8_t>(b));
-    send(rc_group_download, blocks);
-    for (std::size_t i = 0; i < actions.size(); ++i) {
-      const Action& a = actions[i];
-      std::vector<std::uint8_t> d{4, group, static_cast<std::uint8_t>(i / 255), static_cast<std::uint8_t>(i % 255),
-                                  static_cast<std::uint8_t>(2 + 3 * a.targets.size()),
-                                  static_cast<std::uint8_t>(a.ms & 0xFF), static_cast<std::uint8_t>(a.ms >> 8)};
-      for (auto [s, p] : a.targets) {
-        d.push_back(static_cast<std::uint8_t>(s));
-        d.push_back(static_cast<std::uint8_t>(p & 0xFF));
-        d.push_back(static_cast<std::uint8_t>(p >> 8));
-      }
-      send(rc_group_download, d);
-    }
-    send(rc_group_download, {5, group});
-    return acks() == 4 + actions.size();
-  }
-  std::size_t acks() const {
-    std::size_t n = 0;
-    for (const auto& f : upstream.frames) n += f.command == rc_group_download ? 1 : 0;
-    return n;
-  }
-
-  RamMemory& memory;
-  FakeJoints joints;
-  RecordingUpstream upstream;
-  ControllerCore core;
-  std::uint32_t now = 1000;
-};
 
 std::vector<Action> wave(int n, int servos = 3) {
   std::vector<Action> out;
@@ -163,15 +78,16 @@ TEST(Groups, InconsistentSubAbandonsTheDownloadWithoutReply) {
 TEST(Groups, ADownloadThatDoesNotFitIsRefusedAtTheServoCount) {
   RamMemory memory;
   GroupRig rig(memory);
-  // 4096 - 132 bytes of group data: 172 actions of 7 joints (23 bytes each).
-  EXPECT_EQ(rig.core.groups().capacity_bytes() / GroupStore::action_bytes(7), 172);
-  ASSERT_TRUE(rig.download(1, wave(170, 7)));
+  // 4096 - 132 - 96 (the servo settings) bytes of group data: 168 actions of 7 joints (23
+  // bytes each).
+  EXPECT_EQ(rig.core.groups().capacity_bytes() / GroupStore::action_bytes(7), 168);
+  ASSERT_TRUE(rig.download(1, wave(166, 7)));
   rig.upstream.frames.clear();
   rig.send(rc_group_download, {1, 3, 5});
   rig.send(rc_group_download, {2, 3, 0, 7, 0});  // 5 x 23 bytes: only 2 actions' room left
   EXPECT_EQ(rig.acks(), 1u);
   EXPECT_EQ(rig.core.stats().download_too_big, 1);
-  EXPECT_TRUE(same(stored(memory, 1), wave(170, 7)));
+  EXPECT_TRUE(same(stored(memory, 1), wave(166, 7)));
   EXPECT_TRUE(stored(memory, 3).empty());
   ASSERT_TRUE(rig.download(3, wave(2, 7))) << "what fits is taken";
 }
@@ -230,6 +146,25 @@ TEST(Groups, RunPlaysEachActionAsAMoveAndNotifies) {
   ASSERT_EQ(drives.size(), 8u) << "2 actions x 2 joints x 2 passes";
   EXPECT_EQ(rig.core.stats().actions_played, 4);
   EXPECT_FALSE(rig.core.playing());
+}
+
+TEST(Groups, AJointThatStallsStopsThePlaybackWithCmd7) {
+  // A stall mid-action stops the move (ControllerCore::check_ramp), and with it the group:
+  // the host gets CMD 7, no further action is played.
+  RamMemory memory;
+  GroupRig rig(memory);
+  ASSERT_TRUE(rig.download(2, {{1000, {{1, 600}, {2, 600}}}, {1000, {{1, 400}, {2, 400}}}}));
+  rig.joints.stuck[1] = true;
+  rig.upstream.frames.clear();
+  rig.send(rc_group_run, {2, 1, 0});
+  rig.run_us(3000000);
+  ASSERT_GE(rig.upstream.frames.size(), 2u);
+  EXPECT_EQ(rig.upstream.frames.front().command, rc_group_run) << "started";
+  EXPECT_EQ(rig.upstream.frames.back().command, rc_group_stop) << "CMD 7: stopped";
+  EXPECT_TRUE(rig.upstream.frames.back().data.empty());
+  EXPECT_FALSE(rig.core.playing());
+  EXPECT_EQ(rig.core.stats().stalls, 1);
+  EXPECT_EQ(rig.core.stats().actions_played, 1) << "the second action never started";
 }
 
 TEST(Groups, SpeedScalesTheActionTime) {

@@ -322,6 +322,23 @@ void run_stop(const ArmArgs& a) {
   else fmt::print("stopped\n");
 }
 
+// What the dashboard and ROS show of the device's health (ArmDevice::health): the
+// supply and every fault the device reports (a Robot Commands board with armctl's
+// JointFaultRead, the joint bus's diagnostics); what the device cannot tell is "n/a".
+void run_health(const ArmArgs& a) {
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
+  const arm::DeviceHealth h = s->arm->device().health();
+  if (a.json) {
+    print_json_line(json{{"health",
+                          {{"battery_volts", h.battery_volts ? json(*h.battery_volts) : json(nullptr)},
+                           {"faults", h.faults}}}});
+    return;
+  }
+  fmt::print("battery  {}\n", h.battery_volts ? fmt::format("{:.2f} V", *h.battery_volts) : std::string("n/a"));
+  if (h.faults.empty()) fmt::print("faults   none\n");
+  for (const auto& f : h.faults) fmt::print("fault    {}\n", f);
+}
+
 void run_move_to(const ArmArgs& a) {
   if (a.linear && a.avoid) usage("--avoid is not allowed with --linear: a line cannot go around (a PTP can)");
   if (!a.avoid && !a.avoid_time.empty()) usage("--avoid-time needs --avoid");
@@ -474,6 +491,8 @@ void add_arm_command(CLI::App& app) {
   path->callback([a] { run_path(*a); });
 
   cmd->add_subcommand("stop", "Stop every joint where it stands and hold it")->callback([a] { run_stop(*a); });
+  cmd->add_subcommand("health", "Supply voltage and joint faults, as the dashboard shows them")
+      ->callback([a] { run_health(*a); });
 
   auto* ik = cmd->add_subcommand("ik", "Print every IK solution for a pose; moves nothing");
   add_goal(ik);

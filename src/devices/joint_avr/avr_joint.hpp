@@ -58,6 +58,9 @@ class AvrJoint final : public joint_sim::BusEndpoint, private joint_sim::Encoder
   const joint_sim::JointHardware& hardware() const { return hardware_; }
   // Hold the chip in reset (it never answers, all its pins high-Z) or let it run again.
   void set_held_in_reset(bool held) { chip_->set_held_in_reset(held); }
+  // An obstacle: the joint cannot leave min..max clicks from now on (tests: a joint
+  // blocked mid-move).
+  void set_obstacle(joint_sim::EndStops stops) { hardware_.set_end_stops(stops); }
 
   // Last command byte in (RXC) -> first reply byte out (UDR0 write).
   const LatencyStats& rx_to_tx() const { return rx_to_tx_; }

@@ -90,6 +90,10 @@ void Client::deliver(const rc::GroupNotification& n) {
 
 std::optional<rc::BoardMessage> Client::take(const rc::Frame& frame) {
   ++stats_.frames_received;
+  if (frame.cmd == rc::kJointFaultReadCmd) {
+    ++stats_.stale_replies;  // an extension's reply that came after its timeout
+    return std::nullopt;
+  }
   auto msg = rc::decode_board_message(frame);
   if (!msg) {
     ++stats_.unreadable_frames;
@@ -298,6 +302,53 @@ Status Client::write_bus_servo_info(const BusServoInfoWrite& info) {
   auto f = build(info);
   if (!f) return f.error();
   return send(*f);
+}
+
+// ------------------------------------------------------------------------ extensions
+
+Result<std::optional<rc::Frame>> Client::transact_raw(const rc::Frame& frame, Duration timeout) {
+  if (auto drained = take_arrived(); !drained) return drained.error();
+  if (auto sent = send(frame); !sent) return sent.error();
+  const TimePoint deadline = link_.clock().now() + timeout;
+  for (;;) {
+    auto received = receive(deadline);
+    if (!received) return received.error();
+    if (!*received) return std::optional<rc::Frame>{};
+    if ((*received)->cmd == frame.cmd) {
+      ++stats_.frames_received;
+      return *received;
+    }
+    if (take(**received)) ++stats_.stale_replies;
+  }
+}
+
+Result<std::optional<rc::JointFaultReport>> Client::read_joint_faults(std::uint8_t servo) {
+  auto f = rc::encode_joint_fault_read(servo, servos_);
+  if (!f) return f.error();
+  if (has_joint_faults_ == false) return std::optional<rc::JointFaultReport>{};
+  auto reply = transact_raw(*f, options_.extension_timeout);
+  if (!reply) return reply.error();
+  if (!*reply) {
+    if (has_joint_faults_ == true)
+      return Error{ErrorKind::timeout,
+                   fmt::format("no JointFaultRead reply (CMD {}) for servo {} from {} within {} ms, though it "
+                               "answered before",
+                               rc::kJointFaultReadCmd, servo, link_.describe(),
+                               std::chrono::duration_cast<std::chrono::milliseconds>(options_.extension_timeout)
+                                   .count())};
+    has_joint_faults_ = false;  // a board without armctl's extension: ask no more
+    return std::optional<rc::JointFaultReport>{};
+  }
+  auto report = rc::decode_joint_fault_reply(**reply);
+  if (!report) {
+    ++stats_.unreadable_frames;
+    return Error{report.error().kind, fmt::format("{} (from {})", report.error().message, link_.describe())};
+  }
+  if (report->servo != servo)
+    return Error{ErrorKind::protocol, fmt::format("JointFaultRead: asked for servo {}, {} answered for servo {}",
+                                                  servo, link_.describe(), report->servo)};
+  has_joint_faults_ = true;
+  return std::optional<rc::JointFaultReport>{*report};
 }
 
 // ------------------------------------------------------------------------ action groups

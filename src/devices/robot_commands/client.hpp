@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "devices/robot_commands/group_event.hpp"
 #include "devices/robot_commands/rc_link.hpp"
+#include "protocol/robot_commands/joint_faults.hpp"
 #include "protocol/robot_commands/messages.hpp"
 #include "protocol/robot_commands/units.hpp"
 
@@ -47,6 +48,10 @@ struct ClientOptions {
   // boards can leave some servos powered after a combined frame; only boards that are
   // ours (the emulated xArm, the arm controller) are known to handle it.
   bool servo_off_per_servo = true;
+  // The wait for the reply to an armctl extension (JointFaultRead). A board without the
+  // extension ignores the request, so the first one costs it this long once (then the
+  // client knows and asks no more); armctl's Mega answers within a few frame times.
+  Duration extension_timeout = std::chrono::milliseconds(250);
 };
 
 using rc::GroupAction;  // one action of a group (protocol/robot_commands/messages.hpp)
@@ -89,6 +94,16 @@ class Client {
   Result<BusServoInfoReply> read_bus_servo_info();
   Status write_bus_servo_info(const BusServoInfoWrite& info);
 
+  // ---- armctl extensions (a board that does not know them ignores them)
+  // JointFaultRead (CMD 40, protocol/robot_commands/joint_faults.hpp): one joint's fault
+  // state on armctl's Mega arm controller. std::nullopt: the board does not answer it (an
+  // xArm, the xArm emulator, the Linux daemon): learnt from the first request that got no
+  // reply within options.extension_timeout; from then on nothing is sent. Once a board
+  // has answered, a missing reply is a timeout error as for any read.
+  Result<std::optional<rc::JointFaultReport>> read_joint_faults(std::uint8_t servo);
+  // What the client knows: true answered, false ignored, nullopt not asked yet.
+  std::optional<bool> has_joint_faults() const { return has_joint_faults_; }
+
   // ---- action groups
   // Downloads 1..1,020 actions (all with the same number of servos) as sub-commands 1..5,
   // each acknowledged. Every frame is built and validated before the first is sent.
@@ -128,6 +143,9 @@ class Client {
   // Sends `frame` and waits for the reply with `cmd` (and `sub` for GroupDownload acks).
   Result<rc::BoardMessage> transact(const rc::Frame& frame, std::optional<std::uint8_t> sub,
                                     Duration timeout);
+  // Sends `frame` and waits for a frame with the same CMD, undecoded (extensions, which
+  // decode_board_message does not know); other frames are taken as usual meanwhile.
+  Result<std::optional<rc::Frame>> transact_raw(const rc::Frame& frame, Duration timeout);
   // transact for a read: up to options_.read_attempts attempts while replies time out.
   Result<rc::BoardMessage> transact_read(const rc::Frame& frame);
   // Takes every frame that has already arrived (queues notifications, counts late
@@ -143,6 +161,7 @@ class Client {
   std::deque<GroupEvent> events_;
   EventCallback callback_;
   bool stop_sent_ = false;  // tells "stopped" from "finished" for a bare CMD 7
+  std::optional<bool> has_joint_faults_;
   ClientStats stats_;
 };
 
