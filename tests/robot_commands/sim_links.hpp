@@ -72,6 +72,7 @@ class EmulatedLink final : public RcLink {
 
   void send(const rc::Frame& frame) override {
     sent.push_back(frame);
+    if (deaf_) return;
     auto bytes = rc::encode_frame(frame);
     if (baud_ == 0) {
       emulator_.receive(bytes);
@@ -113,6 +114,8 @@ class EmulatedLink final : public RcLink {
 
   xarm::XarmEmulator& emulator() { return emulator_; }
   SimClock& sim_clock() { return clock_; }
+  // A pulled cable: from now on nothing sent reaches the board (nor is answered).
+  void set_deaf(bool deaf) { deaf_ = deaf; }
   std::vector<rc::Frame> sent;
 
  private:
@@ -123,6 +126,7 @@ class EmulatedLink final : public RcLink {
   }
 
   std::uint32_t baud_;
+  bool deaf_ = false;
   SimClock clock_;
   std::deque<std::pair<TimePoint, std::vector<std::uint8_t>>> to_board_;
   std::deque<std::pair<TimePoint, rc::Frame>> out_;
