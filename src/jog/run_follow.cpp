@@ -1,5 +1,6 @@
 #include "jog/run_follow.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <mutex>
@@ -92,7 +93,7 @@ Result<FollowReport> run_follow(arm::Arm& leader, arm::Arm& follower, const Foll
   std::size_t seen = 0, tracked = 0;
   double tracking_sum = 0;
   std::vector<double> newest = leader_start->positions;
-  std::optional<TimePoint> start, last_reading, next_sample;
+  std::optional<TimePoint> start, last_reading, next_sample, first_sample;
   std::string lost;
 
   arm::ServoOptions servo = options.servo;
@@ -123,11 +124,16 @@ Result<FollowReport> run_follow(arm::Arm& leader, arm::Arm& follower, const Foll
       tracking_sum += f.tracking_error;
       ++tracked;
     }
-    if (options.record_rate > 0 && start && follower.clock().now() >= *next_sample) {
-      const double t = std::chrono::duration<double>(follower.clock().now() - *start).count();
+    const TimePoint now = follower.clock().now();
+    if (options.record_rate > 0 && start && now >= *next_sample) {
+      if (!first_sample) first_sample = now;
+      const double t = std::chrono::duration<double>(now - *first_sample).count();
       report.leader_recording.samples.push_back({t, newest});
       report.follower_recording.samples.push_back({t, s.positions});
-      *next_sample += std::chrono::duration_cast<Duration>(std::chrono::duration<double>(1.0 / options.record_rate));
+      // A follower whose link is slower than the rate samples once a cycle (the header then
+      // says the rate it reached).
+      const auto step = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(1.0 / options.record_rate));
+      *next_sample = std::max(*next_sample + step, now);
     }
     if (options.on_cycle) options.on_cycle(f);
   };
@@ -141,6 +147,12 @@ Result<FollowReport> run_follow(arm::Arm& leader, arm::Arm& follower, const Foll
   report.follower = std::move(*r);
   report.leader_reads = readings.count();
   report.mean_tracking_error = tracked ? tracking_sum / double(tracked) : 0;
+  const auto& samples = report.follower_recording.samples;
+  if (samples.size() > 1) {
+    const double reached = double(samples.size() - 1) / samples.back().time;
+    const double rate = std::clamp(std::floor(std::min(options.record_rate, reached)), 1.0, files::kRecordingMaxRate);
+    report.follower_recording.rate = report.leader_recording.rate = rate;
+  }
   return report;
 }
 

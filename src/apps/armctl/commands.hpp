@@ -20,6 +20,7 @@ void add_stop_command(CLI::App& app);        // stop_command.cpp: stop any devic
 void add_program_command(CLI::App& app);     // program_command.cpp: robot programs
 void add_teach_command(CLI::App& app);       // teach_command.cpp: points and motions taught by hand
 void add_jog_command(CLI::App& app);         // jog_command.cpp: the arm driven from the keyboard
+void add_follow_command(CLI::App& app);      // follow_command.cpp: a follower arm copies a leader moved by hand
 void add_replay_command(CLI::App& app);      // replay_command.cpp: recordings played back
 void add_serve_command(CLI::App& app);       // serve_command.cpp: the web dashboard and its HTTP API
 
