@@ -251,6 +251,14 @@ class ServoLoop {
         status.detail = fmt::format("condition {:.1f}", there);
       }
     }
+    // At a singularity a direction may be lost altogether (the SCARA stretched out cannot
+    // move its tool outward): the damped solve gives the joints next to nothing, and the
+    // status says why the tool does not move as asked.
+    const double asked = linear.norm(), made = (jacobian.topRows<3>() * q).norm();
+    if (status.slowdown == ServoSlowdown::none && asked > 0 && made < 0.5 * asked) {
+      status.slowdown = ServoSlowdown::singularity;
+      status.detail = fmt::format("condition {:.1f}: the tool cannot move that way here", here);
+    }
     for (int i = 0; i < q.size(); ++i) goals_[std::size_t(i)] = {motion::ServoGoal::Kind::velocity, q[i] * scale};
     status.scale = scale;
     scale_near_obstacles(status);

@@ -15,6 +15,7 @@
 #include "ros/trajectory_job.hpp"
 #include "session/arm_session.hpp"
 #include "session/arm_worker.hpp"
+#include "session/servo_lane.hpp"
 
 namespace armctl::ros_node {
 
@@ -110,6 +111,7 @@ struct ArmBridge::Impl {
   ArmInfo info;
   session::ArmWorker worker;
   MotionLane lane{worker};
+  session::ServoLane servo{worker};
 
   Impl(const BridgeOptions& o, std::unique_ptr<session::ArmSession> session)
       : options(o), info(info_of(*session)), worker(std::move(session), worker_options(o)) {}
@@ -309,5 +311,32 @@ MotionOutcome ArmBridge::stop_action_group() {
 }
 
 void ArmBridge::stop() { impl_->lane.stop(); }
+
+namespace {
+
+std::string why_not(const Status& s) { return s ? std::string() : s.error().message; }
+
+}  // namespace
+
+std::string ArmBridge::servo_twist(const std::vector<double>& linear, const std::vector<double>& angular,
+                                   bool tool_frame) {
+  if (linear.size() != 3 || angular.size() != 3) return "a twist has three linear and three angular components";
+  arm::ToolTwist t{Eigen::Vector3d(linear[0], linear[1], linear[2]), Eigen::Vector3d(angular[0], angular[1], angular[2]),
+                   tool_frame ? arm::ServoFrame::tool : arm::ServoFrame::base};
+  return why_not(impl_->servo.send(arm::ServoCommand{t, std::nullopt}));
+}
+
+std::string ArmBridge::servo_joints(const std::vector<std::string>& names, const std::vector<double>& velocities) {
+  const arm::ArmModel& model = impl_->model();
+  if (names.size() != velocities.size())
+    return fmt::format("{} joint names and {} velocities: one velocity per name", names.size(), velocities.size());
+  std::vector<double> v(std::size_t(model.joint_count()), 0.0);
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const auto i = model.find_joint(names[k]);
+    if (!i) return fmt::format("arm '{}' has no joint '{}'", model.name, names[k]);
+    v[std::size_t(*i)] = velocities[k];
+  }
+  return why_not(impl_->servo.send(arm::ServoCommand{arm::JointVelocities{std::move(v)}, std::nullopt}));
+}
 
 }  // namespace armctl::ros_node

@@ -95,6 +95,15 @@ class ArmBridge {
   // Stops what runs (it slows down on its path, then every joint holds); returns at once.
   void stop();
 
+  // The servo mode (docs/servo.md), as MoveIt Servo's topics give it: the tool at `linear`
+  // m/s turning at `angular` rad/s (x, y, z) in the base frame, or in the tool's when
+  // `tool_frame`; or the named joints at `velocities` (rad/s, m/s), the others still. The
+  // first command starts a servo session, commands not renewed within 0.2 s bring the arm to
+  // rest. Returns "" when followed, else why not (a bad value, a name the arm lacks, another
+  // motion running).
+  std::string servo_twist(const std::vector<double>& linear, const std::vector<double>& angular, bool tool_frame);
+  std::string servo_joints(const std::vector<std::string>& names, const std::vector<double>& velocities);
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -13,10 +13,12 @@
 
 #include <actionlib/server/action_server.h>
 #include <control_msgs/FollowJointTrajectoryAction.h>
+#include <control_msgs/JointJog.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 #include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/TwistStamped.h>
 #include <ros/ros.h>
 #include <sensor_msgs/BatteryState.h>
 #include <sensor_msgs/JointState.h>
@@ -80,7 +82,7 @@ struct ArmNode::Impl {
 
   ros::NodeHandle nh, private_nh{"~"};
   ros::Publisher joint_states, battery, diagnostics;
-  ros::Subscriber command, pose_goal;
+  ros::Subscriber command, pose_goal, twist, joint_jog;
   std::vector<ros::ServiceServer> services;
   std::unique_ptr<Server> server;
 
@@ -104,6 +106,9 @@ struct ArmNode::Impl {
     diagnostics = nh.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 1);
     command = nh.subscribe("arm_controller/command", 1, &Impl::on_command, this);
     pose_goal = nh.subscribe("pose_goal", 1, &Impl::on_pose_goal, this);
+    // The servo mode, on MoveIt Servo's topic names and types (docs/ros.md "Servo").
+    twist = private_nh.subscribe("delta_twist_cmds", 10, &Impl::on_twist, this);
+    joint_jog = private_nh.subscribe("delta_joint_cmds", 10, &Impl::on_joint_jog, this);
     services.push_back(private_nh.advertiseService("stop", &Impl::on_stop, this));
     services.push_back(private_nh.advertiseService("set_torque", &Impl::on_torque, this));
     services.push_back(private_nh.advertiseService("gripper", &Impl::on_gripper, this));
@@ -398,6 +403,30 @@ struct ArmNode::Impl {
         ROS_WARN("arm_controller/command failed: %s", o.message.c_str());
       }
     });
+  }
+
+  // A servo command refused: counted, and said at most once a second (they come at 50 Hz).
+  void servo_refused(const std::string& why) {
+    if (why.empty()) return;
+    counters.refusal(why);
+    ROS_WARN_THROTTLE(1.0, "servo command refused: %s", why.c_str());
+  }
+
+  void on_twist(const geometry_msgs::TwistStamped::ConstPtr& m) {
+    const std::string& frame = m->header.frame_id;
+    const bool tool = frame == info.tool_frame;
+    if (!frame.empty() && frame != info.base_frame && !tool)
+      return servo_refused(fmt::format("delta_twist_cmds in frame '{}': give it in '{}' (the base) or '{}' (the tool)",
+                                       frame, info.base_frame, info.tool_frame));
+    const auto& l = m->twist.linear;
+    const auto& a = m->twist.angular;
+    servo_refused(arm.servo_twist({l.x, l.y, l.z}, {a.x, a.y, a.z}, tool));
+  }
+
+  void on_joint_jog(const control_msgs::JointJog::ConstPtr& m) {
+    if (m->velocities.empty() && !m->displacements.empty())
+      return servo_refused("delta_joint_cmds with displacements only: armctl_ros follows velocities (rad/s, m/s)");
+    servo_refused(arm.servo_joints(m->joint_names, m->velocities));
   }
 
   void on_pose_goal(const geometry_msgs::PoseStamped::ConstPtr& m) {

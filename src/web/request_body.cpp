@@ -236,6 +236,28 @@ JogRequest parse_jog_request(const json& body) {
   return out;
 }
 
+arm::ServoCommand parse_servo_request(const json& body) {
+  // The keyboard's fastest steps (jog/key_jog.cpp): what a held button may ask.
+  constexpr double kMostLinear = 100, kMostAngular = 60;  // mm/s, deg/s
+  BodyReader r(body);
+  static const std::vector<std::string> kAxes = {"x", "y", "z", "roll", "pitch", "yaw"};
+  const std::string axis = r.word("axis", kAxes);
+  int k = 0;
+  while (kAxes[std::size_t(k)] != axis) ++k;
+  const bool angle = k >= 3;
+  const double most = angle ? kMostAngular : kMostLinear;
+  const double speed = r.number("speed", -most, most, fmt::format("{0} (signed; 0 stops), -{1:g}..{1:g}",
+                                                                  angle ? "deg/s" : "mm/s", most));
+  const std::string frame = r.optional_string("frame", 8).value_or("base");
+  if (frame != "base" && frame != "tool") bad_value("frame", "'base' or 'tool'");
+  r.finish();
+  arm::ToolTwist t;
+  t.frame = frame == "tool" ? arm::ServoFrame::tool : arm::ServoFrame::base;
+  if (angle) t.angular[k - 3] = speed * M_PI / 180;
+  else t.linear[k] = speed / 1e3;
+  return arm::ServoCommand{t, std::nullopt};
+}
+
 double parse_gripper_request(const json& body) {
   BodyReader r(body);
   const double closed = r.number("closed", 0, 1, "how far closed, 0 (open) up to 1 (closed)");

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "arm/arm_model.hpp"
+#include "arm/servo_commands.hpp"
 #include "motion/move_limits.hpp"
 
 namespace armctl::web {
@@ -100,6 +101,11 @@ struct JogRequest {
 inline constexpr double kMaxJogLength = 0.1;          // m
 inline constexpr double kMaxJogAngle = 1.5707963267948966;  // rad (90 deg)
 JogRequest parse_jog_request(const json& body);
+
+// POST /api/v1/servo, hold-to-jog: {"axis": x|y|z|roll|pitch|yaw, "speed": signed mm/s or
+// deg/s (0: come to rest), "frame": "base"|"tool"}: the tool twist the servo mode follows
+// (docs/servo.md) until the next one, or for 0.2 s.
+arm::ServoCommand parse_servo_request(const json& body);
 
 // POST /api/v1/gripper
 double parse_gripper_request(const json& body);

@@ -10,6 +10,7 @@
 
 #include "files/points_file.hpp"
 #include "session/arm_worker.hpp"
+#include "session/servo_lane.hpp"
 #include "web/connection_guard.hpp"
 #include "web/control_lease.hpp"
 #include "web/motion_jobs.hpp"
@@ -35,6 +36,8 @@ struct WebServer::State {
 
   std::mutex points_mutex;
   files::PointsFile points;
+  // Hold-to-jog (POST /api/v1/servo): one servo session on the worker for every client.
+  session::ServoLane servo{worker};
 
   // The arm's kinematics (check_targets, forward, tool_rpy, planning): an immutable value,
   // safe on the HTTP threads while the worker thread drives the arm.

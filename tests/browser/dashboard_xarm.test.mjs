@@ -170,6 +170,33 @@ test('jog, gripper, torque and points from the Move view', async () => {
   assert.ok(!(await script.get('/api/v1/points')).points.some((p) => p.name === 'pick'));
 });
 
+test('hold to move: the tool moves while a button is held and comes to rest when it is let go', async () => {
+  await waitIdle(script);
+  const home = { servo6: 0, servo5: 20, servo4: 40, servo3: 40, servo2: 0 };
+  await pageMove(home);
+  for (const [name, value] of Object.entries(home)) await waitForPosition(script, name, value, 0.6);
+  await waitIdle(script);
+  const y0 = (await script.state()).tool.y;
+  const holdToMove = page.getByRole('checkbox', { name: 'Hold to move' });
+  await holdToMove.check();
+  await page.getByRole('button', { name: 'jog y plus' }).hover();
+  await page.mouse.down();
+  await waitFor(async () => (await script.state()).tool.y > y0 + 5, 'the tool moving along y while the button is held');
+  await page.mouse.up();
+  // Let go: at rest within moments (two readings 300 ms apart agree), well short of where
+  // it would be had it gone on.
+  await waitFor(async () => {
+    const a = (await script.state()).tool.y;
+    await new Promise((resolve) => setTimeout(resolve, 300));
+    return Math.abs((await script.state()).tool.y - a) < 0.3;
+  }, 'the tool at rest after the button was let go');
+  const moved = (await script.state()).tool.y - y0;
+  assert.ok(moved > 5 && moved < 80, `moved ${moved.toFixed(1)} mm along y`);
+  await holdToMove.uncheck();
+  await waitIdle(script);
+  assert.deepEqual(problems, []);
+});
+
 test('the move-to form: use the current pose, change z, move the tool there in a straight line', async () => {
   await tab('Move').click();
   await waitIdle(script);

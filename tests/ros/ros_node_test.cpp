@@ -10,14 +10,17 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <unistd.h>
 
 #include <actionlib/client/simple_action_client.h>
 #include <control_msgs/FollowJointTrajectoryAction.h>
+#include <control_msgs/JointJog.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/TwistStamped.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
 #include <trajectory_msgs/JointTrajectory.h>
@@ -456,6 +459,49 @@ TEST_P(RosNode, APoseGoalInTheBaseFrameMovesTheToolThereAndAnotherFrameIsRefused
     return std::hypot(p[0] - target[0], p[1] - target[1], p[2] - target[2]) < 0.002;
   };
   ASSERT_TRUE(wait_until(tool_at_target, 20s)) << node_->log_text();
+}
+
+// The servo mode on MoveIt Servo's topics: the first chain joint jogged at a tenth of its
+// velocity limit for a second at 50 Hz moves by about that much and comes to rest when the
+// messages stop; a twist in a frame the arm lacks is refused, naming the frames it takes.
+TEST_P(RosNode, JointJogMovesAJointWhileItComesAndATwistInAnotherFrameIsRefused) {
+  ros::NodeHandle nh;
+  Diagnostics diagnostics;
+  auto jog = nh.advertise<control_msgs::JointJog>("/armctl_ros/delta_joint_cmds", 10);
+  auto twist = nh.advertise<geometry_msgs::TwistStamped>("/armctl_ros/delta_twist_cmds", 10);
+  ASSERT_TRUE(wait_until([&] { return jog.getNumSubscribers() > 0 && twist.getNumSubscribers() > 0; }, 10s));
+  const auto before = states_->last().position;
+  const auto& j0 = joints_[0];
+  // Toward the middle of its range, so that the end of the range does not slow it.
+  const double direction = before[0] < 0.5 * (j0.lower + j0.upper) ? 1.0 : -1.0;
+  const double speed = 0.1 * j0.velocity;
+  control_msgs::JointJog m;
+  m.joint_names = {j0.name};
+  m.velocities = {direction * speed};
+  const auto end = std::chrono::steady_clock::now() + 1s;
+  while (std::chrono::steady_clock::now() < end) {
+    m.header.stamp = ros::Time::now();
+    jog.publish(m);
+    std::this_thread::sleep_for(20ms);  // the publisher's rate, as a joystick driver's
+  }
+  ASSERT_TRUE(at_rest(10s)) << node_->log_text();
+  const double moved = (states_->last().position[0] - before[0]) * direction;
+  EXPECT_GT(moved, 0.5 * speed) << node_->log_text();
+  EXPECT_LT(moved, 1.6 * speed);
+
+  geometry_msgs::TwistStamped t;
+  t.header.frame_id = "camera";
+  t.twist.linear.x = 0.01;
+  twist.publish(t);
+  ASSERT_TRUE(wait_until(
+      [&] {
+        for (const auto& d : diagnostics.all())
+          for (const auto& kv : d.values)
+            if (kv.key == "last refusal" && kv.value.find("delta_twist_cmds in frame 'camera'") != std::string::npos)
+              return true;
+        return false;
+      },
+      10s));
 }
 
 TEST_P(RosNode, ServicesStopTorqueGripperAndActionGroups) {

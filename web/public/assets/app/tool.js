@@ -1,5 +1,8 @@
 // The tool in millimetres and degrees: the live pose, jog buttons per axis with a step
-// size (POST /api/v1/jog) and a "move tool to" form (POST /api/v1/tool).
+// size (POST /api/v1/jog) or, with "hold to move", moving while held (POST /api/v1/servo every
+// 50 ms; released, it stops: the server brings the arm to rest when the posts stop coming,
+// also when the page is closed or the connection lost), the keys w/s a/d r/f doing the same
+// for x, y, z; and a "move tool to" form (POST /api/v1/tool).
 import { api } from './api.js';
 import { el, $, fmt, busy } from './dom.js';
 import { onState } from './live.js';
@@ -14,6 +17,36 @@ export function initTool(model) {
   const stepMm = el('input', { type: 'number', min: 0.1, max: 100, step: 'any', value: 10, 'aria-label': 'Jog step (mm)' });
   const stepDeg = el('input', { type: 'number', min: 0.1, max: 90, step: 'any', value: 5, 'aria-label': 'Jog step (deg)' });
   const linear = el('input', { type: 'checkbox', checked: true, 'aria-label': 'Straight line' });
+  const hold = el('input', { type: 'checkbox', 'aria-label': 'Hold to move' });
+  const speedMm = el('input', { type: 'number', min: 1, max: 100, step: 'any', value: 25, 'aria-label': 'Hold speed (mm/s)' });
+  const speedDeg = el('input', { type: 'number', min: 1, max: 60, step: 'any', value: 20, 'aria-label': 'Hold speed (deg/s)' });
+  let held = null;  // { axis, timer } while a button or key is held
+  const servo = (axis, speed) => api.post('/api/v1/servo', { axis, speed }).catch(() => release());
+  const press = (axis, unit, sign) => {
+    if (held) release();
+    const speed = sign * Number(unit === 'mm' ? speedMm.value : speedDeg.value);
+    servo(axis, speed);
+    held = { axis, timer: setInterval(() => servo(axis, speed), 50) };
+  };
+  const release = () => {
+    if (!held) return;
+    clearInterval(held.timer);
+    const { axis } = held;
+    held = null;
+    api.post('/api/v1/servo', { axis, speed: 0 }).catch(() => {});
+  };
+  const holdHandlers = (axis, unit, sign) => ({
+    onpointerdown: (e) => { if (hold.checked) { e.currentTarget.setPointerCapture?.(e.pointerId); press(axis, unit, sign); } },
+    onpointerup: release, onpointercancel: release, onlostpointercapture: release,
+  });
+  const KEYS = { w: ['x', 1], s: ['x', -1], a: ['y', 1], d: ['y', -1], r: ['z', 1], f: ['z', -1] };
+  document.addEventListener('keydown', (e) => {
+    const k = KEYS[e.key];
+    if (!hold.checked || !k || e.repeat || e.target.closest('input, textarea, select')) return;
+    press(k[0], 'mm', k[1]);
+  });
+  document.addEventListener('keyup', (e) => { if (KEYS[e.key] && held) release(); });
+  window.addEventListener('blur', release);
   const pose = new Map();
   const targets = new Map();
 
@@ -30,8 +63,9 @@ export function initTool(model) {
     pose.set(axis, now);
     const target = el('input', { type: 'number', step: 'any', class: 'target', 'aria-label': `tool ${axis} target (${unit})` });
     targets.set(axis, target);
-    const minus = el('button', { type: 'button', 'aria-label': `jog ${axis} minus`, onclick: (e) => jog(axis, unit, -1, e.currentTarget) }, `${axis} −`);
-    const plus = el('button', { type: 'button', 'aria-label': `jog ${axis} plus`, onclick: (e) => jog(axis, unit, 1, e.currentTarget) }, `${axis} +`);
+    const step = (sign) => (e) => { if (!hold.checked) jog(axis, unit, sign, e.currentTarget); };
+    const minus = el('button', { type: 'button', 'aria-label': `jog ${axis} minus`, onclick: step(-1), ...holdHandlers(axis, unit, -1) }, `${axis} −`);
+    const plus = el('button', { type: 'button', 'aria-label': `jog ${axis} plus`, onclick: step(1), ...holdHandlers(axis, unit, 1) }, `${axis} +`);
     body.append(el('tr', {}, el('th', {}, axis), el('td', {}, now, ' ', el('span', { class: 'muted' }, unit)),
       el('td', {}, minus, plus), el('td', {}, target)));
   }
@@ -51,6 +85,8 @@ export function initTool(model) {
     el('div', { class: 'row' },
       el('label', {}, 'Step ', stepMm, ' mm'), el('label', {}, ' ', stepDeg, ' deg'),
       el('label', {}, linear, ' straight line')),
+    el('div', { class: 'row' },
+      el('label', {}, hold, ' hold to move'), el('label', {}, ' at ', speedMm, ' mm/s'), el('label', {}, ' ', speedDeg, ' deg/s')),
     table,
     el('div', { class: 'row' }, copy, moveTo));
 
