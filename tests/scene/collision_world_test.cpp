@@ -16,6 +16,7 @@
 
 #include "arm/arm_model.hpp"
 #include "scene/collision_world.hpp"
+#include "scene/motion_check.hpp"
 
 namespace armctl::scene {
 namespace {
