@@ -7,13 +7,8 @@
 
 #include <numbers>
 
-#include "arm/arm.hpp"
-#include "arm/bus_arm_device.hpp"
 #include "arm/motion_executor.hpp"
-#include "arm/rc_arm_device.hpp"
-#include "arm_files.hpp"
-#include "joint_bus/sim_fixture.hpp"
-#include "robot_commands/sim_links.hpp"
+#include "simulated_arms.hpp"
 
 namespace armctl::arm {
 namespace {
@@ -36,13 +31,9 @@ PlannedMotion straight_motion(std::vector<double> a, std::vector<double> b, doub
   return m;
 }
 
-class XarmStall : public ::testing::Test {
+class XarmStall : public testing::XarmOnEmulator {
  protected:
-  robot_commands::testing::EmulatedLink link{9600};
-  robot_commands::Client client{link};
-  Arm arm{testing::shipped("xarm"), std::make_unique<RcArmDevice>(testing::shipped("xarm"), client)};
   xarm::XarmServos& servos() { return link.emulator().servos(); }
-  std::vector<double> here() { return arm.read().value().positions; }
 };
 
 TEST_F(XarmStall, AStreamedMotionStopsAndReleasesTheStalledJoint) {
@@ -107,20 +98,7 @@ TEST_F(XarmStall, SlowAndFastHealthyMovesNeverStall) {
   EXPECT_TRUE(w) << w.error().message;
 }
 
-class ScaraStall : public ::testing::Test {
- protected:
-  std::unique_ptr<joint_sim::SimArm> sim = test::make_arm(115200);
-  joint_bus::BusMaster master{sim->link()};
-  Arm arm{testing::shipped("scara"),
-          std::make_unique<BusArmDevice>(testing::shipped("scara"), master, sim->link(), "simulated SCARA")};
-  std::vector<double> here() { return arm.read().value().positions; }
-  // An obstacle holds joint `number` (its joint-bus number) within a few clicks of where it stands.
-  void hold_where_it_stands(int number) {
-    auto& hw = sim->joint(number).hardware();
-    const auto at = static_cast<std::int32_t>(hw.position_clicks());
-    hw.set_end_stops({at - 5, at + 5});
-  }
-};
+class ScaraStall : public testing::ScaraOnBus {};
 
 TEST_F(ScaraStall, ABoardMoveWaitedForStopsAndReleasesTheStalledJoint) {
   auto targets = std::vector<std::optional<double>>(std::size_t(arm.model().joint_count()));

@@ -14,34 +14,13 @@
 #include <string>
 
 #include "arm/arm_kinematics.hpp"
+#include "random_scene.hpp"
 #include "scene/motion_check.hpp"
 
 namespace armctl::scene {
 namespace {
 
-using motion::Shape;
-
 constexpr double kGrid = kCheckResolution / 4;  // the reference's spacing: no point moves more between two
-
-// Eight objects within the arm's reach, of every kind (from `rng` alone: the same scenes
-// whatever ran before).
-Scene random_scene(double reach, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> unit(0, 1);
-  std::normal_distribution<double> normal;
-  Scene scene;
-  for (int k = 0; k < 8; ++k) {
-    SceneObject o;
-    o.name = "o" + std::to_string(k);
-    o.shape.kind = static_cast<Shape::Kind>(k % 3);
-    o.shape.size = {0.01 + 0.06 * unit(rng), 0.01 + 0.06 * unit(rng), 0.01 + 0.06 * unit(rng)};
-    const double r = reach * unit(rng), a = 2 * M_PI * unit(rng);
-    o.shape.pose.translation() = Eigen::Vector3d(r * std::cos(a), r * std::sin(a), reach * (unit(rng) - 0.3));
-    o.shape.pose.linear() =
-        Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng)).normalized().toRotationMatrix();
-    scene.objects.push_back(o);
-  }
-  return scene;
-}
 
 struct Reference {
   double deepest = 0;        // m: the deepest contact seen
@@ -81,7 +60,7 @@ TEST_P(MotionChecks, AgreeWithEveryPairAskedEverywhereAndSkipMostPairs) {
   int contacts = 0, clear = 0;
   std::size_t checks = 0, queries = 0, could_ask = 0;
   for (int motion = 0; motion < 60; ++motion) {
-    const auto kin = plain.with_scene(random_scene(m.reach, rng)).value();
+    const auto kin = plain.with_scene(testing::random_scene(m.reach, 8, rng)).value();
     const CollisionWorld& world = *kin->collisions();
     // From a random configuration up to 0.8 rad (or 40 % of a prismatic joint's travel) away.
     std::vector<double> a, b;
