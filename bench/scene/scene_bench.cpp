@@ -213,7 +213,7 @@ void bench_lin() {
   for (int i = 0; i < n; ++i)
     for (std::size_t k = 0; k < 2 * checks; ++k) sample(motion.duration * double(k) / double(2 * checks), q);
   const double sampling_ms = (thread_cpu_ns() - t0) / n / 1e6;
-  std::printf("bench_scene: the 500 mm LIN takes %.2f s; %zu checks of %zu pairs, %zu FCL queries; sampling the motion "
+  std::printf("bench_scene: the 500 mm LIN takes %.2f s; %zu checks of %zu pairs, %zu pair queries; sampling the motion "
               "takes %.3f ms of the check\n",
               motion.duration, checks, w.pairs_checked(), queries, sampling_ms);
   print("scene_check_lin_500mm", ms, "ms", 1.0);

@@ -1,7 +1,6 @@
 #include "scene/motion_check.hpp"
 
 #include <algorithm>
-#include <limits>
 
 namespace armctl::scene {
 

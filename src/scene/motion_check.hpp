@@ -24,7 +24,7 @@ struct MotionCheck {
   std::vector<double> joints;  // there
   Clearance clearance;         // the smallest along the motion (no contact)
   std::size_t checks = 0;      // configurations checked
-  std::size_t queries = 0;     // FCL queries (collision and distance) made for them
+  std::size_t queries = 0;     // pairs asked at them: contact or distance (FCL after a box test)
 };
 inline constexpr double kCheckResolution = 0.002;  // m
 

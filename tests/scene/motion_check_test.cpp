@@ -114,7 +114,7 @@ TEST_P(MotionChecks, AgreeWithEveryPairAskedEverywhereAndSkipMostPairs) {
   EXPECT_GE(clear, 10);
   // Most pairs are skipped at most checks.
   EXPECT_LT(double(queries), 0.25 * double(could_ask));
-  std::printf("%s: %d of 60 motions in contact; %zu checks, %zu FCL queries of %zu pair checks\n", GetParam(), contacts,
+  std::printf("%s: %d of 60 motions in contact; %zu checks, %zu pairs asked of %zu\n", GetParam(), contacts,
               checks, queries, could_ask);
 }
 
