@@ -61,8 +61,10 @@ TEST(SceneContact, TheXarmEmulatorsServosStallAtTheBoxAndTheHostNamesTheJoint) {
 
 TEST(SceneContact, TheScarasSimulatedJointStallsOnTheBoxAndTheHostNamesIt) {
   const ArmModel model = testing::shipped("scara");
-  // Under the stretched-out arm's tool, its top at 260 mm (PlanCollisions' box).
-  const scene::Scene scene = scene_of(R"({"objects": [{"name": "box", "box": [60, 60, 60], "at": [685, 0, 230]}]})");
+  // Under the stretched-out arm's tool, its top at 260 mm (PlanCollisions' box; the example
+  // of docs/scene.md "Simulators").
+  const scene::Scene scene =
+      scene::load_scene(std::string(ARMCTL_SOURCE_DIR) + "/examples/scenes/scara-box.json").value();
   auto sim = test::make_arm(115200);
   sim->set_obstacle(scene_obstacle(model, Protocol::joint_bus, scene).value());
   joint_bus::BusMaster master{sim->link()};
