@@ -104,7 +104,46 @@ Status Arm::send(const std::vector<std::optional<double>>& targets, Duration dur
   if (!device_targets) return device_targets.error();
   if (auto sent = device_->move(*device_targets, duration); !sent) return sent;
   last_targets_ = targets;
+  move_sent_ = device_->clock().now();
+  move_duration_ = duration;
   return Ok{};
+}
+
+void Arm::expect_at(const std::vector<double>& positions) {
+  last_targets_.assign(positions.begin(), positions.end());
+  move_sent_ = device_->clock().now();  // the executor's last point was due when its motion ended
+  move_duration_ = Duration{0};
+}
+
+StallWatch Arm::stall_watch(Duration time) const {
+  std::vector<StallThresholds> joints;
+  for (std::size_t i = 0; i < model().joints.size(); ++i) {
+    const JointModel& j = model().joints[i];
+    if (model().gripper && model().gripper->joint == int(i)) {
+      joints.push_back({});  // a gripper stops on a part by design
+      continue;
+    }
+    const auto& map = j.map(device_->protocol());
+    const double unit = map ? 1.0 / std::abs(map->device_per_unit()) : 0.0;
+    const bool angle = j.dimension == Dimension::angle;
+    joints.push_back({std::max(angle ? kStallDrivenAngle : kStallDrivenLength, 2 * unit),
+                      std::max(angle ? kStallMovesAngle : kStallMovesLength, 1.5 * unit)});
+  }
+  return StallWatch(std::move(joints), time);
+}
+
+Error Arm::stalled(JointStall stall, const std::string& what) {
+  (void)stop();  // every joint held where it stands (best effort: the stall is the news)
+  const Status released = device_->release(stall.joint);
+  const JointModel& j = model().joints[std::size_t(stall.joint)];
+  stall.name = j.name;
+  return Error{ErrorKind::device,
+               fmt::format("{}joint {} stalled: it stood at {} for {:.1f} s while driven to {} (something the scene does "
+                           "not know is in the way?); the arm was stopped and {}",
+                           what.empty() ? "" : what + ": ", j.name, format_quantity(j.dimension, stall.position),
+                           stall.seconds, format_quantity(j.dimension, stall.driven_to),
+                           released ? "the joint's torque released" : "releasing its torque failed: " + released.error().message),
+               stall};
 }
 
 Status Arm::move_to(const CartesianGoal& goal, const MoveOptions& options) {
@@ -125,10 +164,18 @@ Status Arm::gripper(double closed_fraction, const MoveOptions& options) {
 Result<JointState> Arm::wait(const WaitOptions& options) {
   const TimePoint deadline = device_->clock().now() + options.timeout;
   std::optional<JointState> previous;
+  StallWatch stall = stall_watch(options.stall_time);
+  std::vector<std::optional<double>> driven_to(last_targets_.size());
   for (;;) {
     auto s = read();
     if (!s) return s.error();
     if (options.on_read) options.on_read(*s);
+    // Driven to its target once the move's time is up. Not before: where the board has a
+    // joint meanwhile is the board's (the arm controller starts a joint late so that every
+    // joint arrives together; an xArm servo moves at once).
+    const bool due = s->time >= move_sent_ + move_duration_;
+    for (std::size_t i = 0; i < last_targets_.size(); ++i) driven_to[i] = due ? last_targets_[i] : std::nullopt;
+    if (auto st = stall.read(s->time, s->positions, driven_to)) return stalled(std::move(*st));
     std::string late;
     bool resting = previous.has_value();
     for (std::size_t i = 0; i < last_targets_.size(); ++i) {

@@ -18,6 +18,7 @@
 #include "arm/arm_device.hpp"
 #include "arm/arm_kinematics.hpp"
 #include "arm/arm_model.hpp"
+#include "arm/stall_watch.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 #include "motion/kinematics.hpp"
@@ -64,6 +65,9 @@ struct WaitOptions {
   std::function<bool()> interrupted;
   // After every read (a thread publishing live positions while the wait runs).
   std::function<void(const JointState&)> on_read;
+  // Stall protection (arm/stall_watch.hpp): a joint of the move driven but standing still
+  // this long is stopped and released (error device, detail JointStall). 0: off.
+  Duration stall_time = kStallTime;
 };
 
 class Arm {
@@ -116,13 +120,20 @@ class Arm {
   // Closed loop: reads positions until every joint of the last move is within tolerance of
   // its target and has come to rest there (two reads in a row within a quarter of the
   // tolerance of each other); the error (timeout) names every joint that did not arrive,
-  // with where it is.
+  // with where it is. A joint that stalls (standing still away from its target for the
+  // options' stall_time after the move's time is up) is stopped and released (stalled()).
   Result<JointState> wait(const WaitOptions& options = {});
   Status stop();
   Status set_torque(bool on);
   // The motion executor's last point (SI, every joint): wait() then waits for the arm to
   // arrive there, as after move_joints.
-  void expect_at(const std::vector<double>& positions) { last_targets_.assign(positions.begin(), positions.end()); }
+  void expect_at(const std::vector<double>& positions);
+  // Stall protection (arm/stall_watch.hpp): a watch with this arm's thresholds (every joint
+  // but the gripper, which stops on a part by design), and what is done when it fires: the
+  // arm stopped where it stands, the stalled joint's torque released, and the error (device,
+  // detail JointStall) naming the joint, where it stood and for how long.
+  StallWatch stall_watch(Duration time) const;
+  Error stalled(JointStall stall, const std::string& what = "");
 
   // Checks targets against the joint limits and the device's range (ArmKinematics); the
   // error names the joint, the value and what is allowed.
@@ -138,6 +149,10 @@ class Arm {
   std::shared_ptr<const ArmKinematics> kinematics_;  // with the scene; replaced by set_scene
   std::unique_ptr<ArmDevice> device_;
   std::vector<std::optional<double>> last_targets_;  // SI, of the last move
+  // When the last move was sent and how long the device takes for it: from then on each of
+  // its joints is driven to its target (stall protection).
+  TimePoint move_sent_{};
+  Duration move_duration_{};
 };
 
 }  // namespace armctl::arm

@@ -44,6 +44,12 @@ class ArmDevice {
   virtual Status stop() = 0;
   // Torque off: the joints can be moved by hand. On: they hold where they stand.
   virtual Status set_torque(bool on) = 0;
+  // Torque off for one joint (a stalled one: arm/stall_watch.hpp); the others keep holding.
+  // A device that cannot release one joint alone releases them all.
+  virtual Status release(int joint) {
+    (void)joint;
+    return set_torque(false);
+  }
   // Streaming (arm/motion_executor.hpp). The shortest interval between two stream points the
   // link carries without falling behind: the wire time of one point's frames (plus a
   // position read's, if `with_read`).

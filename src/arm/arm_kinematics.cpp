@@ -38,11 +38,15 @@ std::string format_joint_value(const ArmModel& model, int index, double si) {
 
 namespace {
 
-// The arm's side of its collision world, from its model (arm/arm_model.hpp).
-scene::ArmBodies arm_bodies(const ArmModel& m) {
+// The arm's side of its collision world, from its model (arm/arm_model.hpp). `self`: its
+// links against each other too (but the pairs its file allows).
+scene::ArmBodies arm_bodies(const ArmModel& m, bool self = true) {
   scene::ArmBodies a;
   a.links = m.bodies;
   a.allowed = m.allowed_collisions;
+  if (!self)
+    for (const auto& x : m.bodies->bodies)
+      for (const auto& y : m.bodies->bodies) a.allowed.emplace_back(x.name, y.name);
   a.tool_link = m.tool_link;
   a.tool_frame.linear() = m.tool.orientation.toRotationMatrix();
   a.tool_frame.translation() = m.tool.position;
@@ -64,12 +68,22 @@ ArmKinematics::ArmKinematics(ArmModel model, std::optional<Protocol> device)
   if (has_shapes(model_)) collisions_ = scene::CollisionWorld::build(arm_bodies(model_), scene::Scene{}).value();
 }
 
+namespace {
+Status check_shapes(const ArmModel& m) {
+  if (has_shapes(m)) return Ok{};
+  return Error{ErrorKind::invalid_config,
+               fmt::format("arm '{}': its URDF ({}) gives no link a <collision> shape, so a scene cannot be checked",
+                           m.name, m.urdf.string())};
+}
+}  // namespace
+
+Result<std::shared_ptr<const scene::CollisionWorld>> scene_only_world(const ArmModel& model, scene::Scene scene) {
+  if (auto ok = check_shapes(model); !ok) return ok.error();
+  return scene::CollisionWorld::build(arm_bodies(model, false), std::move(scene));
+}
+
 Result<std::shared_ptr<const ArmKinematics>> ArmKinematics::with_scene(scene::Scene scene) const {
-  if (!has_shapes(model_)) {
-    return Error{ErrorKind::invalid_config,
-                 fmt::format("arm '{}': its URDF ({}) gives no link a <collision> shape, so a scene cannot be checked",
-                             model_.name, model_.urdf.string())};
-  }
+  if (auto ok = check_shapes(model_); !ok) return ok.error();
   auto world = scene::CollisionWorld::build(arm_bodies(model_), std::move(scene));
   if (!world) return world.error();
   auto out = std::make_shared<ArmKinematics>(*this);

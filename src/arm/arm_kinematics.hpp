@@ -103,4 +103,8 @@ class ArmKinematics {
 // "30.000 deg" / "120.000 mm" for joint `index` of `model`.
 std::string format_joint_value(const ArmModel& model, int index, double si);
 
+// The arm against `scene` alone, its own links never against each other (what a simulated
+// arm meets: arm/scene_obstacle.hpp). Errors: as with_scene's.
+Result<std::shared_ptr<const scene::CollisionWorld>> scene_only_world(const ArmModel& model, scene::Scene scene);
+
 }  // namespace armctl::arm

@@ -16,6 +16,7 @@
 #include "arm/arm_kinematics.hpp"
 #include "arm/plan_moves.hpp"
 #include "core/error.hpp"
+#include "scene/motion_check.hpp"
 
 namespace armctl::arm {
 

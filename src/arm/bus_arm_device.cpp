@@ -101,6 +101,13 @@ Status BusArmDevice::set_torque(bool on) {
   return Ok{};
 }
 
+Status BusArmDevice::release(int joint) {
+  if (joint < 0 || std::size_t(joint) >= numbers_.size())
+    return Error{ErrorKind::invalid_argument, fmt::format("no joint {} to release (the arm has {})", joint, numbers_.size())};
+  if (auto s = master_.set_pid_state(numbers_[std::size_t(joint)], false); !s) return failed(s.error());
+  return Ok{};
+}
+
 Duration BusArmDevice::stream_period(bool with_read) const {
   const auto joints = static_cast<std::int64_t>(numbers_.size());
   return transaction_ * joints * (with_read ? 2 : 1);

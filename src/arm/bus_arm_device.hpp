@@ -27,6 +27,7 @@ class BusArmDevice final : public ArmDevice {
   // set_speed 0 to every joint, back to back: each brakes at its own deceleration and holds.
   Status stop() override;
   Status set_torque(bool on) override;  // set_pid_state
+  Status release(int joint) override;   // set_pid_state of that joint
   // A stream point is one drive_to per joint (and a set_speed where the speed changes): the
   // joint's setpoint ramp follows the moving target at the speed the point asks for.
   Duration stream_period(bool with_read) const override;

@@ -106,7 +106,7 @@ class Execution {
  public:
   Execution(Arm& arm, const PlannedMotion& motion, const ExecutorOptions& options)
       : arm_(arm), motion_(motion), options_(options), model_(arm.model()), device_(arm.device()),
-        clock_(arm.clock()) {
+        clock_(arm.clock()), stall_(arm.stall_watch(options.stall_time)) {
     const std::size_t n = std::size_t(model_.joint_count());
     pos_.resize(n);
     vel_.resize(n);
@@ -207,7 +207,8 @@ class Execution {
         ++report_.points;
       }
       if (read_now) {
-        if (auto f = read_back(start, t_, rate); !f) return halted(f.error());
+        // (A stall has stopped the arm and released the joint: a halt would hold it again.)
+        if (auto f = read_back(start, t_, rate); !f) return stall_of(f.error()) ? f.error() : halted(f.error());
         next_read = clock_.now() + read_every;
       }
       if (options_.on_point) options_.on_point(MotionProgress{clock_.now() - start, t_, motion_.duration, rate,
@@ -270,8 +271,13 @@ class Execution {
         std::min({motion_.duration, last_due_, t_now + rate * 0.5 * seconds(clock_.now() - before)});
     motion_.sample(t_read, pos_, vel_, acc_);
     report_.reads_log.push_back({clock_.now() - start, pos_, s->positions});
-    return check_following(model_, s->positions, pos_, options_, motion_.what, t_read,
-                           report_.largest_following_error, report_.largest_following_joint);
+    if (auto f = check_following(model_, s->positions, pos_, options_, motion_.what, t_read,
+                                 report_.largest_following_error, report_.largest_following_joint);
+        !f)
+      return f;
+    planned_.assign(pos_.begin(), pos_.end());
+    if (auto stall = stall_.read(s->time, s->positions, planned_)) return arm_.stalled(std::move(*stall), motion_.what);
+    return Ok{};
   }
 
   Error halted(const Error& e) {
@@ -296,7 +302,9 @@ class Execution {
   const ArmModel& model_;
   ArmDevice& device_;
   const Clock& clock_;
+  StallWatch stall_;
   std::vector<double> pos_, vel_, acc_;
+  std::vector<std::optional<double>> planned_;  // where the plan has every joint at a read
   double t_ = 0;
   double last_due_ = 0;  // nominal time of the last point sent
   Duration period_{}, read_time_{}, latency_{};

@@ -11,7 +11,8 @@
 // ahead: the arm rests at the last point it got and the motion goes on from there.
 // Following error: every few points the positions are read back and compared with the plan
 // at the instant of the read; beyond the threshold the arm is halted and the error names
-// the joint. Docs: docs/motion.md.
+// the joint. The same reads watch for a joint that stalls (arm/stall_watch.hpp): driven but
+// standing still, it is stopped and released. Docs: docs/motion.md.
 #pragma once
 
 #include <functional>
@@ -58,6 +59,10 @@ struct ExecutorOptions {
   // Per joint (SI, the model's order): where given and above 0, it replaces the one above
   // for that joint (a ROS goal's path tolerance names joints one by one).
   std::vector<double> following_error;
+  // Stall protection at the read-backs (arm/stall_watch.hpp): a joint standing still this
+  // long while the plan has it farther away than its stall threshold is stopped and its
+  // torque released (error device, detail JointStall). 0: off.
+  Duration stall_time = kStallTime;
   // Asked before every point (a flag set by a signal handler, a key, a test script).
   std::function<MotionCommand(const MotionProgress&)> command;
   // After every point (progress lines, test probes).
@@ -102,9 +107,10 @@ struct FollowingError {
 inline const FollowingError* following_error_of(const Error& error) { return error.detail_as<FollowingError>(); }
 
 // Runs `motion` on `arm` from its current position (which must be the motion's start: the
-// caller planned it from a fresh read). Errors: the device's (the arm is halted first), or
+// caller planned it from a fresh read). Errors: the device's (the arm is halted first),
 // device "following error" naming the joint, where it is and where it should be (detail
-// FollowingError).
+// FollowingError), or device "stalled" naming the joint and how long (detail JointStall;
+// Arm::stalled).
 Result<MotionReport> execute_motion(Arm& arm, const PlannedMotion& motion, const ExecutorOptions& options = {});
 
 // What the executor and the servo loop (arm/run_servo.hpp) share.

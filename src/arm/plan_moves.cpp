@@ -7,7 +7,7 @@
 
 #include "core/quantity.hpp"
 #include "motion/move_limits.hpp"
-#include "scene/collision_world.hpp"
+#include "scene/motion_check.hpp"
 
 namespace armctl::arm {
 

@@ -76,6 +76,12 @@ Status RcArmDevice::set_torque(bool on) {
   return hold_where_they_stand();  // any move restores a servo's torque
 }
 
+Status RcArmDevice::release(int joint) {
+  if (joint < 0 || std::size_t(joint) >= servos_.size())
+    return Error{ErrorKind::invalid_argument, fmt::format("no joint {} to release (the arm has {})", joint, servos_.size())};
+  return client_.servos_off({servos_[std::size_t(joint)]});
+}
+
 // Serial-form sizes: header 2, length, command, count, then per servo (protocol spec).
 Duration RcArmDevice::stream_period(bool with_read) const {
   const std::size_t n = servos_.size();

@@ -28,6 +28,7 @@ class RcArmDevice final : public ArmDevice {
   // Stops any action group, then holds every servo where it reads now.
   Status stop() override;
   Status set_torque(bool on) override;
+  Status release(int joint) override;
   // A stream point is one MultiServoMove of every servo (7 + 3 n bytes: 25 for six, 26 ms at
   // 9600 baud), timed to arrive when the point is due; a read adds its request and reply.
   Duration stream_period(bool with_read) const override;

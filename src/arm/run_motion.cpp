@@ -58,7 +58,7 @@ class Runner {
       // The last point is due when the motion ends: let the arm get there.
       auto arrived = arm_.wait(hooks_.wait);
       if (!arrived) {
-        if (!stop_asked()) return hooks_.not_arrived ? hooks_.not_arrived(arrived.error()) : arrived.error();
+        if (!stop_asked()) return not_arrived(arrived.error());
         report_.stopped = true;
         report_.completed = false;
       } else {
@@ -69,6 +69,9 @@ class Runner {
   }
 
  private:
+  // A stall is not a late arrival: it keeps its own detail for the app to map.
+  Error not_arrived(const Error& e) const { return hooks_.not_arrived && !stall_of(e) ? hooks_.not_arrived(e) : e; }
+
   MotionCommand command() const { return hooks_.command ? hooks_.command() : MotionCommand::none; }
   bool stop_asked() const { return stopping(command()); }
 
@@ -133,7 +136,7 @@ class Runner {
         (void)arm_.stop();  // halted where it is
         return false;
       }
-      status = hooks_.not_arrived ? hooks_.not_arrived(arrived.error()) : arrived.error();
+      status = not_arrived(arrived.error());
       return true;
     }
     report_.arrived = *arrived;

@@ -48,7 +48,8 @@ struct RunHooks {
   // Errors of a piece start with its label ("line 12 (LIN pick): ...").
   bool label_errors = false;
   // The error when the arm does not arrive at the end (Arm::wait's timeout naming each late
-  // joint) as the app says it (a ROS goal tolerance); empty: as it is.
+  // joint) as the app says it (a ROS goal tolerance); empty: as it is. Not for a stall
+  // (detail JointStall), which keeps its own.
   std::function<Error(const Error&)> not_arrived;
 };
 

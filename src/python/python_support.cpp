@@ -70,6 +70,12 @@ void set_detail(py::object& e, const Error& error) {
     e.attr("measured") = f->measured;
     e.attr("planned") = f->planned;
     e.attr("limit") = f->limit;
+  } else if (const auto* st = arm::stall_of(error)) {
+    e.attr("detail") = "stall";
+    e.attr("joint") = st->name;
+    e.attr("position") = st->position;
+    e.attr("driven_to") = st->driven_to;
+    e.attr("seconds") = st->seconds;
   } else if (const auto* r = motion::path_refusal_of(error)) {
     e.attr("detail") = "path_refusal";
     e.attr("segment") = r->segment;

@@ -90,7 +90,8 @@ Status run_trajectory(arm::Arm& arm, session::JobContext& ctx, const TrajectoryR
       return Ok{};
     }
     if (late) return fail(outcome, GoalError::goal_tolerance_violated, report.error());
-    const bool following = arm::following_error_of(report.error()) != nullptr;
+    // A joint that fell behind or stalled (stopped, released) left the path.
+    const bool following = arm::following_error_of(report.error()) != nullptr || arm::stall_of(report.error()) != nullptr;
     return fail(outcome, following ? GoalError::path_tolerance_violated : GoalError::invalid_goal, report.error());
   }
   std::lock_guard<std::mutex> lock(outcome.mutex);

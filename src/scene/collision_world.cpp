@@ -19,11 +19,7 @@ struct CollisionWorld::Item {
   std::shared_ptr<fcl::CollisionGeometryd> geometry;
   bool scene = false;    // a scene object (fixed or held), not a link
   Eigen::Vector3d low = Eigen::Vector3d::Zero(), high = Eigen::Vector3d::Zero();  // fixed ones: bounds
-};
-
-struct CollisionWorld::Frames {
-  std::vector<Eigen::Isometry3d> bodies, items;
-  std::vector<Eigen::Vector3d> low, high;
+  std::vector<int> chain;  // the links with a joint it hangs from, its own first; none when fixed
 };
 
 CollisionWorld::~CollisionWorld() = default;
@@ -73,14 +69,14 @@ Result<std::shared_ptr<const CollisionWorld>> CollisionWorld::build(ArmBodies ar
   }
   for (std::size_t b = 0; b < n_bodies; ++b) {
     for (const auto& s : links.bodies[b].shapes) {
-      w->items_.push_back(Item{fmt::format("link '{}'", links.bodies[b].name), int(b), s, fcl_geometry(s), false, {}, {}});
+      w->items_.push_back(Item{fmt::format("link '{}'", links.bodies[b].name), int(b), s, fcl_geometry(s), false, {}, {}, {}});
     }
   }
   const std::size_t n_links = w->items_.size();
   // Parts held by the tool hang from the tool link; what holds them never counts as a touch.
   const int holder = links.bodies[std::size_t(*tool)].parent;
   for (const auto& o : scene.objects) {
-    Item item{describe(o), o.attached ? *tool : -1, o.shape, fcl_geometry(o.shape), true, {}, {}};
+    Item item{describe(o), o.attached ? *tool : -1, o.shape, fcl_geometry(o.shape), true, {}, {}, {}};
     if (o.attached) {
       item.shape.pose = arm.tool_frame * o.shape.pose;
     } else {
@@ -103,8 +99,21 @@ Result<std::shared_ptr<const CollisionWorld>> CollisionWorld::build(ArmBodies ar
       } else if (a.scene && b.scene && a.body >= 0 && b.body >= 0) {
         continue;  // two held parts move together
       }
-      w->pairs_.emplace_back(int(i), int(j));
+      w->pairs_.push_back(Pair{int(i), int(j), 0, 0});
     }
+  }
+  for (Item& item : w->items_) {
+    for (int b = item.body; b >= 0; b = links.bodies[std::size_t(b)].parent)
+      if (links.bodies[std::size_t(b)].joint >= 0 && std::size_t(links.bodies[std::size_t(b)].joint) < arm.joint_reach.size())
+        item.chain.push_back(b);
+  }
+  auto not_in = [](const std::vector<int>& a, const std::vector<int>& b) {
+    return int(std::count_if(a.begin(), a.end(), [&](int x) { return std::find(b.begin(), b.end(), x) == b.end(); }));
+  };
+  for (Pair& p : w->pairs_) {
+    const auto &a = w->items_[std::size_t(p.first)].chain, &b = w->items_[std::size_t(p.second)].chain;
+    p.first_own = not_in(a, b);
+    p.second_own = not_in(b, a);
   }
   // How far a point of each item can be from each joint's axis: the links' offsets from the
   // joint's link down to the item's, each prismatic joint on the way at its longest, plus
@@ -130,22 +139,39 @@ Result<std::shared_ptr<const CollisionWorld>> CollisionWorld::build(ArmBodies ar
   return std::shared_ptr<const CollisionWorld>(std::move(w));
 }
 
-void CollisionWorld::place(std::span<const double> joints, Frames& f) const {
-  arm_.links->poses(joints, f.bodies);
-  f.items.resize(items_.size());
-  f.low.resize(items_.size());
-  f.high.resize(items_.size());
-  for (std::size_t i = 0; i < items_.size(); ++i) {
+void CollisionWorld::place(std::span<const double> joints, Placement& at) const {
+  arm_.links->poses(joints, at.bodies);
+  const std::size_t n = items_.size();
+  at.items.resize(n);
+  at.centres.resize(n);
+  at.low.resize(n);
+  at.high.resize(n);
+  at.placed.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
     const Item& item = items_[i];
     if (item.body < 0) {
-      f.items[i] = item.shape.pose;
-      f.low[i] = item.low;
-      f.high[i] = item.high;
+      at.items[i] = item.shape.pose;
+      at.centres[i] = item.shape.pose.translation();
+      at.low[i] = item.low;
+      at.high[i] = item.high;
+      at.placed[i] = 1;
     } else {
-      f.items[i] = f.bodies[std::size_t(item.body)] * item.shape.pose;
-      motion::world_bounds(item.shape, f.items[i], f.low[i], f.high[i]);
+      at.centres[i] = at.bodies[std::size_t(item.body)] * item.shape.pose.translation();
     }
   }
+}
+
+void CollisionWorld::complete(Placement& at, std::size_t i) const {
+  if (at.placed[i]) return;
+  const Item& item = items_[i];
+  at.items[i] = at.bodies[std::size_t(item.body)] * item.shape.pose;
+  motion::world_bounds(item.shape, at.items[i], at.low[i], at.high[i]);
+  at.placed[i] = 1;
+}
+
+void CollisionWorld::place_every_shape(std::span<const double> joints, Placement& at) const {
+  place(joints, at);
+  for (std::size_t i = 0; i < items_.size(); ++i) complete(at, i);
 }
 
 namespace {
@@ -160,8 +186,8 @@ template <typename Visit>
 void CollisionWorld::each_touching(std::span<const double> joints, std::span<const int> skip, bool with_contact,
                                    Visit&& visit) const {
   // Per thread: a check runs millions of times and allocates nothing.
-  thread_local Frames f;
-  place(joints, f);
+  thread_local Placement f;
+  place_every_shape(joints, f);
   const fcl::CollisionRequestd request(1, with_contact);
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const auto i = std::size_t(pairs_[k].first), j = std::size_t(pairs_[k].second);
@@ -193,8 +219,8 @@ std::vector<int> CollisionWorld::touching(std::span<const double> joints) const 
 }
 
 std::pair<std::string, std::string> CollisionWorld::pair_names(int pair) const {
-  const auto [i, j] = pairs_[std::size_t(pair)];
-  return {items_[std::size_t(i)].label, items_[std::size_t(j)].label};
+  const Pair& p = pairs_[std::size_t(pair)];
+  return {items_[std::size_t(p.first)].label, items_[std::size_t(p.second)].label};
 }
 
 std::optional<Contact> CollisionWorld::contact(std::span<const double> joints, std::span<const int> skip) const {
@@ -202,8 +228,8 @@ std::optional<Contact> CollisionWorld::contact(std::span<const double> joints, s
   each_touching(joints, skip, true, [&](std::size_t k, const fcl::CollisionResultd& result) {
     const fcl::Contactd& c = result.getContact(0);
     if (!deepest || c.penetration_depth > deepest->depth) {
-      const auto [i, j] = pairs_[k];
-      deepest = Contact{items_[std::size_t(i)].label, items_[std::size_t(j)].label, c.penetration_depth, c.pos};
+      const auto [first, second] = pair_names(int(k));
+      deepest = Contact{first, second, c.penetration_depth, c.pos};
     }
     return true;
   });
@@ -211,13 +237,13 @@ std::optional<Contact> CollisionWorld::contact(std::span<const double> joints, s
 }
 
 Clearance CollisionWorld::clearance(std::span<const double> joints, double below, std::span<const int> skip) const {
-  thread_local Frames f;
-  place(joints, f);
+  thread_local Placement f;
+  place_every_shape(joints, f);
   Clearance best;
   best.distance = std::min(below, kClearanceHorizon);
   fcl::DistanceRequestd request;
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
-    const auto [i, j] = pairs_[k];
+    const int i = pairs_[k].first, j = pairs_[k].second;
     if (skipped(skip, k)) continue;
     // The boxes' gap is never more than the shapes' distance: farther than the best so far,
     // the pair cannot be nearer.
@@ -242,86 +268,87 @@ double CollisionWorld::displacement_bound(std::span<const double> from, std::spa
   return worst;
 }
 
-double CollisionWorld::step_displacement_bound(std::span<const double> from, std::span<const double> to, double pad) const {
-  const motion::LinkBodies& links = *arm_.links;
-  thread_local std::vector<Eigen::Isometry3d> poses;
-  links.poses(from, poses);
-  const std::size_t n = std::min({from.size(), to.size(), arm_.joint_reach.size()});
-  double worst = 0;
-  for (const Item& item : items_) {
-    if (item.body < 0) continue;
-    const Eigen::Vector3d centre = poses[std::size_t(item.body)] * item.shape.pose.translation();
-    const double own = motion::bounding_radius(item.shape);
-    double d = 0;
-    for (int b = item.body; b >= 0; b = links.bodies[std::size_t(b)].parent) {
-      const motion::LinkBody& body = links.bodies[std::size_t(b)];
-      if (body.joint < 0 || std::size_t(body.joint) >= n) continue;
-      const double dq = std::abs(to[std::size_t(body.joint)] - from[std::size_t(body.joint)]);
-      if (body.prismatic) {
-        d += dq;
-        continue;
-      }
-      // The joint's axis passes through its link's origin (URDF: the joint frame is the child's).
-      const Eigen::Vector3d axis = poses[std::size_t(b)].linear() * body.axis;
-      const double r = axis.cross(centre - poses[std::size_t(b)].translation()).norm() + own + pad;
-      d += dq * r;
-    }
-    worst = std::max(worst, d);
-  }
-  return std::min(worst, displacement_bound(from, to));
+bool CollisionWorld::pair_touches(int pair, Placement& at) const {
+  const auto i = std::size_t(pairs_[std::size_t(pair)].first), j = std::size_t(pairs_[std::size_t(pair)].second);
+  complete(at, i);
+  complete(at, j);
+  if (!overlap(at.low[i], at.high[i], at.low[j], at.high[j], 0)) return false;
+  const fcl::CollisionRequestd request(1, false);
+  fcl::CollisionResultd result;
+  return fcl::collide(items_[i].geometry.get(), at.items[i], items_[j].geometry.get(), at.items[j], request, result) > 0;
 }
 
-MotionCheck check_motion(const CollisionWorld& world, double duration,
-                         const std::function<void(double, std::vector<double>&)>& sample, double resolution) {
-  MotionCheck out;
-  std::vector<double> q0, q1, mid;
-  sample(0, q0);
-  const std::vector<int> skip = world.touching(q0);
-  for (int pair : skip) {
-    // Named by body: two shapes of one link touching the same body are one pair for people.
-    auto names = world.pair_names(pair);
-    if (std::find(out.started_touching.begin(), out.started_touching.end(), names) == out.started_touching.end()) {
-      out.started_touching.push_back(std::move(names));
-    }
-  }
-  auto check = [&](double t, const std::vector<double>& q) {
-    ++out.checks;
-    if (world.collides(q, skip)) {
-      out.contact = world.contact(q, skip);
-      if (!out.contact) out.contact = Contact{};  // (a touch the deeper query does not see twice)
-      out.at = t;
-      out.joints = q;
-      return false;
-    }
-    const Clearance c = world.clearance(q, out.clearance.distance, skip);
-    if (c.distance < out.clearance.distance) {
-      out.clearance = c;
-      out.at = t;
-      out.joints = q;
-    }
-    return true;
+double CollisionWorld::pair_gap(int pair, Placement& at) const {
+  const auto i = std::size_t(pairs_[std::size_t(pair)].first), j = std::size_t(pairs_[std::size_t(pair)].second);
+  complete(at, i);
+  complete(at, j);
+  return gap(at.low[i], at.high[i], at.low[j], at.high[j]);
+}
+
+double CollisionWorld::pair_distance(int pair, Placement& at) const {
+  const auto i = std::size_t(pairs_[std::size_t(pair)].first), j = std::size_t(pairs_[std::size_t(pair)].second);
+  complete(at, i);
+  complete(at, j);
+  const fcl::DistanceRequestd request;
+  fcl::DistanceResultd result;
+  fcl::distance(items_[i].geometry.get(), at.items[i], items_[j].geometry.get(), at.items[j], request, result);
+  return std::max(0.0, result.min_distance);
+}
+
+double CollisionWorld::step_displacement_bound(const Placement& at, std::span<const double> travel, double pad,
+                                               std::vector<double>* closing) const {
+  const motion::LinkBodies& links = *arm_.links;
+  const std::size_t n = std::min(travel.size(), arm_.joint_reach.size());
+  auto dq = [&](int body) {
+    const int j = links.bodies[std::size_t(body)].joint;
+    return std::size_t(j) < n ? std::abs(travel[std::size_t(j)]) : 0.0;
   };
-  if (!check(0, q0) || !(duration > 0)) return out;
-  // Steps halve until the bound on how far any point moves (over both halves of the step,
-  // so that a joint turning back within it is seen) is within the resolution, and double
-  // again when well within it.
-  double t = 0, h = std::min(duration, 0.01);
-  while (t < duration) {
-    const double t1 = std::min(duration, t + h);
-    sample(0.5 * (t + t1), mid);
-    sample(t1, q1);
-    const double moved = world.step_displacement_bound(q0, mid, 2 * resolution) +
-                         world.step_displacement_bound(mid, q1, 2 * resolution);
-    if (moved > resolution && h > 1e-6) {
-      h *= 0.5;
-      continue;
+  // Per item, how far its points move for the first k links of its chain (its own link up):
+  // two bounds, each summed over the joints: from the geometry at `from` (local) and from the
+  // farthest the item can ever be from each axis (reach_). The smaller one holds.
+  thread_local std::vector<double> local, far;
+  thread_local std::vector<std::size_t> offset;
+  local.clear();
+  far.clear();
+  offset.resize(items_.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < items_.size(); ++i) {
+    const Item& item = items_[i];
+    offset[i] = local.size();
+    double l = 0, f = 0;
+    local.push_back(0);
+    far.push_back(0);
+    const Eigen::Vector3d& centre = at.centres[i];
+    const double own = motion::bounding_radius(item.shape);
+    for (const int b : item.chain) {
+      const motion::LinkBody& body = links.bodies[std::size_t(b)];
+      const double d = dq(b);
+      if (body.prismatic) {
+        l += d;
+        f += d;
+      } else {
+        // The joint's axis passes through its link's origin (URDF: the joint frame is the child's).
+        const Eigen::Vector3d axis = at.bodies[std::size_t(b)].linear() * body.axis;
+        l += d * (axis.cross(centre - at.bodies[std::size_t(b)].translation()).norm() + own + pad);
+        f += d * reach_[i][std::size_t(body.joint)];
+      }
+      local.push_back(l);
+      far.push_back(f);
     }
-    if (!check(t1, q1)) return out;
-    t = t1;
-    std::swap(q0, q1);
-    if (moved < 0.25 * resolution) h *= 2;
+    worst = std::max(worst, std::min(l, f));
   }
-  return out;
+  if (closing) {
+    closing->resize(pairs_.size());
+    auto moved = [&](int item, int own) {
+      const std::size_t k = offset[std::size_t(item)] + std::size_t(own);
+      return std::min(local[k], far[k]);
+    };
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+      const Pair& p = pairs_[k];
+      (*closing)[k] = moved(p.first, p.first_own) + moved(p.second, p.second_own);
+    }
+  }
+  return worst;
 }
 
 }  // namespace armctl::scene

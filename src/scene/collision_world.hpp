@@ -77,12 +77,36 @@ class CollisionWorld {
   // An upper bound on how far any point of any checked body moves when the joints go from
   // `from` to `to` along a straight line in joint space (m).
   double displacement_bound(std::span<const double> from, std::span<const double> to) const;
-  // The same for a short step, from the arm's geometry at `from` (how far each shape is from
-  // each joint's axis there) instead of the farthest it can ever be: far tighter when the arm
-  // is folded. Valid for steps whose result is at most `pad` / 2: along the step no point
-  // comes nearer to or farther from an axis than that (check_motion's steps, pad twice the
-  // resolution). Never more than displacement_bound.
-  double step_displacement_bound(std::span<const double> from, std::span<const double> to, double pad) const;
+
+  // Pair by pair, for a motion's check that asks FCL only about pairs that may have come near
+  // since it last measured them (check_motion): where every body is at one configuration,
+  // and each pair's questions about it.
+  // Every link's frame and every shape's centre; a shape's frame and bounding box only once
+  // a pair query needs them (most steps of a motion ask no pair at all).
+  struct Placement {
+    std::vector<Eigen::Isometry3d> bodies, items;  // every link's frame, every shape's
+    std::vector<Eigen::Vector3d> centres;          // every shape's centre
+    std::vector<Eigen::Vector3d> low, high;        // every shape's bounding box
+    std::vector<char> placed;                      // whether items, low and high hold for a shape
+  };
+  void place(std::span<const double> joints, Placement& at) const;
+  // Whether the pair (touching's indices) touches: its bounding boxes first, then FCL.
+  bool pair_touches(int pair, Placement& at) const;
+  // The gap between the pair's bounding boxes: never more than the shapes' distance, and cheap.
+  double pair_gap(int pair, Placement& at) const;
+  // The shapes' distance (FCL; 0 when they touch).
+  double pair_distance(int pair, Placement& at) const;
+  // For a short step from the configuration placed in `at`, in which joint j travels
+  // `travel[j]` (the sum of |dq| over the step's pieces: a joint that turns back counts
+  // both ways): an upper bound on how far any point of any body moves (from the arm's
+  // geometry at the start: how far each shape is from each joint's axis there, never more
+  // than displacement_bound's farthest), and, when `closing` is given, per pair how much
+  // nearer its two bodies can come to each other. For a pair only the joints between its
+  // two bodies count: a joint both hang from moves them alike. Valid for steps whose result
+  // is at most `pad` / 2: along the step no point comes nearer to or farther from an axis
+  // than that (check_motion's steps, pad twice the resolution).
+  double step_displacement_bound(const Placement& at, std::span<const double> travel, double pad,
+                                 std::vector<double>* closing = nullptr) const;
 
   struct Item;  // one shape (collision_world.cpp)
   ~CollisionWorld();
@@ -91,37 +115,24 @@ class CollisionWorld {
 
  private:
   CollisionWorld() = default;
-  struct Frames;
-  void place(std::span<const double> joints, Frames& f) const;
+  // The shape's frame and bounding box in `at`, on first need.
+  void complete(Placement& at, std::size_t item) const;
+  void place_every_shape(std::span<const double> joints, Placement& at) const;
   template <typename Visit>
   void each_touching(std::span<const double> joints, std::span<const int> skip, bool with_contact, Visit&& visit) const;
   ArmBodies arm_;
   Scene scene_;
   std::vector<Item> items_;
-  std::vector<std::pair<int, int>> pairs_;  // item indices
+  struct Pair {
+    int first = 0, second = 0;  // item indices
+    // How many of each item's moving links (Item::chain, from its own up) the other item does
+    // not hang from: the joints that move the two against each other.
+    int first_own = 0, second_own = 0;
+  };
+  std::vector<Pair> pairs_;
   // reach_[body][joint]: how far a point of that body can be from the joint's axis (m);
   // for a prismatic joint 1 (the point moves as far as the joint).
   std::vector<std::vector<double>> reach_;
 };
-
-// A motion checked against the world at a resolution that moves no point of any body more
-// than `resolution` between two checks.
-struct MotionCheck {
-  std::optional<Contact> contact;
-  // Pairs already in contact where the motion starts (an arm switched on in a bent pose, an
-  // object placed where the arm stands): not checked along it, so that the arm can move
-  // out; said in the plan's note.
-  std::vector<std::pair<std::string, std::string>> started_touching;
-  double at = 0;  // s into the motion where the contact is (or where the clearance is smallest)
-  std::vector<double> joints;  // there
-  Clearance clearance;         // the smallest along the motion (no contact)
-  std::size_t checks = 0;      // configurations checked
-};
-inline constexpr double kCheckResolution = 0.002;  // m
-
-// `sample(t, joints)`: every joint at t (s) of a motion lasting `duration` s.
-MotionCheck check_motion(const CollisionWorld& world, double duration,
-                         const std::function<void(double, std::vector<double>&)>& sample,
-                         double resolution = kCheckResolution);
 
 }  // namespace armctl::scene

@@ -388,7 +388,7 @@ TEST(ControllerMotion, LinThroughTheArmControllerStaysWithinItsResolution) {
   const ArmModel model = testing::shipped("scara");
   Arm arm{model, std::make_unique<RcArmDevice>(model, *rig.client)};
   ASSERT_TRUE(arm.move_joints({0.15, 0.3, -0.8, 0.0, 0.0, 0.0, std::nullopt}));
-  ASSERT_TRUE(arm.wait());
+  { auto w = arm.wait(); ASSERT_TRUE(w) << w.error().message; }
   auto true_tool = [&] {
     std::vector<double> device;
     for (const auto& j : model.joints) device.push_back(rig.clicks(j.map(Protocol::joint_bus)->id));

@@ -1,12 +1,18 @@
 // --scene end to end (docs/scene.md): the README's scene walk-through on the embedded xArm
 // (a move into the box refused before anything moves, a move onto it planned with its
-// clearance), a program line through the table refused with its file and line, and a bad
-// scene file refused with the key before the device opens.
+// clearance), a program line through the table refused with its file and line, a bad
+// scene file refused with the key before the device opens; and `armctl sim xarm --scene`:
+// a move into a box only the simulator knows stalls there and the host names the joint.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
+#include <thread>
 #include <fstream>
 #include <string>
 
@@ -120,6 +126,50 @@ TEST(SceneCli, ABadSceneFileNamesTheKeyAndOpensNothing) {
   auto missing = run_armctl("arm --arm xarm --scene " + (dir / "none.json").string() + " joints");
   EXPECT_EQ(missing.status, 1) << missing.out;
   EXPECT_TRUE(contains(missing.out, "scene file")) << missing.out;
+  std::filesystem::remove_all(dir);
+}
+
+// The simulators read the scene as the planner does: a bad file is refused with its key before
+// anything starts (no pty, no socket).
+TEST(SceneCli, TheSimulatorsRefuseABadSceneFileWithItsKey) {
+  const auto dir = temp_dir();
+  write(dir / "bad.json", R"({"objects": [{"name": "box", "box": [60, 0, 100], "at": [170, 0, 50]}]})");
+  for (const std::string& sim : {std::string("sim xarm"), "sim scara --listen " + (dir / "never.sock").string()}) {
+    auto r = run_armctl(sim + " --scene " + (dir / "bad.json").string());
+    EXPECT_NE(r.status, 0) << sim << ": " << r.out;
+    EXPECT_TRUE(contains(r.out, "bad.json: objects[0].box[1]: 0 is outside the allowed range 0.1..10000")) << r.out;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "never.sock"));
+  std::filesystem::remove_all(dir);
+}
+
+// End to end across processes, in real time: `armctl sim xarm --scene` knows the desk's box;
+// the host (`armctl arm` without --scene) sends the arm into it. The servos stall at the box,
+// and the host's stall protection stops the arm and names the joint (exit status: a device
+// error).
+TEST(SceneCli, ARawMoveIntoABoxOnlyTheSimulatorKnowsStallsAndIsNamed) {
+  const auto dir = temp_dir();
+  const std::string link = (dir / "xarm").string();
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string bin = std::string(ARMCTL_BINARY_DIR) + "/armctl";
+    ::freopen("/dev/null", "w", stdout);
+    ::execl(bin.c_str(), bin.c_str(), "sim", "xarm", "--scene", kScene.c_str(), "--link", link.c_str(),
+            static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Wait for the link to appear (bounded; the process needs a moment to start).
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!std::filesystem::exists(link) && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+  ASSERT_TRUE(std::filesystem::exists(link)) << "armctl sim xarm did not start";
+  auto r = run_armctl("arm --arm xarm --device " + link + " move-to x=150 y=-100 z=60 --wait");
+  EXPECT_NE(r.status, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "stalled: it stood at")) << r.out;
+  EXPECT_TRUE(contains(r.out, "torque released")) << r.out;
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  int st = 0;
+  ASSERT_EQ(::waitpid(pid, &st, 0), pid);
   std::filesystem::remove_all(dir);
 }
 

@@ -67,8 +67,8 @@ class ScriptedLink final : public RcLink {
 // free (one line each way), as on a serial port; without one, frames arrive at once.
 class EmulatedLink final : public RcLink {
  public:
-  explicit EmulatedLink(std::uint32_t baud = 0)
-      : baud_(baud), emulator_(clock_, xarm::XarmEmulatorOptions{}, [this](const rc::Frame& f) { from_board(f); }) {}
+  explicit EmulatedLink(std::uint32_t baud = 0, xarm::XarmEmulatorOptions options = {})
+      : baud_(baud), emulator_(clock_, std::move(options), [this](const rc::Frame& f) { from_board(f); }) {}
 
   void send(const rc::Frame& frame) override {
     sent.push_back(frame);

@@ -11,6 +11,7 @@
 #include "arm/arm_kinematics.hpp"
 #include "arm/avoid_path.hpp"
 #include "arm/plan_moves.hpp"
+#include "scene/motion_check.hpp"
 #include "scene/scene.hpp"
 
 namespace armctl::arm {

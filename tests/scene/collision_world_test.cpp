@@ -15,7 +15,9 @@
 #include <utility>
 
 #include "arm/arm_model.hpp"
+#include "random_scene.hpp"
 #include "scene/collision_world.hpp"
+#include "scene/motion_check.hpp"
 
 namespace armctl::scene {
 namespace {
@@ -218,17 +220,7 @@ TEST_P(ArmCollisions, AgreesWithABruteForceOverRandomConfigurations) {
   }
   for (int sc = 0; sc < kScenes; ++sc) {
     // Five objects within the arm's reach, of every kind.
-    Scene scene;
-    for (int k = 0; k < 5; ++k) {
-      SceneObject o;
-      o.name = "o" + std::to_string(k);
-      o.shape.kind = static_cast<Shape::Kind>(k % 3);
-      o.shape.size = {0.01 + 0.06 * unit(rng), 0.01 + 0.06 * unit(rng), 0.01 + 0.06 * unit(rng)};
-      const double r = m.reach * unit(rng), a = 2 * M_PI * unit(rng);
-      o.shape.pose.translation() = Eigen::Vector3d(r * std::cos(a), r * std::sin(a), m.reach * (unit(rng) - 0.3));
-      o.shape.pose.linear() = Eigen::Quaterniond::UnitRandom().toRotationMatrix();
-      scene.objects.push_back(o);
-    }
+    const Scene scene = testing::random_scene(m.reach, 5, rng);
     auto world = CollisionWorld::build(arm_bodies(m, false), scene).value();
     std::vector<Sampled> object_samples;
     for (const auto& o : scene.objects) object_samples.push_back({o.shape, samples(o.shape, kSampleStep)});

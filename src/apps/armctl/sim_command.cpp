@@ -22,6 +22,7 @@
 #include "core/arm_file_sections.hpp"
 #include "core/error.hpp"
 #include "apps/armctl/server_log.hpp"
+#include "apps/armctl/sim_scene.hpp"
 #include "devices/joint_bus/sim_link_server.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
 #include "transport/serial_port.hpp"
@@ -42,6 +43,7 @@ struct SimArgs {
   // --controller mega: the Mega controller firmware and the joint firmware on emulated
   // chips, in the test tool armctl-mega-sim (libsimavr is GPL: armctl never links it).
   std::string controller;
+  std::string scene;  // --scene: what the arm meets
 };
 
 // Replaces this process with armctl-mega-sim from armctl's own directory (build trees with
@@ -73,7 +75,7 @@ void run_sim_scara(const SimArgs& args) {
                                     "silicon); without --controller, --robot-commands runs the Linux one",
                                     args.controller));
     if (args.robot_commands || !args.arm.empty() || !args.serve.state_dir.empty() || !args.config.empty() ||
-        args.serve.json)
+        args.serve.json || !args.scene.empty())
       throw ArmctlError(ErrorKind::invalid_argument,
                         "--controller mega takes only --baud and --link (the firmware has the arm built in)");
     exec_mega_sim(args);
@@ -102,6 +104,9 @@ void run_sim_scara(const SimArgs& args) {
   joint_sim::ArmConfig config = joint_sim::load_arm_config(sim_file);
   if (args.baud != 0) config.baud = args.baud;
   joint_sim::SimArm arm(std::move(config));
+  if (!args.scene.empty())
+    arm.set_obstacle(sim_obstacle(args.arm.empty() || !arm_file::is_arm_file(arm::arm_file_path(args.arm)) ? "scara" : args.arm,
+                                  arm::Protocol::joint_bus, args.scene));
   if (args.robot_commands) {
     auto controller_config = controller_config_for(controller_arm);
     const auto supply_mv = static_cast<std::uint16_t>(arm.config().joints.front().hardware.motor.supply_v * 1000.0);
@@ -115,9 +120,11 @@ void run_sim_scara(const SimArgs& args) {
 
   const StopOnSignals stop_on_signals(server);
 
-  log.started({{"joints", arm.joint_count()}, {"baud", arm.config().baud}, {"listen", args.listen}},
-              fmt::format("sim scara: {} joints at {} baud, listening on {} (Ctrl-C to stop)", arm.joint_count(),
-                          arm.config().baud, args.listen));
+  log.started({{"joints", arm.joint_count()}, {"baud", arm.config().baud}, {"listen", args.listen},
+               {"scene", args.scene}},
+              fmt::format("sim scara: {} joints at {} baud, listening on {}{} (Ctrl-C to stop)", arm.joint_count(),
+                          arm.config().baud, args.listen,
+                          args.scene.empty() ? "" : ", stopping at contact with " + args.scene));
   server.run();
   log.stopped({{"masters_served", server.stats().clients}, {"bytes_to_masters", server.stats().bytes_to_master}},
               fmt::format("sim scara: stopped ({} masters served, {} bytes to masters)", server.stats().clients,
@@ -148,6 +155,7 @@ void add_sim_command(CLI::App& app) {
                     "mega: the Mega controller firmware driving the joint firmware, all on emulated chips, with "
                     "Robot Commands on a pty (test builds; docs/mega-controller.md)");
   scara->add_flag("--json", args->serve.json, "Log as JSON lines on stdout (started, log, stopped)");
+  add_sim_scene_option(scara, args->scene);
   scara->callback([args] { run_sim_scara(*args); });
 }
 

@@ -10,6 +10,7 @@
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/server_log.hpp"
+#include "apps/armctl/sim_scene.hpp"
 #include "core/error.hpp"
 #include "devices/xarm_emulator/emulator_runner.hpp"
 #include "protocol/robot_commands/messages.hpp"
@@ -25,6 +26,7 @@ struct SimXarmArgs {
   bool wire_timing = false;
   unsigned battery = 7500;
   bool json = false;
+  std::string scene;  // --scene: what the arm meets
 };
 
 void run_sim_xarm(const SimXarmArgs& args) {
@@ -36,6 +38,7 @@ void run_sim_xarm(const SimXarmArgs& args) {
   options.emulator.battery_millivolts = static_cast<std::uint16_t>(args.battery);
   options.wire_timing = args.wire_timing;
   options.baud = args.baud;
+  if (!args.scene.empty()) options.emulator.touches = sim_obstacle("xarm", arm::Protocol::robot_commands, args.scene);
 
   const ServerLog log("sim xarm", args.json);
   xarm::EmulatorRunner runner(options, [&log](const std::string& m) { log.line(m); });
@@ -43,10 +46,12 @@ void run_sim_xarm(const SimXarmArgs& args) {
   const PtySymlink symlink(args.link, runner.device_path());
   const StopOnSignals stop_on_signals(runner);
 
-  log.started({{"servos", 6}, {"link", args.link}, {"wire_timing_baud", args.wire_timing ? args.baud : 0}},
-              fmt::format("emulated xArm (servos 1..6) on {}{}{}; Ctrl-C to stop", runner.device_path(),
+  log.started({{"servos", 6}, {"link", args.link}, {"wire_timing_baud", args.wire_timing ? args.baud : 0},
+               {"scene", args.scene}},
+              fmt::format("emulated xArm (servos 1..6) on {}{}{}{}; Ctrl-C to stop", runner.device_path(),
                           args.link.empty() ? "" : " linked from " + args.link,
-                          args.wire_timing ? fmt::format(", wire timing {} baud", args.baud) : ""),
+                          args.wire_timing ? fmt::format(", wire timing {} baud", args.baud) : "",
+                          args.scene.empty() ? "" : ", stopping at contact with " + args.scene),
               runner.device_path());
 
   runner.run();
@@ -68,6 +73,7 @@ void add_xarm_options(CLI::App& xarm, const std::shared_ptr<SimXarmArgs>& args) 
   xarm.add_option("--battery", args->battery, "Battery voltage in mV, 4500..12000 (default 7500)")
       ->check(whole_number_in(rc::kMillivoltsMin, rc::kMillivoltsMax));
   xarm.add_flag("--json", args->json, "Log as JSON lines on stdout (started with the pty path, log, stopped)");
+  add_sim_scene_option(&xarm, args->scene);
 }
 
 constexpr const char* kXarmHelp =

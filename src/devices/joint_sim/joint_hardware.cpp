@@ -202,12 +202,10 @@ void JointHardware::set_end_stops(EndStops stops) {
   p_.end_stops = stops;
   stop_min_rad_ = stops.min_clicks / clicks_per_rad_;
   stop_max_rad_ = stops.max_clicks / clicks_per_rad_;
-  // An obstacle taken away: a joint held at it is free again (else it would stay stuck,
-  // since the contact is only cleared by moving off it).
-  if (stop_ != 0 && theta_ > stop_min_rad_ && theta_ < stop_max_rad_) {
-    stop_ = 0;
-    if (w_ == 0.0) update_stuck();
-  }
+  // A joint resting against the old stop is free again once the new ones leave it room (an
+  // obstacle taken away: ContactStop).
+  if (stop_ != 0 && theta_ > stop_min_rad_ && theta_ < stop_max_rad_) stop_ = 0;
+  if (w_ == 0.0) update_stuck();
 }
 
 }  // namespace armctl::joint_sim

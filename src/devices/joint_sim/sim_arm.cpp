@@ -21,6 +21,18 @@ SimArm::SimArm(ArmConfig config, SimArmOptions options)
   bus_ = std::make_unique<SimBus>(config_.baud, std::move(endpoints));
 }
 
+void SimArm::set_obstacle(std::function<bool(std::span<const double>)> touches) {
+  if (!touches) {
+    bus_->set_watch(Duration{0}, {});
+    contact_.reset();
+    return;
+  }
+  std::vector<JointHardware*> hardware;
+  for (auto& j : joints_) hardware.push_back(j ? &j->hardware() : nullptr);
+  contact_ = std::make_unique<ContactStop>(std::move(touches), std::move(hardware));
+  bus_->set_watch(std::chrono::milliseconds(1), [this](TimePoint) { contact_->check(); });
+}
+
 std::unique_ptr<SimArm> SimArm::from_default_config() {
   return std::make_unique<SimArm>(load_arm_config(default_arm_config_path()));
 }

@@ -3,10 +3,13 @@
 // simulator (`armctl sim scara`) run it forward with run_until()/advance().
 #pragma once
 
+#include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "devices/joint_sim/arm_config.hpp"
+#include "devices/joint_sim/contact_stop.hpp"
 #include "devices/joint_sim/sim_bus.hpp"
 #include "devices/joint_sim/sim_joint.hpp"
 
@@ -41,12 +44,18 @@ class SimArm {
   SimJoint& joint(int number);
 
   void set_fault_plan(FaultPlan plan) { bus_->set_fault_plan(std::move(plan)); }
+  // Something the arm meets (the scene: `armctl sim scara --scene`; ContactStop): whether
+  // the arm touches it with its joints at these positions (encoder clicks, one per joint
+  // number - 1). Checked every millisecond of simulated time; a joint that moves the arm into
+  // it stalls there.
+  void set_obstacle(std::function<bool(std::span<const double>)> touches);
 
  private:
   ArmConfig config_;
   SimArmOptions options_;
   std::vector<std::unique_ptr<SimJoint>> joints_;  // index = number - 1 (null if absent)
   std::unique_ptr<SimBus> bus_;
+  std::unique_ptr<ContactStop> contact_;
 };
 
 }  // namespace armctl::joint_sim

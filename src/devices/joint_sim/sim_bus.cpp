@@ -96,7 +96,14 @@ TimePoint SimBus::next_event_time() const {
     }
   }
   if (!garbage_.empty()) t = std::min(t, garbage_.front().at);
+  if (watch_) t = std::min(t, next_watch_);
   return t;
+}
+
+void SimBus::set_watch(Duration every, std::function<void(TimePoint)> watch) {
+  watch_ = std::move(watch);
+  watch_every_ = every;
+  next_watch_ = watch_ ? clock_.now() + every : TimePoint::max();
 }
 
 TimePoint SimBus::next_byte_to_master() const {
@@ -275,6 +282,11 @@ void SimBus::process_events_at(TimePoint t) {
     if (!line.tx.busy) poll_joint_tx(static_cast<int>(i), t);
   }
   check_tx_contention(t);
+  if (watch_ && t >= next_watch_) {
+    sync();
+    watch_(t);
+    next_watch_ = t + watch_every_;
+  }
 }
 
 void SimBus::set_select(int joint, bool high) {

@@ -73,6 +73,10 @@ class SimBus final : public transport::JointBusLink {
   // step exactly there instead of taking the byte up to a step late.
   TimePoint next_byte_to_master() const;
 
+  // Every `every` of simulated time, every joint brought up to then and `watch` called (an
+  // obstacle that looks at all joints at once: SimArm::set_obstacle). Empty: none.
+  void set_watch(Duration every, std::function<void(TimePoint)> watch);
+
   // Faults: numbering of bytes restarts with each plan. clear_faults() = empty plan.
   void set_fault_plan(FaultPlan plan);
   void clear_faults() { set_fault_plan(FaultPlan{}); }
@@ -124,6 +128,9 @@ class SimBus final : public transport::JointBusLink {
   std::vector<bool> touched_;  // scratch for process_events_at()
   std::deque<std::string> log_;
   std::function<void(const std::string&)> log_sink_;
+  std::function<void(TimePoint)> watch_;
+  Duration watch_every_{};
+  TimePoint next_watch_ = TimePoint::max();
 };
 
 }  // namespace armctl::joint_sim

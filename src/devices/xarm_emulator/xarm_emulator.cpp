@@ -4,7 +4,8 @@ namespace armctl::xarm {
 
 XarmEmulator::XarmEmulator(const Clock& clock, XarmEmulatorOptions options,
                            rc_board::Board::Output output)
-    : servos_(XarmServosOptions{options.state_dir, options.battery_millivolts, options.temperature},
+    : servos_(XarmServosOptions{options.state_dir, options.battery_millivolts, options.temperature,
+                                options.touches},
               clock.now()),
       groups_(options.state_dir
                   ? std::make_unique<rc_board::GroupStore>(*options.state_dir)

@@ -21,6 +21,8 @@ struct XarmEmulatorOptions {
   std::optional<std::filesystem::path> state_dir;
   std::uint16_t battery_millivolts = 7500;
   std::uint8_t temperature = 35;  // C, what every servo reports
+  // Something the arm meets (XarmServosOptions::touches): its servos stall against it.
+  std::function<bool(std::span<const double>)> touches;
 };
 
 class XarmEmulator {

@@ -48,22 +48,58 @@ bool XarmServos::moving(ServoId servo) const {
   return s.torque && ((s.mode == ServoMode::motor && s.motor_speed != 0) || now_ < s.end);
 }
 
+double XarmServos::planned(const Servo& s, TimePoint t) const {
+  if (t >= s.end) return s.target;
+  return s.from + (s.target - s.from) * seconds(t - s.start) / seconds(s.end - s.start);
+}
+
 void XarmServos::advance_to(TimePoint now) {
   if (now <= now_) return;
+  if (options_.touches) {
+    while (now_ < now) step_against_obstacle(std::min(now, now_ + kContactStep));
+    return;
+  }
   double dt = seconds(now - now_);
   for (Servo& s : servos_) {
     if (!s.torque || s.blocked) continue;
     if (s.mode == ServoMode::motor) {
       double p = std::fmod(s.position + s.motor_speed * kMotorUnitsPerSpeed * dt, kTurn);
       s.position = p < 0 ? p + kTurn : p;
-    } else if (now >= s.end) {
-      s.position = s.target;
     } else {
-      double f = seconds(now - s.start) / seconds(s.end - s.start);
-      s.position = s.from + (s.target - s.from) * f;
+      s.position = planned(s, now);
     }
   }
   now_ = now;
+}
+
+void XarmServos::step_against_obstacle(TimePoint t) {
+  const double dt = seconds(t - now_);
+  std::array<double, kServoCount> shafts;
+  for (std::size_t i = 0; i < kServoCount; ++i) shafts[i] = servos_[i].position + servos_[i].offset;
+  // An arm already touching (started there, put there by hand) is let move: which way is out
+  // is not for the servos to judge.
+  const bool free = !options_.touches(shafts);
+  for (std::size_t i = 0; i < kServoCount; ++i) {
+    Servo& s = servos_[i];
+    if (!s.torque || s.blocked) continue;
+    if (s.mode == ServoMode::motor) {
+      const double p = std::fmod(s.position + s.motor_speed * kMotorUnitsPerSpeed * dt, kTurn);
+      s.position = p < 0 ? p + kTurn : p;
+      continue;
+    }
+    // Towards where its move has it, never faster than it can: a servo held back catches up
+    // along the way, not by a jump through what held it.
+    const double limit = kMaxSpeed * dt * 1.001;
+    const double step = std::clamp(planned(s, t) - s.position, -limit, limit);
+    if (step == 0) continue;
+    shafts[i] += step;
+    if (free && options_.touches(shafts)) {
+      shafts[i] -= step;  // stalled against the obstacle
+      continue;
+    }
+    s.position += step;
+  }
+  now_ = t;
 }
 
 Result<Duration> XarmServos::move(std::span<const ServoTarget> targets, Duration time,

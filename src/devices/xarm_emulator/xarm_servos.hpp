@@ -17,7 +17,9 @@
 
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <optional>
+#include <span>
 
 #include "devices/rc_board/arm_backend.hpp"
 
@@ -34,6 +36,11 @@ struct XarmServosOptions {
   std::optional<std::filesystem::path> state_dir;  // nothing: settings are not persisted
   std::uint16_t battery_millivolts = 7500;
   std::uint8_t temperature = 35;  // C, reported by BusServoInfoRead
+  // Something the arm meets (the scene: `armctl sim xarm --scene`): whether the arm touches
+  // it with its servos' shafts at these positions (units, servos 1..6 in order). A servo
+  // whose next step would make the arm touch stays where it is, stalled against it, while
+  // its move goes on (the others go on moving); it follows again once it can.
+  std::function<bool(std::span<const double>)> touches;
 };
 
 class XarmServos final : public rc_board::ArmBackend {
@@ -43,6 +50,9 @@ class XarmServos final : public rc_board::ArmBackend {
   static constexpr std::uint16_t kSagPerMovingServo = 60;  // mV
   static constexpr double kMotorUnitsPerSpeed = 1.5;       // units/s per speed unit
   static constexpr int kTurn = 1500;                       // units in 360 degrees
+  // With an obstacle (options' touches): servos advance in steps this long, each checked
+  // (at kMaxSpeed, 1.5 units: a servo stops within 0.4 degrees of contact).
+  static constexpr Duration kContactStep = std::chrono::milliseconds(1);
 
   // Loads saved offsets and limits from the state dir (if any). Throws ArmctlError(io /
   // invalid_config) if the settings file exists but cannot be read or is corrupt.
@@ -99,6 +109,10 @@ class XarmServos final : public rc_board::ArmBackend {
   const Servo& at(ServoId id) const { return servos_[id - 1]; }
   bool save_settings();
   void load_settings();
+  // Where a servo's move has it at `t` (servo mode, torque on).
+  double planned(const Servo& s, TimePoint t) const;
+  // One step of at most kContactStep against the obstacle.
+  void step_against_obstacle(TimePoint t);
 
   XarmServosOptions options_;
   std::array<ServoId, kServoCount> ids_{1, 2, 3, 4, 5, 6};

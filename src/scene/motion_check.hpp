@@ -1,0 +1,43 @@
+// A whole motion checked against the collision world: at every step small enough that no
+// point of any body moves more than the resolution (2 mm) between two checks, every pair of
+// bodies that could touch is asked; a pair known to be apart is not (docs/scene.md, "How a
+// motion is checked").
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene/collision_world.hpp"
+
+namespace armctl::scene {
+
+struct MotionCheck {
+  std::optional<Contact> contact;
+  // Pairs already in contact where the motion starts (an arm switched on in a bent pose, an
+  // object placed where the arm stands): not checked along it, so that the arm can move
+  // out; said in the plan's note.
+  std::vector<std::pair<std::string, std::string>> started_touching;
+  double at = 0;  // s into the motion where the contact is (or where the clearance is smallest)
+  std::vector<double> joints;  // there
+  Clearance clearance;         // the smallest along the motion (no contact)
+  std::size_t checks = 0;      // configurations checked
+  std::size_t queries = 0;     // pairs asked at them: contact or distance (FCL after a box test)
+};
+inline constexpr double kCheckResolution = 0.002;  // m
+
+// `sample(t, joints)`: every joint at t (s) of a motion lasting `duration` s.
+//
+// Each pair keeps a lower bound on how far apart its two bodies are: measured when it was
+// last asked, less how much nearer each step since could have brought them (the step's
+// displacement bound over the joints between the two). A pair is asked about contact only
+// once that bound is used up, and about its distance only once the bound falls below the
+// smallest clearance so far: the answers are those of asking every pair at every check
+// (conservative advancement), with far fewer FCL queries.
+MotionCheck check_motion(const CollisionWorld& world, double duration,
+                         const std::function<void(double, std::vector<double>&)>& sample,
+                         double resolution = kCheckResolution);
+
+}  // namespace armctl::scene
