@@ -6,18 +6,16 @@
 #include <fmt/format.h>
 
 #include "arm/arm_kinematics.hpp"
+#include "jog/jog_speeds.hpp"
 
 namespace armctl::jog {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
-// Speed steps: the tool's linear (mm/s) and angular (deg/s) speed, a joint's fraction of
-// its velocity limit. Slow first steps for placing a tool by eye, fast last ones for
-// crossing the workspace.
-constexpr std::array<double, 5> kLinear{5, 10, 25, 50, 100};
-constexpr std::array<double, 5> kAngular{5, 10, 20, 40, 60};
-constexpr std::array<double, 5> kJointFraction{0.05, 0.1, 0.25, 0.5, 1.0};
-constexpr int kSteps = int(kLinear.size());
+constexpr auto& kLinear = kLinearSteps;
+constexpr auto& kAngular = kAngularSteps;
+constexpr auto& kJointFraction = kJointFractionSteps;
+constexpr int kSteps = kSpeedSteps;
 
 Key character(char c) { return Key{Key::Kind::character, c}; }
 
