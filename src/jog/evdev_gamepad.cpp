@@ -80,9 +80,10 @@ std::vector<std::string> event_devices() {
 }  // namespace
 
 Result<std::unique_ptr<EvdevGamepad>> EvdevGamepad::open(const std::string& device) {
-  if (device != "auto" && device.rfind("/dev/input/", 0) != 0)
+  if (device != "auto" && device.rfind('/', 0) != 0)
     return Error{ErrorKind::invalid_argument,
-                 fmt::format("--gamepad '{}': 'auto' (the first gamepad found) or a device such as /dev/input/event5",
+                 fmt::format("--gamepad '{}': 'auto' (the first gamepad found) or a device's path such as "
+                             "/dev/input/event5",
                              printable(device))};
   std::unique_ptr<EvdevGamepad> pad(new EvdevGamepad(device));
   if (device != "auto") {

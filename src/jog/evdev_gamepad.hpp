@@ -17,9 +17,10 @@ namespace armctl::jog {
 
 class EvdevGamepad final : public GamepadSource {
  public:
-  // `device`: "auto" or a path such as /dev/input/event5. Errors (invalid_argument): anything
-  // else. A path that exists but is not a gamepad, or that this user may not read, is an
-  // error at the first poll that opens it (thrown as ArmctlError: the session cannot go on).
+  // `device`: "auto" or a device's path such as /dev/input/event5 (or a udev link to it).
+  // Errors: anything else (invalid_argument); a path that exists but is not a gamepad
+  // (invalid_argument) or that this user may not read (io). A path that does not exist yet
+  // is waited for.
   static Result<std::unique_ptr<EvdevGamepad>> open(const std::string& device);
   ~EvdevGamepad() override;
 
