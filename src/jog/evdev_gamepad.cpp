@@ -86,7 +86,18 @@ Result<std::unique_ptr<EvdevGamepad>> EvdevGamepad::open(const std::string& devi
                              "/dev/input/event5",
                              printable(device))};
   std::unique_ptr<EvdevGamepad> pad(new EvdevGamepad(device));
-  if (device != "auto") {
+  if (device == "auto") {
+    // Input devices there but none readable: no pad plugged in later could be read either.
+    const std::vector<std::string> paths = event_devices();
+    const bool refused = !paths.empty() && std::all_of(paths.begin(), paths.end(), [](const std::string& p) {
+      return ::access(p.c_str(), R_OK) != 0 && errno == EACCES;
+    });
+    if (refused)
+      return Error{ErrorKind::io,
+                   fmt::format("--gamepad auto: this user may read none of the {} input devices under /dev/input: "
+                               "add it to the group 'input', then log in again",
+                               paths.size())};
+  } else {
     // A pad not plugged in yet is waited for; one that cannot be read or is no pad is an
     // error now, not a silent wait for ever.
     int fd = -1;

@@ -19,8 +19,8 @@ class EvdevGamepad final : public GamepadSource {
  public:
   // `device`: "auto" or a device's path such as /dev/input/event5 (or a udev link to it).
   // Errors: anything else (invalid_argument); a path that exists but is not a gamepad
-  // (invalid_argument) or that this user may not read (io). A path that does not exist yet
-  // is waited for.
+  // (invalid_argument) or that this user may not read (io); `auto` where this user may read
+  // none of the input devices (io). A path that does not exist yet is waited for.
   static Result<std::unique_ptr<EvdevGamepad>> open(const std::string& device);
   ~EvdevGamepad() override;
 

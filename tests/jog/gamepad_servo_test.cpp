@@ -67,13 +67,13 @@ TEST(GamepadOnTheXarm, TheRecordedStickMovesTheToolForwardAndItStopsOnReleaseAnd
   // Held: 0.1 s at 43 % of 25 mm/s, then 1 s at 25 mm/s; the start and the stop's ramps
   // about cancel.
   const Eigen::Vector3d first = t.at(1.9) - t.at(0);
-  EXPECT_NEAR(first.x(), 26, 3);
+  EXPECT_NEAR(first.x(), 26, 1.5);
   EXPECT_LT(std::abs(first.y()), 1.0);
   EXPECT_LT(std::abs(first.z()), 1.0);
   // LB let go at 1.2 s with the stick still forward: at rest well before LB comes back at 2.
   EXPECT_LT((t.at(1.95) - t.at(1.6)).norm(), 0.05);
   // Pressed again: a second at 25 mm/s until the pad is unplugged at 3 s.
-  EXPECT_NEAR((t.at(3.9) - t.at(1.95)).x(), 25, 3);
+  EXPECT_NEAR((t.at(3.9) - t.at(1.95)).x(), 25, 1.5);
   // Unplugged with LB and the stick still held: stopped, and plugged in again (the stick
   // then centred) it stays.
   EXPECT_LT((t.points.back().second - t.at(3.5)).norm(), 0.05);
@@ -108,8 +108,8 @@ TEST(GamepadOnTheScara, TheLeftStickAndR2MoveTheToolLeftAndUpAndL1sReleaseStopsI
   ASSERT_TRUE(rec) << rec.error().message;
   const ToolTrace t = replay(arm, *rec);
   const Eigen::Vector3d moved = t.at(1.5) - t.at(0);
-  EXPECT_NEAR(moved.y(), 25, 3);
-  EXPECT_NEAR(moved.z(), 25, 3);
+  EXPECT_NEAR(moved.y(), 25, 1.5);
+  EXPECT_NEAR(moved.z(), 25, 1.5);
   EXPECT_LT(std::abs(moved.x()), 1.0);
   EXPECT_LT((t.points.back().second - t.at(1.5)).norm(), 0.05);
   EXPECT_EQ(t.lines.front(),
