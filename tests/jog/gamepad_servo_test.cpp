@@ -60,7 +60,7 @@ TEST(GamepadOnTheXarm, TheRecordedStickMovesTheToolForwardAndItStopsOnReleaseAnd
   // Away from the upright start (a singularity) first.
   ASSERT_TRUE(arm.move_joints({0.0, 30 * kDeg, 60 * kDeg, 60 * kDeg, 0.0, std::nullopt}));
   ASSERT_TRUE(arm.wait());
-  auto rec = read_pad_recording(ARMCTL_RECORDINGS "/xbox_forward.txt");
+  auto rec = read_pad_recording(ARMCTL_SOURCE_DIR "/tests/jog/recordings/xbox_forward.txt");
   ASSERT_TRUE(rec) << rec.error().message;
   const ToolTrace t = replay(arm, *rec);
 
