@@ -162,10 +162,9 @@ arm::ServoCommand GamepadJog::command() const {
   if (!deadman_) return c;  // a still twist: the arm slows to rest
   // The sticks' forward and left are +x and +y (evdev's y grows downward, x to the right);
   // the right trigger raises, the left lowers; the right stick turns about z (left +) and
-  // pitches (forward +); the d-pad rolls (left +) at full speed.
-  const double hat_x = pad_ && values_.contains(ABS_HAT0X) ? std::clamp(values_.at(ABS_HAT0X), -1, 1) : 0;
+  // pitches (forward +); the d-pad (-1, 0, 1) rolls (left +) at full speed.
   const Eigen::Vector3d linear(-axis(ABS_Y), -axis(ABS_X), axis(ABS_RZ) - axis(ABS_Z));
-  const Eigen::Vector3d angular(-hat_x, -axis(ABS_RY), -axis(ABS_RX));
+  const Eigen::Vector3d angular(-axis(ABS_HAT0X), -axis(ABS_RY), -axis(ABS_RX));
   const std::size_t step = std::size_t(speed_step_);
   c.motion = arm::ToolTwist{linear * kLinearSteps[step] / 1000, angular * kAngularSteps[step] * kDeg, frame_};
   return c;

@@ -12,10 +12,6 @@ namespace armctl::jog {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
-constexpr auto& kLinear = kLinearSteps;
-constexpr auto& kAngular = kAngularSteps;
-constexpr auto& kJointFraction = kJointFractionSteps;
-constexpr int kSteps = kSpeedSteps;
 
 Key character(char c) { return Key{Key::Kind::character, c}; }
 
@@ -116,7 +112,7 @@ std::optional<std::string> KeyJog::setting(const Key& key) {
   if (c == 'h' || c == '?') return help();
   if (c == '+' || c == '=' || c == ']' || c == '-' || c == '_' || c == '[') {
     const bool up = c == '+' || c == '=' || c == ']';
-    state_.speed_step = std::clamp(state_.speed_step + (up ? 1 : -1), 0, kSteps - 1);
+    state_.speed_step = std::clamp(state_.speed_step + (up ? 1 : -1), 0, kSpeedSteps - 1);
     return describe();
   }
   if (c == 'm') {
@@ -180,12 +176,12 @@ arm::ServoCommand KeyJog::command(TimePoint now) {
   if (state_.mode == JogMode::joint) {
     std::vector<double> v(std::size_t(model_.joint_count()), 0.0);
     const auto& limits = model_.joints[std::size_t(state_.joint)].limits;
-    v[std::size_t(state_.joint)] = held_->joint * kJointFraction[std::size_t(step)] * limits.velocity;
+    v[std::size_t(state_.joint)] = held_->joint * kJointFractionSteps[std::size_t(step)] * limits.velocity;
     c.motion = arm::JointVelocities{std::move(v)};
     return c;
   }
-  c.motion = arm::ToolTwist{held_->linear * kLinear[std::size_t(step)] / 1000,
-                            held_->angular * kAngular[std::size_t(step)] * kDeg, state_.frame};
+  c.motion = arm::ToolTwist{held_->linear * kLinearSteps[std::size_t(step)] / 1000,
+                            held_->angular * kAngularSteps[std::size_t(step)] * kDeg, state_.frame};
   return c;
 }
 
@@ -194,10 +190,10 @@ std::string KeyJog::describe() const {
   if (state_.mode == JogMode::joint) {
     const auto& j = model_.joints[std::size_t(state_.joint)];
     return fmt::format("joint {} ({}) at {:g} % of its velocity limit", state_.joint + 1, j.name,
-                       kJointFraction[step] * 100);
+                       kJointFractionSteps[step] * 100);
   }
   return fmt::format("tool moves in the {} frame at {:g} mm/s, {:g} deg/s", arm::to_string(state_.frame),
-                     kLinear[step], kAngular[step]);
+                     kLinearSteps[step], kAngularSteps[step]);
 }
 
 std::string KeyJog::help() const {
