@@ -1,8 +1,8 @@
 // Gamepad recordings (jog/gamepad_replay.hpp, docs/gamepad.md "Recordings") on hostile
 // input: never a crash; every error is invalid_config naming the source; anything accepted
 // has a named pad with the left stick's axes, times in order and in range, EV_ABS events
-// only on declared axes, button values 0..2; and its replay hands over every event exactly
-// once, in order, whatever the poll times.
+// only on declared axes, button values 0..2; it survives a format/parse round trip; and its
+// replay hands over every event exactly once, in order, whatever the poll times.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -47,6 +47,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     ++events;
     if (l.type == EV_ABS) check(r->pad.axes.contains(l.code), "an event on an undeclared axis");
     if (l.type == EV_KEY) check(l.value >= 0 && l.value <= 2, "a button value outside 0..2");
+  }
+  // Written back (as the recorder writes), it reads back the same.
+  auto again = parse_pad_recording(format_pad_recording(*r), "again");
+  check(again.ok(), "the formatted recording does not parse");
+  check(again->pad.name == r->pad.name && again->lines.size() == r->lines.size(), "the round trip changed the recording");
+  for (std::size_t i = 0; i < r->lines.size(); ++i) {
+    const auto &a = r->lines[i], &b = again->lines[i];
+    check(a.kind == b.kind && a.type == b.type && a.code == b.code && a.value == b.value &&
+              std::abs(a.time - b.time) <= 1e-6,
+          "the round trip changed a line");
   }
   // Polled at uneven times (a step from the input's length), then at the end: every event
   // comes once, in order, and the replay ends. A loss or a return ends a poll, so the end

@@ -173,6 +173,28 @@ Result<PadRecording> read_pad_recording(const std::filesystem::path& path) {
   return parse_pad_recording(*text, path.string());
 }
 
+std::string format_pad_recording(const PadRecording& recording) {
+  std::string out = "# armctl gamepad recording: time in s, type, code, value (docs/gamepad.md)\n";
+  // '#' would start a comment, and a name is needed: the name as close as the format allows.
+  std::string name = recording.pad.name;
+  for (char& c : name)
+    if (c == '#' || c == '\n' || c == '\r') c = '_';
+  if (name.find_first_not_of(" \t") == std::string::npos) name = "unnamed pad";
+  out += "device " + name + "\n";
+  for (const auto& [code, a] : recording.pad.axes)
+    out += fmt::format("axis {} {} {}\n", code_name(EV_ABS, code), a.minimum, a.maximum);
+  for (const PadRecordingLine& l : recording.lines) {
+    if (l.kind == PadRecordingLine::Kind::event) {
+      const char* type = libevdev_event_type_get_name(l.type);
+      out += fmt::format("{:.6f} {} {} {}\n", l.time, type ? type : std::to_string(l.type), code_name(l.type, l.code),
+                         l.value);
+    } else {
+      out += fmt::format("{:.6f} {}\n", l.time, l.kind == PadRecordingLine::Kind::unplugged ? "unplugged" : "plugged");
+    }
+  }
+  return out;
+}
+
 GamepadReplay::GamepadReplay(PadRecording recording, std::string description)
     : recording_(std::move(recording)), description_(std::move(description)) {}
 

@@ -43,6 +43,9 @@ inline constexpr std::size_t kPadRecordingMaxLines = 1'000'000;
 // allowed there.
 Result<PadRecording> parse_pad_recording(std::string_view text, std::string_view source);
 Result<PadRecording> read_pad_recording(const std::filesystem::path& path);
+// The text parse_pad_recording reads back as `recording` (times to the microsecond, the
+// kernel's names for types and codes).
+std::string format_pad_recording(const PadRecording& recording);
 
 // Plays a recording on the session's clock: the first poll is time 0, and each poll hands
 // over every line whose time has come. Ends after the last line.

@@ -3,7 +3,7 @@
 # (tests/jog/recordings/xbox_forward.txt) pushes the tool forward while LB is held, stops it
 # when LB is let go and when the pad is unplugged, and the session ends at rest when the
 # recording does. Then a recording with a bad line is refused, naming the line and what is
-# allowed there, before the arm moves.
+# allowed there, before the arm moves; and --record-gamepad's checks.
 set -euo pipefail
 armctl=$1
 recordings=$2
@@ -26,4 +26,12 @@ printf 'device pad\naxis ABS_X 0 255\naxis ABS_Y 0 255\n0.5 EV_KEY BTN_TL 7\n' >
 if out=$("$armctl" jog --arm xarm --gamepad-replay "$bad" </dev/null 2>&1); then fail "a bad recording was taken"; fi
 grep -qF "$bad:4:19: found '7'; expected 0 (released), 1 (pressed) or 2 (repeated) for a button" <<<"$out" ||
   fail "not the line's error"
+# Recording a pad: only with --gamepad, and to a file that can be written (checked before
+# the session, not after it).
+if out=$("$armctl" jog --arm xarm --record-gamepad "$bad" </dev/null 2>&1); then fail "--record-gamepad without --gamepad"; fi
+grep -qF -- "--record-gamepad requires --gamepad" <<<"$out" || fail "not the option's error"
+if out=$("$armctl" jog --arm xarm --gamepad /dev/input/event99 --record-gamepad /nonexistent/pad.txt </dev/null 2>&1); then
+  fail "a recording to a missing directory"
+fi
+grep -qF "/nonexistent" <<<"$out" || fail "the unwritable file not named"
 echo "jog --gamepad-replay: $rest"

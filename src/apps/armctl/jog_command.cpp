@@ -1,5 +1,5 @@
 // armctl jog [--arm A] [--device URI] [--scene FILE] [--speed F]
-//            [--gamepad [auto|/dev/input/eventN] | --gamepad-replay FILE]
+//            [--gamepad [auto|/dev/input/eventN] [--record-gamepad FILE] | --gamepad-replay FILE]
 // Drives the arm while keys are held (docs/servo.md) or a gamepad's sticks are pushed with
 // its dead-man held (docs/gamepad.md): the input becomes servo commands (jog/key_jog.hpp,
 // jog/gamepad_jog.hpp) that the servo mode follows (arm/run_servo.hpp), slowing near the
@@ -27,6 +27,7 @@ struct JogArgs {
   double speed = 1.0;
   std::string gamepad;  // "auto" or /dev/input/eventN
   std::string gamepad_replay;
+  std::string record_gamepad;
 };
 
 // The keyboard: space stops, Esc, x or Ctrl-C end the session.
@@ -56,7 +57,7 @@ void run_jog(const JogArgs& a) {
   arm::Arm& arm = *s->arm;
   std::unique_ptr<JogDriver> driver;
   if (a.gamepad.empty() && a.gamepad_replay.empty()) driver = std::make_unique<KeyboardDriver>(arm.model());
-  else driver = gamepad_driver(arm.model(), a.gamepad, a.gamepad_replay);
+  else driver = gamepad_driver(arm.model(), a.gamepad, a.gamepad_replay, a.record_gamepad);
   run_jog_session(arm, *driver, a.speed);
 }
 
@@ -76,6 +77,9 @@ void add_jog_command(CLI::App& app) {
   cmd->add_option("--gamepad-replay", a->gamepad_replay,
                   "Drive from a recorded gamepad event stream (docs/gamepad.md \"Recordings\")")
       ->excludes(pad);
+  cmd->add_option("--record-gamepad", a->record_gamepad,
+                  "With --gamepad: write what the pad did to FILE, for --gamepad-replay (docs/gamepad.md)")
+      ->needs(pad);
   cmd->callback([a, pad] {
     if (pad->count() > 0 && a->gamepad.empty()) a->gamepad = "auto";  // --gamepad without a value
     run_jog(*a);

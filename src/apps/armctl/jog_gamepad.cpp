@@ -1,10 +1,12 @@
 #include "apps/armctl/jog_gamepad.hpp"
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/printable.hpp"
 #include "jog/evdev_gamepad.hpp"
 #include "jog/gamepad_feed.hpp"
 #include "jog/gamepad_jog.hpp"
+#include "jog/gamepad_recorder.hpp"
 #include "jog/gamepad_replay.hpp"
 
 namespace armctl::cli {
@@ -12,13 +14,20 @@ namespace {
 
 class GamepadDriver final : public JogDriver {
  public:
-  GamepadDriver(const arm::ArmModel& model, std::unique_ptr<jog::GamepadSource> source)
-      : pad_(model), source_(std::move(source)) {}
+  GamepadDriver(const arm::ArmModel& model, std::unique_ptr<jog::GamepadSource> source, jog::GamepadRecorder* recorder,
+                std::string record)
+      : pad_(model), source_(std::move(source)), recorder_(recorder), record_(std::move(record)) {}
 
   std::vector<std::string> intro() const override { return {source_->description(), pad_.help(), pad_.describe()}; }
 
   void cycle(TimePoint now, arm::ServoInput& input, const Say& say) override {
     for (const std::string& line : jog::feed_gamepad(*source_, pad_, input, now)) say(line);
+  }
+
+  void after(const Say& say) override {
+    if (!recorder_) return;
+    if (Status s = recorder_->save(record_); !s) say("not recorded: " + s.error().message);
+    else say("recorded the gamepad in " + printable(record_));
   }
 
   std::string describe() const override {
@@ -29,12 +38,14 @@ class GamepadDriver final : public JogDriver {
  private:
   jog::GamepadJog pad_;
   std::unique_ptr<jog::GamepadSource> source_;
+  jog::GamepadRecorder* recorder_;  // in source_, when recording
+  std::string record_;
 };
 
 }  // namespace
 
 std::unique_ptr<JogDriver> gamepad_driver(const arm::ArmModel& model, const std::string& device,
-                                          const std::string& replay) {
+                                          const std::string& replay, const std::string& record) {
   std::unique_ptr<jog::GamepadSource> source;
   if (!replay.empty()) {
     auto recording = jog::read_pad_recording(replay);
@@ -45,7 +56,15 @@ std::unique_ptr<JogDriver> gamepad_driver(const arm::ArmModel& model, const std:
     if (!pad) throw ArmctlError(pad.error());
     source = std::move(*pad);
   }
-  return std::make_unique<GamepadDriver>(model, std::move(source));
+  jog::GamepadRecorder* recorder = nullptr;
+  if (!record.empty()) {
+    // Refused before the session rather than losing it at the end.
+    if (Status s = check_writable(record); !s) throw ArmctlError(s.error());
+    auto wrapped = std::make_unique<jog::GamepadRecorder>(std::move(source));
+    recorder = wrapped.get();
+    source = std::move(wrapped);
+  }
+  return std::make_unique<GamepadDriver>(model, std::move(source), recorder, record);
 }
 
 }  // namespace armctl::cli

@@ -63,6 +63,7 @@ void run_jog_session(arm::Arm& arm, JogDriver& driver, double speed) {
   };
   auto r = arm::run_servo(arm, input, o);
   if (live) fmt::print("\n");
+  driver.after(say);
   if (!r) throw ArmctlError(r.error());
   const motion::Pose p = arm.kinematics()->pose_at(r->positions);
   say(fmt::format("at rest at x {:.1f} y {:.1f} z {:.1f} mm after {:.1f} s ({} commands)", p.position.x() * 1000,

@@ -25,6 +25,8 @@ class JogDriver {
   virtual void cycle(TimePoint now, arm::ServoInput& input, const Say& say) = 0;
   // The settings in words, for the status line.
   virtual std::string describe() const = 0;
+  // Once the session is over, also when it failed: what the driver keeps (a recording).
+  virtual void after(const Say&) {}
 };
 
 // Until the driver finishes the input (or SIGINT, SIGTERM) and the arm is at rest. `speed`:
