@@ -63,6 +63,7 @@ Result<std::string> GamepadJog::connect(const PadDescription& pad) {
                    fmt::format("gamepad '{}': axis {} has range {}..{}; the minimum must be below the maximum",
                                printable(pad.name), axis_name(code), a.minimum, a.maximum)};
   release_all();
+  dropped_ = false;
   pad_ = pad;
   layout_ = layout_of(pad);
   values_.clear();
