@@ -6,18 +6,12 @@
 #include <fmt/format.h>
 
 #include "arm/arm_kinematics.hpp"
+#include "jog/jog_speeds.hpp"
 
 namespace armctl::jog {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
-// Speed steps: the tool's linear (mm/s) and angular (deg/s) speed, a joint's fraction of
-// its velocity limit. Slow first steps for placing a tool by eye, fast last ones for
-// crossing the workspace.
-constexpr std::array<double, 5> kLinear{5, 10, 25, 50, 100};
-constexpr std::array<double, 5> kAngular{5, 10, 20, 40, 60};
-constexpr std::array<double, 5> kJointFraction{0.05, 0.1, 0.25, 0.5, 1.0};
-constexpr int kSteps = int(kLinear.size());
 
 Key character(char c) { return Key{Key::Kind::character, c}; }
 
@@ -118,7 +112,7 @@ std::optional<std::string> KeyJog::setting(const Key& key) {
   if (c == 'h' || c == '?') return help();
   if (c == '+' || c == '=' || c == ']' || c == '-' || c == '_' || c == '[') {
     const bool up = c == '+' || c == '=' || c == ']';
-    state_.speed_step = std::clamp(state_.speed_step + (up ? 1 : -1), 0, kSteps - 1);
+    state_.speed_step = std::clamp(state_.speed_step + (up ? 1 : -1), 0, kSpeedSteps - 1);
     return describe();
   }
   if (c == 'm') {
@@ -182,12 +176,12 @@ arm::ServoCommand KeyJog::command(TimePoint now) {
   if (state_.mode == JogMode::joint) {
     std::vector<double> v(std::size_t(model_.joint_count()), 0.0);
     const auto& limits = model_.joints[std::size_t(state_.joint)].limits;
-    v[std::size_t(state_.joint)] = held_->joint * kJointFraction[std::size_t(step)] * limits.velocity;
+    v[std::size_t(state_.joint)] = held_->joint * kJointFractionSteps[std::size_t(step)] * limits.velocity;
     c.motion = arm::JointVelocities{std::move(v)};
     return c;
   }
-  c.motion = arm::ToolTwist{held_->linear * kLinear[std::size_t(step)] / 1000,
-                            held_->angular * kAngular[std::size_t(step)] * kDeg, state_.frame};
+  c.motion = arm::ToolTwist{held_->linear * kLinearSteps[std::size_t(step)] / 1000,
+                            held_->angular * kAngularSteps[std::size_t(step)] * kDeg, state_.frame};
   return c;
 }
 
@@ -196,10 +190,10 @@ std::string KeyJog::describe() const {
   if (state_.mode == JogMode::joint) {
     const auto& j = model_.joints[std::size_t(state_.joint)];
     return fmt::format("joint {} ({}) at {:g} % of its velocity limit", state_.joint + 1, j.name,
-                       kJointFraction[step] * 100);
+                       kJointFractionSteps[step] * 100);
   }
   return fmt::format("tool moves in the {} frame at {:g} mm/s, {:g} deg/s", arm::to_string(state_.frame),
-                     kLinear[step], kAngular[step]);
+                     kLinearSteps[step], kAngularSteps[step]);
 }
 
 std::string KeyJog::help() const {

@@ -13,6 +13,7 @@
 #include "arm/arm_model.hpp"
 #include "arm/servo_commands.hpp"
 #include "core/clock.hpp"
+#include "jog/jog_speeds.hpp"
 
 namespace armctl::jog {
 
@@ -35,7 +36,7 @@ enum class JogMode { tool, joint };
 struct JogState {
   JogMode mode = JogMode::tool;
   arm::ServoFrame frame = arm::ServoFrame::base;
-  int speed_step = 2;  // index into the speed steps
+  int speed_step = kStartSpeedStep;  // index into the speed steps (jog/jog_speeds.hpp)
   int joint = 0;       // the joint moved in joint mode
 };
 
