@@ -63,7 +63,8 @@ class ServoLoop {
  public:
   ServoLoop(Arm& arm, ServoInput& input, const ServoOptions& options)
       : arm_(arm), input_(input), options_(options), kinematics_(arm.kinematics()), model_(kinematics_->model()),
-        device_(arm.device()), clock_(arm.clock()), n_(std::size_t(model_.joint_count())), goals_(n_),
+        device_(arm.device()), clock_(arm.clock()), stall_(arm.stall_watch(options.executor.stall_time)),
+        n_(std::size_t(model_.joint_count())), goals_(n_),
         positions_(n_), velocities_(n_), sent_(n_) {}
 
   Result<ServoReport> run() {
@@ -121,7 +122,8 @@ class ServoLoop {
       ++report_.cycles;
       if (status.slowdown != ServoSlowdown::none) ++report_.slowed[std::size_t(status.slowdown)];
       if (read_now) {
-        if (auto f = read_back(); !f) return halted(f.error());
+        // (A stall has stopped the arm and released the joint: a halt would hold it again.)
+        if (auto f = read_back(); !f) return stall_of(f.error()) ? f.error() : halted(f.error());
         next_read = clock_.now() + read_every;
       }
       sent_ = positions_;
@@ -318,8 +320,15 @@ class ServoLoop {
     ++report_.reads;
     if (options_.executor.on_read) options_.executor.on_read(*s);
     // The device is on its way to the point sent last; it was sent the one before it.
-    return check_following(model_, s->positions, sent_, options_.executor, "servo", 0,
-                           report_.largest_following_error, report_.largest_following_joint);
+    if (auto f = check_following(model_, s->positions, sent_, options_.executor, "servo", 0,
+                                 report_.largest_following_error, report_.largest_following_joint);
+        !f)
+      return f;
+    // Stall protection (arm/stall_watch.hpp): a joint driven but standing still (something the
+    // scene does not know in the way) stops the arm and has its torque released.
+    driven_.assign(sent_.begin(), sent_.end());
+    if (auto stall = stall_.read(s->time, s->positions, driven_)) return arm_.stalled(std::move(*stall), "servo");
+    return Ok{};
   }
 
   Error halted(const Error& e) {
@@ -334,6 +343,8 @@ class ServoLoop {
   const ArmModel& model_;
   ArmDevice& device_;
   const Clock& clock_;
+  StallWatch stall_;
+  std::vector<std::optional<double>> driven_;  // where the joints were sent, for the stall watch
   const std::size_t n_;
   motion::ServoGenerator generator_;
   std::vector<motion::ServoGoal> goals_;

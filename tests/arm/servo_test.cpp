@@ -335,5 +335,22 @@ TEST_F(ScaraServo, AJointHeldByAnObstacleHaltsTheArmWithAFollowingError) {
   EXPECT_EQ(f->joint, 1);
 }
 
+// Stall protection in the servo mode: a joint held by something no scene knows, driven
+// slowly enough that it never falls 5 degrees behind, is stopped and released after 0.5 s of
+// standing still, and the error names it.
+TEST_F(ScaraServo, ASlowlyDrivenJointHeldByAnObstacleIsFoundStalledAndReleased) {
+  auto& hw = sim->joint(2).hardware();
+  const auto at = static_cast<std::int32_t>(hw.position_clicks());
+  hw.set_end_stops({at - 5, at + 5});
+  std::vector<double> v(std::size_t(arm.model().joint_count()), 0.0);
+  v[1] = 0.05;  // SHOULDER (joint-bus joint 2), 3 degrees a second
+  auto r = run(Script(input, ServoCommand{JointVelocities{v}, std::nullopt}, 0, 5, 5));
+  ASSERT_FALSE(r);
+  const auto* stall = stall_of(r.error());
+  ASSERT_NE(stall, nullptr) << r.error().message;
+  EXPECT_EQ(stall->joint, 1);
+  EXPECT_GE(stall->seconds, 0.5);
+}
+
 }  // namespace
 }  // namespace armctl::arm
