@@ -248,7 +248,24 @@ TEST(ServoTwist, TheToolJacobianIsTheDerivativeOfTheToolPose) {
   }
 }
 
-class ScaraServo : public ::testing::Test {
+// The simulated SCARA on its joint bus, as it starts: stretched out along x.
+class SimulatedScara : public ::testing::Test {
+ protected:
+  std::unique_ptr<joint_sim::SimArm> sim = test::make_arm(115200);
+  joint_bus::BusMaster master{sim->link()};
+  Arm arm{testing::shipped("scara"),
+          std::make_unique<BusArmDevice>(testing::shipped("scara"), master, sim->link(), "simulated SCARA")};
+  ServoInput input{arm.model()};
+  Trace trace;
+  Result<ServoReport> run(Script script, ServoOptions o = {}) {
+    o.before_cycle = std::ref(script);
+    o.on_cycle = std::ref(trace);
+    return run_servo(arm, input, o);
+  }
+  Eigen::Vector3d tool_mm() { return arm.pose().value().position * 1000; }
+};
+
+class ScaraServo : public SimulatedScara {
  protected:
   // The simulated arm starts stretched out (a singularity): first to a bent elbow, through
   // the servo mode's joint targets.
@@ -272,36 +289,14 @@ class ScaraServo : public ::testing::Test {
     EXPECT_NEAR(at[2], 60 * kDeg, 0.5 * kDeg);
     trace = {};
   }
-  std::unique_ptr<joint_sim::SimArm> sim = test::make_arm(115200);
-  joint_bus::BusMaster master{sim->link()};
-  Arm arm{testing::shipped("scara"),
-          std::make_unique<BusArmDevice>(testing::shipped("scara"), master, sim->link(), "simulated SCARA")};
-  ServoInput input{arm.model()};
-  Trace trace;
-  Result<ServoReport> run(Script script, ServoOptions o = {}) {
-    o.before_cycle = std::ref(script);
-    o.on_cycle = std::ref(trace);
-    return run_servo(arm, input, o);
-  }
-  Eigen::Vector3d tool_mm() { return arm.pose().value().position * 1000; }
 };
 
 // The simulated SCARA starts stretched out along x: the tool cannot move outward there, and
 // the status says so instead of nothing moving for no reason.
-TEST(ScaraServoStretched, ATwistOutwardAtFullStretchIsReportedAsASingularity) {
-  std::unique_ptr<joint_sim::SimArm> sim = test::make_arm(115200);
-  joint_bus::BusMaster master{sim->link()};
-  Arm arm{testing::shipped("scara"),
-          std::make_unique<BusArmDevice>(testing::shipped("scara"), master, sim->link(), "simulated SCARA")};
-  ServoInput input{arm.model()};
-  Trace trace;
+TEST_F(SimulatedScara, ATwistOutwardAtFullStretchIsReportedAsASingularity) {
   const Eigen::Vector3d before = arm.pose().value().position;
   const Eigen::Vector3d outward = Eigen::Vector3d(before.x(), before.y(), 0).normalized();
-  Script script(input, twist(outward * 20), 0, 0.5, 0.5);
-  ServoOptions o;
-  o.before_cycle = std::ref(script);
-  o.on_cycle = std::ref(trace);
-  auto r = run_servo(arm, input, o);
+  auto r = run(Script(input, twist(outward * 20), 0, 0.5, 0.5));
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_TRUE(trace.reported(ServoSlowdown::singularity, "cannot move that way"));
   EXPECT_LT((arm.pose().value().position - before).dot(outward), 0.001);

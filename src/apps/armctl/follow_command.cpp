@@ -85,11 +85,13 @@ void run_follow_command(const FollowArgs& a) {
   arm::Arm& follower = *follower_session->arm;
   if (!a.joint_offset.empty()) {
     // In the joints' own units, as people give them: degrees, millimetres.
+    // Every value kept, so that a wrong count is refused by the mapping with the count it needs.
     const auto v = numbers(a.joint_offset, "--joint-offset");
     const auto& joints = follower.model().joints;
-    for (std::size_t i = 0; i < v.size() && i < joints.size(); ++i)
-      o.mapping.joint_offset.push_back(joints[i].dimension == Dimension::length ? v[i] / 1000 : v[i] * M_PI / 180);
-    if (v.size() > joints.size()) o.mapping.joint_offset.push_back(0);  // one too many: refused by the mapping
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const bool length = i < joints.size() && joints[i].dimension == Dimension::length;
+      o.mapping.joint_offset.push_back(length ? v[i] / 1000 : v[i] * M_PI / 180);
+    }
   }
   o.servo.speed = a.speed;
 
