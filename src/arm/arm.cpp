@@ -35,6 +35,13 @@ Status Arm::set_scene(scene::Scene scene) {
   return Ok{};
 }
 
+Status Arm::edit_scene(const std::function<Result<scene::Scene>(const scene::Scene&)>& edit) {
+  std::lock_guard lock(scene_edit_mutex_);
+  auto edited = edit(scene());
+  if (!edited) return edited.error();
+  return set_scene(std::move(edited).value());
+}
+
 scene::Scene Arm::scene() const {
   auto k = kinematics();
   return k->collisions() ? k->collisions()->scene() : scene::Scene{};

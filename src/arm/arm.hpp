@@ -86,6 +86,10 @@ class Arm {
   // plans made before keep the scene they were checked with. Errors (invalid_config): the
   // arm has no collision shapes.
   Status set_scene(scene::Scene scene);
+  // Changes the scene by `edit` (scene::with_object, without_object) from the one the arm has,
+  // so that two threads editing at once (an HTTP client, a ROS service) both land; an edit
+  // that fails changes nothing.
+  Status edit_scene(const std::function<Result<scene::Scene>(const scene::Scene&)>& edit);
   // The scene plans are checked against (empty: self-collision only, or no collision model).
   scene::Scene scene() const;
   ArmDevice& device() { return *device_; }
@@ -147,6 +151,7 @@ class Arm {
   std::shared_ptr<const ArmKinematics> model_kinematics_;  // as built: model() refers into it
   mutable std::mutex kinematics_mutex_;
   std::shared_ptr<const ArmKinematics> kinematics_;  // with the scene; replaced by set_scene
+  std::mutex scene_edit_mutex_;  // one edit_scene at a time
   std::unique_ptr<ArmDevice> device_;
   std::vector<std::optional<double>> last_targets_;  // SI, of the last move
   // When the last move was sent and how long the device takes for it: from then on each of

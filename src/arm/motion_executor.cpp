@@ -5,8 +5,10 @@
 
 #include <fmt/core.h>
 
+#include "arm/arm_kinematics.hpp"
 #include "core/quantity.hpp"
 #include "motion/move_limits.hpp"
+#include "scene/motion_check.hpp"
 
 namespace armctl::arm {
 
@@ -172,7 +174,27 @@ class Execution {
         to_device(model_, device_.protocol(), pos_, vel_, dq, dv);
         if (auto s = device_.stream(dq, dv, period_); !s) return halted(s.error());
         ++report_.points;
-        return finish(start, false, true);
+        auto done = finish(start, false, true);
+        if (contact_ahead_) return collision_ahead(false);
+        return done;
+      }
+
+      // A contact ahead (the scene changed since the plan): stop on the path before it, or
+      // at once where a ramp down would not end short of it.
+      if (!stopping && options_.look_ahead > Duration{0}) {
+        if (auto c = look_ahead(rate)) {
+          contact_ahead_ = std::move(c);
+          const double length = ramp_seconds(rate, 0);
+          const double rest = t_ + 0.5 * rate * length + rate * seconds(latency_ + period_ + read_time_);
+          if (rest >= contact_ahead_->fraction * motion_.duration) {
+            if (auto s = device_.stop(); !s) return s.error();
+            (void)finish(start, false, true);  // where it was halted: the error says the rest
+            return collision_ahead(true);
+          }
+          ramp.start(now, rate, 0, length);
+          stopping = true;
+          paused = false;
+        }
       }
 
       const MotionCommand cmd = options_.command ? options_.command(progress) : MotionCommand::none;
@@ -280,6 +302,53 @@ class Execution {
     return Ok{};
   }
 
+  // The stretch from where the look-ahead last reached to the next `look_ahead` of device
+  // time at `rate`, plus a stop's length and the points' lead, against the collision world
+  // as it is now; a new world (set_scene) is checked again from where the arm is. Checked in
+  // chunks of twice what is needed, so that not every point asks. The contact found, with
+  // `fraction` of the motion where it is.
+  std::optional<CollisionDetail> look_ahead(double rate) {
+    const auto kinematics = arm_.kinematics();
+    const auto& world = kinematics->collisions();
+    if (!world) return std::nullopt;
+    if (world != world_) {
+      world_ = world;
+      checked_to_ = t_;
+    }
+    if (checked_to_ >= motion_.duration) return std::nullopt;
+    const double lead = rate * seconds(options_.look_ahead + latency_ + period_ + read_time_);
+    if (checked_to_ >= t_ + lead + stop_span_) return std::nullopt;
+    stop_span_ = 0.5 * rate * ramp_seconds(rate, 0);
+    const double from = checked_to_;
+    const double to = std::min(motion_.duration, t_ + 2 * (lead + stop_span_) + 1e-3);
+    std::vector<double> v(pos_.size()), a(pos_.size());
+    const scene::MotionCheck check = scene::check_motion(*world, to - from, [&](double t, std::vector<double>& q) {
+      q.resize(pos_.size());
+      motion_.sample(from + t, q, v, a);
+    });
+    checked_to_ = to;
+    if (!check.contact) return std::nullopt;
+    CollisionDetail d;
+    d.contact = *check.contact;
+    d.fraction = motion_.duration > 0 ? (from + check.at) / motion_.duration : 0;
+    d.joints = check.joints;
+    d.tool_point = kinematics->pose_at(check.joints).position;
+    d.while_moving = true;
+    return d;
+  }
+
+  Error collision_ahead(bool halted_at_once) {
+    CollisionDetail d = std::move(*contact_ahead_);
+    d.stopped_at = motion_.duration > 0 ? t_ / motion_.duration : 0;
+    const std::string message = fmt::format(
+        "{}: stopped before a collision ({}): {:.0f}% into the motion, tool point at ({:.1f}, {:.1f}, {:.1f}) mm, {} "
+        "with {} (the scene changed after the motion was planned); the arm {} at {:.0f}%",
+        motion_.what, halted_at_once ? "too near to slow down on the path" : "found ahead while moving",
+        100 * d.fraction, d.tool_point.x() * 1e3, d.tool_point.y() * 1e3, d.tool_point.z() * 1e3, d.contact.first,
+        d.contact.second, halted_at_once ? "was halted" : "is at rest on the path", 100 * d.stopped_at);
+    return Error{ErrorKind::invalid_argument, message, std::move(d)};
+  }
+
   Error halted(const Error& e) {
     (void)device_.stop();  // best effort: the error is what the caller needs
     return e;
@@ -307,6 +376,12 @@ class Execution {
   std::vector<std::optional<double>> planned_;  // where the plan has every joint at a read
   double t_ = 0;
   double last_due_ = 0;  // nominal time of the last point sent
+  // The look-ahead: the world it checked against, how far (nominal s), the nominal length
+  // of a stop at the last check's rate, and a contact found ahead.
+  std::shared_ptr<const scene::CollisionWorld> world_;
+  double checked_to_ = 0;
+  double stop_span_ = 0;
+  std::optional<CollisionDetail> contact_ahead_;
   Duration period_{}, read_time_{}, latency_{};
   MotionReport report_;
 };

@@ -12,7 +12,13 @@
 // Following error: every few points the positions are read back and compared with the plan
 // at the instant of the read; beyond the threshold the arm is halted and the error names
 // the joint. The same reads watch for a joint that stalls (arm/stall_watch.hpp): driven but
-// standing still, it is stopped and released. Docs: docs/motion.md.
+// standing still, it is stopped and released.
+// Look-ahead: the stretch of the motion the arm will cover in the next 200 ms, plus what a
+// stop from there takes, is checked against the arm's collision world as it is now (the
+// plan was checked against the scene of its time; an object added since, from the
+// dashboard, ROS or Python, is seen here). A contact ahead stops the motion on its path
+// before it; the error names the two bodies (detail CollisionDetail). Docs: docs/motion.md,
+// docs/scene.md.
 #pragma once
 
 #include <functional>
@@ -22,6 +28,7 @@
 #include <vector>
 
 #include "arm/arm.hpp"
+#include "arm/collision_detail.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 
@@ -48,6 +55,8 @@ struct MotionProgress {
   std::size_t points = 0;  // stream points sent
 };
 
+inline constexpr Duration kLookAhead = std::chrono::milliseconds(200);
+
 struct ExecutorOptions {
   double speed_override = 1.0;      // (0, 1]: the rate's ceiling
   std::optional<Duration> period;   // between points; empty: the device's floor
@@ -63,6 +72,9 @@ struct ExecutorOptions {
   // long while the plan has it farther away than its stall threshold is stopped and its
   // torque released (error device, detail JointStall). 0: off.
   Duration stall_time = kStallTime;
+  // How far ahead of the arm the motion is checked against the collision world, in device
+  // time (the stop's own length is added); 0: not checked while moving.
+  Duration look_ahead = kLookAhead;
   // Asked before every point (a flag set by a signal handler, a key, a test script).
   std::function<MotionCommand(const MotionProgress&)> command;
   // After every point (progress lines, test probes).
@@ -109,8 +121,10 @@ inline const FollowingError* following_error_of(const Error& error) { return err
 // Runs `motion` on `arm` from its current position (which must be the motion's start: the
 // caller planned it from a fresh read). Errors: the device's (the arm is halted first),
 // device "following error" naming the joint, where it is and where it should be (detail
-// FollowingError), or device "stalled" naming the joint and how long (detail JointStall;
-// Arm::stalled).
+// FollowingError), device "stalled" naming the joint and how long (detail JointStall;
+// Arm::stalled), or invalid_argument naming the two bodies when the look-ahead found a
+// contact ahead (detail CollisionDetail with while_moving; the arm at rest on the path
+// before it, or halted at once where too near to slow down).
 Result<MotionReport> execute_motion(Arm& arm, const PlannedMotion& motion, const ExecutorOptions& options = {});
 
 // What the executor and the servo loop (arm/run_servo.hpp) share.

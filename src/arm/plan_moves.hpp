@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "arm/arm_kinematics.hpp"
+#include "arm/collision_detail.hpp"
 #include "arm/motion_executor.hpp"
 #include "arm/motion_planning.hpp"
 #include "arm/spline_motion.hpp"
@@ -126,16 +127,6 @@ struct MoveRefusal {
   std::size_t first_move = 0, last_move = 0;
 };
 
-// The detail of a refusal because a motion would collide (Error::detail): the two bodies,
-// how deep, where on the motion, and the tool point there.
-struct CollisionDetail {
-  scene::Contact contact;
-  std::size_t first_move = 0, last_move = 0;  // the piece's moves
-  std::size_t line = 0;  // its first move's line in a file (0: not from a file)
-  double fraction = 0;   // how far into the piece's motion, 0..1
-  Eigen::Vector3d tool_point = Eigen::Vector3d::Zero();  // base frame, m
-  std::vector<double> joints;  // every joint there, SI
-};
 
 // `refused`, when given, is set to the moves a refusal is about.
 Result<Plan> plan_moves(const ArmKinematics& kinematics, const std::vector<double>& from, std::span<const Move> moves,

@@ -72,6 +72,16 @@ class Runner {
   // A stall is not a late arrival: it keeps its own detail for the app to map.
   Error not_arrived(const Error& e) const { return hooks_.not_arrived && !stall_of(e) ? hooks_.not_arrived(e) : e; }
 
+  // A contact the executor's look-ahead found names the piece's moves, as a refusal does.
+  static Error with_piece(Error e, const PlannedPiece& piece) {
+    if (auto* d = std::any_cast<CollisionDetail>(&e.detail)) {
+      d->first_move = piece.first_move;
+      d->last_move = piece.last_move;
+      d->line = piece.first_line;
+    }
+    return e;
+  }
+
   MotionCommand command() const { return hooks_.command ? hooks_.command() : MotionCommand::none; }
   bool stop_asked() const { return stopping(command()); }
 
@@ -160,7 +170,7 @@ class Runner {
     };
     auto r = execute_motion(arm_, piece.motion, eo);
     if (!r) {
-      status = r.error();
+      status = with_piece(r.error(), piece);
       return true;
     }
     motion_report_ = *r;

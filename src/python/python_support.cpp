@@ -88,6 +88,8 @@ void set_detail(py::object& e, const Error& error) {
     e.attr("depth") = c->contact.depth;
     e.attr("fraction") = c->fraction;
     e.attr("point") = py::make_tuple(c->tool_point.x(), c->tool_point.y(), c->tool_point.z());
+    // Found while moving (the scene changed under the motion): the arm stopped before it.
+    e.attr("while_moving") = c->while_moving;
   } else if (const auto* at = source_place(error)) {
     e.attr("detail") = "source_place";
     e.attr("file") = at->file;

@@ -13,6 +13,7 @@
 #include "ros/motion_lane.hpp"
 #include "ros/trajectory_goal.hpp"
 #include "ros/trajectory_job.hpp"
+#include "scene/scene.hpp"
 #include "session/arm_session.hpp"
 #include "session/arm_worker.hpp"
 #include "session/servo_lane.hpp"
@@ -286,6 +287,32 @@ MotionOutcome ArmBridge::gripper(double closed_fraction) {
     move.speed = speed;
     return board_move(a, ctx, move);
   });
+}
+
+namespace {
+
+MotionOutcome scene_edit_outcome(const Status& s) {
+  if (!s) {
+    MotionOutcome m;
+    m.kind = to_string(s.error().kind);
+    m.message = s.error().message;
+    return m;
+  }
+  MotionOutcome m;
+  m.ok = true;
+  return m;
+}
+
+}  // namespace
+
+MotionOutcome ArmBridge::set_scene_object(const std::string& object) {
+  return scene_edit_outcome(impl_->worker.session().arm->edit_scene(
+      [&](const scene::Scene& now) { return scene::with_object(now, object, "object"); }));
+}
+
+MotionOutcome ArmBridge::remove_scene_object(const std::string& name) {
+  return scene_edit_outcome(impl_->worker.session().arm->edit_scene(
+      [&](const scene::Scene& now) { return scene::without_object(now, name); }));
 }
 
 MotionOutcome ArmBridge::run_action_group(int group, int times) {

@@ -92,6 +92,11 @@ class ArmBridge {
   MotionOutcome gripper(double closed_fraction);
   MotionOutcome run_action_group(int group, int times);
   MotionOutcome stop_action_group();
+  // The planning scene, one object at a time (scene::with_object / without_object): `object`
+  // is one object as a scene file writes it (JSON, mm, deg). Taken at once, without waiting
+  // for a motion: the running one's look-ahead sees it (docs/scene.md "While it moves").
+  MotionOutcome set_scene_object(const std::string& object);
+  MotionOutcome remove_scene_object(const std::string& name);
   // Stops what runs (it slows down on its path, then every joint holds); returns at once.
   void stop();
 

@@ -28,7 +28,9 @@
 
 #include "armctl_msgs/MoveTo.h"
 #include "armctl_msgs/RunActionGroup.h"
+#include "armctl_msgs/RemoveSceneObject.h"
 #include "armctl_msgs/SetGripper.h"
+#include "armctl_msgs/SetSceneObject.h"
 
 namespace armctl::ros_node {
 
@@ -115,6 +117,8 @@ struct ArmNode::Impl {
     services.push_back(private_nh.advertiseService("move_to", &Impl::on_move_to, this));
     services.push_back(private_nh.advertiseService("run_action_group", &Impl::on_run_group, this));
     services.push_back(private_nh.advertiseService("stop_action_group", &Impl::on_stop_group, this));
+    services.push_back(private_nh.advertiseService("scene/set_object", &Impl::on_set_scene_object, this));
+    services.push_back(private_nh.advertiseService("scene/remove_object", &Impl::on_remove_scene_object, this));
     server = std::make_unique<Server>(nh, "arm_controller/follow_joint_trajectory",
                                       [this](GoalHandle g) { on_goal(g); }, [this](GoalHandle g) { on_cancel(g); },
                                       false);
@@ -497,6 +501,19 @@ struct ArmNode::Impl {
 
   bool on_stop_group(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
     return answer(res, arm.stop_action_group(), "action group stopped");
+  }
+
+  bool on_set_scene_object(armctl_msgs::SetSceneObject::Request& req, armctl_msgs::SetSceneObject::Response& res) {
+    const MotionOutcome o = arm.set_scene_object(req.object);
+    res.kind = o.kind;
+    return answer(res, o, "the scene holds it: plans are checked against it from now on");
+  }
+
+  bool on_remove_scene_object(armctl_msgs::RemoveSceneObject::Request& req,
+                              armctl_msgs::RemoveSceneObject::Response& res) {
+    const MotionOutcome o = arm.remove_scene_object(req.name);
+    res.kind = o.kind;
+    return answer(res, o, fmt::format("'{}' removed from the scene", req.name));
   }
 };
 

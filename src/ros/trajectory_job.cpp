@@ -90,8 +90,11 @@ Status run_trajectory(arm::Arm& arm, session::JobContext& ctx, const TrajectoryR
       return Ok{};
     }
     if (late) return fail(outcome, GoalError::goal_tolerance_violated, report.error());
-    // A joint that fell behind or stalled (stopped, released) left the path.
-    const bool following = arm::following_error_of(report.error()) != nullptr || arm::stall_of(report.error()) != nullptr;
+    // A joint that fell behind or stalled (stopped, released), or an object put in the way
+    // after the goal was accepted (the arm stopped before it): the path was not followed.
+    const auto* contact = report.error().detail_as<arm::CollisionDetail>();
+    const bool following = arm::following_error_of(report.error()) != nullptr || arm::stall_of(report.error()) != nullptr ||
+                           (contact && contact->while_moving);
     return fail(outcome, following ? GoalError::path_tolerance_violated : GoalError::invalid_goal, report.error());
   }
   std::lock_guard<std::mutex> lock(outcome.mutex);

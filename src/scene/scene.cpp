@@ -1,5 +1,6 @@
 #include "scene/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -105,6 +106,48 @@ motion::Shape read_shape(const std::string& src, ObjectReader& r, ObjectRole& ro
 
 }  // namespace
 
+// One object of a scene file at `path` ("objects[3]"); throws ArmctlError naming the key.
+SceneObject read_object(const std::string& src, const json& v, const std::string& path) {
+  ObjectReader r(src, v, path);
+  SceneObject o;
+  const json& name = r.require("name");
+  if (!name.is_string() || !name_allowed(name.get<std::string>())) {
+    r.fail(r.at("name"), fmt::format("{}: wants 1..{} of the letters a-z A-Z, digits, '_', '-', '.'",
+                                     printable(name.dump()), kMaxNameLength));
+  }
+  o.name = name.get<std::string>();
+  o.shape = read_shape(src, r, o.role);
+  if (const json* at = r.find("at")) {
+    if (o.role == ObjectRole::table) r.fail(r.at("at"), "a table is placed by its top, size and center, not at");
+    o.shape.pose.translation() = mm_vector(r, *at, r.at("at"), 3, -kMaxCoordinateMm, kMaxCoordinateMm);
+  } else if (o.role != ObjectRole::table) {
+    r.fail(r.at("at"), "missing: where the object's centre is, [x, y, z] mm in the base frame (the tool frame when attached)");
+  }
+  if (const json* rpy = r.find("rpy")) {
+    if (!rpy->is_array() || rpy->size() != 3) r.fail(r.at("rpy"), "must be an array of 3 numbers in -360..360 (deg)");
+    double a[3];
+    for (std::size_t k = 0; k < 3; ++k) a[k] = r.number((*rpy)[k], fmt::format("{}[{}]", r.at("rpy"), k), -360, 360) * kRadPerDeg;
+    o.shape.pose.linear() = (Eigen::AngleAxisd(a[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(a[1], Eigen::Vector3d::UnitY()) *
+                             Eigen::AngleAxisd(a[0], Eigen::Vector3d::UnitX())).toRotationMatrix();
+  }
+  if (const json* keep_out = r.find("keep_out")) {
+    if (!keep_out->is_boolean()) r.fail(r.at("keep_out"), "must be true or false");
+    if (keep_out->get<bool>()) {
+      if (o.role == ObjectRole::table) r.fail(r.at("keep_out"), "a table is not a keep-out zone");
+      o.role = ObjectRole::keep_out;
+    }
+  }
+  if (const json* attached = r.find("attached")) {
+    if (!attached->is_string() || attached->get<std::string>() != "tool") {
+      r.fail(r.at("attached"), fmt::format("{}: the only place a part can be held is \"tool\"", printable(attached->dump())));
+    }
+    if (o.role != ObjectRole::obstacle) r.fail(r.at("attached"), "only a box, cylinder or sphere can be held by the tool");
+    o.attached = true;
+  }
+  r.finish();
+  return o;
+}
+
 Result<Scene> parse_scene(std::string_view json_text, std::string_view source) {
   return catch_error([&]() -> Result<Scene> {
     const std::string src(source);
@@ -116,44 +159,9 @@ Result<Scene> parse_scene(std::string_view json_text, std::string_view source) {
     Scene scene;
     std::set<std::string> names;
     for (std::size_t i = 0; i < objects.size(); ++i) {
-      ObjectReader r(src, objects[i], fmt::format("objects[{}]", i));
-      SceneObject o;
-      const json& name = r.require("name");
-      if (!name.is_string() || !name_allowed(name.get<std::string>())) {
-        r.fail(r.at("name"), fmt::format("{}: wants 1..{} of the letters a-z A-Z, digits, '_', '-', '.'",
-                                         printable(name.dump()), kMaxNameLength));
-      }
-      o.name = name.get<std::string>();
-      if (!names.insert(o.name).second) r.fail(r.at("name"), fmt::format("'{}' names two objects; names must differ", o.name));
-      o.shape = read_shape(src, r, o.role);
-      if (const json* at = r.find("at")) {
-        if (o.role == ObjectRole::table) r.fail(r.at("at"), "a table is placed by its top, size and center, not at");
-        o.shape.pose.translation() = mm_vector(r, *at, r.at("at"), 3, -kMaxCoordinateMm, kMaxCoordinateMm);
-      } else if (o.role != ObjectRole::table) {
-        r.fail(r.at("at"), "missing: where the object's centre is, [x, y, z] mm in the base frame (the tool frame when attached)");
-      }
-      if (const json* rpy = r.find("rpy")) {
-        if (!rpy->is_array() || rpy->size() != 3) r.fail(r.at("rpy"), "must be an array of 3 numbers in -360..360 (deg)");
-        double a[3];
-        for (std::size_t k = 0; k < 3; ++k) a[k] = r.number((*rpy)[k], fmt::format("{}[{}]", r.at("rpy"), k), -360, 360) * kRadPerDeg;
-        o.shape.pose.linear() = (Eigen::AngleAxisd(a[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(a[1], Eigen::Vector3d::UnitY()) *
-                                 Eigen::AngleAxisd(a[0], Eigen::Vector3d::UnitX())).toRotationMatrix();
-      }
-      if (const json* keep_out = r.find("keep_out")) {
-        if (!keep_out->is_boolean()) r.fail(r.at("keep_out"), "must be true or false");
-        if (keep_out->get<bool>()) {
-          if (o.role == ObjectRole::table) r.fail(r.at("keep_out"), "a table is not a keep-out zone");
-          o.role = ObjectRole::keep_out;
-        }
-      }
-      if (const json* attached = r.find("attached")) {
-        if (!attached->is_string() || attached->get<std::string>() != "tool") {
-          r.fail(r.at("attached"), fmt::format("{}: the only place a part can be held is \"tool\"", printable(attached->dump())));
-        }
-        if (o.role != ObjectRole::obstacle) r.fail(r.at("attached"), "only a box, cylinder or sphere can be held by the tool");
-        o.attached = true;
-      }
-      r.finish();
+      SceneObject o = read_object(src, objects[i], fmt::format("objects[{}]", i));
+      if (!names.insert(o.name).second)
+        top.fail(fmt::format("objects[{}].name", i), fmt::format("'{}' names two objects; names must differ", o.name));
       scene.objects.push_back(std::move(o));
     }
     top.finish();
@@ -202,6 +210,38 @@ std::string scene_json(const Scene& scene) {
     objects.push_back(std::move(j));
   }
   return json{{"objects", std::move(objects)}}.dump(2) + "\n";
+}
+
+Result<Scene> with_object(const Scene& scene, std::string_view object_json, std::string_view source) {
+  return catch_error([&]() -> Result<Scene> {
+    const std::string src(source);
+    const json doc = json_reader::parse_document(object_json, src);
+    SceneObject o = read_object(src, doc, "");
+    Scene out = scene;
+    auto same = std::find_if(out.objects.begin(), out.objects.end(), [&](const SceneObject& s) { return s.name == o.name; });
+    if (same != out.objects.end()) {
+      *same = std::move(o);
+    } else {
+      if (out.objects.size() >= kMaxObjects)
+        throw ArmctlError(ErrorKind::invalid_argument,
+                          fmt::format("{}: the scene holds {} objects already, the most it may; remove one first", src, kMaxObjects));
+      out.objects.push_back(std::move(o));
+    }
+    return out;
+  });
+}
+
+Result<Scene> without_object(const Scene& scene, std::string_view name) {
+  Scene out = scene;
+  auto it = std::find_if(out.objects.begin(), out.objects.end(), [&](const SceneObject& o) { return o.name == name; });
+  if (it == out.objects.end()) {
+    std::string names;
+    for (const auto& o : scene.objects) names += (names.empty() ? "" : ", ") + o.name;
+    return Error{ErrorKind::invalid_argument, fmt::format("no scene object is named '{}' (the scene holds: {})", printable(name),
+                                                          names.empty() ? "nothing" : names)};
+  }
+  out.objects.erase(it);
+  return out;
 }
 
 }  // namespace armctl::scene

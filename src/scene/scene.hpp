@@ -43,6 +43,14 @@ Result<Scene> parse_scene(std::string_view json_text, std::string_view source);
 // Reads and parses a scene file (a regular file of at most 1 MiB).
 Result<Scene> load_scene(const std::filesystem::path& file);
 
+// Editing a scene one object at a time (the HTTP API, the ROS node): `object_json` is one
+// object as a scene file writes it ({"name": ..., "box": [...], "at": [...]}), added, or
+// replacing the object of its name. Errors (invalid_config: the key, the value and what is
+// allowed; invalid_argument: a full scene) leave nothing changed: the result is a new value.
+Result<Scene> with_object(const Scene& scene, std::string_view object_json, std::string_view source);
+// The scene without the object `name`; an unknown name is invalid_argument, listing the names.
+Result<Scene> without_object(const Scene& scene, std::string_view name);
+
 // The scene as a scene file's text (millimetres, degrees): what parse_scene reads back to
 // the same objects.
 std::string scene_json(const Scene& scene);

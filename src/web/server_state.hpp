@@ -56,5 +56,6 @@ void add_arm_routes(WebServer::State& s);
 void add_point_routes(WebServer::State& s);
 void add_group_routes(WebServer::State& s);
 void add_program_routes(WebServer::State& s);
+void add_scene_routes(WebServer::State& s);
 
 }  // namespace armctl::web

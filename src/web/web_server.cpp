@@ -158,6 +158,7 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
   }
   add_arm_routes(s);
   add_point_routes(s);
+  add_scene_routes(s);
   add_group_routes(s);
   add_program_routes(s);
 

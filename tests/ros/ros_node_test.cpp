@@ -3,6 +3,7 @@
 // A ROS client (roscpp, actionlib, tf2_ros) checks what the issue lists: joint_states, a
 // five-point goal, refused goals that move nothing, cancel, tf against armctl's FK, a
 // master restart, and the device going away (docs/ros.md "Device loss").
+#include <fmt/core.h>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -25,8 +26,11 @@
 #include <std_srvs/Trigger.h>
 #include <trajectory_msgs/JointTrajectory.h>
 
+#include "armctl_msgs/MoveTo.h"
 #include "armctl_msgs/RunActionGroup.h"
+#include "armctl_msgs/RemoveSceneObject.h"
 #include "armctl_msgs/SetGripper.h"
+#include "armctl_msgs/SetSceneObject.h"
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -543,6 +547,55 @@ TEST_P(RosNode, ServicesStopTorqueGripperAndActionGroups) {
     EXPECT_FALSE(r.response.success);
     EXPECT_THAT(r.response.message, HasSubstr("Robot Commands board"));
   }
+}
+
+// The planning scene's services: a ball put where a pose lies refuses a move there, naming it;
+// a bad object is refused naming its key; removed, the same move runs.
+TEST_P(RosNode, SceneObjectsAddedAndRemovedByServiceAreWhatMovesAreCheckedAgainst) {
+  ros::NodeHandle nh;
+  auto set = nh.serviceClient<armctl_msgs::SetSceneObject>("/armctl_ros/scene/set_object");
+  auto remove = nh.serviceClient<armctl_msgs::RemoveSceneObject>("/armctl_ros/scene/remove_object");
+  auto move_to = nh.serviceClient<armctl_msgs::MoveTo>("/armctl_ros/move_to");
+  ASSERT_TRUE(set.waitForExistence(ros::Duration(10)));
+  auto q = states_->last().position;
+  for (std::size_t j = 0; j < chain_; ++j) q[j] += 0.03 * (joints_[j].upper - joints_[j].lower) * (j % 2 ? -1 : 1);
+  const auto target = reference_tool_pose(arm(), q);
+
+  armctl_msgs::SetSceneObject o;
+  o.request.object = R"({"name": "ball", "sphere": {"radius": -3}, "at": [0, 0, 0]})";
+  ASSERT_TRUE(set.call(o));
+  EXPECT_FALSE(o.response.success);
+  EXPECT_EQ(o.response.kind, "invalid config");
+  EXPECT_THAT(o.response.message, HasSubstr("sphere.radius"));
+  o.request.object = fmt::format(R"({{"name": "ball", "sphere": {{"radius": 25}}, "at": [{:.1f}, {:.1f}, {:.1f}]}})",
+                                 target[0] * 1e3, target[1] * 1e3, target[2] * 1e3);
+  ASSERT_TRUE(set.call(o));
+  EXPECT_TRUE(o.response.success) << o.response.message;
+
+  armctl_msgs::MoveTo m;
+  m.request.pose.position.x = target[0];
+  m.request.pose.position.y = target[1];
+  m.request.pose.position.z = target[2];
+  m.request.pose.orientation.w = target[3];
+  m.request.pose.orientation.x = target[4];
+  m.request.pose.orientation.y = target[5];
+  m.request.pose.orientation.z = target[6];
+  const auto before = states_->last().position;
+  ASSERT_TRUE(move_to.call(m));
+  EXPECT_FALSE(m.response.success);
+  EXPECT_THAT(m.response.message, HasSubstr("sphere 'ball'"));
+  EXPECT_LT(distance(states_->last().position, before, chain_), 0.002) << "nothing moved";
+
+  armctl_msgs::RemoveSceneObject r;
+  r.request.name = "nothere";
+  ASSERT_TRUE(remove.call(r));
+  EXPECT_FALSE(r.response.success);
+  EXPECT_THAT(r.response.message, HasSubstr("the scene holds: ball"));
+  r.request.name = "ball";
+  ASSERT_TRUE(remove.call(r));
+  EXPECT_TRUE(r.response.success) << r.response.message;
+  ASSERT_TRUE(move_to.call(m));
+  EXPECT_TRUE(m.response.success) << m.response.message;
 }
 
 INSTANTIATE_TEST_SUITE_P(BothArms, RosNode, ::testing::Values("xarm", "scara"));

@@ -101,6 +101,41 @@ TEST(SceneFile, EveryMistakeNamesTheKeyAndWhatIsAllowed) {
   EXPECT_NE(error_of("not json").find("s.json:"), std::string::npos);
 }
 
+TEST(SceneEdit, AddsReplacesAndRemovesOneObjectAndARefusalChangesNothing) {
+  const Scene desk = parse_scene(R"({"objects": [{"name": "desk", "table": {"top": 0}}]})", "s.json").value();
+  auto added = with_object(desk, R"({"name": "crate", "box": [60, 60, 80], "at": [150, 0, 40]})", "body");
+  ASSERT_TRUE(added) << added.error().message;
+  ASSERT_EQ(added->objects.size(), 2u);
+  EXPECT_EQ(added->objects[1].name, "crate");
+  EXPECT_EQ(desk.objects.size(), 1u);  // a new value
+  auto moved = with_object(*added, R"({"name": "crate", "sphere": {"radius": 20}, "at": [0, 150, 20]})", "body");
+  ASSERT_TRUE(moved) << moved.error().message;
+  ASSERT_EQ(moved->objects.size(), 2u);
+  EXPECT_EQ(moved->objects[1].shape.kind, motion::Shape::Kind::sphere);
+  EXPECT_NEAR(moved->objects[1].shape.pose.translation().y(), 0.150, 1e-12);
+  // The same checks as a file's, the key named without a list index.
+  auto bad = with_object(*added, R"({"name": "crate", "box": [60, 60], "at": [150, 0, 40]})", "body");
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().kind, ErrorKind::invalid_config);
+  EXPECT_NE(bad.error().message.find("body: box: must be an array of 3 numbers"), std::string::npos) << bad.error().message;
+  EXPECT_FALSE(with_object(*added, "[1, 2]", "body"));
+  EXPECT_FALSE(with_object(*added, R"({"name": "bad name", "box": [1, 1, 1], "at": [0, 0, 0]})", "body"));
+  auto removed = without_object(*moved, "crate");
+  ASSERT_TRUE(removed) << removed.error().message;
+  EXPECT_EQ(removed->objects.size(), 1u);
+  auto unknown = without_object(*moved, "bin");
+  ASSERT_FALSE(unknown);
+  EXPECT_EQ(unknown.error().kind, ErrorKind::invalid_argument);
+  EXPECT_NE(unknown.error().message.find("(the scene holds: desk, crate)"), std::string::npos) << unknown.error().message;
+  // No more than a file may hold.
+  Scene full;
+  for (int i = 0; i < 200; ++i)
+    full = with_object(full, R"({"name": "b)" + std::to_string(i) + R"(", "box": [1, 1, 1], "at": [0, 0, 0]})", "body").value();
+  auto over = with_object(full, R"({"name": "one_more", "box": [1, 1, 1], "at": [0, 0, 0]})", "body");
+  ASSERT_FALSE(over);
+  EXPECT_NE(over.error().message.find("remove one first"), std::string::npos) << over.error().message;
+}
+
 TEST(SceneFile, ANonRegularFileIsRefusedBeforeItIsRead) {
   auto s = load_scene("/dev/zero");
   ASSERT_FALSE(s.ok());

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <chrono>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -31,10 +32,13 @@ struct Reply {
 
 class ApiServer {
  public:
-  // `device`: a device URI ("" = the arm's embedded simulator).
-  explicit ApiServer(const std::string& arm_name = "xarm", ServerOptions options = {}, const std::string& device = "") {
+  // `device`: a device URI ("" = the arm's embedded simulator); `scene`: a scene file, as
+  // `armctl serve --scene FILE` takes it.
+  explicit ApiServer(const std::string& arm_name = "xarm", ServerOptions options = {}, const std::string& device = "",
+                     const std::filesystem::path& scene = {}) {
     session::SessionOptions session_options;
     session_options.reconnect = true;  // as `armctl serve` opens it
+    session_options.scene = scene;
     auto session = armctl::session::open_arm_session(arm_name, device, session_options).value();
     options.port = 0;
     if (options.host.empty()) options.host = "127.0.0.1";
