@@ -42,9 +42,9 @@
 #include "arm/bus_arm_device.hpp"
 #include "arm/rc_arm_device.hpp"
 #include "bench_report.hpp"
+#include "devices/joint_bus/bus_master.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
 #include "jog/run_follow.hpp"
-#include "devices/joint_bus/bus_master.hpp"
 #include "robot_commands/sim_links.hpp"
 
 namespace {
@@ -200,11 +200,8 @@ Figures run(const Session& session, LeaderReader reader, Xarm& leader, arm::Arm&
     });
   };
 
-  // The leader's readings on the timeline: when each was sampled and when it was in.
-  struct Reading {
-    TimePoint sample, in;
-  };
-  std::vector<Reading> readings;
+  // When each of the leader's readings was sampled, on the timeline.
+  std::vector<TimePoint> readings;
   Duration read_total{0};
   Result<std::vector<double>> newest = leader.device->read_inner();
   TimePoint reader_free{};  // own thread: when its link is free for the next read
@@ -218,7 +215,7 @@ Figures run(const Session& session, LeaderReader reader, Xarm& leader, arm::Arm&
       newest = leader.device->read_inner(&took);
       read_total += took;
       last_took = took;
-      readings.push_back({began + request, began + took});
+      readings.push_back(began + request);
       return took;
     };
     if (reader == LeaderReader::one_thread) {
@@ -242,7 +239,7 @@ Figures run(const Session& session, LeaderReader reader, Xarm& leader, arm::Arm&
     const double host_ns = (thread_cpu_ns() - cpu_at_point) - (cpu.ns - sim_at_point);
     cpu_at_point = thread_cpu_ns(), sim_at_point = cpu.ns;
     if (readings.size() > followed && followed > 0)
-      latencies.push_back(ms(first_byte - readings[followed - 1].sample) + host_ns / 1e6);
+      latencies.push_back(ms(first_byte - readings[followed - 1]) + host_ns / 1e6);
     followed = readings.size();
   };
 
