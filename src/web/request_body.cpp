@@ -268,10 +268,10 @@ arm::ServoCommand parse_servo_request(const arm::ArmModel& model, const json& bo
   // The keyboard's fastest steps (jog/key_jog.cpp): what a held button may ask.
   constexpr double kMostLinear = 100, kMostAngular = 60;  // mm/s, deg/s
   BodyReader r(body);
-  if (r.has("axis") == r.has("joint"))
-    bad_value(r.has("axis") ? "joint" : "axis",
-              "give \"axis\" (the tool along or about x, y, z, roll, pitch, yaw) or \"joint\" (one joint by its "
-              "name), not both");
+  const std::string either =
+      "\"axis\" (the tool along or about x, y, z, roll, pitch, yaw) or \"joint\" (one joint by its name)";
+  if (!r.has("axis") && !r.has("joint")) bad_value("axis", "missing; give " + either);
+  if (r.has("axis") && r.has("joint")) bad_value("joint", "give " + either + ", not both");
   if (r.has("joint")) return joint_servo_request(model, r);
   static const std::vector<std::string> kAxes = {"x", "y", "z", "roll", "pitch", "yaw"};
   const std::string axis = r.word("axis", kAxes);

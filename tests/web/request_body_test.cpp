@@ -111,9 +111,11 @@ TEST(RequestBody, ServoErrorsNameTheFieldAndWhatIsAllowed) {
   const auto& m = xarm();
   const std::string name = m.joints[2].name;
   auto msg = [&](const json& body) { return refusal([&] { parse_servo_request(m, body); }).second; };
-  EXPECT_NE(msg({{"speed", 10}}).find("axis: give \"axis\" (the tool along or about x, y, z"), std::string::npos)
+  EXPECT_NE(msg({{"speed", 10}}).find("axis: missing; give \"axis\" (the tool along or about x, y, z"),
+            std::string::npos)
       << msg({{"speed", 10}});
   EXPECT_NE(msg({{"axis", "x"}, {"joint", name}, {"speed", 10}}).find("joint: give \"axis\""), std::string::npos);
+  EXPECT_NE(msg({{"axis", "x"}, {"joint", name}, {"speed", 10}}).find(", not both"), std::string::npos);
   EXPECT_NE(msg({{"axis", "w"}, {"speed", 10}}).find("axis: \"w\" is not allowed; one of \"x\""), std::string::npos);
   EXPECT_NE(msg({{"axis", "x"}, {"speed", 101}}).find("speed: 101 is not allowed; mm/s (signed; 0 stops), -100..100"),
             std::string::npos);
