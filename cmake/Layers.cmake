@@ -45,6 +45,8 @@ function(armctl_bench name)
   cmake_parse_arguments(B "" "" "SOURCES;LIBS" ${ARGN})
   add_executable(${name} ${B_SOURCES})
   target_link_libraries(${name} PRIVATE ${B_LIBS})
+  # bench/bench_report.hpp: the CPU clock and the BENCH line every benchmark prints.
+  target_include_directories(${name} PRIVATE ${CMAKE_SOURCE_DIR}/bench)
   target_compile_definitions(${name} PRIVATE ARMCTL_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
     ARMCTL_BINARY_DIR="${CMAKE_BINARY_DIR}")
   armctl_warnings(${name})

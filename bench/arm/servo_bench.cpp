@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_report.hpp"
 #include "arm/arm.hpp"
 #include "arm/run_servo.hpp"
 #include "motion/servo_generator.hpp"
@@ -29,15 +30,8 @@ namespace {
 
 using namespace armctl;
 
-double thread_cpu_ns() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) * 1e9 + double(t.tv_nsec);
-}
-
-void print(const std::string& name, double value, const char* unit, double limit) {
-  std::printf("BENCH %s %.3f %s limit %.3f ratio %.3f\n", name.c_str(), value, unit, limit, value / limit);
-}
+using armctl::bench::print;
+using armctl::bench::thread_cpu_ns;
 
 // A device on simulated time that holds every joint where it was last sent (a perfect arm):
 // what the loop costs, without a simulator's.

@@ -17,6 +17,7 @@
 
 #include <kdl/chainiksolverpos_lma.hpp>
 
+#include "bench_report.hpp"
 #include "kdl_oracle.hpp"
 #include "motion/kinematics.hpp"
 #include "motion/scara_kinematics.hpp"
@@ -29,18 +30,12 @@ using MakeKinematics = decltype(&make_scara_kinematics);
 // This thread's CPU time: the machine that runs the benchmarks is shared, and time spent
 // preempted is not the solver's.
 struct Clock {
-  static double now() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return double(t.tv_sec) * 1e9 + double(t.tv_nsec);
-  }
+  static double now() { return armctl::bench::thread_cpu_ns(); }
 };
 
 double ns_per(double elapsed_ns, std::size_t n) { return elapsed_ns / double(n); }
 
-void print(const std::string& name, double value, const char* unit, double limit) {
-  std::printf("BENCH %s %.3f %s limit %.3f ratio %.3f\n", name.c_str(), value, unit, limit, value / limit);
-}
+using armctl::bench::print;
 
 void bench_arm(const std::string& arm, MakeKinematics make) {
   const std::string text = testing::read_text(std::string(ARMCTL_SOURCE_DIR) + "/config/" + arm + ".urdf");

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_report.hpp"
 #include "../../tests/motion/trajectory_vectors.hpp"
 #include "motion/trajectory.hpp"
 
@@ -27,16 +28,8 @@ namespace {
 
 using namespace armctl::motion;
 
-double thread_cpu_ns() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) * 1e9 + double(t.tv_nsec);
-}
-
-void print(const std::string& name, double value, const char* unit, double limit) {
-  std::printf("BENCH %s %.3f %s limit %.3f ratio %.3f\n", name.c_str(), value, unit, limit,
-              value / limit);
-}
+using armctl::bench::print;
+using armctl::bench::thread_cpu_ns;
 
 std::vector<TrajectoryInput> random_cases(int joints, int count, std::uint64_t seed) {
   std::mt19937_64 rng(seed);

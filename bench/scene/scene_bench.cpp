@@ -34,6 +34,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "bench_report.hpp"
 #include "arm/arm_kinematics.hpp"
 #include "arm/avoid_path.hpp"
 #include "arm/plan_moves.hpp"
@@ -45,15 +46,8 @@ namespace {
 
 using namespace armctl;
 
-double thread_cpu_ns() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) * 1e9 + double(t.tv_nsec);
-}
-
-void print(const std::string& name, double value, const char* unit, double limit) {
-  std::printf("BENCH %s %.3f %s limit %.3f ratio %.3f\n", name.c_str(), value, unit, limit, value / limit);
-}
+using armctl::bench::print;
+using armctl::bench::thread_cpu_ns;
 
 std::shared_ptr<fcl::CollisionGeometryd> geometry(const motion::Shape& s) {
   switch (s.kind) {

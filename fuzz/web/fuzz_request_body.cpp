@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "arm/arm_model.hpp"
@@ -54,7 +55,7 @@ void body(std::uint8_t kind, std::string_view text) {
   namespace web = armctl::web;
   const json b = web::parse_body(text);
   check(b.is_object(), "a body is an object");
-  switch (kind % 12) {
+  switch (kind % 13) {
     case 0: {
       const auto r = web::parse_joints_request(xarm(), b);
       check(r.targets.size() == xarm().joints.size(), "one target per joint");
@@ -109,6 +110,19 @@ void body(std::uint8_t kind, std::string_view text) {
     case 10: {
       const auto g = web::parse_group_import(b);
       web::group_to_frames(xarm(), g);
+      break;
+    }
+    case 12: {
+      const auto c = web::parse_servo_request(xarm(), b);
+      if (const auto* t = std::get_if<armctl::arm::ToolTwist>(&c.motion)) {
+        check(t->linear.allFinite() && t->linear.norm() <= 0.1 + 1e-12, "servo linear speed in range");
+        check(t->angular.allFinite() && t->angular.norm() <= 60 * M_PI / 180 + 1e-12, "servo angular speed in range");
+      } else {
+        const auto& v = std::get<armctl::arm::JointVelocities>(c.motion).values;
+        check(v.size() == xarm().joints.size(), "one velocity per joint");
+        for (std::size_t i = 0; i < v.size(); ++i)
+          check(std::abs(v[i]) <= xarm().joints[i].limits.velocity + 1e-12, "joint velocity within its limit");
+      }
       break;
     }
     default: web::export_group(xarm(), b); break;

@@ -90,11 +90,12 @@ void add_arm_routes(WebServer::State& s) {
     const JogRequest r = parse_jog_request(c.body());
     c.reply(s.start_motion("jog", jog_job(r)));
   });
-  // Hold-to-jog: the page sends this every 50 ms while a button is held; when it stops
-  // coming (released, the page closed, the connection lost) the arm slows to rest in 0.2 s.
+  // Hold-to-jog, a tool axis or one joint: the page sends this every 50 ms while a button is
+  // held; when it stops coming (released, the page closed, the connection lost) the arm slows
+  // to rest in 0.2 s.
   s.router.add("POST", "/api/v1/servo", [&s](Call& c) {
     s.lease.require(c.client);
-    if (auto ok = s.servo.send(parse_servo_request(c.body())); !ok) fail(ok.error());
+    if (auto ok = s.servo.send(parse_servo_request(s.worker.model(), c.body())); !ok) fail(ok.error());
     const arm::ServoStatus now = s.servo.status();
     c.reply(json{{"following", true}, {"slowdown", arm::to_string(now.slowdown)}, {"detail", now.detail}});
   });

@@ -236,10 +236,43 @@ JogRequest parse_jog_request(const json& body) {
   return out;
 }
 
-arm::ServoCommand parse_servo_request(const json& body) {
+namespace {
+
+// {"joint": name, "speed": deg/s or mm/s}: one joint at a velocity, the others still.
+arm::ServoCommand joint_servo_request(const arm::ArmModel& model, BodyReader& r) {
+  const json& name = r.require("joint", fmt::format("a joint's name: {}", joint_names(model)));
+  if (!name.is_string())
+    bad_value("joint", fmt::format("{} is not allowed; a joint's name: {}", shown(name), joint_names(model)));
+  const auto index = model.find_joint(name.get_ref<const std::string&>());
+  if (!index)
+    bad_value("joint", fmt::format("{}: arm {} has no such joint; joints: {}", shown(name), model.name,
+                                   joint_names(model)));
+  const auto& j = model.joints[std::size_t(*index)];
+  if (j.role == arm::JointRole::gripper)
+    bad_value("joint", fmt::format("{} is the gripper: POST /api/v1/gripper moves it", shown(name)));
+  // As fast as the joint may go: its velocity limit, in the units people read.
+  const double most = to_display(j.dimension, j.limits.velocity);
+  const double speed = r.number("speed", -most, most,
+                                fmt::format("{0}/s (signed; 0 stops), -{1:g}..{1:g}: joint {2}'s velocity limit",
+                                            display_unit(j.dimension), most, j.name));
+  r.finish();
+  arm::JointVelocities v;
+  v.values.assign(model.joints.size(), 0.0);
+  v.values[std::size_t(*index)] = from_display(j.dimension, speed);
+  return arm::ServoCommand{v, std::nullopt};
+}
+
+}  // namespace
+
+arm::ServoCommand parse_servo_request(const arm::ArmModel& model, const json& body) {
   // The keyboard's fastest steps (jog/key_jog.cpp): what a held button may ask.
   constexpr double kMostLinear = 100, kMostAngular = 60;  // mm/s, deg/s
   BodyReader r(body);
+  const std::string either =
+      "\"axis\" (the tool along or about x, y, z, roll, pitch, yaw) or \"joint\" (one joint by its name)";
+  if (!r.has("axis") && !r.has("joint")) bad_value("axis", "missing; give " + either);
+  if (r.has("axis") && r.has("joint")) bad_value("joint", "give " + either + ", not both");
+  if (r.has("joint")) return joint_servo_request(model, r);
   static const std::vector<std::string> kAxes = {"x", "y", "z", "roll", "pitch", "yaw"};
   const std::string axis = r.word("axis", kAxes);
   int k = 0;

@@ -104,8 +104,9 @@ JogRequest parse_jog_request(const json& body);
 
 // POST /api/v1/servo, hold-to-jog: {"axis": x|y|z|roll|pitch|yaw, "speed": signed mm/s or
 // deg/s (0: come to rest), "frame": "base"|"tool"}: the tool twist the servo mode follows
-// (docs/servo.md) until the next one, or for 0.2 s.
-arm::ServoCommand parse_servo_request(const json& body);
+// (docs/servo.md) until the next one, or for 0.2 s; or {"joint": name, "speed": signed deg/s
+// or mm/s within the joint's velocity limit}: that joint at that velocity, the others still.
+arm::ServoCommand parse_servo_request(const arm::ArmModel& model, const json& body);
 
 // POST /api/v1/gripper
 double parse_gripper_request(const json& body);

@@ -39,6 +39,7 @@ json model_json(const arm::ArmModel& model, const DeviceInfo& device) {
                {"unit", display_unit(j.dimension)},
                {"min", display_value(j.dimension, j.limits.lower)},
                {"max", display_value(j.dimension, j.limits.upper)},
+               {"max_velocity", display_value(j.dimension, j.limits.velocity)},  // per second
                {"gripper", j.role == arm::JointRole::gripper},
                {"raw_unit", arm::protocol_info(device.protocol).raw_unit}};
     if (const auto& map = j.map(device.protocol)) {

@@ -197,6 +197,66 @@ test('hold to move: the tool moves while a button is held and comes to rest when
   assert.deepEqual(problems, []);
 });
 
+test('hold to move: the speed slider sets the speed sent; a held joint button moves that joint, and letting go stops it', async () => {
+  await waitIdle(script);
+  const home = { servo6: 0, servo5: 20, servo4: 40, servo3: 40, servo2: 0 };
+  await pageMove(home);
+  for (const [name, value] of Object.entries(home)) await waitForPosition(script, name, value, 0.6);
+  await waitIdle(script);
+  const sent = [];
+  const record = (r) => { if (new URL(r.url()).pathname === '/api/v1/servo') sent.push(r.postDataJSON()); };
+  page.on('request', record);
+  const holdToMove = page.getByRole('checkbox', { name: 'Hold to move' });
+  const jointPlus = page.getByRole('button', { name: 'joint servo6 plus' });
+  assert.ok(await jointPlus.isDisabled(), 'joint buttons wait for "hold to move"');
+  await holdToMove.check();
+  try {
+    // The tool's speed slider from the keyboard: Home (1 mm/s), then three steps up.
+    const speed = page.getByRole('slider', { name: 'Hold speed (mm/s)', exact: true });
+    await speed.focus();
+    for (const key of ['Home', 'ArrowRight', 'ArrowRight', 'ArrowRight']) await page.keyboard.press(key);
+    assert.equal(await page.getByRole('status', { name: 'Hold speed (mm/s) value' }).textContent(), '4 mm/s');
+    await speed.fill('40');
+    assert.equal(await page.getByRole('status', { name: 'Hold speed (mm/s) value' }).textContent(), '40 mm/s');
+    await page.getByRole('button', { name: 'jog y minus' }).hover();
+    await page.mouse.down();
+    await waitFor(async () => sent.length > 0, 'a servo request while the button is held');
+    await page.mouse.up();
+    await waitFor(async () => sent.at(-1).speed === 0, 'the request that stops it when the button is let go');
+    assert.deepEqual(sent[0], { axis: 'y', speed: -40 }, 'the slider\'s speed, signed by the button');
+    assert.deepEqual(sent.at(-1), { axis: 'y', speed: 0 });
+    await waitIdle(script);
+
+    // One joint, held: it alone moves, at the joint slider's share of its limit (10 % of 180 deg/s).
+    const before = Object.fromEntries((await script.state()).joints.map((j) => [j.name, j.position]));
+    await page.getByRole('slider', { name: 'Joint hold speed (% of its limit)', exact: true }).fill('10');
+    assert.equal(await page.getByRole('status', { name: 'Joint hold speed (% of its limit) value' }).textContent(), '10 %');
+    sent.length = 0;
+    await jointPlus.hover();
+    await page.mouse.down();
+    await waitFor(async () => (await script.position('servo6')) > before.servo6 + 5, 'servo6 moving while its button is held');
+    await page.mouse.up();
+    await waitFor(async () => {
+      const a = await script.position('servo6');
+      await new Promise((resolve) => setTimeout(resolve, 300));
+      return Math.abs((await script.position('servo6')) - a) < 0.3;
+    }, 'servo6 at rest after the button was let go');
+    const moved = (await script.position('servo6')) - before.servo6;
+    assert.ok(moved > 5 && moved < 40, `servo6 moved ${moved.toFixed(1)} deg`);
+    await waitFor(async () => sent.at(-1).speed === 0, 'the request that stops it when the button is let go');
+    for (const name of ['servo5', 'servo4', 'servo3', 'servo2'])
+      assert.ok(Math.abs((await script.position(name)) - before[name]) < 0.6, `${name} stayed`);
+    assert.deepEqual(sent[0], { joint: 'servo6', speed: 18 });
+    assert.deepEqual(sent.at(-1), { joint: 'servo6', speed: 0 });
+  } finally {
+    page.off('request', record);
+    await holdToMove.uncheck();
+  }
+  assert.ok(await jointPlus.isDisabled(), 'joint buttons off again without "hold to move"');
+  await waitIdle(script);
+  assert.deepEqual(problems, []);
+});
+
 test('the move-to form: use the current pose, change z, move the tool there in a straight line', async () => {
   await tab('Move').click();
   await waitIdle(script);

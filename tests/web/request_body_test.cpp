@@ -93,6 +93,49 @@ TEST(RequestBody, ToolAndJog) {
             std::string::npos);
 }
 
+TEST(RequestBody, ServoATwistOrOneJointsVelocity) {
+  const auto& m = xarm();
+  // A tool axis: the twist along it, in m/s.
+  const auto t = parse_servo_request(m, {{"axis", "y"}, {"speed", -20}, {"frame", "tool"}});
+  const auto& twist = std::get<arm::ToolTwist>(t.motion);
+  EXPECT_DOUBLE_EQ(twist.linear.y(), -0.02);
+  EXPECT_EQ(twist.frame, arm::ServoFrame::tool);
+  // One joint: its velocity in rad/s, every other joint still.
+  const auto j = parse_servo_request(m, {{"joint", m.joints[3].name}, {"speed", 30}});
+  const auto& v = std::get<arm::JointVelocities>(j.motion).values;
+  ASSERT_EQ(v.size(), m.joints.size());
+  for (std::size_t i = 0; i < v.size(); ++i) EXPECT_NEAR(v[i], i == 3 ? 30 * M_PI / 180 : 0.0, 1e-12) << i;
+}
+
+TEST(RequestBody, ServoErrorsNameTheFieldAndWhatIsAllowed) {
+  const auto& m = xarm();
+  const std::string name = m.joints[2].name;
+  auto msg = [&](const json& body) { return refusal([&] { parse_servo_request(m, body); }).second; };
+  EXPECT_NE(msg({{"speed", 10}}).find("axis: missing; give \"axis\" (the tool along or about x, y, z"),
+            std::string::npos)
+      << msg({{"speed", 10}});
+  EXPECT_NE(msg({{"axis", "x"}, {"joint", name}, {"speed", 10}}).find("joint: give \"axis\""), std::string::npos);
+  EXPECT_NE(msg({{"axis", "x"}, {"joint", name}, {"speed", 10}}).find(", not both"), std::string::npos);
+  EXPECT_NE(msg({{"axis", "w"}, {"speed", 10}}).find("axis: \"w\" is not allowed; one of \"x\""), std::string::npos);
+  EXPECT_NE(msg({{"axis", "x"}, {"speed", 101}}).find("speed: 101 is not allowed; mm/s (signed; 0 stops), -100..100"),
+            std::string::npos);
+  EXPECT_NE(msg({{"joint", "elbowx"}, {"speed", 10}}).find("joint: \"elbowx\": arm xarm has no such joint; joints: "),
+            std::string::npos);
+  EXPECT_NE(msg({{"joint", 3}, {"speed", 10}}).find("joint: 3 is not allowed; a joint's name: "), std::string::npos);
+  // The joint's own velocity limit (180 deg/s on the xArm) in its unit.
+  EXPECT_NE(msg({{"joint", name}, {"speed", -200}})
+                .find("speed: -200 is not allowed; deg/s (signed; 0 stops), -180..180: joint " + name +
+                      "'s velocity limit"),
+            std::string::npos)
+      << msg({{"joint", name}, {"speed", -200}});
+  EXPECT_NE(msg({{"joint", name}}).find("speed: missing"), std::string::npos) << msg({{"joint", name}});
+  EXPECT_NE(msg({{"joint", m.joints[std::size_t(m.gripper->joint)].name}, {"speed", 10}})
+                .find("is the gripper: POST /api/v1/gripper moves it"),
+            std::string::npos);
+  // A frame is a tool twist's: with a joint it is an unknown field.
+  EXPECT_NE(msg({{"joint", name}, {"speed", 10}, {"frame", "tool"}}).find("frame: unknown field"), std::string::npos);
+}
+
 TEST(RequestBody, SmallRequests) {
   EXPECT_DOUBLE_EQ(parse_gripper_request({{"closed", 0.25}}), 0.25);
   EXPECT_NE(refusal([] { parse_gripper_request({{"closed", 2}}); }).second.find("closed: 2 is not allowed"),

@@ -79,8 +79,14 @@ void run_follow_command(const FollowArgs& a) {
     for (const auto& f : {std::filesystem::path(a.record), leader_file(a.record)})
       if (auto w = check_writable(f); !w) throw ArmctlError(w.error().kind, w.error().message + "; nothing moved");
   }
-  auto leader_session = session::open_arm_session(a.leader, a.leader_device).value();
-  auto follower_session = session::open_arm_session(a.follower, a.follower_device, with_scene(a.scene)).value();
+  // The leader is read in real time by a thread of its own, and the follower's loop times
+  // the leader's silence (and --duration) on its own clock: an embedded SCARA simulator left
+  // on simulated time would run ahead of the leader and find it lost. Both in step with the
+  // wall clock, as real arms are.
+  session::SessionOptions live;
+  live.wall_clock = true;
+  auto leader_session = session::open_arm_session(a.leader, a.leader_device, live).value();
+  auto follower_session = session::open_arm_session(a.follower, a.follower_device, with_scene(a.scene, live)).value();
   arm::Arm& leader = *leader_session->arm;
   arm::Arm& follower = *follower_session->arm;
   if (!a.joint_offset.empty()) {
