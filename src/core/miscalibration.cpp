@@ -88,6 +88,14 @@ Miscalibration make_miscalibration(MiscalArm arm, std::uint32_t seed) {
   return m;
 }
 
+Miscalibration no_miscalibration(MiscalArm arm) {
+  Miscalibration m;
+  m.arm = arm;
+  m.pivot = arm == MiscalArm::xarm ? 500 : 0;
+  m.joints.resize(arm == MiscalArm::xarm ? 6 : 7);
+  return m;
+}
+
 std::string describe(const Miscalibration& m) {
   const char* what = m.arm == MiscalArm::xarm ? "servo" : "joint";
   std::string out = fmt::format("miscal {} ({}):", m.seed, to_string(m.arm));

@@ -78,6 +78,9 @@ struct Miscalibration {
 //                 upper arm, forearm, wrist); SCARA UAE, UAJ origins (upper arm, forearm)
 //   duplicate ID  xArm only: one chain servo (2..6) answers another chain servo's ID
 Miscalibration make_miscalibration(MiscalArm arm, std::uint32_t seed);
+// A well-built arm (every shift 0, nothing flipped, no length error, no duplicate): the truth
+// of a simulator without miscal, for the same checks.
+Miscalibration no_miscalibration(MiscalArm arm);
 
 // Every value, one line, for the simulators' debug log (never their normal output):
 // "miscal 7 (xarm): servo 1 zero +12, servo 2 zero -40 flipped, ... ; link servo4 +3.2 mm, ...;
