@@ -85,13 +85,16 @@ motion::Pose SimTruth::tool_pose(const std::vector<double>& true_joints) const {
   return pose;
 }
 
-std::vector<double> SimTruth::device_positions(const std::vector<double>& true_joints) const {
+std::vector<double> SimTruth::true_device_positions(const std::vector<double>& true_joints) const {
   const std::vector<double> truth = model_.to_device(protocol_, true_joints);
-  std::vector<double> out(miscal_.joints.size(), 0.0);
-  for (std::size_t i = 0; i < model_.joints.size(); ++i) {
-    const int id = model_.joints[i].map(protocol_)->id;
-    out[std::size_t(id - 1)] = miscal_.device_position(id, truth[i]);
-  }
+  std::vector<double> out(miscal_.joints.size(), miscal_.pivot);
+  for (std::size_t i = 0; i < model_.joints.size(); ++i) out[std::size_t(model_.joints[i].map(protocol_)->id - 1)] = truth[i];
+  return out;
+}
+
+std::vector<double> SimTruth::device_positions(const std::vector<double>& true_joints) const {
+  std::vector<double> out = true_device_positions(true_joints);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = miscal_.device_position(int(i + 1), out[i]);
   return out;
 }
 

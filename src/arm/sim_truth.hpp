@@ -42,6 +42,10 @@ class SimTruth {
   Eigen::Vector3d tool_position(const std::vector<double>& true_joints) const {
     return tool_pose(true_joints).position;
   }
+  // The true device positions (by device ID) at true joint values: what a test hands to
+  // SimArm::move_by_hand_to / XarmServos::move_by_hand_to to put the physical arm there (e.g.
+  // the tool on a point: tool_position(true_joints)).
+  std::vector<double> true_device_positions(const std::vector<double>& true_joints) const;
   // The device positions (by device ID) a mis-assembled arm reads where the physical arm
   // stands at these true joint values: what a calibrated arm file must map them to.
   std::vector<double> device_positions(const std::vector<double>& true_joints) const;

@@ -32,6 +32,8 @@ TEST(SimTruth, AWellBuiltArmIsTheShippedKinematics) {
       EXPECT_LT(want.orientation.angularDistance(got.orientation), 1e-9) << name << " " << f;
       // Device positions and back.
       const std::vector<double> device = truth.device_positions(q);
+      const std::vector<double> true_device = truth.true_device_positions(q);  // a well-built arm reads the truth
+      for (std::size_t i = 0; i < device.size(); ++i) EXPECT_NEAR(device[i], true_device[i], 1e-9) << name << " " << i;
       const std::vector<double> back = truth.joints(device);
       for (std::size_t i = 0; i < q.size(); ++i) EXPECT_NEAR(back[i], q[i], 1e-9) << name << " " << i;
     }
@@ -71,6 +73,25 @@ double miss_after_move_to(Arm& arm, const SimTruth& truth, const std::vector<dou
   return (landed - target).norm();
 }
 
+TEST(SimTruth, AHandPutsTheMisassembledToolOnAPoint) {
+  xarm::XarmEmulatorOptions options;
+  options.miscal = make_miscalibration(MiscalArm::xarm, 8);
+  robot_commands::testing::EmulatedLink link{0, options};
+  xarm::XarmServos& servos = link.emulator().servos();
+  const auto truth = SimTruth::make(testing::shipped("xarm"), Protocol::robot_commands, *options.miscal).value();
+  const std::vector<double> q{10 * kDeg, 20 * kDeg, 30 * kDeg, 40 * kDeg, 0.0, 0.0};
+  const std::vector<xarm::ServoId> all{1, 2, 3, 4, 5, 6};
+  servos.torque_off(all);
+  const std::vector<double> hand = truth.true_device_positions(q);
+  for (xarm::ServoId p = 1; p <= 6; ++p) ASSERT_TRUE(servos.move_by_hand_to(p, hand[p - 1u]));
+  std::vector<double> seen;
+  for (xarm::ServoId p = 1; p <= 6; ++p) seen.push_back(servos.true_position(p));
+  EXPECT_LT((truth.tool_position(truth.joints(seen)) - truth.tool_position(q)).norm(), 1e-9);
+  // The servos read what the mis-assembled arm reads there, not what the arm file expects.
+  const std::vector<double> reads = truth.device_positions(q);
+  for (xarm::ServoId p = 1; p <= 6; ++p) EXPECT_NEAR(servos.position(p), reads[p - 1u], 0.5) << int(p);
+}
+
 class ScaraMiscal : public ::testing::TestWithParam<std::optional<std::uint32_t>> {};
 
 TEST_P(ScaraMiscal, TheShippedArmFileMissesByCentimetresOnlyWhenMisassembled) {
@@ -90,6 +111,7 @@ TEST_P(ScaraMiscal, TheShippedArmFileMissesByCentimetresOnlyWhenMisassembled) {
     for (int j = 1; j <= 7; ++j) d.push_back(sim.true_position(j));
     return d;
   });
+  RecordProperty("miss_mm", std::to_string(miss * 1000));
   if (GetParam()) {
     EXPECT_GT(miss, 0.01) << "seed " << *GetParam();
   } else {
@@ -128,6 +150,7 @@ TEST_P(XarmMiscal, TheShippedArmFileMissesByCentimetresOnlyWhenMisassembled) {
     for (xarm::ServoId p = 1; p <= 6; ++p) d.push_back(servos.true_position(p));
     return d;
   });
+  RecordProperty("miss_mm", std::to_string(miss * 1000));
   if (GetParam()) {
     EXPECT_GT(miss, 0.01) << "seed " << *GetParam();
   } else {
