@@ -45,6 +45,11 @@ TEST(MiscalCli, TheMisassembledXarmShowsItsDuplicateIdAsNoAnswer) {
   // Seed 7: the servo in place 5 answers ID 2, so nobody answers 5: a read of the arm fails.
   const auto r = run_armctl("xarm --device 'sim?miscal=7' positions");
   EXPECT_NE(r.status, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "no ServoPositionRead reply")) << r.out;
+  // The servos that answer alone read as usual.
+  const auto some = run_armctl("xarm --device 'sim?miscal=7' positions 3 4");
+  EXPECT_EQ(some.status, 0) << some.out;
+  EXPECT_TRUE(contains(some.out, "servo 3:  500")) << some.out;
 }
 
 }  // namespace

@@ -380,7 +380,8 @@ void XarmServos::load_settings() {
     BusServoLimits l{b[at],         get16(at + 2),  get16(at + 4), get16(at + 6),
                      get16(at + 8), get16(at + 10), b[at + 12],    b[at + 13]};
     auto offset = static_cast<std::int8_t>(b[at + 1]);
-    if (l.servo != ids_[i] || l.position_min > l.position_max || l.position_max > 1000 ||
+    // A servo's ID is its EEPROM's: one re-numbered with a single servo plugged in keeps it.
+    if (l.servo < 1 || l.servo > kServoCount || l.position_min > l.position_max || l.position_max > 1000 ||
         offset < -125 || offset > 125)
       throw corrupt("servo entry out of range");
     servos_[i].limits = l;
