@@ -125,6 +125,7 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
   if (!parsed_urdf) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, parsed_urdf.error().message));
   const urdf::ModelInterfaceSharedPtr& urdf_model = *parsed_urdf;
   m.tool_link = tip;
+  m.chain = *chain;
 
   std::string gripper_name;
   const json* gripper = r.find("gripper");

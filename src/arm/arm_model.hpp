@@ -18,6 +18,7 @@
 #include "core/quantity.hpp"
 #include "motion/kinematics.hpp"
 #include "motion/link_bodies.hpp"
+#include "motion/urdf_chain.hpp"
 
 namespace armctl::arm {
 
@@ -89,6 +90,9 @@ struct ArmModel {
   std::optional<GripperModel> gripper;
   motion::Pose tool;  // the tool frame in the URDF's tool link
   std::shared_ptr<const motion::Kinematics> kinematics;
+  // The URDF chain (base link to tool link) the kinematics were made from: the lengths as
+  // the URDF has them (arm/sim_truth.hpp builds a mis-assembled arm's true geometry from it).
+  motion::UrdfChain chain;
   // The farthest the tool point can be from the base frame's origin (m), for any joint
   // values: the chain's offsets end to end, plus each prismatic joint's travel and the
   // tool's offset. An upper bound: a target beyond it is refused before any planning.

@@ -293,8 +293,8 @@ TEST_F(XarmCli, DeviceSimIsTheEmbeddedBoard) {
   EXPECT_TRUE(contains(run.out, "finished")) << run.out;
   const Outcome bad = xarm("--device sim?speed=3 battery");
   EXPECT_NE(bad.status, 0);
-  EXPECT_TRUE(contains(bad.err, "unknown option 'speed' (sim takes no options)")) << bad.err;
-  EXPECT_TRUE(contains(bad.err, "allowed: sim, hid")) << bad.err;
+  EXPECT_TRUE(contains(bad.err, "unknown option 'speed' (this device takes: miscal)")) << bad.err;
+  EXPECT_TRUE(contains(bad.err, "allowed: sim, sim?miscal=SEED, hid")) << bad.err;
 }
 
 TEST_F(XarmCli, WatchRunsUntilSigint) {

@@ -2,10 +2,14 @@
 // libraries parse `sim` but refuse to open it (they link no simulator).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "core/error.hpp"
 #include "devices/device_registry/device_registry.hpp"
 #include "devices/joint_bus/bus_master.hpp"
+#include "devices/joint_sim/sim_arm.hpp"
 #include "devices/robot_commands/client.hpp"
+#include "devices/xarm_emulator/emulator_runner.hpp"
 
 namespace armctl::test {
 namespace {
@@ -44,8 +48,41 @@ TEST(DeviceRegistry, OpensTheEmbeddedEmulatedXarm) {
   for (const auto& p : *positions) EXPECT_EQ(p.position, 500) << "servo " << int(p.servo);
 }
 
+TEST(DeviceRegistry, MiscalOpensAMisassembledSimulatedArmATestCanSee) {
+  auto plain = devices::open_joint_bus("sim").value();
+  ASSERT_NE(devices::embedded_sim_arm(*plain), nullptr);
+  EXPECT_FALSE(devices::embedded_sim_arm(*plain)->miscalibration().has_value());
+  auto connection = devices::open_joint_bus("sim?miscal=7").value();
+  EXPECT_NE(connection->description().find("mis-assembled"), std::string::npos);
+  joint_sim::SimArm* sim = devices::embedded_sim_arm(*connection);
+  ASSERT_NE(sim, nullptr);
+  ASSERT_TRUE(sim->miscalibration().has_value());
+  EXPECT_EQ(describe(*sim->miscalibration()), describe(make_miscalibration(MiscalArm::scara, 7)));
+  // The encoders read 0; the joints physically stand at their shifts.
+  joint_bus::BusMaster master(connection->link(), connection->default_options());
+  EXPECT_EQ(master.get_position(2).value(), 0);
+  EXPECT_EQ(sim->true_position(2), sim->miscalibration()->joint(2).zero_shift);
+}
+
+TEST(DeviceRegistry, MiscalOpensAMisassembledXarmThatKeepsNothing) {
+  const std::string state = ::testing::TempDir() + "/miscal-state";
+  ::setenv("ARMCTL_STATE_DIR", state.c_str(), 1);
+  auto connection = devices::open_robot_commands("sim?miscal=7").value();
+  xarm::EmulatorRunner* runner = devices::embedded_xarm(*connection);
+  ASSERT_NE(runner, nullptr);
+  const Miscalibration m = make_miscalibration(MiscalArm::xarm, 7);
+  // A real-time board: a read nobody answers ends at the timeout, kept short.
+  robot_commands::Client client(connection->link(), robot_commands::ClientOptions{.reply_timeout = std::chrono::milliseconds(100)});
+  // The place's own ID: nobody answers it (the board answers nothing).
+  EXPECT_FALSE(client.read_positions({std::uint8_t(m.duplicate->place)}));
+  double truth = 0;
+  runner->with_servos([&](xarm::XarmServos& servos) { truth = servos.true_position(1); });
+  EXPECT_EQ(truth, 500 + m.joint(1).zero_shift);
+  EXPECT_FALSE(std::filesystem::exists(state + "/xarm-emulator"));
+}
+
 TEST(DeviceRegistry, BadUrisAreRefusedWithTheAllowedForms) {
-  for (const char* uri : {"tcp:1.2.3.4", "sim?speed=3", "serial:/dev/null?baud=7"}) {
+  for (const char* uri : {"tcp:1.2.3.4", "sim?speed=3", "serial:/dev/null?baud=7", "sim?miscal=x"}) {
     const auto bus = devices::open_joint_bus(uri);
     ASSERT_FALSE(bus) << uri;
     EXPECT_EQ(bus.error().kind, ErrorKind::invalid_argument) << uri;

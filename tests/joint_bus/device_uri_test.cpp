@@ -28,6 +28,28 @@ TEST(DeviceUri, AcceptsTheThreeForms) {
   EXPECT_EQ(d.dialect, Dialect::standard);
 }
 
+// miscal=SEED (core/miscalibration.hpp): a whole number, named with its value in errors.
+TEST(DeviceUri, MiscalTakesASeed) {
+  EXPECT_FALSE(std::get<SimDevice>(parse_device_uri("sim").value()).miscal.has_value());
+  EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim?miscal=0").value()).miscal, 0u);
+  EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim?baud=115200&miscal=4294967295").value()).miscal, 4294967295u);
+  EXPECT_EQ(describe(parse_device_uri("sim?miscal=7").value()), "embedded simulated arm, mis-assembled");
+  for (const char* bad : {"sim?miscal=", "sim?miscal=x", "sim?miscal=-3", "sim?miscal=4294967296", "sim?miscal=2.5"}) {
+    const auto r = parse_device_uri(bad);
+    ASSERT_FALSE(r) << bad;
+    EXPECT_EQ(r.error().kind, ErrorKind::invalid_argument) << bad;
+    const std::string value = std::string(bad).substr(std::string("sim?miscal=").size());
+    EXPECT_NE(r.error().message.find("miscal '" + value + "' is not a seed (allowed: a whole number 0..4294967295)"),
+              std::string::npos)
+        << r.error().message;
+    EXPECT_NE(r.error().message.find("sim?baud=N&config=FILE&dead=J[,J...]&dialect=legacy&miscal=SEED"),
+              std::string::npos)
+        << r.error().message;
+  }
+  EXPECT_FALSE(parse_device_uri("serial:/dev/ttyAMA0?select=1&miscal=3"));  // simulators only
+  EXPECT_FALSE(parse_device_uri("unix:/a?miscal=3"));
+}
+
 TEST(DeviceUri, RefusesBadInputWithAMessageNamingIt) {
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"", "unknown kind"},

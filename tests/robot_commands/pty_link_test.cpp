@@ -90,6 +90,30 @@ TEST(DeviceUri, Forms) {
   EXPECT_NE(parse_device_uri("tcp:1.2.3.4").error().message.find("allowed"), std::string::npos);
 }
 
+// sim?miscal=SEED (core/miscalibration.hpp): a whole number, named with its value in errors;
+// only the simulator takes it.
+TEST(DeviceUri, SimTakesAMiscalSeed) {
+  EXPECT_FALSE(parse_device_uri("sim")->miscal.has_value());
+  const auto m = parse_device_uri("sim?miscal=42");
+  ASSERT_TRUE(m) << m.error().message;
+  EXPECT_EQ(m->kind, DeviceUri::Kind::sim);
+  EXPECT_EQ(m->miscal, 42u);
+  for (const char* bad : {"sim?miscal=", "sim?miscal=abc", "sim?miscal=-1", "sim?miscal=99999999999"}) {
+    const auto r = parse_device_uri(bad);
+    ASSERT_FALSE(r) << bad;
+    EXPECT_EQ(r.error().kind, ErrorKind::invalid_argument) << bad;
+    const std::string value = std::string(bad).substr(std::string("sim?miscal=").size());
+    EXPECT_NE(r.error().message.find("miscal '" + value + "' is not a seed (allowed: a whole number 0..4294967295)"),
+              std::string::npos)
+        << r.error().message;
+  }
+  for (const char* other : {"sim?seed=3", "hid?miscal=3", "serial:/dev/ttyUSB0?miscal=3"}) {
+    const auto r = parse_device_uri(other);
+    ASSERT_FALSE(r) << other;
+    EXPECT_NE(r.error().message.find("unknown option"), std::string::npos) << r.error().message;
+  }
+}
+
 // A fake board on the pty master: answers GetBatteryVoltage and ServoPositionRead, and
 // sends a group-started notification plus garbage before each battery reply.
 class ScriptedPtyBoard {

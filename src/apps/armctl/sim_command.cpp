@@ -20,7 +20,9 @@
 #include "apps/armctl/serve_support.hpp"
 #include "arm/arm_model.hpp"
 #include "core/arm_file_sections.hpp"
+#include "core/debug_log.hpp"
 #include "core/error.hpp"
+#include "core/miscalibration.hpp"
 #include "apps/armctl/server_log.hpp"
 #include "apps/armctl/sim_scene.hpp"
 #include "devices/joint_bus/sim_link_server.hpp"
@@ -44,6 +46,7 @@ struct SimArgs {
   // chips, in the test tool armctl-mega-sim (libsimavr is GPL: armctl never links it).
   std::string controller;
   std::string scene;  // --scene: what the arm meets
+  std::string miscal;  // --miscal SEED: mis-assembled on purpose (core/miscalibration.hpp)
 };
 
 // Replaces this process with armctl-mega-sim from armctl's own directory (build trees with
@@ -75,7 +78,7 @@ void run_sim_scara(const SimArgs& args) {
                                     "silicon); without --controller, --robot-commands runs the Linux one",
                                     args.controller));
     if (args.robot_commands || !args.arm.empty() || !args.serve.state_dir.empty() || !args.config.empty() ||
-        args.serve.json || !args.scene.empty())
+        args.serve.json || !args.scene.empty() || !args.miscal.empty())
       throw ArmctlError(ErrorKind::invalid_argument,
                         "--controller mega takes only --baud and --link (the firmware has the arm built in)");
     exec_mega_sim(args);
@@ -103,7 +106,13 @@ void run_sim_scara(const SimArgs& args) {
   }
   joint_sim::ArmConfig config = joint_sim::load_arm_config(sim_file);
   if (args.baud != 0) config.baud = args.baud;
-  joint_sim::SimArm arm(std::move(config));
+  joint_sim::SimArmOptions sim_options;
+  if (!args.miscal.empty()) {
+    // The truth stays out of normal output: the wizard is there to find it.
+    sim_options.miscal = make_miscalibration(MiscalArm::scara, parse_miscal_seed("--miscal", args.miscal).value());
+    debug_log("sim scara: " + describe(*sim_options.miscal));
+  }
+  joint_sim::SimArm arm(std::move(config), std::move(sim_options));
   if (!args.scene.empty())
     arm.set_obstacle(sim_obstacle(args.arm.empty() || !arm_file::is_arm_file(arm::arm_file_path(args.arm)) ? "scara" : args.arm,
                                   arm::Protocol::joint_bus, args.scene));
@@ -156,6 +165,9 @@ void add_sim_command(CLI::App& app) {
                     "Robot Commands on a pty (test builds; docs/mega-controller.md)");
   scara->add_flag("--json", args->serve.json, "Log as JSON lines on stdout (started, log, stopped)");
   add_sim_scene_option(scara, args->scene);
+  scara->add_option("--miscal", args->miscal,
+                    "Mis-assemble the arm on purpose from this seed (0..4294967295): zeros shifted, one direction "
+                    "flipped, link lengths off; the truth only in the debug log (ARMCTL_DEBUG=1)");
   scara->callback([args] { run_sim_scara(*args); });
 }
 

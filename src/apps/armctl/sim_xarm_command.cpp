@@ -11,7 +11,9 @@
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/server_log.hpp"
 #include "apps/armctl/sim_scene.hpp"
+#include "core/debug_log.hpp"
 #include "core/error.hpp"
+#include "core/miscalibration.hpp"
 #include "devices/xarm_emulator/emulator_runner.hpp"
 #include "protocol/robot_commands/messages.hpp"
 #include "transport/serial_port.hpp"
@@ -27,6 +29,7 @@ struct SimXarmArgs {
   unsigned battery = 7500;
   bool json = false;
   std::string scene;  // --scene: what the arm meets
+  std::string miscal;  // --miscal SEED: mis-assembled on purpose (core/miscalibration.hpp)
 };
 
 void run_sim_xarm(const SimXarmArgs& args) {
@@ -38,6 +41,14 @@ void run_sim_xarm(const SimXarmArgs& args) {
   options.emulator.battery_millivolts = static_cast<std::uint16_t>(args.battery);
   options.wire_timing = args.wire_timing;
   options.baud = args.baud;
+  if (!args.miscal.empty()) {
+    if (!args.state_dir.empty())
+      throw ArmctlError(ErrorKind::invalid_argument,
+                        "--miscal and --state-dir: a mis-assembled arm keeps nothing (it starts mis-assembled every time)");
+    // The truth stays out of normal output: the wizard is there to find it.
+    options.emulator.miscal = make_miscalibration(MiscalArm::xarm, parse_miscal_seed("--miscal", args.miscal).value());
+    debug_log("sim xarm: " + describe(*options.emulator.miscal));
+  }
   if (!args.scene.empty()) options.emulator.touches = sim_obstacle("xarm", arm::Protocol::robot_commands, args.scene);
 
   const ServerLog log("sim xarm", args.json);
@@ -74,6 +85,9 @@ void add_xarm_options(CLI::App& xarm, const std::shared_ptr<SimXarmArgs>& args) 
       ->check(whole_number_in(rc::kMillivoltsMin, rc::kMillivoltsMax));
   xarm.add_flag("--json", args->json, "Log as JSON lines on stdout (started with the pty path, log, stopped)");
   add_sim_scene_option(&xarm, args->scene);
+  xarm.add_option("--miscal", args->miscal,
+                  "Mis-assemble the arm on purpose from this seed (0..4294967295): horns shifted, one servo "
+                  "reversed, link lengths off, one servo ID duplicated; the truth only in the debug log (ARMCTL_DEBUG=1)");
 }
 
 constexpr const char* kXarmHelp =

@@ -4,9 +4,12 @@
 // devices a user chooses by URI"); this library adds the embedded simulators on top, so an
 // app, or the Arm API, opens `sim` exactly like `serial:/dev/ttyUSB0`.
 //
-//   joint bus:       sim[?baud=N&config=FILE&dead=J,...]  embedded simulated SCARA arm
+//   joint bus:       sim[?baud=N&config=FILE&dead=J,...&miscal=SEED]  embedded simulated SCARA arm
 //                    unix:/path, serial:/dev/...?select=... (joint_bus/device_uri.hpp)
-//   Robot Commands:  sim                                  embedded emulated xArm
+//   Robot Commands:  sim[?miscal=SEED]                    embedded emulated xArm
+//   miscal=SEED: mis-assembled on purpose (core/miscalibration.hpp); its truth goes to the debug
+//   log only (core/debug_log.hpp), and a test reaches the physical arm with embedded_sim_arm /
+//   embedded_xarm below.
 //                    hid..., serial:/dev/...[?baud=N]     (robot_commands/device_uri.hpp)
 #pragma once
 
@@ -21,6 +24,13 @@
 #include "devices/joint_bus/device_uri.hpp"
 #include "devices/robot_commands/device_uri.hpp"
 #include "devices/robot_commands/rc_link.hpp"
+
+namespace armctl::joint_sim {
+class SimArm;
+}
+namespace armctl::xarm {
+class EmulatorRunner;
+}
 
 namespace armctl::devices {
 
@@ -48,6 +58,13 @@ class RcConnection {
 // Same errors as open_joint_bus.
 Result<std::unique_ptr<RcConnection>> open_robot_commands(std::string_view uri);
 Result<std::unique_ptr<RcConnection>> open_robot_commands(const robot_commands::DeviceUri& uri);
+
+// The simulator inside a connection opened from `sim...`, for tests that look at or move the
+// physical arm (SimArm::true_position, move_by_hand_to; EmulatorRunner::with_servos); null for
+// any other device. The xArm's board serves from its own thread: reach its servos only through
+// with_servos.
+joint_sim::SimArm* embedded_sim_arm(joint_bus::BusConnection& connection);
+xarm::EmulatorRunner* embedded_xarm(RcConnection& connection);
 
 // Where the embedded emulated xArm keeps what a real board keeps between power cycles (groups,
 // saved offsets, servo limits): $ARMCTL_STATE_DIR/xarm-emulator, else

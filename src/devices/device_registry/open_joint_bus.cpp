@@ -1,7 +1,9 @@
 // Joint-bus devices: the embedded simulated arm here, everything else from the SDK.
 #include <fmt/core.h>
 
+#include "core/debug_log.hpp"
 #include "core/error.hpp"
+#include "core/miscalibration.hpp"
 
 #include "devices/device_registry/device_registry.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
@@ -20,6 +22,10 @@ class EmbeddedSim final : public joint_bus::BusConnection {
     // dialect=legacy: every joint as if flashed with DIALECT=legacy (legacy-master mode).
     joint_sim::SimArmOptions options;
     options.joints.legacy_master = d.dialect == joint_bus::Dialect::legacy;
+    if (d.miscal) {
+      options.miscal = make_miscalibration(MiscalArm::scara, *d.miscal);
+      debug_log("embedded simulated arm: " + describe(*options.miscal));
+    }
     arm_ = std::make_unique<joint_sim::SimArm>(std::move(config), options);
     if (!d.dead_joints.empty()) {
       joint_sim::FaultPlan faults;
@@ -34,9 +40,11 @@ class EmbeddedSim final : public joint_bus::BusConnection {
     return o;
   }
   std::string description() const override {
-    return fmt::format("embedded simulated arm at {} baud{}", arm_->config().baud,
-                       dialect_ == joint_bus::Dialect::legacy ? ", legacy-master joints" : "");
+    return fmt::format("embedded simulated arm at {} baud{}{}", arm_->config().baud,
+                       dialect_ == joint_bus::Dialect::legacy ? ", legacy-master joints" : "",
+                       arm_->miscalibration() ? ", mis-assembled" : "");
   }
+  joint_sim::SimArm& arm() { return *arm_; }
 
  private:
   joint_bus::Dialect dialect_;
@@ -44,6 +52,11 @@ class EmbeddedSim final : public joint_bus::BusConnection {
 };
 
 }  // namespace
+
+joint_sim::SimArm* embedded_sim_arm(joint_bus::BusConnection& connection) {
+  auto* sim = dynamic_cast<EmbeddedSim*>(&connection);
+  return sim ? &sim->arm() : nullptr;
+}
 
 Result<std::unique_ptr<joint_bus::BusConnection>> open_joint_bus(const joint_bus::DeviceUri& uri) {
   // Devices are opened by constructors, which throw: this is where that becomes a Result.

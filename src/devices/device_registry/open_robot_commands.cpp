@@ -1,9 +1,12 @@
 // Robot Commands devices: the embedded emulated xArm here, everything else from the SDK.
 #include <cstdlib>
 #include <mutex>
+#include <optional>
 #include <utility>
 
+#include "core/debug_log.hpp"
 #include "core/error.hpp"
+#include "core/miscalibration.hpp"
 #include "devices/device_registry/device_registry.hpp"
 #include "devices/robot_commands/stream_link.hpp"
 #include "devices/xarm_emulator/emulator_runner.hpp"
@@ -27,12 +30,18 @@ class SdkConnection final : public RcConnection {
 // like a serial board, so the host side runs exactly the code it runs on a real port.
 class EmbeddedXarm final : public RcConnection {
  public:
-  EmbeddedXarm() {
+  explicit EmbeddedXarm(std::optional<std::uint32_t> miscal) {
     // Keeps what a real board keeps (action groups, saved offsets, servo limits) in a per-user
     // state directory, so `group download` and a later `group run` meet the same stored group.
     // Servo positions are not stored: every connection starts with the servos at centre.
+    // A mis-assembled arm keeps nothing: it must not leave its servo IDs in the user's board.
     xarm::EmulatorRunnerOptions options;
-    options.emulator.state_dir = embedded_xarm_state_dir().value();
+    if (miscal) {
+      options.emulator.miscal = make_miscalibration(MiscalArm::xarm, *miscal);
+      debug_log("embedded emulated xArm: " + describe(*options.emulator.miscal));
+    } else {
+      options.emulator.state_dir = embedded_xarm_state_dir().value();
+    }
     emulator_ = std::make_unique<xarm::EmulatorRunner>(options, [this](const std::string& line) {
       const std::lock_guard lock(log_mutex_);  // the board runs on the runner's thread
       log_.push_back(line);
@@ -48,6 +57,7 @@ class EmbeddedXarm final : public RcConnection {
   }
   robot_commands::RcLink& link() override { return *link_; }
   bool embedded() const override { return true; }
+  xarm::EmulatorRunner& runner() { return *emulator_; }
   std::vector<std::string> take_board_log() override {
     const std::lock_guard lock(log_mutex_);
     return std::exchange(log_, {});
@@ -61,6 +71,11 @@ class EmbeddedXarm final : public RcConnection {
 };
 
 }  // namespace
+
+xarm::EmulatorRunner* embedded_xarm(RcConnection& connection) {
+  auto* sim = dynamic_cast<EmbeddedXarm*>(&connection);
+  return sim ? &sim->runner() : nullptr;
+}
 
 Result<std::filesystem::path> embedded_xarm_state_dir() {
   namespace fs = std::filesystem;
@@ -83,7 +98,7 @@ Result<std::unique_ptr<RcConnection>> open_robot_commands(const robot_commands::
   // Devices are opened by constructors, which throw: this is where that becomes a Result.
   try {
     if (uri.kind == robot_commands::DeviceUri::Kind::sim) {
-      return std::unique_ptr<RcConnection>(std::make_unique<EmbeddedXarm>());
+      return std::unique_ptr<RcConnection>(std::make_unique<EmbeddedXarm>(uri.miscal));
     }
     auto link = robot_commands::open_link(uri);
     if (!link) return link.error();

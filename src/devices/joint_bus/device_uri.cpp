@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 
 #include "core/error.hpp"
+#include "core/miscalibration.hpp"
 #include "transport/device_uri_parts.hpp"
 
 namespace armctl::joint_bus {
@@ -13,7 +14,7 @@ namespace armctl::joint_bus {
 namespace {
 
 constexpr const char* kForms =
-    "sim, sim?baud=N&config=FILE&dead=J[,J...]&dialect=legacy, unix:/path/to/socket, or "
+    "sim, sim?baud=N&config=FILE&dead=J[,J...]&dialect=legacy&miscal=SEED, unix:/path/to/socket, or "
     "serial:/dev/ttyAMA0?select=17,27,22,5,6,13,19[&baud=9600][&chip=gpiochip0][&dialect=legacy]";
 
 [[noreturn]] void bad(std::string_view uri, const std::string& why) {
@@ -43,7 +44,7 @@ Dialect parse_dialect(std::string_view uri, const std::string& text) {
 
 SimDevice parse_sim(std::string_view uri, transport::UriParts& parts) {
   if (parts.has_path) bad(uri, "sim takes options after '?', not a path");
-  checked(uri, transport::check_options(parts, {"baud", "config", "dead", "dialect"}));
+  checked(uri, transport::check_options(parts, {"baud", "config", "dead", "dialect", "miscal"}));
   SimDevice d;
   auto& opts = parts.options;
   if (opts.contains("baud")) d.baud = checked(uri, transport::parse_baud(opts["baud"]));
@@ -63,6 +64,7 @@ SimDevice parse_sim(std::string_view uri, transport::UriParts& parts) {
       list.remove_prefix(comma + 1);
     }
   }
+  if (opts.contains("miscal")) d.miscal = checked(uri, parse_miscal_seed("miscal", opts["miscal"]));
   if (opts.contains("config")) {
     if (opts["config"].empty()) bad(uri, "config needs a file path");
     d.config = opts["config"];
@@ -118,7 +120,8 @@ Result<DeviceUri> parse_device_uri(std::string_view uri) {
 
 std::string describe(const DeviceUri& uri) {
   if (const auto* s = std::get_if<SimDevice>(&uri)) {
-    const std::string legacy = s->dialect == Dialect::legacy ? ", legacy-master joints" : "";
+    const std::string legacy = std::string(s->dialect == Dialect::legacy ? ", legacy-master joints" : "") +
+                               (s->miscal ? ", mis-assembled" : "");
     return s->baud ? fmt::format("embedded simulated arm at {} baud{}", *s->baud, legacy)
                    : "embedded simulated arm" + legacy;
   }

@@ -3,6 +3,7 @@
 //                            optional ?baud=N&config=FILE&dead=J[,J...] (joints that never
 //                            answer: to see how a dead joint is reported)&dialect=legacy
 //                            (joints in legacy-master mode, answering the legacy dialect)
+//                            &miscal=SEED (mis-assembled on purpose: core/miscalibration.hpp)
 //   unix:/path               a running `armctl sim scara --listen /path`
 //   serial:/dev/ttyAMA0?baud=115200&chip=gpiochip0&select=17,27,22,5,6,13,19[&dialect=legacy]
 //                            a real bus: UART + one GPIO line per joint (joints 1..N in
@@ -26,6 +27,7 @@ struct SimDevice {
   std::string config;  // empty: config/scara.arm.json's simulator section
   std::vector<int> dead_joints;  // joints 1..7 whose controller never answers
   Dialect dialect = Dialect::standard;  // legacy: every joint in legacy-master mode
+  std::optional<std::uint32_t> miscal;  // the seed of a mis-assembly (core/miscalibration.hpp)
 };
 
 struct UnixDevice {

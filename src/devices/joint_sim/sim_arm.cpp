@@ -1,5 +1,7 @@
 #include "devices/joint_sim/sim_arm.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/error.hpp"
@@ -12,8 +14,19 @@ SimArm::SimArm(ArmConfig config, SimArmOptions options)
   for (const JointConfig& j : config_.joints) lines = std::max(lines, int(j.number));
   joints_.resize(static_cast<std::size_t>(lines));
   std::vector<BusEndpoint*> endpoints(static_cast<std::size_t>(lines), nullptr);
+  if (options_.miscal && options_.miscal->arm != MiscalArm::scara)
+    throw ArmctlError(ErrorKind::invalid_argument, "simulated arm: a miscalibration for the xArm given to the SCARA");
   for (const JointConfig& j : config_.joints) {
-    auto joint = std::make_unique<SimJoint>(j.number, j.tuning, config_.baud, j.hardware, TimePoint{},
+    JointHardwareParams hardware = j.hardware;
+    if (options_.miscal && hardware.end_stops) {
+      // The stops are where they are physically; the encoder counts them from elsewhere.
+      const Miscalibration& m = *options_.miscal;
+      const double a = m.device_position(j.number, hardware.end_stops->min_clicks);
+      const double b = m.device_position(j.number, hardware.end_stops->max_clicks);
+      hardware.end_stops = EndStops{static_cast<std::int32_t>(std::ceil(std::min(a, b))),
+                                    static_cast<std::int32_t>(std::floor(std::max(a, b)))};
+    }
+    auto joint = std::make_unique<SimJoint>(j.number, j.tuning, config_.baud, hardware, TimePoint{},
                                             options_.joints);
     endpoints[j.number - 1u] = joint.get();
     joints_[j.number - 1u] = std::move(joint);
@@ -29,6 +42,15 @@ void SimArm::set_obstacle(std::function<bool(std::span<const double>)> touches) 
   }
   std::vector<JointHardware*> hardware;
   for (auto& j : joints_) hardware.push_back(j ? &j->hardware() : nullptr);
+  if (options_.miscal) {
+    // The obstacle sees the physical arm: the true positions, not the encoders'.
+    touches = [m = *options_.miscal, touches = std::move(touches)](std::span<const double> clicks) {
+      std::vector<double> truth(clicks.begin(), clicks.end());
+      for (std::size_t i = 0; i < truth.size() && i < m.joints.size(); ++i)
+        truth[i] = m.true_position(int(i + 1), truth[i]);
+      return touches(truth);
+    };
+  }
   contact_ = std::make_unique<ContactStop>(std::move(touches), std::move(hardware));
   bus_->set_watch(std::chrono::milliseconds(1), [this](TimePoint) { contact_->check(); });
 }
@@ -45,6 +67,17 @@ SimJoint& SimArm::joint(int number) {
   }
   bus_->sync();
   return *joints_[std::size_t(number - 1)];
+}
+
+double SimArm::true_position(int number) {
+  const double clicks = joint(number).hardware().position_clicks();
+  return options_.miscal ? options_.miscal->true_position(number, clicks) : clicks;
+}
+
+bool SimArm::move_by_hand_to(int number, double true_clicks) {
+  SimJoint& j = joint(number);
+  const double target = options_.miscal ? options_.miscal->device_position(number, true_clicks) : true_clicks;
+  return j.turn_by_hand(target - j.hardware().position_clicks());
 }
 
 }  // namespace armctl::joint_sim

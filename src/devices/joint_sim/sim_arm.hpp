@@ -5,8 +5,11 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
+
+#include "core/miscalibration.hpp"
 
 #include "devices/joint_sim/arm_config.hpp"
 #include "devices/joint_sim/contact_stop.hpp"
@@ -19,6 +22,12 @@ namespace armctl::joint_sim {
 // mode (`sim?dialect=legacy`) and motor polarity.
 struct SimArmOptions {
   joint_bus::JointOptions joints{};
+  // Mis-assembled on purpose (`sim?miscal=SEED`, core/miscalibration.hpp): each joint was
+  // homed away from where the arm file puts its zero, one turns the other way (motor and
+  // encoder mounted reversed: the loop still closes, the arm moves the wrong way), and the
+  // end stops stay where they are physically. Nothing on the bus shows it; only the physical
+  // arm (true_position) does.
+  std::optional<Miscalibration> miscal;
 };
 
 class SimArm {
@@ -48,7 +57,19 @@ class SimArm {
   // the arm touches it with its joints at these positions (encoder clicks, one per joint
   // number - 1). Checked every millisecond of simulated time; a joint that moves the arm into
   // it stalls there.
+  // The clicks are the true positions (true_position): an obstacle stands in the physical world.
   void set_obstacle(std::function<bool(std::span<const double>)> touches);
+
+  // What the simulator shows (the user's eyes), for tests that answer a calibration wizard as
+  // a user would. The joint's true position: the clicks a well-built arm's joint (the one the
+  // shipped arm file describes) would count at the pose this joint physically stands in; its
+  // encoder's count without a miscalibration. Convert to SI with the shipped arm file's
+  // joint_bus mapping (arm/sim_truth.hpp does, and gives the true tool position).
+  double true_position(int number);
+  // A hand turning the limp joint (loop off) until it stands at `true_clicks`. False (nothing
+  // moves) while its position loop is on. Throws invalid_argument for an absent joint.
+  bool move_by_hand_to(int number, double true_clicks);
+  const std::optional<Miscalibration>& miscalibration() const { return options_.miscal; }
 
  private:
   ArmConfig config_;

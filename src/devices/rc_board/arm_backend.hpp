@@ -66,6 +66,13 @@ class ArmBackend {
 
   // Current position (may read slightly outside 0..1000 after offsets: signed).
   virtual std::int16_t position(ServoId servo) const = 0;
+  // What the board reads back over the servo bus for ServoPositionRead / ServoOffsetRead /
+  // BusServoInfoRead: nothing when no servo answered, or two did and their replies collided
+  // into a frame the board cannot use (the emulated xArm with a servo ID duplicated:
+  // xarm_servos.hpp). The Board then answers nothing (the protocol cannot say why).
+  virtual std::optional<std::int16_t> read_position(ServoId servo) const { return position(servo); }
+  virtual std::optional<std::int8_t> read_offset(ServoId servo) const { return offset(servo); }
+  virtual std::optional<BusServoInfoReply> read_bus_servo_info() const { return bus_servo_info(); }
 
   // Removes torque (position loop off); the next move of that servo restores it.
   virtual void torque_off(std::span<const ServoId> servos) = 0;

@@ -93,6 +93,8 @@ class Board {
   void ack(std::uint8_t sub);  // GroupDownload sub `sub` accepted
   void download_failed(const Error& e);
   void reject(std::size_t BoardStats::*counter, std::string message);
+  // A read the servo bus did not answer usably (ArmBackend::read_position): no reply.
+  void no_answer(const char* request, std::optional<ServoId> servo);
   void send(const rc::Frame& frame);
   void notify_stopped();
   void advance_to(TimePoint now);

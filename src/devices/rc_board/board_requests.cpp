@@ -43,9 +43,13 @@ void Board::on(const rc::MultiServoOff& m, TimePoint) {
 
 void Board::on(const rc::ServoPositionRead& m, TimePoint) {
   if (!all_present(m.servos, "ServoPositionRead")) return;
-  ++stats_.handled;
   rc::ServoPositionReply r;
-  for (std::uint8_t id : m.servos) r.positions.push_back({id, arm_.position(id)});
+  for (std::uint8_t id : m.servos) {
+    const auto position = arm_.read_position(id);
+    if (!position) return no_answer("ServoPositionRead", id);
+    r.positions.push_back({id, *position});
+  }
+  ++stats_.handled;
   reply(r);
 }
 
@@ -91,9 +95,13 @@ void Board::on(const rc::ServoOffsetWrite& m, TimePoint) {
 
 void Board::on(const rc::ServoOffsetRead& m, TimePoint) {
   if (!all_present(m.servos, "ServoOffsetRead")) return;
-  ++stats_.handled;
   rc::ServoOffsetReply r;
-  for (std::uint8_t id : m.servos) r.offsets.push_back({id, arm_.offset(id)});
+  for (std::uint8_t id : m.servos) {
+    const auto offset = arm_.read_offset(id);
+    if (!offset) return no_answer("ServoOffsetRead", id);
+    r.offsets.push_back({id, *offset});
+  }
+  ++stats_.handled;
   reply(r);
 }
 
@@ -117,8 +125,17 @@ void Board::on(const rc::BusServoInfoWrite& m, TimePoint) {
 }
 
 void Board::on(const rc::BusServoInfoRead&, TimePoint) {
+  const auto info = arm_.read_bus_servo_info();
+  if (!info) return no_answer("BusServoInfoRead", std::nullopt);
   ++stats_.handled;
-  reply(arm_.bus_servo_info());
+  reply(*info);
+}
+
+void Board::no_answer(const char* request, std::optional<ServoId> servo) {
+  reject(&BoardStats::no_answer,
+         fmt::format("{}: {} did not answer usably (no servo answers it, or several did and their "
+                     "replies collided): no reply",
+                     request, servo ? fmt::format("servo {}", *servo) : std::string("the servo bus")));
 }
 
 // --------------------------------------------------------------------- group download

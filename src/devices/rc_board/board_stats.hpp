@@ -16,13 +16,14 @@ struct BoardStats {
   std::size_t download_rejected = 0;  // inconsistent GroupDownload (download abandoned)
   std::size_t refused = 0;            // valid but not possible now (empty group, I/O failure)
   std::size_t refused_moves = 0;      // a valid move the arm refused (a joint not answering)
+  std::size_t no_answer = 0;          // a read no servo answered (or two, colliding): no reply
   std::size_t discarded_bytes = 0;    // wire bytes dropped while hunting for a frame
   std::size_t bad_lengths = 0;        // headers with LEN < 2 or too long for a report
   std::size_t torn_frames = 0;        // partial frames dropped: their bytes stopped (rc::frame_gap)
 
   std::size_t ignored() const {
     return unknown_command + invalid_frame + unknown_servo + out_of_range + download_rejected +
-           refused + refused_moves;
+           refused + refused_moves + no_answer;
   }
 };
 

@@ -1,5 +1,6 @@
 #include "devices/robot_commands/device_uri.hpp"
 
+#include "core/miscalibration.hpp"
 #include "devices/robot_commands/hid_link.hpp"
 #include "devices/robot_commands/stream_link.hpp"
 #include "transport/device_uri_parts.hpp"
@@ -9,7 +10,7 @@ namespace armctl::robot_commands {
 namespace {
 
 constexpr const char* kForms =
-    "sim, hid, hid:SERIAL, hid:/dev/hidrawN, serial:/dev/PATH[?baud=N], /dev/PATH";
+    "sim, sim?miscal=SEED, hid, hid:SERIAL, hid:/dev/hidrawN, serial:/dev/PATH[?baud=N], /dev/PATH";
 
 Error bad(const std::string& text, const std::string& why) {
   return transport::uri_error(text, Error{ErrorKind::invalid_argument, why}, kForms);
@@ -23,8 +24,17 @@ Result<DeviceUri> parse_device_uri(const std::string& text) {
   DeviceUri uri;
   if (parts->kind == "sim" || parts->kind == "hid") {
     uri.kind = parts->kind == "sim" ? DeviceUri::Kind::sim : DeviceUri::Kind::hid;
-    if (auto none = transport::check_options(*parts, {}); !none) return transport::uri_error(text, none.error(), kForms);
-    if (uri.kind == DeviceUri::Kind::sim && parts->has_path) return bad(text, "sim takes no path");
+    const bool sim = uri.kind == DeviceUri::Kind::sim;
+    if (auto known = transport::check_options(*parts, sim ? std::initializer_list<std::string_view>{"miscal"}
+                                                          : std::initializer_list<std::string_view>{});
+        !known)
+      return transport::uri_error(text, known.error(), kForms);
+    if (sim && parts->has_path) return bad(text, "sim takes no path");
+    if (sim && parts->options.contains("miscal")) {
+      auto seed = parse_miscal_seed("miscal", parts->options["miscal"]);
+      if (!seed) return transport::uri_error(text, seed.error(), kForms);
+      uri.miscal = *seed;
+    }
     uri.target = parts->path;
     if (uri.kind == DeviceUri::Kind::hid && parts->has_path && uri.target.empty()) {
       return bad(text, "\"hid:\" names no board");

@@ -1,11 +1,13 @@
 // Where a Robot Commands board is: `hid` (first xArm board), `hid:SERIAL`,
 // `hid:/dev/hidrawN`, `serial:/dev/ttyUSB0[?baud=115200]`, a bare /dev path (serial), or
-// `sim` (an emulated xArm embedded in the process: a simulator, so this SDK only parses it;
-// devices::open_robot_commands in armctl_device_registry opens it).
+// `sim[?miscal=SEED]` (an emulated xArm embedded in the process: a simulator, so this SDK only
+// parses it; devices::open_robot_commands in armctl_device_registry opens it; miscal: mis-
+// assembled on purpose, core/miscalibration.hpp).
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/error.hpp"
@@ -17,6 +19,7 @@ struct DeviceUri {
   enum class Kind { hid, serial, sim } kind = Kind::serial;
   std::string target;         // hid: serial number or hidraw path ("" = first); serial: path
   std::uint32_t baud = 9600;  // serial only
+  std::optional<std::uint32_t> miscal;  // sim only: the seed of a mis-assembly
 };
 
 // Errors (invalid_argument) name what was wrong and list the accepted forms.

@@ -56,6 +56,12 @@ void EmulatorRunner::stop() {
 
 void EmulatorRunner::request_stop() { loop_.request_stop(); }
 
+void EmulatorRunner::with_servos(const std::function<void(XarmServos&)>& f) {
+  std::lock_guard lock(emulator_mutex_);
+  emulator_.servos().advance_to(clock_.now());
+  f(emulator_.servos());
+}
+
 rc_board::BoardStats EmulatorRunner::stats() const {
   std::lock_guard lock(stats_mutex_);
   return stats_;
@@ -129,6 +135,7 @@ void EmulatorRunner::run() {
   ::prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   const int fd = pty_.master().fd();
   while (!loop_.stop_requested()) {
+    std::unique_lock emulator_lock(emulator_mutex_);
     TimePoint now = clock_.now();
     while (!input_.empty() && input_.front().at <= now) {
       // The emulated board answers at the instant the byte has arrived, not when this loop
@@ -155,13 +162,17 @@ void EmulatorRunner::run() {
     pollfd fds[1] = {{fd, static_cast<short>(POLLIN | (blocked ? POLLOUT : 0)), 0}};
     std::optional<Duration> timeout;
     if (wake) timeout = *wake - clock_.now();
+    emulator_lock.unlock();  // the wait is where with_servos gets its turn
     try {
       if (!loop_.wait(fds, timeout)) return;
     } catch (const ArmctlError& e) {
       if (log_) log_(e.what());
       return;
     }
-    if (fds[0].revents & POLLIN) read_input(clock_.now());
+    if (fds[0].revents & POLLIN) {
+      const std::lock_guard lock(emulator_mutex_);
+      read_input(clock_.now());
+    }
     if ((fds[0].revents & (POLLHUP | POLLERR)) && !(fds[0].revents & POLLIN)) {
       // No host on the other side: nothing to read; do not spin on the hang-up.
       if (!loop_.wait({}, std::chrono::milliseconds(10))) return;

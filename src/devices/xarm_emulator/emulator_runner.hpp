@@ -54,6 +54,10 @@ class EmulatorRunner {
 
   // A snapshot, safe from any thread.
   rc_board::BoardStats stats() const;
+  // Runs `f` on the emulated servos between two turns of the serving loop, from any thread:
+  // what a test does to the physical arm (XarmServos::true_position, move_by_hand_to,
+  // set_connected) while a host talks to the board.
+  void with_servos(const std::function<void(XarmServos&)>& f);
   std::size_t dropped_output_bytes() const { return dropped_output_.load(); }
 
  private:
@@ -75,6 +79,7 @@ class EmulatorRunner {
   std::thread thread_;
   std::atomic<std::size_t> dropped_output_{0};
   mutable std::mutex stats_mutex_;
+  std::mutex emulator_mutex_;  // held by the loop while it drives the emulator: with_servos
   rc_board::BoardStats stats_;
 
   std::deque<Timed> input_;   // wire timing: bytes waiting for their arrival instant

@@ -23,6 +23,8 @@ struct XarmEmulatorOptions {
   std::uint8_t temperature = 35;  // C, what every servo reports
   // Something the arm meets (XarmServosOptions::touches): its servos stall against it.
   std::function<bool(std::span<const double>)> touches;
+  // Mis-assembled on purpose (XarmServosOptions::miscal): then nothing is kept in state_dir.
+  std::optional<Miscalibration> miscal;
 };
 
 class XarmEmulator {

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/atomic_file.hpp"
 #include "devices/rc_board/crc32.hpp"
+#include "devices/xarm_emulator/bus_replies.hpp"
 
 namespace armctl::xarm {
 namespace {
@@ -35,11 +36,45 @@ XarmServos::XarmServos(XarmServosOptions options, TimePoint now)
     servos_[i].limits.servo = ids_[i];
     servos_[i].start = servos_[i].end = now;
   }
+  if (options_.miscal) {
+    if (options_.miscal->arm != MiscalArm::xarm)
+      throw ArmctlError(ErrorKind::invalid_argument, "emulated xArm: a miscalibration for the SCARA given to the xArm");
+    options_.state_dir.reset();  // a fresh arm every start (XarmServosOptions::miscal)
+    if (const auto& d = options_.miscal->duplicate) at(ServoId(d->place)).limits.servo = ServoId(d->answers_as);
+  }
   if (options_.state_dir) load_settings();
 }
 
+std::vector<XarmServos::Servo*> XarmServos::answering(ServoId id) {
+  std::vector<Servo*> out;
+  for (Servo& s : servos_)
+    if (s.connected && s.limits.servo == id) out.push_back(&s);
+  return out;
+}
+
+std::vector<const XarmServos::Servo*> XarmServos::answering(ServoId id) const {
+  std::vector<const Servo*> out;
+  for (const Servo& s : servos_)
+    if (s.connected && s.limits.servo == id) out.push_back(&s);
+  return out;
+}
+
+bool XarmServos::all_connected() const {
+  return std::all_of(servos_.begin(), servos_.end(), [](const Servo& s) { return s.connected; });
+}
+
+bool XarmServos::touching(std::array<double, kServoCount> shafts) const {
+  if (options_.miscal)
+    for (std::size_t i = 0; i < kServoCount; ++i) shafts[i] = options_.miscal->true_position(int(i + 1), shafts[i]);
+  return options_.touches(shafts);
+}
+
 PositionRange XarmServos::position_range(ServoId servo) const {
-  const auto& l = at(servo).limits;
+  // Several servos answering one ID: the board checks against the first (whose limits it
+  // would read); nobody answering: anything goes, nothing moves.
+  const auto those = answering(servo);
+  if (those.empty()) return {};
+  const auto& l = those.front()->limits;
   return {l.position_min, l.position_max};
 }
 
@@ -78,7 +113,7 @@ void XarmServos::step_against_obstacle(TimePoint t) {
   for (std::size_t i = 0; i < kServoCount; ++i) shafts[i] = servos_[i].position + servos_[i].offset;
   // An arm already touching (started there, put there by hand) is let move: which way is out
   // is not for the servos to judge.
-  const bool free = !options_.touches(shafts);
+  const bool free = !touching(shafts);
   for (std::size_t i = 0; i < kServoCount; ++i) {
     Servo& s = servos_[i];
     if (!s.torque || s.blocked) continue;
@@ -93,7 +128,7 @@ void XarmServos::step_against_obstacle(TimePoint t) {
     const double step = std::clamp(planned(s, t) - s.position, -limit, limit);
     if (step == 0) continue;
     shafts[i] += step;
-    if (free && options_.touches(shafts)) {
+    if (free && touching(shafts)) {
       shafts[i] -= step;  // stalled against the obstacle
       continue;
     }
@@ -107,14 +142,18 @@ Result<Duration> XarmServos::move(std::span<const ServoTarget> targets, Duration
   advance_to(now);
   Duration longest = time;
   for (const ServoTarget& t : targets) {
-    double distance = std::abs(*t.position - at(t.servo).position);  // never "leave alone" here
-    auto fastest =
-        std::chrono::duration_cast<Duration>(std::chrono::duration<double>(distance / kMaxSpeed));
-    longest = std::max(longest, fastest);
+    for (const Servo* s : answering(t.servo)) {
+      double distance = std::abs(*t.position - s->position);  // never "leave alone" here
+      auto fastest =
+          std::chrono::duration_cast<Duration>(std::chrono::duration<double>(distance / kMaxSpeed));
+      longest = std::max(longest, fastest);
+    }
   }
   // One synchronized move: every servo arrives at the same moment (the slowest decides).
+  // Every connected servo answering a target's ID hears it (two, with a duplicated ID).
   for (const ServoTarget& t : targets) {
-    Servo& s = at(t.servo);
+    for (Servo* answer : answering(t.servo)) {
+    Servo& s = *answer;
     s.torque = true;
     s.mode = ServoMode::servo;
     s.motor_speed = 0;
@@ -123,23 +162,45 @@ Result<Duration> XarmServos::move(std::span<const ServoTarget> targets, Duration
     s.start = now_;
     s.end = now_ + longest;
     if (longest == Duration::zero()) s.position = s.target;
+    }
   }
   return longest;
 }
 
-std::int16_t XarmServos::position(ServoId servo) const {
-  const Servo& s = at(servo);
+std::int16_t XarmServos::position(ServoId place) const {
+  const Servo& s = at(place);
   return static_cast<std::int16_t>(std::lround(s.position) + s.offset);
+}
+
+std::optional<std::int16_t> XarmServos::read_position(ServoId servo) const {
+  std::vector<std::vector<std::uint8_t>> answers;
+  for (const Servo* s : answering(servo)) {
+    const auto p = static_cast<std::uint16_t>(std::lround(s->position) + s->offset);
+    answers.push_back({static_cast<std::uint8_t>(p & 0xFF), static_cast<std::uint8_t>(p >> 8)});
+  }
+  const auto got = read_over_bus(servo, kServoPositionReadCmd, answers);
+  if (!got) return std::nullopt;
+  return static_cast<std::int16_t>((*got)[0] | ((*got)[1] << 8));
+}
+
+std::optional<std::int8_t> XarmServos::read_offset(ServoId servo) const {
+  std::vector<std::vector<std::uint8_t>> answers;
+  for (const Servo* s : answering(servo)) answers.push_back({static_cast<std::uint8_t>(s->offset)});
+  const auto got = read_over_bus(servo, kServoOffsetReadCmd, answers);
+  if (!got) return std::nullopt;
+  return static_cast<std::int8_t>((*got)[0]);
 }
 
 void XarmServos::torque_off(std::span<const ServoId> ids) {
   for (ServoId id : ids) {
-    Servo& s = at(id);
+    for (Servo* answer : answering(id)) {
+    Servo& s = *answer;
     s.torque = false;
     s.mode = ServoMode::servo;
     s.motor_speed = 0;
     s.from = s.target = s.position;
     s.end = now_;
+    }
   }
 }
 
@@ -154,6 +215,7 @@ bool XarmServos::move_by_hand(ServoId id, double position) {
 void XarmServos::halt(TimePoint now) {
   advance_to(now);
   for (Servo& s : servos_) {
+    if (!s.connected) continue;
     s.mode = ServoMode::servo;
     s.motor_speed = 0;
     s.from = s.target = s.position;
@@ -169,17 +231,18 @@ std::uint16_t XarmServos::battery_millivolts() const {
 }
 
 void XarmServos::adjust_offset(ServoId servo, std::int8_t offset) {
-  at(servo).offset = offset;
+  for (Servo* s : answering(servo)) s->offset = offset;
 }
 
-std::int8_t XarmServos::offset(ServoId servo) const {
-  return at(servo).offset;
+std::int8_t XarmServos::offset(ServoId place) const {
+  return at(place).offset;
 }
 
 Status XarmServos::save_offsets(std::span<const ServoId> ids) {
   std::array<std::int8_t, kServoCount> before{};
   for (std::size_t i = 0; i < kServoCount; ++i) before[i] = servos_[i].saved_offset;
-  for (ServoId id : ids) at(id).saved_offset = at(id).offset;
+  for (ServoId id : ids)
+    for (Servo* s : answering(id)) s->saved_offset = s->offset;
   if (save_settings()) return Ok{};
   for (std::size_t i = 0; i < kServoCount; ++i) servos_[i].saved_offset = before[i];
   return Error{ErrorKind::io, "the servo settings could not be stored in the state directory: " + last_save_error_};
@@ -187,12 +250,14 @@ Status XarmServos::save_offsets(std::span<const ServoId> ids) {
 
 void XarmServos::set_mode(ServoId servo, ServoMode mode, std::int16_t speed, TimePoint now) {
   advance_to(now);
-  Servo& s = at(servo);
-  s.mode = mode;
-  s.motor_speed = mode == ServoMode::motor ? speed : std::int16_t{0};
-  s.torque = true;
-  s.from = s.target = s.position;
-  s.end = now_;
+  for (Servo* answer : answering(servo)) {
+    Servo& s = *answer;
+    s.mode = mode;
+    s.motor_speed = mode == ServoMode::motor ? speed : std::int16_t{0};
+    s.torque = true;
+    s.from = s.target = s.position;
+    s.end = now_;
+  }
 }
 
 BusServoInfoReply XarmServos::bus_servo_info() const {
@@ -201,20 +266,70 @@ BusServoInfoReply XarmServos::bus_servo_info() const {
                                   options_.temperature, battery_millivolts());
 }
 
+std::optional<BusServoInfoReply> XarmServos::read_bus_servo_info() const {
+  // Every servo plugged in: the emulator's shortcut (the servo last written), as before.
+  if (all_connected()) return bus_servo_info();
+  // Unplugged ones: what a real bus does. One servo answers; several collide on every
+  // register the board reads; none leaves the board waiting.
+  const Servo* only = nullptr;
+  for (const Servo& s : servos_) {
+    if (!s.connected) continue;
+    if (only != nullptr) return std::nullopt;
+    only = &s;
+  }
+  if (only == nullptr) return std::nullopt;
+  return rc::bus_servo_info_reply(only->limits, only->offset,
+                                  static_cast<std::int16_t>(std::lround(only->position) + only->offset),
+                                  options_.temperature, battery_millivolts());
+}
+
 Status XarmServos::write_bus_servo_info(const BusServoLimits& limits) {
   if (!has_servo(limits.servo)) {
     return Error{ErrorKind::device,
                  fmt::format("servo {} is not on this arm (servos 1..{})", limits.servo, kServoCount)};
   }
-  Servo& s = at(limits.servo);
-  BusServoLimits before = s.limits;
+  const auto before_servos = servos_;
   ServoId info_before = info_servo_;
-  s.limits = limits;
-  info_servo_ = limits.servo;
+  if (all_connected()) {
+    // The emulator's shortcut: the servos answering that ID take the limits (both, if two do).
+    for (Servo* s : answering(limits.servo)) {
+      s->limits = limits;
+      info_servo_ = static_cast<ServoId>(s - servos_.data() + 1);
+    }
+  } else {
+    // A real bus: the write reaches every plugged-in servo, and each takes the ID written.
+    for (Servo& s : servos_)
+      if (s.connected) s.limits = limits;
+  }
   if (save_settings()) return Ok{};
-  s.limits = before;
+  servos_ = before_servos;
   info_servo_ = info_before;
   return Error{ErrorKind::io, "the servo settings could not be stored in the state directory: " + last_save_error_};
+}
+
+double XarmServos::true_position(ServoId place) const {
+  const Servo& s = at(place);
+  const double shaft = s.position + s.offset;
+  return options_.miscal ? options_.miscal->true_position(place, shaft) : shaft;
+}
+
+bool XarmServos::move_by_hand_to(ServoId place, double true_units) {
+  const Servo& s = at(place);
+  const double shaft = options_.miscal ? options_.miscal->device_position(place, true_units) : true_units;
+  return move_by_hand(place, shaft - s.offset);
+}
+
+void XarmServos::set_connected(ServoId place, bool connected) {
+  Servo& s = at(place);
+  if (!connected && s.connected) {
+    // No power: limp where it stands, whatever it was doing.
+    s.torque = false;
+    s.mode = ServoMode::servo;
+    s.motor_speed = 0;
+    s.from = s.target = s.position;
+    s.end = now_;
+  }
+  s.connected = connected;
 }
 
 bool XarmServos::save_settings() {
@@ -265,7 +380,8 @@ void XarmServos::load_settings() {
     BusServoLimits l{b[at],         get16(at + 2),  get16(at + 4), get16(at + 6),
                      get16(at + 8), get16(at + 10), b[at + 12],    b[at + 13]};
     auto offset = static_cast<std::int8_t>(b[at + 1]);
-    if (l.servo != ids_[i] || l.position_min > l.position_max || l.position_max > 1000 ||
+    // A servo's ID is its EEPROM's: one re-numbered with a single servo plugged in keeps it.
+    if (l.servo < 1 || l.servo > kServoCount || l.position_min > l.position_max || l.position_max > 1000 ||
         offset < -125 || offset > 125)
       throw corrupt("servo entry out of range");
     servos_[i].limits = l;

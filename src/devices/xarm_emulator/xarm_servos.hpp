@@ -13,6 +13,18 @@
 // - BusServoInfoRead/Write address one servo: the one last written (servo 1 at start);
 //   limits persist in the state dir like a real servo's EEPROM. Writing an ID the arm does
 //   not have is refused (re-numbering servos needs a single servo on the bus).
+// - Mis-assembled (options' miscal, core/miscalibration.hpp): horns shifted and one servo
+//   mounted reversed change only where the arm physically stands (true_position); one servo
+//   answering another's ID changes what the bus does (docs/xarm-emulator.md "Mis-assembled"):
+//   a command to that ID reaches both servos, a read of it is answered by both at once
+//   (bus_replies.hpp: usually no reply), and nobody answers the ID of the servo's place.
+//   set_connected() unplugs servos so that IDs can be set one servo at a time.
+//
+// Places and IDs: the arm has six places for servos, place k where the arm file's servo k
+// belongs; the servo mounted there answers ID k unless the miscalibration says otherwise.
+// What the Board asks (moves, reads, offsets, torque) goes to IDs, to every connected servo
+// answering it; the accessors for tests and tools below (position, offset, torque, moving,
+// move_by_hand, true_position...) name places.
 #pragma once
 
 #include <array>
@@ -20,7 +32,9 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <vector>
 
+#include "core/miscalibration.hpp"
 #include "devices/rc_board/arm_backend.hpp"
 
 namespace armctl::xarm {
@@ -40,7 +54,12 @@ struct XarmServosOptions {
   // it with its servos' shafts at these positions (units, servos 1..6 in order). A servo
   // whose next step would make the arm touch stays where it is, stalled against it, while
   // its move goes on (the others go on moving); it follows again once it can.
+  // Checked against the physical arm: the true positions (true_position) with a miscal.
   std::function<bool(std::span<const double>)> touches;
+  // Mis-assembled on purpose (`sim?miscal=SEED`); must be for the xArm. Settings are then
+  // never loaded from or saved to state_dir: a mis-assembled arm is a fresh one every start
+  // and must not leave its IDs in a normal board's state.
+  std::optional<Miscalibration> miscal;
 };
 
 class XarmServos final : public rc_board::ArmBackend {
@@ -55,7 +74,8 @@ class XarmServos final : public rc_board::ArmBackend {
   static constexpr Duration kContactStep = std::chrono::milliseconds(1);
 
   // Loads saved offsets and limits from the state dir (if any). Throws ArmctlError(io /
-  // invalid_config) if the settings file exists but cannot be read or is corrupt.
+  // invalid_config) if the settings file exists but cannot be read or is corrupt, and
+  // (invalid_argument) for a miscalibration of the SCARA.
   XarmServos(XarmServosOptions options, TimePoint now);
 
   std::span<const ServoId> servos() const override { return ids_; }
@@ -63,13 +83,16 @@ class XarmServos final : public rc_board::ArmBackend {
   void advance_to(TimePoint now) override;
   Result<Duration> move(std::span<const ServoTarget> targets, Duration time,
                         TimePoint now) override;
-  std::int16_t position(ServoId servo) const override;
+  std::int16_t position(ServoId place) const override;  // the servo in that place
+  std::optional<std::int16_t> read_position(ServoId servo) const override;
+  std::optional<std::int8_t> read_offset(ServoId servo) const override;
+  std::optional<BusServoInfoReply> read_bus_servo_info() const override;
   void torque_off(std::span<const ServoId> servos) override;
   void halt(TimePoint now) override;
   std::uint16_t battery_millivolts() const override;
   void adjust_offset(ServoId servo, std::int8_t offset) override;
   Status save_offsets(std::span<const ServoId> servos) override;
-  std::int8_t offset(ServoId servo) const override;
+  std::int8_t offset(ServoId place) const override;  // the servo in that place
   void set_mode(ServoId servo, ServoMode mode, std::int16_t speed, TimePoint now) override;
   BusServoInfoReply bus_servo_info() const override;
   Status write_bus_servo_info(const BusServoLimits& limits) override;
@@ -90,6 +113,25 @@ class XarmServos final : public rc_board::ArmBackend {
   // Last error from saving settings (empty if none).
   const std::string& last_save_error() const { return last_save_error_; }
 
+  // What the simulator shows (the user's eyes), for tests that answer a calibration wizard as
+  // a user would. The true position of the servo in `place`: the units a well-built arm's
+  // servo there (as the shipped arm file describes it) would read at the pose it physically
+  // stands in; its reading (position) without a miscalibration. Convert to SI with the shipped
+  // arm file's mapping (arm/sim_truth.hpp does, and gives the true tool position).
+  double true_position(ServoId place) const;
+  // A hand moving the limp servo in `place` until it stands at `true_units`; false (nothing
+  // moves) while its torque is on.
+  bool move_by_hand_to(ServoId place, double true_units);
+  // Unplug (false) or plug in (true) the servo in `place`: an unplugged servo has no power (it
+  // goes limp where it stands), hears nothing and answers nothing; plugged in again it stays
+  // limp until its next move. With exactly one servo plugged in, BusServoInfoRead/Write reach
+  // that servo whatever its ID and Write sets its ID: how IDs are set one servo at a time.
+  void set_connected(ServoId place, bool connected);
+  bool connected(ServoId place) const { return at(place).connected; }
+  // The ID the servo in `place` answers (its EEPROM's).
+  ServoId bus_id(ServoId place) const { return at(place).limits.servo; }
+  const std::optional<Miscalibration>& miscalibration() const { return options_.miscal; }
+
  private:
   struct Servo {
     double position = 500;  // commanded frame (without offset), where the servo is now
@@ -103,10 +145,18 @@ class XarmServos final : public rc_board::ArmBackend {
     std::int16_t motor_speed = 0;
     std::int8_t offset = 0;
     std::int8_t saved_offset = 0;
-    BusServoLimits limits;
+    BusServoLimits limits;  // limits.servo: the ID it answers
+    bool connected = true;
   };
-  Servo& at(ServoId id) { return servos_[id - 1]; }
-  const Servo& at(ServoId id) const { return servos_[id - 1]; }
+  Servo& at(ServoId place) { return servos_[place - 1]; }
+  const Servo& at(ServoId place) const { return servos_[place - 1]; }
+  // The connected servos that answer `id` (usually one; two with a duplicated ID; none for
+  // the ID nobody has).
+  std::vector<Servo*> answering(ServoId id);
+  std::vector<const Servo*> answering(ServoId id) const;
+  bool all_connected() const;
+  // Whether the arm touches the obstacle with its shafts at these readings (per place).
+  bool touching(std::array<double, kServoCount> shafts) const;
   bool save_settings();
   void load_settings();
   // Where a servo's move has it at `t` (servo mode, torque on).
@@ -117,7 +167,7 @@ class XarmServos final : public rc_board::ArmBackend {
   XarmServosOptions options_;
   std::array<ServoId, kServoCount> ids_{1, 2, 3, 4, 5, 6};
   std::array<Servo, kServoCount> servos_;
-  ServoId info_servo_ = 1;
+  ServoId info_servo_ = 1;  // the place BusServoInfoRead reports with every servo plugged in
   TimePoint now_{};
   std::string last_save_error_;
 };
