@@ -58,7 +58,7 @@ struct FitResult {
   ResidualReport before, after;
   double condition = 0;
   int iterations = 0;
-  // The fitted chain, to check further points against (verify after the fit).
+  // The parameters fitted, in the order of `estimates`.
   std::vector<Parameter> parameters() const;
 };
 
