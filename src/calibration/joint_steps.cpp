@@ -47,10 +47,11 @@ Result<ZeroStep> zero_at_mark(const arm::ArmModel& model, arm::Protocol protocol
   if (at.servo_offsets) {
     if (at.servo_offset < -125 || at.servo_offset > 125)
       return refuse(fmt::format("servo {} ({}): offset {} read back is outside -125..125", map->id, j.name, at.servo_offset));
-    // The servo reads positions in its commanded frame (shaft minus offset): at the mark it
-    // must read the device position of the mark, so the offset grows by what it reads too much.
+    // Commanded `want` (the device position of the mark) must put the shaft at the mark:
+    // the shaft stands at commanded + offset, and it stands at the mark now.
     const double want = map->to_device(at.mark);
-    const long units = std::lround(at.servo_offset + at.device - want);
+    const double shaft = at.reads_shaft ? at.device : at.device + at.servo_offset;
+    const long units = std::lround(shaft - want);
     if (units >= -125 && units <= 125) {
       step.kind = ZeroStep::Kind::servo_offset;
       step.servo_offset = ServoOffset{j.name, map->id, int(units)};

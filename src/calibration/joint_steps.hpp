@@ -33,6 +33,10 @@ struct JointAtMark {
   // The device keeps a zero of its own: an xArm bus servo (ServoOffsetAdjust, -125..125 units).
   bool servo_offsets = false;
   int servo_offset = 0;  // the offset the servo holds now (read with ServoOffsetRead)
+  // What the servo's position read-back reports: the shaft (commanded + offset), as
+  // docs/xarm-emulator.md has it, or the commanded frame (shaft - offset). The new offset
+  // is the same either way when the servo holds none.
+  bool reads_shaft = true;
 };
 
 // What the wizard does to give the joint its zero.
