@@ -253,6 +253,27 @@ Result<FitResult> fit_kinematics(const arm::ArmModel& model, std::span<const Tou
   return result;
 }
 
+Result<ResidualReport> verify_fit(const arm::ArmModel& model, const FitResult& fit,
+                                  std::span<const TouchedPoint> points) {
+  if (points.empty()) return Error{ErrorKind::invalid_argument, "no touched points to verify"};
+  if (Status s = check_touched_points(model, points); !s) return s.error();
+  auto chain = CalibrationChain::make(model);
+  if (!chain) return chain.error();
+  const std::vector<Parameter> ps = fit.parameters();
+  for (const Parameter& p : ps)
+    if (std::find(chain->candidates().begin(), chain->candidates().end(), p) == chain->candidates().end())
+      return Error{ErrorKind::invalid_argument, fmt::format("the fit's {} is not a parameter of arm '{}'", p.name, model.name)};
+  Vector x(Eigen::Index(ps.size()));
+  for (std::size_t k = 0; k < ps.size(); ++k) x[Eigen::Index(k)] = fit.estimates[k].correction;
+  const Vector r = residual(*chain, points, ps, x);
+  std::vector<PointResidual> out;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Eigen::Vector3d e = r.segment<3>(3 * Eigen::Index(k));
+    out.push_back(PointResidual{points[k].name, e, e.norm()});
+  }
+  return residual_report(std::move(out));
+}
+
 CalibrationChanges changes_from_fit(const arm::ArmModel& model, const FitResult& fit) {
   CalibrationChanges c;
   for (const ParameterEstimate& e : fit.estimates) {

@@ -71,6 +71,11 @@ struct FitOptions {
 Result<FitResult> fit_kinematics(const arm::ArmModel& model, std::span<const TouchedPoint> points,
                                  const FitOptions& options = {});
 
+// Verify before anything is written: the residuals of `points` (others than the fit's,
+// e.g. the sheet's marks) on the arm as the fit has it. Readings as for the fit.
+Result<ResidualReport> verify_fit(const arm::ArmModel& model, const FitResult& fit,
+                                  std::span<const TouchedPoint> points);
+
 // The fit as arm-file changes: each fitted zero a zero shift of its joint (limits carried
 // over), each fitted length the origin's new length. Written with write_calibration.
 CalibrationChanges changes_from_fit(const arm::ArmModel& model, const FitResult& fit);

@@ -159,6 +159,22 @@ TEST(KinematicFit, ManySeedsOnBothArms) {
   }
 }
 
+TEST(KinematicFit, APointTouchedAtTheWrongPlaceStandsOut) {
+  // One point 15 mm from where it was said to be (the wrong mark, a slipped tool): the fit
+  // cannot absorb it, and the report names it as the worst.
+  const arm::ArmModel m = arm::testing::shipped("xarm");
+  auto points = testing::touched_points(m, xarm_truth(), {.count = 20, .seed = 9});
+  points[6].position.y() += 15 * kMm;
+  auto r = fit_kinematics(m, points);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_EQ(r->after.worst, "P7");
+  EXPECT_GT(r->after.max, 5 * kMm);
+  for (const PointResidual& p : r->after.points) {
+    if (p.name == "P7") continue;
+    EXPECT_LT(p.distance, r->after.max / 2) << p.name;
+  }
+}
+
 TEST(KinematicFit, TooFewPointsAreRefusedNamingAParameter) {
   const arm::ArmModel m = arm::testing::shipped("xarm");
   const auto points = testing::touched_points(m, xarm_truth(), {.count = 2});

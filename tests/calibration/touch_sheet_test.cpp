@@ -129,6 +129,10 @@ TEST(Verify, TheFitWrittenToTheArmFileMakesTheSheetTrue) {
     EXPECT_GT(before->max, 3 * kMm);
     auto fit = fit_kinematics(nominal, testing::touched_points(nominal, truth, {.count = 20, .seed = 4}));
     ASSERT_TRUE(fit) << fit.error().message;
+    // Before anything is written, the sheet on the fitted arm.
+    auto preview = verify_fit(nominal, *fit, sheet);
+    ASSERT_TRUE(preview) << preview.error().message;
+    EXPECT_LT(preview->max, 0.5 * kMm);
     auto written = write_calibration(nominal, changes_from_fit(nominal, *fit));
     ASSERT_TRUE(written) << written.error().message;
     const arm::ArmModel calibrated = arm::load_arm_model(nominal.file).value();
