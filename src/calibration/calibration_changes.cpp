@@ -27,6 +27,25 @@ std::string q(const arm::JointModel& j, double v) { return format_quantity(j.dim
 
 }  // namespace
 
+CalibrationChanges from_zero_changes(const arm::ArmModel& model, const std::vector<arm::ZeroChange>& zeros) {
+  // calibrate_zero's shift is the actuator's value where it stands; the joint's is the
+  // coupling's inverse of its pair's (the joint's own for a joint alone).
+  std::vector<double> actuator(model.joints.size(), 0.0);
+  for (const arm::ZeroChange& z : zeros) actuator[std::size_t(z.joint)] = z.shift;
+  std::vector<double> joint = actuator;
+  for (const arm::Coupling& k : model.couplings) {
+    const double a = actuator[std::size_t(k.first)], b = actuator[std::size_t(k.second)];
+    const double det = k.matrix[0][0] * k.matrix[1][1] - k.matrix[0][1] * k.matrix[1][0];
+    joint[std::size_t(k.first)] = (k.matrix[1][1] * a - k.matrix[0][1] * b) / det;
+    joint[std::size_t(k.second)] = (-k.matrix[1][0] * a + k.matrix[0][0] * b) / det;
+  }
+  CalibrationChanges c;
+  for (const arm::ZeroChange& z : zeros)
+    c.joints.push_back(JointChange{model.joints[std::size_t(z.joint)].name, false, -joint[std::size_t(z.joint)],
+                                   PositionRange{z.limits.lower, z.limits.upper}});
+  return c;
+}
+
 std::string quantity_text(Dimension dimension, double si) {
   return fmt::format("{:.6f}{}", to_display(dimension, si), display_unit(dimension));
 }

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "arm/arm_calibration.hpp"
 #include "arm/arm_model.hpp"
 #include "core/error.hpp"
 #include "motion/urdf_chain.hpp"
@@ -85,6 +86,12 @@ Result<CheckedChanges> check_changes(const arm::ArmModel& model, const Calibrati
 // is kept. invalid_config when the document lacks a joint the model has.
 Result<nlohmann::json> apply_changes(nlohmann::json document, const arm::ArmModel& model,
                                      const CheckedChanges& checked);
+
+// `armctl arm calibrate zero`'s changes (arm/arm_calibration.hpp: where the joints stand
+// becomes their zero) as calibration changes, so that the wizard can take them with its other
+// changes through write_calibration. A coupled pair's shifts, which calibrate_zero gives per
+// actuator, become the joints' shifts through the coupling's inverse.
+CalibrationChanges from_zero_changes(const arm::ArmModel& model, const std::vector<arm::ZeroChange>& zeros);
 
 // A quantity as the arm files write it: "12.345678deg", "97.650000mm".
 std::string quantity_text(Dimension dimension, double si);

@@ -104,6 +104,46 @@ TEST_F(Changes, ACoupledPairShiftsBothActuators) {
   EXPECT_NEAR(rc_new[4], rc_old[4] + 1.5 * kDeg, 1e-6);
 }
 
+TEST_F(Changes, CalibrateZerosChangesWriteAsItsOwnSaveDoes) {
+  // `armctl arm calibrate zero`'s changes through write_calibration give the file its own
+  // save_calibration gives, on both arms (the SCARA's wrist pair included), and keep .prev.
+  struct Case {
+    const char* arm;
+    Protocol protocol;
+    std::vector<double> device;
+    std::vector<int> joints;
+  };
+  for (const Case& k : {Case{"xarm", Protocol::robot_commands, {520, 500, 480, 510, 500, 500}, {0, 2, 3}},
+                        Case{"scara", Protocol::joint_bus, {300, 400, -500, 250, 600, -200, 0}, {1, 2, 4, 5}}}) {
+    SCOPED_TRACE(k.arm);
+    const arm::ArmModel m = load(k.arm);
+    const auto zeros = arm::calibrate_zero(m, k.protocol, k.device, k.joints);
+    ASSERT_TRUE(zeros) << zeros.error().message;
+    ASSERT_TRUE(arm::save_calibration(m, k.protocol, *zeros));
+    const arm::ArmModel by_save = load(k.arm);
+    // Back to the shipped file, then the same through the calibration layer.
+    fs::copy_file(arm::testing::config_path(fmt::format("{}.arm.json", k.arm)), m.file, fs::copy_options::overwrite_existing);
+    auto written = write_calibration(m, from_zero_changes(m, *zeros));
+    ASSERT_TRUE(written) << written.error().message;
+    EXPECT_TRUE(fs::exists(previous_file(m.file)));
+    const arm::ArmModel by_layer = load(k.arm);
+    for (std::size_t i = 0; i < m.joints.size(); ++i) {
+      // The protocol the zero was taken on. (calibrate zero moves that protocol's map only;
+      // the calibration layer moves every map of the joint: its zero is one, whichever device
+      // reads it.)
+      const arm::DeviceMap& map = *by_save.joints[i].map(k.protocol);
+      const arm::DeviceMap& other = *by_layer.joints[i].map(k.protocol);
+      EXPECT_NEAR(other.to_actuator(map.device_a), map.actuator_a, 1e-6) << by_save.joints[i].name;
+      EXPECT_NEAR(other.to_actuator(map.device_b), map.actuator_b, 1e-6) << by_save.joints[i].name;
+      EXPECT_NEAR(by_layer.joints[i].limits.lower, by_save.joints[i].limits.lower, 1e-6) << by_save.joints[i].name;
+      EXPECT_NEAR(by_layer.joints[i].limits.upper, by_save.joints[i].limits.upper, 1e-6) << by_save.joints[i].name;
+    }
+    // Where the joints stand reads zero for the zeroed ones.
+    const auto q = by_layer.from_device(k.protocol, k.device);
+    for (int j : k.joints) EXPECT_NEAR(q[std::size_t(j)], 0, 1e-6) << m.joints[std::size_t(j)].name;
+  }
+}
+
 TEST_F(Changes, LimitsThatExcludeTheZeroAreRefused) {
   CalibrationChanges c;
   c.joints.push_back({"servo6", false, 0, PositionRange{5 * kDeg, 60 * kDeg}});
