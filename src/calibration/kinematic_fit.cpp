@@ -181,15 +181,33 @@ Result<FitResult> fit_kinematics(const arm::ArmModel& model, std::span<const Tou
     for (Eigen::Index c = 0; c < P; ++c)
       if (c != lead && std::abs(v[c]) >= 0.3 * std::abs(v[lead])) same_as.push_back(ps[std::size_t(c)]);
     const Parameter& p = ps[std::size_t(lead)];
-    const std::string hint = p.kind == ParameterKind::zero
-                                 ? fmt::format("touch points with {} at more different positions",
-                                               model.joints[std::size_t(p.joint)].name)
-                                 : "touch points spread wider, with every joint moved between them";
+    // The joints whose zeros are involved are the ones to move (a joint left at one position
+    // hides the zeros and lengths around it); with lengths alone, every joint.
+    std::string joints;
+    std::vector<Parameter> involved = same_as;
+    involved.insert(involved.begin(), p);
+    for (const Parameter& q : involved)
+      if (q.kind == ParameterKind::zero)
+        joints += (joints.empty() ? "" : ", ") + model.joints[std::size_t(q.joint)].name;
+    const std::string hint =
+        joints.empty() ? "touch points spread wider, with every joint moved well between them"
+                       : fmt::format("touch points with every joint moved well between them, {} above all", joints);
+    // Joints that hardly moved between the points (less than a twentieth of their travel)
+    // are the likeliest cause: say so.
+    std::string still;
+    for (int i = 0; i < chain.joint_count(); ++i) {
+      double lo = qs.front()[i], hi = lo;
+      for (const Vector& q : qs) lo = std::min(lo, q[i]), hi = std::max(hi, q[i]);
+      const arm::JointModel& jm = model.joints[std::size_t(i)];
+      if (hi - lo < (jm.limits.upper - jm.limits.lower) / 20)
+        still += fmt::format("{}{} hardly moved between them (its readings span {})", still.empty() ? "; " : ", ", jm.name,
+                             format_quantity(jm.dimension, hi - lo));
+    }
     return Error{ErrorKind::invalid_argument,
                  fmt::format("the {} touched points cannot tell the {} apart{}{} (condition {:.2g}, at least {:.2g} "
-                             "needed): {}",
+                             "needed): {}{}",
                              points.size(), p.name, same_as.empty() ? "" : " from the ", names(same_as), condition,
-                             options.min_condition, hint),
+                             options.min_condition, hint, still),
                  Unidentifiable{p, same_as, condition}};
   }
   if (points.size() < kMinFitPoints)

@@ -206,6 +206,7 @@ TEST(KinematicFit, TheXarmElbowUnmovedIsRefusedNamingIt) {
   std::vector<Parameter> named = d->same_as;
   named.push_back(d->parameter);
   EXPECT_TRUE(names_any(named, "servo4")) << r.error().message;
+  EXPECT_NE(r.error().message.find("servo4 hardly moved between them"), std::string::npos) << r.error().message;
   std::cout << r.error().message << "\n";
 }
 
