@@ -117,15 +117,33 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
   const std::string base = name_of(r, r.require("base_link"), "base_link");
   const std::string tip = name_of(r, r.require("tool_link"), "tool_link");
 
+  // Calibrated lengths of URDF joint origins (docs/calibration.md), applied to the URDF
+  // before anything is read from it: {"servo4": "98.2mm", ...}.
+  if (const json* lengths = r.find("link_lengths")) {
+    ObjectReader lr(source, *lengths, "link_lengths");
+    for (auto it = lengths->begin(); it != lengths->end(); ++it) {
+      if (it.key() == "comment") continue;
+      const double length = quantity(lr, lr.require(it.key()), lr.at(it.key()), Dimension::length, 0);
+      m.link_lengths.push_back(motion::OriginLength{it.key(), length});
+    }
+    lr.finish();
+  }
   // The URDF: the chain from base to tool, and every joint the arm file names.
   Result<motion::UrdfChain> chain = motion::read_urdf_chain(urdf_text, base, tip);
   if (!chain) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, chain.error().message));
   // Through the guards every URDF reader shares (no '%' reaches urdfdom's logger).
   Result<urdf::ModelInterfaceSharedPtr> parsed_urdf = motion::parse_urdf_model(std::string(urdf_text));
   if (!parsed_urdf) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, parsed_urdf.error().message));
+  // The lengths checked against this URDF (the error names the arm file's key), then the
+  // chain read again with them.
+  if (!m.link_lengths.empty()) {
+    if (Status s = motion::apply_origin_lengths(**parsed_urdf, m.link_lengths); !s)
+      r.fail("link_lengths", fmt::format("{} ({})", s.error().message, urdf_source));
+    chain = motion::read_urdf_chain(urdf_text, base, tip, m.link_lengths);
+    if (!chain) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, chain.error().message));
+  }
   const urdf::ModelInterfaceSharedPtr& urdf_model = *parsed_urdf;
   m.tool_link = tip;
-  m.chain = *chain;
 
   std::string gripper_name;
   const json* gripper = r.find("gripper");
@@ -309,12 +327,13 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
   }
   std::vector<std::string> joint_names;
   for (const auto& j : m.joints) joint_names.push_back(j.name);
-  auto bodies = motion::read_link_bodies(urdf_text, base, joint_names);
+  auto bodies = motion::read_link_bodies(urdf_text, base, joint_names, m.link_lengths);
   if (!bodies) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, bodies.error().message));
   m.bodies = std::make_shared<const motion::LinkBodies>(std::move(bodies).value());
   auto kin = arm_family.make(*chain, limits);
   if (!kin) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, kin.error().message));
   m.kinematics = std::shared_ptr<const motion::Kinematics>(std::move(kin.value()));
+  m.chain = std::make_shared<const motion::UrdfChain>(std::move(chain).value());
   return m;
 }
 

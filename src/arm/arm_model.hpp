@@ -90,9 +90,11 @@ struct ArmModel {
   std::optional<GripperModel> gripper;
   motion::Pose tool;  // the tool frame in the URDF's tool link
   std::shared_ptr<const motion::Kinematics> kinematics;
-  // The URDF chain (base link to tool link) the kinematics were made from: the lengths as
-  // the URDF has them (arm/sim_truth.hpp builds a mis-assembled arm's true geometry from it).
-  motion::UrdfChain chain;
+  // The chain the kinematics was made from, with the arm file's link lengths applied, and
+  // those lengths ("link_lengths": the calibrated lengths of URDF joint origins,
+  // docs/calibration.md; empty when the URDF's own are used).
+  std::shared_ptr<const motion::UrdfChain> chain;
+  std::vector<motion::OriginLength> link_lengths;
   // The farthest the tool point can be from the base frame's origin (m), for any joint
   // values: the chain's offsets end to end, plus each prismatic joint's travel and the
   // tool's offset. An upper bound: a target beyond it is refused before any planning.

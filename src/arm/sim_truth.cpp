@@ -54,7 +54,7 @@ Result<SimTruth> SimTruth::make(ArmModel shipped, Protocol protocol, Miscalibrat
                    fmt::format("arm '{}': joint {} has no {} ID the miscalibration ({} devices) knows", shipped.name,
                                j.name, to_string(protocol), miscal.joints.size())};
   }
-  auto chain = apply_link_errors(shipped.chain, miscal);
+  auto chain = apply_link_errors(*shipped.chain, miscal);
   if (!chain) return chain.error();
   return SimTruth(std::move(shipped), protocol, std::move(miscal), std::move(*chain));
 }

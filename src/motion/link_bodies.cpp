@@ -137,9 +137,11 @@ Result<Shape> collision_shape(const urdf::Collision& c, const std::string& link,
 }  // namespace
 
 Result<LinkBodies> read_link_bodies(std::string_view urdf_xml, std::string_view base_link,
-                                    std::span<const std::string> joint_names) {
+                                    std::span<const std::string> joint_names,
+                                    std::span<const OriginLength> lengths) {
   auto parsed = parse_urdf_model(std::string(urdf_xml));
   if (!parsed) return parsed.error();
+  if (Status s = apply_origin_lengths(**parsed, lengths); !s) return s.error();
   const urdf::ModelInterface& model = **parsed;
   auto base = model.getLink(std::string(base_link));
   if (!base) return config_error(fmt::format("URDF robot '{}' has no <link name=\"{}\"> (the base link)", model.getName(), base_link));

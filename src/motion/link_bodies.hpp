@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "core/error.hpp"
+#include "motion/urdf_chain.hpp"
 
 namespace armctl::motion {
 
@@ -60,8 +61,9 @@ struct LinkBodies {
 // `joint_names` (the arm's joints, in order) moves each. Errors (invalid_config) name the
 // link or joint: a <collision> mesh (primitives only), a size that is not finite and
 // positive, a moving joint the arm does not name, a joint type other than revolute,
-// continuous, prismatic or fixed.
+// continuous, prismatic or fixed. `lengths`: origin offsets to replace, as read_urdf_chain's.
 Result<LinkBodies> read_link_bodies(std::string_view urdf_xml, std::string_view base_link,
-                                    std::span<const std::string> joint_names);
+                                    std::span<const std::string> joint_names,
+                                    std::span<const OriginLength> lengths = {});
 
 }  // namespace armctl::motion

@@ -226,10 +226,38 @@ Result<ChainJoint> moving_joint(const urdf::Joint& j) {
 
 }  // namespace
 
+Status apply_origin_lengths(urdf::ModelInterface& model, std::span<const OriginLength> lengths) {
+  for (std::size_t i = 0; i < lengths.size(); ++i) {
+    const OriginLength& l = lengths[i];
+    for (std::size_t k = 0; k < i; ++k)
+      if (lengths[k].joint == l.joint) return config_error(fmt::format("link length of joint '{}' given twice", l.joint));
+    auto it = model.joints_.find(l.joint);
+    if (it == model.joints_.end() || !it->second)
+      return config_error(fmt::format("link length for joint '{}': the URDF robot '{}' has no such joint", l.joint,
+                                      model.getName()));
+    if (!std::isfinite(l.length) || !(l.length > 0) || l.length > 100)
+      return config_error(fmt::format("link length for joint '{}': {} m; allowed is a length above 0 and at most 100 m",
+                                      l.joint, l.length));
+    urdf::Vector3& p = it->second->parent_to_joint_origin_transform.position;
+    const double now = std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+    // Below a micrometre the URDF gives no direction to keep.
+    if (!(now > 1e-6))
+      return config_error(fmt::format("link length for joint '{}': its <origin> has no offset, so no direction to "
+                                      "lengthen along; only joints with an offset xyz have a link length",
+                                      l.joint));
+    const double scale = l.length / now;
+    p.x *= scale;
+    p.y *= scale;
+    p.z *= scale;
+  }
+  return Ok{};
+}
+
 Result<UrdfChain> read_urdf_chain(std::string_view urdf_xml, std::string_view base_link,
-                                  std::string_view tip_link) {
+                                  std::string_view tip_link, std::span<const OriginLength> lengths) {
   auto parsed = parse_urdf_model(std::string(urdf_xml));
   if (!parsed) return parsed.error();
+  if (Status s = apply_origin_lengths(**parsed, lengths); !s) return s.error();
   const urdf::ModelInterface& model = **parsed;
   const std::string base(base_link), tip(tip_link);
   if (!model.getLink(base)) {
@@ -271,6 +299,7 @@ Result<UrdfChain> read_urdf_chain(std::string_view urdf_xml, std::string_view ba
     if (j.type == urdf::Joint::FIXED) {
       pending = pending * *origin;
       chain.fixed_joints.push_back(j.name);
+      chain.fixed.push_back(FixedChainJoint{j.name, *origin, chain.joints.size()});
       continue;
     }
     if (j.type != urdf::Joint::REVOLUTE && j.type != urdf::Joint::PRISMATIC) {

@@ -3,6 +3,7 @@
 // Parsing is pure (text in, value or error out); read_urdf_chain_file only adds the file.
 #pragma once
 
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -36,6 +37,22 @@ struct ChainJoint {
   Eigen::Isometry3d from_previous = Eigen::Isometry3d::Identity();
 };
 
+// A fixed joint of the chain (the tool point): its <origin> as written, and which moving
+// joint comes after it (joints.size(): none, it is between the last one and the tip).
+struct FixedChainJoint {
+  std::string name;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+  std::size_t before = 0;
+};
+
+// A calibrated length: the URDF joint `joint`'s <origin> offset made `length` long (m), its
+// direction kept (the arm file's "link_lengths", docs/calibration.md). Applied to the parsed
+// URDF before the chain and the link bodies are read from it, so both see the same arm.
+struct OriginLength {
+  std::string joint;
+  double length = 0;
+};
+
 struct UrdfChain {
   std::string robot_name;
   std::string base_link, tip_link;
@@ -45,14 +62,18 @@ struct UrdfChain {
   Eigen::Isometry3d tip_from_last = Eigen::Isometry3d::Identity();
   // Names of the fixed joints along the chain, base to tip (for messages and docs).
   std::vector<std::string> fixed_joints;
+  // The same fixed joints with their origins and places, for code that re-folds the chain
+  // with other lengths (src/calibration).
+  std::vector<FixedChainJoint> fixed;
 };
 
 // The chain from base_link to tip_link of the URDF text. Errors (invalid_config) name the
 // URDF element and what is allowed: not URDF (or not UTF-8 text), a missing link, a tip not below the base,
 // joint types other than revolute, prismatic and fixed along the chain, a zero axis,
-// limits that are missing, not finite or empty, mimic joints in the chain.
+// limits that are missing, not finite or empty, mimic joints in the chain. `lengths`: origin
+// offsets to replace (apply_origin_lengths).
 Result<UrdfChain> read_urdf_chain(std::string_view urdf_xml, std::string_view base_link,
-                                  std::string_view tip_link);
+                                  std::string_view tip_link, std::span<const OriginLength> lengths = {});
 
 // The same from a file; errors name the file.
 Result<UrdfChain> read_urdf_chain_file(const std::string& path, std::string_view base_link,

@@ -4,6 +4,7 @@
 // chain (motion/urdf_chain.hpp) and the links' collision shapes (motion/link_bodies.hpp).
 #pragma once
 
+#include <span>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -11,11 +12,18 @@
 #include <urdf_model/model.h>
 
 #include "core/error.hpp"
+#include "motion/urdf_chain.hpp"
 
 namespace armctl::motion {
 
 // The parsed document, or invalid_config saying what urdfdom (or the guards) refused.
 Result<urdf::ModelInterfaceSharedPtr> parse_urdf_model(const std::string& xml);
+
+// Every joint named in `lengths` gets its <origin> offset scaled to that length, the
+// direction kept. Refused (invalid_config, naming the joint): a joint the URDF does not have,
+// named twice, whose origin has no offset (no direction to keep), or a length that is not
+// finite and above zero.
+Status apply_origin_lengths(urdf::ModelInterface& model, std::span<const OriginLength> lengths);
 
 // An <origin> as a transform; invalid_config naming `what` ("joint 'servo6'") when it is
 // not finite or not a rotation.

@@ -35,6 +35,29 @@ TEST(UrdfChain, ScaraChainIsZThenFiveRevoluteJoints) {
   EXPECT_NEAR(c.joints[4].origin_rpy.x(), M_PI / 2, 1e-15);
   EXPECT_NEAR((c.tip_from_last.translation() - Eigen::Vector3d(0.175, 0, 0)).norm(), 0, 1e-15);
   EXPECT_THAT(c.fixed_joints, ::testing::ElementsAre("tool_point"));
+  // The same fixed joint with its own origin, after the last moving joint.
+  ASSERT_EQ(c.fixed.size(), 1u);
+  EXPECT_EQ(c.fixed[0].name, "tool_point");
+  EXPECT_EQ(c.fixed[0].before, c.joints.size());
+  EXPECT_NEAR((c.fixed[0].origin.translation() - Eigen::Vector3d(0.175, 0, 0)).norm(), 0, 1e-15);
+}
+
+TEST(UrdfChain, OriginLengthsReplaceTheOffsetsKeepingTheirDirection) {
+  const std::string urdf = testing::urdf_text("scara");
+  const std::vector<OriginLength> lengths{{"UAE", 0.26}, {"tool_point", 0.18}};
+  auto c = read_urdf_chain(urdf, "base_link", "tool", lengths);
+  ASSERT_TRUE(c) << c.error().message;
+  EXPECT_NEAR((c->joints[2].origin_xyz - Eigen::Vector3d(0.26, 0, 0)).norm(), 0, 1e-15);
+  EXPECT_NEAR((c->joints[2].from_previous.translation() - Eigen::Vector3d(0.26, 0, 0)).norm(), 0, 1e-15);
+  EXPECT_NEAR((c->tip_from_last.translation() - Eigen::Vector3d(0.18, 0, 0)).norm(), 0, 1e-15);
+  EXPECT_NEAR(c->joints[3].origin_xyz.x(), 0.255, 1e-15);  // not named: as the URDF has it
+  for (const std::vector<OriginLength>& bad :
+       {std::vector<OriginLength>{{"SHOULDER", 0.1}}, std::vector<OriginLength>{{"nope", 0.1}},
+        std::vector<OriginLength>{{"UAE", 0.0}}, std::vector<OriginLength>{{"UAE", 0.2}, {"UAE", 0.3}}}) {
+    auto r = read_urdf_chain(urdf, "base_link", "tool", bad);
+    ASSERT_FALSE(r) << bad[0].joint;
+    EXPECT_NE(r.error().message.find(bad[0].joint), std::string::npos) << r.error().message;
+  }
 }
 
 TEST(UrdfChain, XarmChainIsFiveServosBaseToWrist) {
