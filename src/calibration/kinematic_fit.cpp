@@ -137,6 +137,8 @@ Result<FitResult> fit_kinematics(const arm::ArmModel& model, std::span<const Tou
   auto made = CalibrationChain::make(model);
   if (!made) return made.error();
   const CalibrationChain& chain = *made;
+  if (points.empty())
+    return Error{ErrorKind::invalid_argument, fmt::format("no touched points to fit (at least {})", kMinFitPoints)};
   if (Status s = check_touched_points(model, points); !s) return s.error();
   std::vector<Parameter> ps = options.parameters;
   if (ps.empty()) {

@@ -255,6 +255,7 @@ TEST(KinematicFit, BadInputIsRefusedNamingThePoint) {
   r = fit_kinematics(m, points);
   ASSERT_FALSE(r);
   EXPECT_NE(r.error().message.find("P3"), std::string::npos) << r.error().message;
+  EXPECT_FALSE(fit_kinematics(m, std::vector<TouchedPoint>{}));
   points = testing::touched_points(m, xarm_truth(), {.count = 12});
   FitOptions o;
   o.parameters = {zero_parameter(m, 0), zero_parameter(m, 0)};
