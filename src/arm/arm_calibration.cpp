@@ -1,23 +1,14 @@
 #include "arm/arm_calibration.hpp"
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 
 #include <fmt/core.h>
-#include <nlohmann/json.hpp>
-
-#include "core/atomic_file.hpp"
 
 namespace armctl::arm {
 
 namespace {
 
 Error refuse(std::string m) { return Error{ErrorKind::invalid_argument, std::move(m)}; }
-
-std::string unit_text(Dimension d, double si) {
-  return fmt::format("{:.6f}{}", to_display(d, si), display_unit(d));
-}
 
 }  // namespace
 
@@ -93,51 +84,31 @@ Result<std::vector<ZeroChange>> calibrate_zero(const ArmModel& model, Protocol p
       *changed.joints[std::size_t(c.joint)].map(protocol) = c.map;
       changed.joints[std::size_t(c.joint)].limits = c.limits;
     }
-    const JointLimits& a = changed.joints[std::size_t(k.first)].limits;
-    const JointLimits& b = changed.joints[std::size_t(k.second)].limits;
-    for (double qa : {a.lower, a.upper})
-      for (double qb : {b.lower, b.upper}) {
-        std::vector<double> q(model.joints.size(), 0.0);
-        q[std::size_t(k.first)] = qa;
-        q[std::size_t(k.second)] = qb;
-        const auto d = changed.to_device(protocol, q);
-        for (int idx : {k.first, k.second})
-          if (d[std::size_t(idx)] < range.min || d[std::size_t(idx)] > range.max)
-            return refuse(fmt::format("joints {} and {}: with their zeros where they stand, the ends of their travel "
-                                      "would need device position {:.0f}, outside {}..{}",
-                                      model.joints[std::size_t(k.first)].name, model.joints[std::size_t(k.second)].name,
-                                      d[std::size_t(idx)], range.min, range.max));
-      }
+    if (auto over = coupled_overrun(changed, protocol, k))
+      return refuse(fmt::format("joints {} and {}: with their zeros where they stand, the ends of their travel "
+                                "would need device position {:.0f}, outside {}..{}",
+                                model.joints[std::size_t(k.first)].name, model.joints[std::size_t(k.second)].name,
+                                over->device, range.min, range.max));
   }
   return out;
 }
 
-Status save_calibration(const ArmModel& model, Protocol protocol, const std::vector<ZeroChange>& changes) {
-  if (model.file.empty()) return refuse("this arm model was not read from a file: nothing to save");
-  using nlohmann::json;
-  json doc;
-  try {
-    std::ifstream in(model.file);
-    if (!in) return Error{ErrorKind::io, fmt::format("cannot read arm file {}", model.file.string())};
-    doc = json::parse(in);
-  } catch (const json::exception& e) {
-    return Error{ErrorKind::invalid_config, fmt::format("{}: not valid JSON: {}", model.file.string(), e.what())};
-  }
-  const std::string key = to_string(protocol);
-  for (const ZeroChange& c : changes) {
-    const JointModel& j = model.joints[std::size_t(c.joint)];
-    bool done = false;
-    for (auto& entry : doc["joints"]) {
-      if (!entry.is_object() || entry.value("name", "") != j.name || !entry.contains(key)) continue;
-      entry[key]["joint"] = json::array({unit_text(j.dimension, c.map.actuator_a), unit_text(j.dimension, c.map.actuator_b)});
-      entry["limits"]["position"] = json::array({unit_text(j.dimension, c.limits.lower), unit_text(j.dimension, c.limits.upper)});
-      done = true;
+std::optional<CoupledOverrun> coupled_overrun(const ArmModel& model, Protocol protocol, const Coupling& pair,
+                                              double slack) {
+  const DeviceRange range = device_range(protocol);
+  const JointLimits& a = model.joints[std::size_t(pair.first)].limits;
+  const JointLimits& b = model.joints[std::size_t(pair.second)].limits;
+  for (double qa : {a.lower, a.upper})
+    for (double qb : {b.lower, b.upper}) {
+      std::vector<double> q(model.joints.size(), 0.0);
+      q[std::size_t(pair.first)] = qa;
+      q[std::size_t(pair.second)] = qb;
+      const auto d = model.to_device(protocol, q);
+      for (int idx : {pair.first, pair.second})
+        if (d[std::size_t(idx)] < range.min - slack || d[std::size_t(idx)] > range.max + slack)
+          return CoupledOverrun{idx, d[std::size_t(idx)]};
     }
-    if (!done) return Error{ErrorKind::invalid_config, fmt::format("{}: joint {} not found", model.file.string(), j.name)};
-  }
-  const std::string text = doc.dump(2) + "\n";
-  return write_file_atomically(
-      model.file, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+  return std::nullopt;
 }
 
 }  // namespace armctl::arm

@@ -8,6 +8,7 @@
 // the arm file in one atomic replacement.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "arm/arm_model.hpp"
@@ -28,8 +29,15 @@ Result<std::vector<ZeroChange>> calibrate_zero(const ArmModel& model, Protocol p
                                                const std::vector<double>& device_now,
                                                const std::vector<int>& joints);
 
-// Rewrites model.file with the new mappings (other content kept; formatting is the JSON
-// library's). Nothing is written if any change cannot be applied.
-Status save_calibration(const ArmModel& model, Protocol protocol, const std::vector<ZeroChange>& changes);
+// A coupled pair's actuators carry mixes of both joints, so its limits hold on the device only
+// if every corner of the two ranges does: the first actuator driven beyond `protocol`'s
+// device range (by more than `slack` device units) at a corner of `model`'s limits, and the
+// device position it would need; nothing when every corner fits.
+struct CoupledOverrun {
+  int actuator = 0;    // joint index whose device position is out of range
+  double device = 0;   // the device position that corner needs
+};
+std::optional<CoupledOverrun> coupled_overrun(const ArmModel& model, Protocol protocol, const Coupling& pair,
+                                              double slack = 0);
 
 }  // namespace armctl::arm

@@ -6,6 +6,7 @@
 
 #include <fmt/core.h>
 
+#include "arm/arm_calibration.hpp"
 #include "core/printable.hpp"
 
 namespace armctl::calibration {
@@ -146,25 +147,14 @@ Result<CheckedChanges> check_changes(const arm::ArmModel& model, const Calibrati
     }
     for (const arm::Coupling& k : model.couplings) {
       if (!by_joint[std::size_t(k.first)] && !by_joint[std::size_t(k.second)]) continue;
-      const arm::JointLimits& a = changed.joints[std::size_t(k.first)].limits;
-      const arm::JointLimits& b = changed.joints[std::size_t(k.second)].limits;
       for (arm::Protocol p : arm::protocols()) {
         if (!changed.supports(p)) continue;
         const arm::DeviceRange range = arm::device_range(p);
-        for (double qa : {a.lower, a.upper})
-          for (double qb : {b.lower, b.upper}) {
-            std::vector<double> qs(model.joints.size(), 0.0);
-            qs[std::size_t(k.first)] = qa;
-            qs[std::size_t(k.second)] = qb;
-            const auto d = changed.to_device(p, qs);
-            for (int idx : {k.first, k.second})
-              if (d[std::size_t(idx)] < range.min - kSlack || d[std::size_t(idx)] > range.max + kSlack)
-                return refuse(fmt::format("joints {} and {}: the ends of their limits need device position {:.0f} on {}, "
-                                          "outside {}..{}",
-                                          model.joints[std::size_t(k.first)].name,
-                                          model.joints[std::size_t(k.second)].name, d[std::size_t(idx)], to_string(p),
-                                          range.min, range.max));
-          }
+        if (auto over = arm::coupled_overrun(changed, p, k, kSlack))
+          return refuse(fmt::format("joints {} and {}: the ends of their limits need device position {:.0f} on {}, "
+                                    "outside {}..{}",
+                                    model.joints[std::size_t(k.first)].name, model.joints[std::size_t(k.second)].name,
+                                    over->device, to_string(p), range.min, range.max));
       }
     }
   }

@@ -1,5 +1,6 @@
 // `calibrate zero`: the new zero is where the joints stand; bad shifts are refused before
-// anything is written; the file written loads again with the new zero.
+// anything is written; the file written (by the calibration layer's writer, as the CLI does)
+// loads again with the new zero.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,6 +12,8 @@
 #include <fmt/core.h>
 
 #include "arm/arm_calibration.hpp"
+#include "calibration/arm_file_writer.hpp"
+#include "calibration/calibration_changes.hpp"
 #include "arm_files.hpp"
 
 namespace armctl::arm {
@@ -40,7 +43,7 @@ TEST_F(Calibration, WhereItStandsBecomesZeroAndIsSaved) {
   ASSERT_TRUE(changes) << changes.error().message;
   ASSERT_EQ(changes->size(), 2u);
   EXPECT_NEAR((*changes)[0].shift, 4.8 * kDeg, 1e-9);
-  ASSERT_TRUE(save_calibration(m, Protocol::robot_commands, *changes));
+  ASSERT_TRUE(calibration::write_calibration(m, calibration::from_zero_changes(m, *changes)));
   ArmModel again = load_arm_model(dir / "xarm.arm.json").value();
   const auto q = again.from_device(Protocol::robot_commands, device);
   EXPECT_NEAR(q[0], 0, 1e-6);
@@ -87,7 +90,7 @@ TEST_F(Calibration, CoupledJointsAreZeroedTogether) {
   EXPECT_NE(one.error().message.find("coupled"), std::string::npos);
   auto both = calibrate_zero(m, Protocol::joint_bus, device, {4, 5});
   ASSERT_TRUE(both) << both.error().message;
-  ASSERT_TRUE(save_calibration(m, Protocol::joint_bus, *both));
+  ASSERT_TRUE(calibration::write_calibration(m, calibration::from_zero_changes(m, *both)));
   ArmModel again = load_arm_model(dir / "scara.arm.json").value();
   const auto q = again.from_device(Protocol::joint_bus, device);
   EXPECT_NEAR(q[4], 0, 1e-6);

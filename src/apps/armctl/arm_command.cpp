@@ -22,6 +22,8 @@
 #include "apps/armctl/number_options.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "arm/arm_calibration.hpp"
+#include "calibration/arm_file_writer.hpp"
+#include "calibration/calibration_changes.hpp"
 #include "arm/avoid_path.hpp"
 #include "arm/plan_moves.hpp"
 #include "arm/run_motion.hpp"
@@ -419,7 +421,8 @@ void run_calibrate_zero(const ArmArgs& a) {
     for (int i = 0; i < m.joint_count(); ++i) joints.push_back(i);
   const arm::JointState now = must(s->arm->read());
   const auto changes = must(arm::calibrate_zero(m, s->arm->device().protocol(), now.device, joints));
-  must(arm::save_calibration(m, s->arm->device().protocol(), changes));
+  // Through the one calibration writer: one atomic replacement, the previous file kept.
+  (void)must(calibration::write_calibration(m, calibration::from_zero_changes(m, changes)));
   for (const auto& c : changes) {
     const auto& j = m.joints[std::size_t(c.joint)];
     if (a.json)
