@@ -36,6 +36,7 @@ struct CalibrateArgs {
   std::string device;
   std::string joint;
   std::string step = "all";
+  std::string zero_in = "servo";  // --zero-in servo|file
 };
 
 // The user quit (q) or the input ended: nothing is written.
@@ -331,6 +332,8 @@ void run_calibrate(const CalibrateArgs& a) {
   if (a.step != "all" && std::find(kSteps.begin(), kSteps.end(), a.step) == kSteps.end())
     throw ArmctlError(ErrorKind::invalid_argument,
                       fmt::format("step '{}': allowed all, find, which, direction, zero, limits, gripper, touch, fit", a.step));
+  if (a.zero_in != "servo" && a.zero_in != "file")
+    throw ArmctlError(ErrorKind::invalid_argument, fmt::format("--zero-in '{}': allowed servo or file", a.zero_in));
   const arm::ArmModel model = must(session::load_arm(a.arm));
   // The xArm's board is opened here, not through the arm session, because the wizard also
   // talks to its servos underneath the arm (IDs, offsets).
@@ -353,7 +356,9 @@ void run_calibrate(const CalibrateArgs& a) {
     opened = must(session::open_arm_session(a.arm, a.device));
     arm = opened->arm.get();
   }
-  calibration::CalibrationSession s(*arm, servos.get());
+  calibration::SessionOptions options;
+  options.servo_offsets = a.zero_in == "servo";
+  calibration::CalibrationSession s(*arm, servos.get(), options);
   std::vector<int> joints;
   if (a.joint.empty())
     for (int j = 0; j < model.joint_count(); ++j) joints.push_back(j);
@@ -404,6 +409,9 @@ void add_calibrate_command(CLI::App& app) {
                    "touched points and the fit; written to the arm file only when confirmed (docs/calibration.md)");
   add_arm_options(cmd, args->arm, args->device);
   cmd->add_option("--joint", args->joint, "Only this joint (its name or number 1..N)");
+  cmd->add_option("--zero-in", args->zero_in,
+                  "servo (default): an xArm joint's zero goes to the servo's own offset when it fits -125..125 units; "
+                  "file: always to the arm file");
   cmd->add_option("step", args->step, "all (default) | find | which | direction | zero | limits | gripper | touch | fit");
   cmd->callback([args] { run_calibrate(*args); });
 }
