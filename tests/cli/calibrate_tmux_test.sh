@@ -4,7 +4,7 @@
 # joint redone), the changes shown, then refused at the confirm (the file unchanged, no .prev),
 # then confirmed (written, the old file kept as .prev); the zero step left with Ctrl-C (exit
 # 130, nothing written); bad arguments refused naming what is allowed. Waits poll for what the
-# screen shows (no fixed settling).
+# screen shows (no fixed settling). Then the xArm's find step on its mis-assembled emulator.
 set -euo pipefail
 armctl=$1
 run=0
@@ -92,4 +92,12 @@ out=$(ASAN_OPTIONS=detect_leaks=0 "$armctl" calibrate --arm "$file" --device 'si
 set -e
 [ $rc -ne 0 ] && echo "$out" | grep -qF "joint 'elbow': allowed a number 1..7 or a name" || { echo "FAIL: bad joint: $rc $out"; exit 1; }
 [ "$(sha256sum "$file" | cut -d' ' -f1)" = "$written" ] || fail "a refused argument changed the arm file"
+# 5. The xArm's find step on its mis-assembled emulator: the place whose servo answers another
+# ID gives no answer, and the wizard says that setting an ID reaches every servo.
+cp "$src/config/xarm.arm.json" "$src/config/xarm.urdf" "$dir/"
+out=$(printf '\n' | ASAN_OPTIONS=detect_leaks=0 ARMCTL_STATE_DIR="$dir/xstate" "$armctl" calibrate --arm "$dir/xarm.arm.json" \
+        --device 'sim?miscal=7' find 2>&1) || { echo "FAIL: find: $out"; exit 1; }
+echo "$out" | grep -q "(ID [2-6]): NO ANSWER" || { echo "FAIL: no silent ID: $out"; exit 1; }
+echo "$out" | grep -qF "reaches EVERY servo on the bus" || { echo "FAIL: no word of BusServoInfoWrite: $out"; exit 1; }
+echo "$out" | grep -qF "nothing to write" || { echo "FAIL: $out"; exit 1; }
 echo "calibrate under tmux: refused, confirmed, interrupted and bad arguments as expected"

@@ -342,13 +342,17 @@ void run_calibrate(const CalibrateArgs& a) {
   std::unique_ptr<arm::Arm> own_arm;
   std::unique_ptr<calibration::RcServoBus> servos;
   arm::Arm* arm = nullptr;
-  const bool rc = !session::device_is_joint_bus(a.device) && !model.joints.empty() &&
-                  model.joints.front().map(arm::Protocol::robot_commands) != nullptr;
+  // The Arm session's rule (session/builtin_device_kinds.cpp): the joint bus when the URI
+  // names one ("sim" does) or the arm has no Robot Commands map, else the board.
+  const std::string uri = a.device.empty() ? "sim" : a.device;
+  const bool bus = model.supports(arm::Protocol::joint_bus) &&
+                   (session::device_is_joint_bus(uri) || !model.supports(arm::Protocol::robot_commands));
+  const bool rc = !bus && model.supports(arm::Protocol::robot_commands);
   if (rc) {
     int count = 0;
     for (const auto& j : model.joints)
       if (const arm::DeviceMap* m = j.map(arm::Protocol::robot_commands)) count = std::max(count, m->id);
-    board = must(session::open_xarm_session(a.device.empty() ? "sim" : a.device, count, 0));
+    board = must(session::open_xarm_session(uri, count, 0));
     own_arm = std::make_unique<arm::Arm>(model, std::make_unique<arm::RcArmDevice>(model, *board->client));
     servos = std::make_unique<calibration::RcServoBus>(*board->client);
     arm = own_arm.get();
