@@ -92,6 +92,16 @@ out=$(ASAN_OPTIONS=detect_leaks=0 "$armctl" calibrate --arm "$file" --device 'si
 set -e
 [ $rc -ne 0 ] && echo "$out" | grep -qF "joint 'elbow': allowed a number 1..7 or a name" || { echo "FAIL: bad joint: $rc $out"; exit 1; }
 [ "$(sha256sum "$file" | cut -d' ' -f1)" = "$written" ] || fail "a refused argument changed the arm file"
+# 4b. The touch step's typed points: a line that is not NAME X Y Z, a point beyond reach, each
+# refused naming what is allowed; a good one touched; nothing to write.
+out=$(printf 'P1 1 2\nP2 5000 0 50\nP3 280 60 50\nd\n' | ASAN_OPTIONS=detect_leaks=0 ARMCTL_STATE_DIR="$dir/state" \
+        "$armctl" calibrate --arm "$file" --device 'sim?miscal=7' touch 2>&1) || { echo "FAIL: touch: $out"; exit 1; }
+echo "$out" | grep -qF "'P1 1 2': allowed Enter (on the mark), NAME X Y Z in mm, d, s or q" || { echo "FAIL: $out"; exit 1; }
+echo "$out" | grep -qF "point 'P2': x 5000 mm is beyond reach" || { echo "FAIL: $out"; exit 1; }
+echo "$out" | grep -qF "P3 touched (1 points)" || { echo "FAIL: $out"; exit 1; }
+echo "$out" | grep -qF "nothing to write" || { echo "FAIL: $out"; exit 1; }
+[ "$(sha256sum "$file" | cut -d' ' -f1)" = "$written" ] || fail "the touch step changed the arm file"
+
 # 5. The xArm's find step on its mis-assembled emulator: the place whose servo answers another
 # ID gives no answer, and the wizard says that setting an ID reaches every servo.
 cp "$src/config/xarm.arm.json" "$src/config/xarm.urdf" "$dir/"
