@@ -23,6 +23,7 @@ void add_jog_command(CLI::App& app);         // jog_command.cpp: the arm driven 
 void add_follow_command(CLI::App& app);      // follow_command.cpp: a follower arm copies a leader moved by hand
 void add_replay_command(CLI::App& app);      // replay_command.cpp: recordings played back
 void add_serve_command(CLI::App& app);       // serve_command.cpp: the web dashboard and its HTTP API
+void add_calibrate_command(CLI::App& app);   // calibrate_command.cpp: the guided calibration wizard
 
 // --arm and --device as the commands that open an arm through the Arm API take them (teach,
 // serve, program; `armctl arm` says more about --device in its own help).

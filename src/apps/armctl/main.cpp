@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
   armctl::cli::add_program_command(app);
   armctl::cli::add_teach_command(app);
   armctl::cli::add_jog_command(app);
+  armctl::cli::add_calibrate_command(app);
   armctl::cli::add_follow_command(app);
   armctl::cli::add_replay_command(app);
   armctl::cli::add_serve_command(app);
