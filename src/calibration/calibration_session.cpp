@@ -380,15 +380,18 @@ std::string CalibrationSession::describe() const {
     const auto& m = model().joints[std::size_t(*model().find_joint(j.joint))];
     out += fmt::format("  {}:", j.joint);
     if (j.flip) out += " direction flipped;";
-    if (j.zero_shift != 0) out += fmt::format(" zero moved by {};", quantity_text(m.dimension, j.zero_shift));
+    if (j.zero_shift != 0) out += fmt::format(" zero moved by {};", format_quantity(m.dimension, j.zero_shift));
     if (j.limits)
-      out += fmt::format(" limits {} .. {};", quantity_text(m.dimension, j.limits->lower), quantity_text(m.dimension, j.limits->upper));
+      out += fmt::format(" limits {} .. {};", format_quantity(m.dimension, j.limits->lower), format_quantity(m.dimension, j.limits->upper));
     out.back() = '\n';
   }
   for (const ServoOffset& o : c->servo_offsets)
     out += fmt::format("  {}: servo {} offset {} units (written to the servo)\n", o.joint, o.servo, o.units);
-  if (c->gripper) out += fmt::format("  gripper: open {:.4f}, closed {:.4f}\n", c->gripper->open, c->gripper->closed);
-  for (const auto& l : c->link_lengths) out += fmt::format("  link {}: {}\n", l.joint, quantity_text(Dimension::length, l.length));
+  if (c->gripper && model().gripper) {
+    const Dimension d = model().joints[std::size_t(model().gripper->joint)].dimension;
+    out += fmt::format("  gripper: open {}, closed {}\n", format_quantity(d, c->gripper->open), format_quantity(d, c->gripper->closed));
+  }
+  for (const auto& l : c->link_lengths) out += fmt::format("  link {}: {}\n", l.joint, format_quantity(Dimension::length, l.length));
   return out;
 }
 
