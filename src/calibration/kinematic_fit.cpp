@@ -12,7 +12,13 @@ namespace armctl::calibration {
 
 namespace {
 
-using Matrix = Eigen::MatrixXd;
+// Row-major on purpose: libompl.so (the --avoid planner) instantiates Eigen's JacobiSVD and
+// ColPivHouseholderQR of MatrixXd too, and in the sanitizer build an executable that defines
+// the same instantiations exports them, so OMPL's calls land in ours. Eigen's allocator
+// differs under ASan (its own aligned malloc, not malloc's), and OMPL then frees what ours
+// allocated (a bad free in `move-to --avoid`). Another storage order is another
+// instantiation: each side keeps its own.
+using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using Vector = Eigen::VectorXd;
 
 // Central differences: rad and m both, a step well above rounding and well below any
