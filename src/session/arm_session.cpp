@@ -31,6 +31,7 @@ Result<std::unique_ptr<ArmSession>> open_device(arm::ArmModel model, const std::
   s->connection = std::move(opened->connection);
   s->reconnects = opened->reconnects;
   s->paced = opened->paced;
+  s->board = opened->board;
   s->arm = std::make_unique<arm::Arm>(std::move(model), std::move(opened->device));
   return s;
 }

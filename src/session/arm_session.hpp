@@ -21,6 +21,7 @@ struct ArmSession {
   std::unique_ptr<arm::Arm> arm;
   bool reconnects = false;  // OpenedDevice::reconnects
   bool paced = false;       // OpenedDevice::paced
+  robot_commands::Client* board = nullptr;  // OpenedDevice::board
 };
 
 // A URI that names a joint bus (sim..., unix:..., serial:...&select=...), not a Robot

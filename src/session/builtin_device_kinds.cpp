@@ -70,6 +70,7 @@ Result<OpenedDevice> open_rc_arm(const DeviceRequest& r) {
   std::shared_ptr<XarmSession> board = std::move(rc).value();
   OpenedDevice out;
   out.device = std::make_unique<arm::RcArmDevice>(r.model, *board->client);
+  out.board = board->client.get();
   out.connection = std::move(board);
   return out;
 }

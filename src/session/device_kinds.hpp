@@ -14,6 +14,7 @@
 #include "arm/arm_device.hpp"
 #include "arm/arm_model.hpp"
 #include "core/error.hpp"
+#include "devices/robot_commands/client.hpp"
 #include "transport/device_uri_parts.hpp"
 
 namespace armctl::session {
@@ -49,6 +50,9 @@ struct OpenedDevice {
   // A lost link is opened again by itself (SessionOptions::reconnect, where the kind can).
   bool reconnects = false;
   bool paced = false;  // an embedded simulator held in step with the wall clock
+  // A Robot Commands board's client (owned by `connection`), for what lies under the arm:
+  // its servos' IDs and offsets (the calibration wizard); nullptr for other devices.
+  robot_commands::Client* board = nullptr;
 };
 
 // May throw (a device's constructor): open_arm_session turns that into its error.

@@ -14,7 +14,6 @@
 #include "apps/armctl/commands.hpp"
 #include "apps/armctl/serve_support.hpp"
 #include "apps/armctl/stdin_lines.hpp"
-#include "arm/rc_arm_device.hpp"
 #include "calibration/arm_file_writer.hpp"
 #include "calibration/calibration_session.hpp"
 #include "calibration/rc_servo_bus.hpp"
@@ -23,7 +22,6 @@
 #include "core/must.hpp"
 #include "core/quantity.hpp"
 #include "session/arm_session.hpp"
-#include "session/xarm_session.hpp"
 
 namespace armctl::cli {
 
@@ -337,32 +335,13 @@ void run_calibrate(const CalibrateArgs& a) {
                       fmt::format("step '{}': allowed all, find, which, direction, zero, limits, gripper, touch, fit", a.step));
   if (a.zero_in != "servo" && a.zero_in != "file")
     throw ArmctlError(ErrorKind::invalid_argument, fmt::format("--zero-in '{}': allowed servo or file", a.zero_in));
-  const arm::ArmModel model = must(session::load_arm(a.arm));
-  // The xArm's board is opened here, not through the arm session, because the wizard also
-  // talks to its servos underneath the arm (IDs, offsets).
-  std::unique_ptr<session::XarmSession> board;
-  std::unique_ptr<session::ArmSession> opened;
-  std::unique_ptr<arm::Arm> own_arm;
+  // Through the arm session, like every command; a Robot Commands board's client is what the
+  // wizard reaches its servos' IDs and offsets with.
+  auto opened = must(session::open_arm_session(a.arm, a.device));
+  arm::Arm* arm = opened->arm.get();
+  const arm::ArmModel& model = arm->model();
   std::unique_ptr<calibration::RcServoBus> servos;
-  arm::Arm* arm = nullptr;
-  // The Arm session's rule (session/builtin_device_kinds.cpp): the joint bus when the URI
-  // names one ("sim" does) or the arm has no Robot Commands map, else the board.
-  const std::string uri = a.device.empty() ? "sim" : a.device;
-  const bool bus = model.supports(arm::Protocol::joint_bus) &&
-                   (session::device_is_joint_bus(uri) || !model.supports(arm::Protocol::robot_commands));
-  const bool rc = !bus && model.supports(arm::Protocol::robot_commands);
-  if (rc) {
-    int count = 0;
-    for (const auto& j : model.joints)
-      if (const arm::DeviceMap* m = j.map(arm::Protocol::robot_commands)) count = std::max(count, m->id);
-    board = must(session::open_xarm_session(uri, count, 0));
-    own_arm = std::make_unique<arm::Arm>(model, std::make_unique<arm::RcArmDevice>(model, *board->client));
-    servos = std::make_unique<calibration::RcServoBus>(*board->client);
-    arm = own_arm.get();
-  } else {
-    opened = must(session::open_arm_session(a.arm, a.device));
-    arm = opened->arm.get();
-  }
+  if (opened->board) servos = std::make_unique<calibration::RcServoBus>(*opened->board);
   calibration::SessionOptions options;
   options.servo_offsets = a.zero_in == "servo";
   calibration::CalibrationSession s(*arm, servos.get(), options);
