@@ -1,5 +1,6 @@
 #include "calibration/joint_steps.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/core.h>
@@ -20,6 +21,11 @@ Status check_joint(const arm::ArmModel& model, int joint) {
 
 double limit_margin(const arm::JointModel& joint) {
   return joint.dimension == Dimension::angle ? kLimitMarginAngle : kLimitMarginLength;
+}
+
+double mark_of(const arm::JointModel& joint) {
+  const double inside = limit_margin(joint) * 2;
+  return std::clamp(0.0, joint.urdf_lower + inside, joint.urdf_upper - inside);
 }
 
 std::optional<JointChange> direction_from_answer(const arm::ArmModel& model, int joint, bool went_as_shown) {

@@ -20,6 +20,11 @@ inline constexpr double kLimitMarginAngle = 0.05235987755982988;  // 3 deg
 inline constexpr double kLimitMarginLength = 0.002;               // 2 mm
 double limit_margin(const arm::JointModel& joint);
 
+// Where the user puts a joint for the zero step (its "mark"): its zero, or a little inside its
+// travel when the zero is an end of it (the SCARA's Z), so that the hand does not press the
+// joint into its end stop. Every wizard (terminal, dashboard, Python) asks for this value.
+double mark_of(const arm::JointModel& joint);
+
 // The joint was moved a small amount in its positive direction; `went_as_shown`: the user says
 // it went the way the picture shows. Nothing to change when it did, else the joint's flip.
 std::optional<JointChange> direction_from_answer(const arm::ArmModel& model, int joint, bool went_as_shown);

@@ -106,13 +106,6 @@ std::string value_text(const arm::JointModel& j, double si) {
                                          : fmt::format("{:.2f} mm", si * 1000);
 }
 
-// Where the user puts a joint for its zero: its zero, or a little inside its travel when
-// the zero is an end of it (the SCARA's Z).
-double mark_of(const arm::JointModel& j) {
-  const double inside = calibration::limit_margin(j) * 2;
-  return std::clamp(0.0, j.urdf_lower + inside, j.urdf_upper - inside);
-}
-
 class Wizard {
  public:
   Wizard(calibration::CalibrationSession& s, Terminal& t, std::vector<int> joints) : s_(s), t_(t), joints_(std::move(joints)) {}
@@ -216,7 +209,7 @@ class Wizard {
   }
 
   Next zero(int j) {
-    const double mark = mark_of(joint(j));
+    const double mark = calibration::mark_of(joint(j));
     Next n = enter(t_, fmt::format("Move {} by hand to its mark ({}), then", joint(j).name, value_text(joint(j), mark)));
     if (n != Next::done) return n;
     auto z = s_.zero_here(j, mark);
