@@ -110,4 +110,18 @@ out=$(printf '\n' | ASAN_OPTIONS=detect_leaks=0 ARMCTL_STATE_DIR="$dir/xstate" "
 echo "$out" | grep -q "(ID [2-6]): NO ANSWER" || { echo "FAIL: no silent ID: $out"; exit 1; }
 echo "$out" | grep -qF "reaches EVERY servo on the bus" || { echo "FAIL: no word of BusServoInfoWrite: $out"; exit 1; }
 echo "$out" | grep -qF "nothing to write" || { echo "FAIL: $out"; exit 1; }
+
+# 6. The pictures (docs/calibration.md "Pictures"): written for an arm file without a device; with
+# a device or a step refused (it opens none); a path that cannot be written named.
+out=$(ASAN_OPTIONS=detect_leaks=0 "$armctl" calibrate --arm "$file" --pictures "$dir/joints.svg" 2>&1) || { echo "FAIL: pictures: $out"; exit 1; }
+echo "$out" | grep -qF "7 joints of scara" || { echo "FAIL: $out"; exit 1; }
+[ "$(grep -c 'grey: at its mark' "$dir/joints.svg")" = 7 ] || fail "not one panel per joint in $dir/joints.svg"
+set +e
+out=$(ASAN_OPTIONS=detect_leaks=0 "$armctl" calibrate --arm "$file" --device 'sim?miscal=7' --pictures "$dir/j2.svg" 2>&1); rc=$?
+set -e
+[ $rc -ne 0 ] && echo "$out" | grep -qF -- "--pictures opens no device" || { echo "FAIL: pictures with a device: $rc $out"; exit 1; }
+set +e
+out=$(ASAN_OPTIONS=detect_leaks=0 "$armctl" calibrate --arm "$file" --pictures "$dir/no/such/dir/j.svg" 2>&1); rc=$?
+set -e
+[ $rc -ne 0 ] && echo "$out" | grep -qF "$dir/no/such/dir" || { echo "FAIL: unwritable pictures: $rc $out"; exit 1; }
 echo "calibrate under tmux: refused, confirmed, interrupted and bad arguments as expected"

@@ -6,6 +6,7 @@
 // changes shown at the end; quitting, Ctrl-C, the end of input or an error write nothing.
 #include <cstdlib>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -16,8 +17,10 @@
 #include "apps/armctl/stdin_lines.hpp"
 #include "calibration/arm_file_writer.hpp"
 #include "calibration/calibration_session.hpp"
+#include "calibration/joint_pictures.hpp"
 #include "calibration/rc_servo_bus.hpp"
 #include "calibration/touch_sheet.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/must.hpp"
 #include "core/quantity.hpp"
@@ -38,6 +41,7 @@ struct CalibrateArgs {
   // offset is not settled (docs/calibration.md "Known limit"), and the file's zero holds
   // either way.
   std::string zero_in = "file";
+  std::string pictures;  // --pictures FILE: write the joints' pictures and stop
 };
 
 // The user quit (q) or the input ended: nothing is written.
@@ -113,7 +117,13 @@ class Wizard {
   void run(const std::string& step) {
     if (step == "find") return find();
     if (step == "which") return per_joint("which", [&](int j) { return which(j); });
-    if (step == "direction") return per_joint("direction", [&](int j) { return direction(j); }, true);
+    if (step == "direction") {
+      // per_joint prints the step's heading; the pictures' place goes under it.
+      return per_joint("direction", [&](int j) { return direction(j); }, true,
+                       fmt::format("Pictures: docs/images/joints-{}.svg in armctl's sources (for another arm file: "
+                                   "armctl calibrate --arm FILE --pictures OUT.svg)\n",
+                                   model().family));
+    }
     if (step == "zero") return released([&] { per_joint("zero", [&](int j) { return zero(j); }); });
     if (step == "limits") return released([&] { per_joint("limits", [&](int j) { return limits(j); }, true); });
     if (step == "gripper") return released([&] { gripper(); });
@@ -135,8 +145,8 @@ class Wizard {
 
   // Each joint in turn; a step answers Next::redo to run again.
   template <typename F>
-  void per_joint(const char* step, F f, bool chain_only = false) {
-    t_.say(fmt::format("== {} ==\n", step));
+  void per_joint(const char* step, F f, bool chain_only = false, const std::string& intro = "") {
+    t_.say(fmt::format("== {} ==\n{}", step, intro));
     for (int j : joints_) {
       if (chain_only && joint(j).role != arm::JointRole::chain) continue;
       while (f(j) == Next::redo) {
@@ -202,7 +212,7 @@ class Wizard {
       return enter(t_, "Go on?") == Next::redo ? Next::redo : Next::skip;
     }
     Next next = Next::done;
-    auto a = yes_no(t_, fmt::format("Did {} go the way the picture shows (docs/calibration.md)?", joint(j).name), next);
+    auto a = yes_no(t_, fmt::format("Did {} go the way panel {} of the pictures shows?", joint(j).name, j + 1), next);
     if (!a) return next;
     must(s_.answer_direction(j, *a));
     return Next::done;
@@ -322,7 +332,22 @@ class Wizard {
   std::vector<int> joints_;
 };
 
+// The pictures the direction and zero steps refer to, for this arm file (docs/calibration.md
+// "Pictures"); no device is opened.
+void write_pictures(const CalibrateArgs& a) {
+  const arm::ArmModel model = must(session::load_arm(a.arm));
+  const std::string svg = must(calibration::joint_pictures_svg(model));
+  must(write_file_atomically(a.pictures, std::span(reinterpret_cast<const std::uint8_t*>(svg.data()), svg.size())));
+  fmt::print("{}: {} joints of {} at their marks and moved positive\n", a.pictures, model.joint_count(), model.name);
+}
+
 void run_calibrate(const CalibrateArgs& a) {
+  if (!a.pictures.empty()) {
+    if (!a.device.empty() || a.step != "all")
+      throw ArmctlError(ErrorKind::invalid_argument,
+                        "--pictures opens no device and runs no step: give it alone with --arm");
+    return write_pictures(a);
+  }
   if (a.step != "all" && std::find(kSteps.begin(), kSteps.end(), a.step) == kSteps.end())
     throw ArmctlError(ErrorKind::invalid_argument,
                       fmt::format("step '{}': allowed all, find, which, direction, zero, limits, gripper, touch, fit", a.step));
@@ -391,6 +416,9 @@ void add_calibrate_command(CLI::App& app) {
   cmd->add_option("--zero-in", args->zero_in,
                   "file (default): every zero goes to the arm file; servo: an xArm joint's zero goes to the servo's "
                   "own offset when it fits -125..125 units (see docs/calibration.md: not yet for the emulator)");
+  cmd->add_option("--pictures", args->pictures,
+                  "Write the pictures of each joint's mark and positive direction (SVG) to this file and stop; no "
+                  "device is opened");
   cmd->add_option("step", args->step, "all (default) | find | which | direction | zero | limits | gripper | touch | fit");
   cmd->callback([args] { run_calibrate(*args); });
 }
