@@ -88,6 +88,71 @@ void run_moves(joint_avr::AvrMegaArm& arm) {
   }
 }
 
+// Where a get_position's time goes: the six turnarounds the spec makes sequential (select
+// rise -> READY starts, READY in -> COMMAND starts, COMMAND out -> RESPONSE starts,
+// RESPONSE in -> select falls, select fall -> STATUS starts, STATUS in -> next select
+// rises), averaged over the transactions traced, and what is left of a transaction beyond
+// its wire time and those six (the emulated UARTs' second byte of a word).
+class TurnaroundTrace {
+ public:
+  explicit TurnaroundTrace(joint_avr::AvrMegaArm& arm) : arm_(arm), byte_(arm.arm().bus().byte_time()) {
+    arm_.set_bus_trace([this](const joint_avr::BusTraceEvent& e) { on_event(e); });
+  }
+  ~TurnaroundTrace() { arm_.set_bus_trace(nullptr); }
+
+  void print(std::uint32_t baud) const {
+    if (count_ == 0) return;
+    const char* names[6] = {"rise->READY", "READY->COMMAND", "COMMAND->RESPONSE", "RESPONSE->fall", "fall->STATUS",
+                            "STATUS->rise"};
+    std::printf("# mega_turnarounds_%u (mean of %d get_position, us):", baud, count_);
+    double total = 0;
+    for (int i = 0; i < 6; ++i) {
+      std::printf(" %s %.1f%s", names[i], us(sum_[i]) / count_, i % 2 == 0 ? " (joint)" : " (Mega)");
+      total += us(sum_[i]);
+    }
+    const double wire = us(byte_) * 8;
+    std::printf("; transaction %.1f = wire %.1f + turnarounds %.1f + other %.1f\n", us(whole_) / count_, wire,
+                total / count_, (us(whole_) - total) / count_ - wire);
+  }
+
+ private:
+  using Kind = joint_avr::BusTraceEvent::Kind;
+  static double us(Duration d) { return std::chrono::duration<double, std::micro>(d).count(); }
+
+  void on_event(const joint_avr::BusTraceEvent& e) {
+    if (e.kind == Kind::select_rise) {
+      finish(e.at);
+      events_.clear();
+    }
+    events_.push_back(e);
+  }
+  // A get_position: rise, READY (2 joint bytes), COMMAND (2 Mega bytes), RESPONSE (2),
+  // fall, STATUS (2); `next_rise` ends it.
+  void finish(TimePoint next_rise) {
+    const Kind shape[10] = {Kind::select_rise, Kind::joint_byte,  Kind::joint_byte,  Kind::master_byte,
+                            Kind::master_byte, Kind::joint_byte,  Kind::joint_byte,  Kind::select_fall,
+                            Kind::joint_byte,  Kind::joint_byte};
+    if (events_.size() != 10) return;
+    for (int i = 0; i < 10; ++i)
+      if (events_[i].kind != shape[i]) return;
+    const auto& v = events_;
+    // Joint bytes are stamped at their end, the Mega's at their start (the write).
+    const TimePoint command_end = std::max(v[4].at, v[3].at + byte_) + byte_;
+    const Duration gaps[6] = {v[1].at - byte_ - v[0].at, v[3].at - v[2].at, v[5].at - byte_ - command_end,
+                              v[7].at - v[6].at,         v[8].at - byte_ - v[7].at, next_rise - v[9].at};
+    for (int i = 0; i < 6; ++i) sum_[i] += gaps[i];
+    whole_ += next_rise - v[0].at;
+    ++count_;
+  }
+
+  joint_avr::AvrMegaArm& arm_;
+  Duration byte_;
+  std::vector<joint_avr::BusTraceEvent> events_;
+  Duration sum_[6]{};
+  Duration whole_{};
+  int count_ = 0;
+};
+
 void loop_line(const std::string& name, const LoopWatch& w, double limit) {
   std::printf("# %s: %llu passes, worst %.1f us\n", name.c_str(), static_cast<unsigned long long>(w.passes()),
               double(w.worst()) / 16.0);
@@ -100,7 +165,29 @@ int bench_baud(std::uint32_t baud) {
   // Refresh: every transaction while idle is a get_position (two select edges each).
   const auto edges0 = arm.select_edges();
   const TimePoint t0 = arm.now();
-  arm.advance(std::chrono::seconds(3));
+  {
+    const TurnaroundTrace trace(arm);
+    arm.advance(std::chrono::seconds(3));
+    trace.print(baud);
+    // The joints' own share, on their chips: from the event (as the chip saw it) to the
+    // first byte written to UDR0, in cycles.
+    joint_avr::LatencyStats rise, rx, fall;
+    for (int j = 1; j <= arm.arm().joint_count(); ++j) {
+      const auto& joint = arm.arm().joint(j);
+      for (auto [to, from] : {std::pair{&rise, &joint.select_rise_to_tx()}, std::pair{&rx, &joint.rx_to_tx()},
+                              std::pair{&fall, &joint.select_fall_to_tx()}}) {
+        to->count += from->count;
+        to->total_cycles += from->total_cycles;
+        to->max_cycles = std::max(to->max_cycles, from->max_cycles);
+      }
+    }
+    auto mean = [](const joint_avr::LatencyStats& s) { return s.count == 0 ? 0.0 : double(s.total_cycles) / s.count; };
+    std::printf("# joint chips, event -> first reply byte written (cycles, mean / worst since start): select rise "
+                "%.0f / %llu, last byte in %.0f / %llu, select fall %.0f / %llu\n",
+                mean(rise), static_cast<unsigned long long>(rise.max_cycles), mean(rx),
+                static_cast<unsigned long long>(rx.max_cycles), mean(fall),
+                static_cast<unsigned long long>(fall.max_cycles));
+  }
   const double sweeps = double(arm.select_edges() - edges0) / 2.0 / 7.0;
   const double rate = sweeps / seconds(arm.now() - t0);
   // The floor at the rate the wire really runs: the AVRs' U2X rate (117,647 baud for 115200).

@@ -153,9 +153,15 @@ void AvrChip::on_uart_control_write(avr_t* avr, std::uint16_t, std::uint8_t, voi
   // enable only if its transmit timer is idle, and that timer runs on for one byte time
   // after the last byte has gone: a reply started just after a previous one waited up to a
   // byte time (a joint's STATUS after its RESPONSE: 1 ms at 9600).
+  // The flag itself, too: simavr 1.6 clears UDRE with TXEN and leaves it clear after TXEN is
+  // set until a byte has gone, where a real UART shows its empty data register whatever
+  // TXEN is (firmware that writes UDR at once when UDRE is set, instead of waiting for the
+  // interrupt, saw a full register).
   auto* uart = static_cast<avr_uart_t*>(param);
-  if (avr_regbit_get(avr, uart->udrc.enable) && avr_regbit_get(avr, uart->txen) && uart->tx_cnt == 0 &&
-      !uart->udrc.pending) {
+  if (uart->tx_cnt != 0) return;
+  if (!avr_regbit_get(avr, uart->txen) || !avr_regbit_get(avr, uart->udrc.enable)) {
+    avr_regbit_set(avr, uart->udrc.raised);  // UDRE, with or without the transmitter
+  } else if (!uart->udrc.pending) {
     avr_raise_interrupt(avr, &uart->udrc);
   }
 }

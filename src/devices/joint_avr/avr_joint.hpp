@@ -28,8 +28,10 @@ namespace armctl::joint_avr {
 struct LatencyStats {
   std::uint64_t count = 0;
   std::uint64_t max_cycles = 0;
+  std::uint64_t total_cycles = 0;  // for the mean
   void add(std::uint64_t cycles) {
     ++count;
+    total_cycles += cycles;
     if (cycles > max_cycles) max_cycles = cycles;
   }
 };

@@ -117,6 +117,7 @@ void AvrMegaArm::step(TimePoint end) {
     if (at > now()) bus.run_until(at);
     last_bus_activity_ = at;
     if (e.joint == 0) {
+      if (trace_) trace_(BusTraceEvent{BusTraceEvent::Kind::master_byte, 0, at});
       const std::uint8_t b = e.byte;
       bus.write(std::span<const std::uint8_t>(&b, 1));
       continue;
@@ -126,6 +127,8 @@ void AvrMegaArm::step(TimePoint end) {
     if (was == e.level) continue;
     selects_ = static_cast<std::uint8_t>(e.level ? selects_ | bit : selects_ & ~bit);
     ++select_edges_;
+    if (trace_)
+      trace_(BusTraceEvent{e.level ? BusTraceEvent::Kind::select_rise : BusTraceEvent::Kind::select_fall, e.joint, at});
     if (e.joint <= bus.joint_count()) bus.set_select(e.joint, e.level);
   }
   if (end > now()) bus.run_until(end);
@@ -133,6 +136,7 @@ void AvrMegaArm::step(TimePoint end) {
     const auto b = bus.read_byte(now());
     if (!b) break;
     last_bus_activity_ = now();
+    if (trace_) trace_(BusTraceEvent{BusTraceEvent::Kind::joint_byte, 0, now()});
     mega_->uart_receive(*b, 1);
   }
 }

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -35,6 +36,19 @@ std::string mega_firmware_elf_battery();
 struct UpstreamByte {
   std::uint8_t value;
   TimePoint at;  // its stop bit ended (the host has it)
+};
+
+// One thing on the joint bus, for timing it (bench_mega_controller's turnarounds).
+struct BusTraceEvent {
+  enum class Kind : std::uint8_t {
+    select_rise,
+    select_fall,
+    master_byte,  // the Mega wrote a byte to UART1 (it starts then if the UART was idle)
+    joint_byte,   // a joint's byte reached the Mega (its stop bit ended)
+  };
+  Kind kind;
+  int joint;  // 1..7 for select edges, 0 for bytes
+  TimePoint at;
 };
 
 class AvrMegaArm {
@@ -60,6 +74,8 @@ class AvrMegaArm {
   // pin becomes a high-Z input, and the joint boards' pull-downs take the select lines LOW.
   void reset_mega();
   std::uint64_t select_edges() const { return select_edges_; }
+  // Every select edge and bus byte from now on, in order; empty: none.
+  void set_bus_trace(std::function<void(const BusTraceEvent&)> trace) { trace_ = std::move(trace); }
 
  private:
   struct BusEvent {
@@ -87,6 +103,7 @@ class AvrMegaArm {
   TimePoint last_bus_activity_{};
   std::uint8_t selects_ = 0;
   std::uint64_t select_edges_ = 0;
+  std::function<void(const BusTraceEvent&)> trace_;
 };
 
 }  // namespace armctl::joint_avr
