@@ -10,16 +10,23 @@
 // masked, by the main loop as soon as it wakes (every ISR wakes it) and by the control tick
 // just before it runs, so control_tick() always sees every edge up to its start.
 //
+// Bus events: the select and UART RX ISRs queue each edge and byte, then hand the queue to
+// the controller at once (board::bus_events_queued_from_isr), so READY, RESPONSE and STATUS
+// go out from interrupt context instead of after the main loop wakes.
+//
 // The 1 kHz control tick (about 1,400 cycles) re-enables interrupts while it computes, so
 // encoder edges are sampled on time and bus bytes are not delayed; none of the ISRs that
-// can nest inside it touches the controller (they fill queues), so control_tick() never
-// sees controller state change under it.
+// can nest inside it touches the controller (meanwhile the bus ISRs only fill the queue,
+// which the main loop then hands on), so control_tick() never sees controller state change
+// under it.
 #include <avr/interrupt.h>
 #include <avr/io.h>
 
+#include "board/bus_events.hpp"
 #include "board/encoder_input.hpp"
 #include "board/h_bridge.hpp"
 #include "board/tick_timer.hpp"
+#include "board/uart.hpp"
 #include "joint_firmware.hpp"
 
 namespace firmware {
@@ -34,7 +41,46 @@ void apply_encoder_edges() {
   }
 }
 
+bool service_tx() {
+  const bool enabled = joint.tx_enabled();
+  if (enabled) {
+    board::uart_enable_transmitter();
+    uint8_t byte;
+    while (board::uart_tx_has_room() && joint.next_tx_byte(&byte)) board::uart_queue_tx(byte);
+  }
+  return enabled;
+}
+
+// Out of line: one copy for the ISRs and the main loop (flash, docs/firmware.md "Budgets").
+__attribute__((noinline)) bool handle_next_bus_event() {
+  board::BusEvent event;
+  if (!board::bus_event_pop(&event)) return false;
+  const uint32_t now = board::tick_timer_us();
+  apply_encoder_edges();  // a get_position answers with every edge up to now
+  if (event == board::select_high_event) {
+    joint.on_select(true, now);
+  } else if (event == board::select_low_event) {
+    joint.on_select(false, now);
+  } else {
+    joint.on_rx_byte(static_cast<uint8_t>(event), now);
+  }
+  service_tx();
+  return true;
+}
+
 }  // namespace firmware
+
+// The select and UART RX ISRs call this after queuing an event: the event is handled at
+// once, in the ISR, so READY, RESPONSE and STATUS start without waiting for the main loop
+// (the bus turnarounds, docs/firmware.md "Budgets"). Not while the control tick computes
+// with interrupts enabled (OCIE0A is off exactly then: the sharing rules above); the main
+// loop handles what queued meanwhile, in order, and until it has, later events queue
+// behind them.
+void board::bus_events_queued_from_isr() {
+  if (!(TIMSK0 & _BV(OCIE0A))) return;
+  while (firmware::handle_next_bus_event()) {
+  }
+}
 
 // Any change on A (INT0) or B (INT1).
 ISR(INT0_vect) {

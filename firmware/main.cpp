@@ -1,6 +1,6 @@
 // Joint controller firmware for the ATmega328P (Arduino Nano, 16 MHz), plain avr-libc.
 // The portable JointController (src/portable) does all the work; this is the main loop:
-// hand bus events to the controller, move its reply bytes to the UART, release TX when
+// hand on the bus events the ISRs could not (joint_isrs.cpp), release TX when
 // the joint may no longer drive it, light the LED during a transaction, feed the
 // watchdog, and sleep until the next interrupt. docs/firmware.md describes the whole.
 #include <avr/interrupt.h>
@@ -70,35 +70,13 @@ void sleep_until_interrupt() {
   }
 }
 
-void handle_bus_events() {
-  board::BusEvent event;
-  while (board::bus_event_pop(&event)) {
-    const uint32_t now = board::tick_timer_us();
-    ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
-      if (event == board::select_high_event) {
-        joint.on_select(true, now);
-      } else if (event == board::select_low_event) {
-        joint.on_select(false, now);
-      } else {
-        joint.on_rx_byte(static_cast<uint8_t>(event), now);
-      }
-    }
-  }
-}
-
-// Moves reply bytes to the UART while the controller allows this joint to drive TX, and
-// turns the transmitter off (TX pin high-Z) once it may not and the last byte has left.
-// A byte taken from the controller is always sent in full: a word is never cut in half.
-void service_tx() {
+// Turns the transmitter off (TX pin high-Z) once this joint may no longer drive TX and the
+// last byte has left. Reply bytes themselves are moved by firmware::handle_next_bus_event.
+void release_tx_when_done() {
   bool enabled;
   ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
     joint.poll(board::tick_timer_us());
-    enabled = joint.tx_enabled();
-    if (enabled) {
-      board::uart_enable_transmitter();
-      uint8_t byte;
-      while (board::uart_tx_has_room() && joint.next_tx_byte(&byte)) board::uart_queue_tx(byte);
-    }
+    enabled = firmware::service_tx();
   }
   if (!enabled) board::uart_release_transmitter_when_idle();
 }
@@ -150,8 +128,13 @@ int main() {
           {board::bus_events_lost(), firmware::encoder_edges_lost, board::uart_rx_errors(), board_reset_cause}};
       joint.set_board_diagnostics(d);
     }
-    handle_bus_events();
-    service_tx();
+    // Events the ISRs could not handle at once (they came during the control computation).
+    for (;;) {
+      bool handled;
+      ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { handled = firmware::handle_next_bus_event(); }
+      if (!handled) break;
+    }
+    release_tx_when_done();
     bool in_transaction;
     ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { in_transaction = joint.transaction().selected() || joint.tx_enabled(); }
     board::status_led_set(in_transaction || board::uart_transmitter_enabled());

@@ -14,6 +14,9 @@ const BusEvent select_high_event = 0x101;
 
 // Called from ISRs only (interrupts are off there).
 void bus_event_push_from_isr(BusEvent event);
+// Defined by the firmware: the ISRs call it after queuing events (interrupts off), so that
+// it may handle them at once.
+void bus_events_queued_from_isr();
 // Main loop: the next event, if any.
 bool bus_event_pop(BusEvent* event);
 bool bus_events_pending();

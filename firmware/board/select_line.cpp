@@ -37,4 +37,5 @@ ISR(PCINT0_vect) {
   // queue the select edge before that byte and the joint would abandon the transaction.
   board::uart_take_received_from_isr();
   board::bus_event_push_from_isr(high ? board::select_high_event : board::select_low_event);
+  board::bus_events_queued_from_isr();
 }

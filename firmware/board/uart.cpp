@@ -76,6 +76,12 @@ bool uart_release_transmitter_when_idle() {
 bool uart_tx_has_room() { return !tx_ring.full(); }
 
 bool uart_queue_tx(uint8_t byte) {
+  // Nothing queued and the data register empty: straight to the hardware, without waiting
+  // for the UDRE interrupt (part of every bus turnaround). Callers mask interrupts.
+  if (tx_ring.empty() && (UCSR0A & _BV(UDRE0))) {
+    write_udr(byte);
+    return true;
+  }
   if (!tx_ring.push(byte)) return false;
   // The UDRE ISR moves it to the hardware (and clears UDRIE0 itself: mask while we set it).
   ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { UCSR0B |= _BV(UDRIE0); }
@@ -107,7 +113,10 @@ void uart_take_received_from_isr() {
 }
 }  // namespace board
 
-ISR(USART_RX_vect) { board::take_received_byte(); }
+ISR(USART_RX_vect) {
+  board::take_received_byte();
+  board::bus_events_queued_from_isr();
+}
 
 ISR(USART_UDRE_vect) {
   uint8_t byte;
