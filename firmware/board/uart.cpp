@@ -12,14 +12,19 @@ namespace board {
 namespace {
 // A reply is at most 2 words in flight (RESPONSE, then STATUS later): 8 bytes is plenty.
 RingBuffer<uint8_t, 8> tx_ring;
-volatile bool tx_written_since_enable = false;
+// The transmitter is to be turned off as soon as the ring has been handed to the UART.
+volatile bool release_wanted = false;
 volatile uint8_t rx_errors = 0;
 
-void write_udr(uint8_t byte) {
-  // Clear TXC0 (write one) so it tells when *this* byte has left; keep U2X0 set.
-  UCSR0A = static_cast<uint8_t>((UCSR0A & _BV(U2X0)) | _BV(TXC0));
-  UDR0 = byte;
-  tx_written_since_enable = true;
+// Turning TXEN0 off takes effect only once the data register and the shift register hold
+// nothing more to send (datasheet, "Disabling the Transmitter"): the UART itself lets go
+// of the pin right after the last stop bit. So the transmitter is turned off as soon as
+// the last byte is in the UART, not from an interrupt after it has left, whose latency (an
+// interrupt-masked section of up to ~80 us) let this joint hold TX while the next one,
+// answering from its select interrupt, had already enabled its own.
+void release_transmitter() {
+  UCSR0B &= static_cast<uint8_t>(~(_BV(TXEN0) | _BV(UDRIE0)));
+  release_wanted = false;
 }
 }  // namespace
 
@@ -45,11 +50,8 @@ void uart_end() {
 
 void uart_enable_transmitter() {
   ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
-    UCSR0B &= static_cast<uint8_t>(~_BV(TXCIE0));  // allowed again: no release pending
-    if (!(UCSR0B & _BV(TXEN0))) {
-      tx_written_since_enable = false;
-      UCSR0B |= _BV(TXEN0);
-    }
+    release_wanted = false;  // allowed again: no release pending
+    UCSR0B |= _BV(TXEN0);
   }
 }
 
@@ -57,20 +59,14 @@ bool uart_transmitter_enabled() { return (UCSR0B & _BV(TXEN0)) != 0; }
 
 bool uart_release_transmitter_when_idle() {
   if (!(UCSR0B & _BV(TXEN0))) return true;
-  bool idle;
   ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
-    idle = tx_ring.empty() && !(UCSR0B & _BV(UDRIE0)) &&
-           (!tx_written_since_enable || (UCSR0A & _BV(TXC0)));
-    if (idle) {
-      UCSR0B &= static_cast<uint8_t>(~(_BV(TXEN0) | _BV(TXCIE0)));
+    if (tx_ring.empty()) {
+      release_transmitter();
     } else {
-      // Release from the TX-complete ISR the moment the last stop bit has left, rather than
-      // at the next wake-up of the main loop (up to 1 ms later, while the master may
-      // already be talking to the next joint).
-      UCSR0B |= _BV(TXCIE0);
+      release_wanted = true;  // the UDRE ISR does it once it has handed on the last byte
     }
   }
-  return idle;
+  return !(UCSR0B & _BV(TXEN0));
 }
 
 bool uart_tx_has_room() { return !tx_ring.full(); }
@@ -79,7 +75,7 @@ bool uart_queue_tx(uint8_t byte) {
   // Nothing queued and the data register empty: straight to the hardware, without waiting
   // for the UDRE interrupt (part of every bus turnaround). Callers mask interrupts.
   if (tx_ring.empty() && (UCSR0A & _BV(UDRE0))) {
-    write_udr(byte);
+    UDR0 = byte;
     return true;
   }
   if (!tx_ring.push(byte)) return false;
@@ -120,17 +116,12 @@ ISR(USART_RX_vect) {
 
 ISR(USART_UDRE_vect) {
   uint8_t byte;
-  if (board::tx_ring.pop(&byte)) {
-    board::write_udr(byte);
-  } else {
-    UCSR0B &= static_cast<uint8_t>(~_BV(UDRIE0));
-  }
-}
-
-// TX complete: the shift register is empty and nothing is waiting. Armed only while the main
-// loop wants the transmitter released (uart_release_transmitter_when_idle).
-ISR(USART_TX_vect) {
-  if (board::tx_ring.empty() && !(UCSR0B & _BV(UDRIE0))) {
-    UCSR0B &= static_cast<uint8_t>(~(_BV(TXEN0) | _BV(TXCIE0)));
+  if (board::tx_ring.pop(&byte)) UDR0 = byte;
+  if (board::tx_ring.empty()) {
+    if (board::release_wanted) {
+      board::release_transmitter();
+    } else {
+      UCSR0B &= static_cast<uint8_t>(~_BV(UDRIE0));
+    }
   }
 }

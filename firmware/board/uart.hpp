@@ -16,8 +16,8 @@ void uart_end();                 // receiver and transmitter off
 
 void uart_enable_transmitter();
 bool uart_transmitter_enabled();
-// Turns the transmitter off once every queued byte has fully left the shift register; true
-// when it is off.
+// Turns the transmitter off once every queued byte is in the UART (which drives the pin
+// until the last of them has fully left); true when it is off.
 bool uart_release_transmitter_when_idle();
 
 bool uart_tx_has_room();
