@@ -76,8 +76,10 @@ __attribute__((noinline)) bool handle_next_bus_event() {
 // with interrupts enabled (OCIE0A is off exactly then: the sharing rules above); the main
 // loop handles what queued meanwhile, in order, and until it has, later events queue
 // behind them.
+bool board::bus_events_handled_in_isr() { return (TIMSK0 & _BV(OCIE0A)) != 0; }
+
 void board::bus_events_queued_from_isr() {
-  if (!(TIMSK0 & _BV(OCIE0A))) return;
+  if (!board::bus_events_handled_in_isr()) return;
   while (firmware::handle_next_bus_event()) {
   }
 }

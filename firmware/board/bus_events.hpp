@@ -17,6 +17,8 @@ void bus_event_push_from_isr(BusEvent event);
 // Defined by the firmware: the ISRs call it after queuing events (interrupts off), so that
 // it may handle them at once.
 void bus_events_queued_from_isr();
+// Defined by the firmware: whether bus_events_queued_from_isr() hands events on at once.
+bool bus_events_handled_in_isr();
 // Main loop: the next event, if any.
 bool bus_event_pop(BusEvent* event);
 bool bus_events_pending();
