@@ -24,8 +24,9 @@
 // Rules for that split: while control_compute() runs, interrupts may call
 // on_encoder_edge(), on_select(), poll(), next_tx_byte(), tx_enabled() - never
 // on_rx_byte() (a command changes loop state), execute(), begin() or the views. A board that
-// calls on_rx_byte() from its UART RX ISR must therefore keep RXCIE0 off during
-// control_compute() (the UART buffers 2 bytes, ~2 ms at 9600 baud). Running control_tick()
+// calls on_rx_byte() from its UART RX ISR must therefore not do so during control_compute():
+// keep RXCIE0 off meanwhile (the UART buffers 2 bytes, ~2 ms at 9600 baud), or queue the
+// byte for later, as firmware/joint_isrs.cpp does. Running control_tick()
 // or the pair from the main loop on a 1 ms flag (bus bytes also handled in the main loop)
 // is equally fine: then control_sample()
 // (reads the int32 count) needs ATOMIC_BLOCK and control_compute() needs nothing.
