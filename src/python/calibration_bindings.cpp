@@ -50,8 +50,8 @@ class PyCalibration {
   }
 
   // A joint as Python names it: its index (0-based, the model's order) or its name.
-  int joint(const JointArg& j) const {
-    const arm::ArmModel& m = session_->model();
+  int joint(const JointArg& j) {
+    const arm::ArmModel& m = s().model();
     if (const int* i = std::get_if<int>(&j)) {
       if (*i < 0 || *i >= m.joint_count())
         raise(ErrorKind::invalid_argument, fmt::format("joint {}: allowed an index 0..{} or a name", *i, m.joint_count() - 1));
@@ -67,13 +67,18 @@ class PyCalibration {
   // Runs `f` in the arm's turn with the GIL released.
   template <typename F>
   auto step(F&& f) {
-    if (!session_) raise(ErrorKind::invalid_argument, "this calibration session has ended (its with block was left)");
+    s();
     const auto turn = gate_.enter();
     return released(std::forward<F>(f));
   }
 
   void end() { session_.reset(); }
-  calibration::CalibrationSession& s() { return *session_; }
+  // Results in SI, as every armctl.Arm call gives them.
+  calibration::JsonValues si() { return {s().model(), calibration::Units::si}; }
+  calibration::CalibrationSession& s() {
+    if (!session_) raise(ErrorKind::invalid_argument, "this calibration session has ended (its with block was left)");
+    return *session_;
+  }
 
   static void define(py::module_& m);
 
@@ -113,7 +118,7 @@ void PyCalibration::define(py::module_& m) {
       }, "The joints' names, the model's order (a step's `joint` is an index into it or a name).")
       .def("find", [](C& c) {
         auto r = must_py(c.step([&] { return c.s().find(); }));
-        return to_python(cal::to_json(c.s().model(), r));
+        return to_python(cal::to_json(c.si(), r));
       }, "Step 1: what answers. {'devices': [{'id', 'joint', 'index', 'answers', 'position'}], 'silent': [ids], 'text'}.")
       .def("set_servo_id", [](C& c, int id) { must_py(c.step([&] { return c.s().set_servo_id(id); })); }, "id"_a,
            "Step 1 on the xArm: gives the ONE servo connected the ID `id` (the command reaches every servo on the bus:\n"
@@ -150,37 +155,37 @@ void PyCalibration::define(py::module_& m) {
       .def("zero_here", [](C& c, const JointArg& j, std::optional<double> mark) {
         const int i = c.joint(j);
         const double at = mark.value_or(cal::mark_of(c.s().model().joints[std::size_t(i)]));
-        return to_python(cal::to_json(must_py(c.step([&] { return c.s().zero_here(i, at); }))));
+        return to_python(cal::to_json(c.si(), i, must_py(c.step([&] { return c.s().zero_here(i, at); }))));
       }, "joint"_a, "mark"_a = py::none(),
            "Step 4: the joint stands at its mark (`mark`: its true value there; default default_mark(joint)).\n"
            "{'kind': 'file_zero'|'servo_offset', 'shift', 'servo_offset', 'text'}.")
       .def("limits", [](C& c, const JointArg& j, double end_a, double end_b) {
         const int i = c.joint(j);
-        return to_python(cal::to_json(must_py(c.step([&] { return c.s().limits(i, end_a, end_b); }))));
+        return to_python(cal::to_json(c.si(), i, must_py(c.step([&] { return c.s().limits(i, end_a, end_b); }))));
       }, "joint"_a, "end_a"_a, "end_b"_a,
            "Step 5: the joint's limits from its two ends (readings from read_joint, either order), with a margin;\n"
            "{'lower', 'upper'} in the new readings. Refused when they exclude the zero.")
       .def("gripper", [](C& c, double open, double closed) {
-        return to_python(cal::to_json(must_py(c.step([&] { return c.s().gripper(open, closed); }))));
+        return to_python(cal::to_json(c.si(), must_py(c.step([&] { return c.s().gripper(open, closed); }))));
       }, "open"_a, "closed"_a, "Step 6: the gripper's readings open and closed; {'open', 'closed'} in the new readings.")
       .def("sheet_points", [](C& c) {
         auto marks = must_py(cal::sheet_points(c.s().model(), cal::default_placement(c.s().model())));
         nlohmann::json out = nlohmann::json::array();
-        for (const auto& p : marks) out.push_back(cal::to_json(p));
+        for (const auto& p : marks) out.push_back(cal::to_json(c.si(), p));
         return to_python(out);
       }, "Step 7: the printed sheet's marks where the docs place it: [{'name', 'position': [x, y, z]}] (m).")
       .def("touch", [](C& c, const std::string& name, const std::vector<double>& position) {
         if (position.size() != 3)
           raise(ErrorKind::invalid_argument, fmt::format("position has {} values: give x, y, z in m", position.size()));
         auto point = must_py(cal::user_point(c.s().model(), name, Eigen::Vector3d(position[0], position[1], position[2])));
-        return to_python(cal::to_json(must_py(c.step([&] { return c.s().touch(point); }))));
+        return to_python(cal::to_json(c.si(), must_py(c.step([&] { return c.s().touch(point); }))));
       }, "name"_a, "position"_a,
            "Step 7: the tool point stands on the point `name` at `position` (x, y, z in m, base frame); the joints\n"
            "are read now. Touching a name again replaces it. {'name', 'position', 'joints'}.")
-      .def("verify", [](C& c) { return to_python(cal::to_json(must_py(c.step([&] { return c.s().verify(); })))); },
+      .def("verify", [](C& c) { return to_python(cal::to_json(c.si(), must_py(c.step([&] { return c.s().verify(); })))); },
            "Step 7: the touched points' residuals on the arm as the pending changes have it:\n"
            "{'points': [{'name', 'error', 'distance'}], 'rms', 'max', 'worst'} (m).")
-      .def("fit", [](C& c) { return to_python(cal::to_json(must_py(c.step([&] { return c.s().fit(); })))); },
+      .def("fit", [](C& c) { return to_python(cal::to_json(c.si(), must_py(c.step([&] { return c.s().fit(); })))); },
            "Step 8 (optional): zeros and link lengths fitted to the touched points (10..30), pending until confirm():\n"
            "{'estimates', 'before', 'after', 'condition', 'iterations'}; refused when ill-conditioned.")
       .def("forget", [](C& c, std::optional<JointArg> j) {
@@ -188,7 +193,7 @@ void PyCalibration::define(py::module_& m) {
         const int i = c.joint(*j);
         c.step([&] { c.s().forget(i); });
       }, "joint"_a = py::none(), "Forgets one joint's pending answers, or all (joint None).")
-      .def("changes", [](C& c) { return to_python(cal::to_json(must_py(c.step([&] { return c.s().changes(); })))); },
+      .def("changes", [](C& c) { return to_python(cal::to_json(c.si(), must_py(c.step([&] { return c.s().changes(); })))); },
            "What confirm() would write, checked as a whole:\n"
            "{'joints': [{'joint', 'flip', 'zero_shift', 'limits'}], 'servo_offsets', 'gripper', 'link_lengths', 'empty'}.")
       .def("describe", [](C& c) { return c.step([&] { return c.s().describe(); }); },

@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "core/quantity.hpp"
 #include "web/api_error.hpp"
 
 namespace armctl::web {
@@ -26,8 +27,16 @@ int joint_field(const arm::ArmModel& model, BodyReader& r, const std::string& ke
   bad_value(r.name(key), fmt::format("{} is not allowed; {}", shown(v), allowed));
 }
 
-// A reading (rad or m): finite and of a size a joint can have.
-double reading(BodyReader& r, const std::string& key) { return r.number(key, -100, 100, "a joint reading in rad or m"); }
+// A joint's value as the API gives it (deg or mm), in SI: finite and of a size a joint can have.
+double reading(const arm::ArmModel& model, int joint, BodyReader& r, const std::string& key, const char* what) {
+  const Dimension d = model.joints[std::size_t(joint)].dimension;
+  return from_display(d, r.number(key, -1e5, 1e5, fmt::format("{} of {} in {}", what, model.joints[std::size_t(joint)].name, display_unit(d))));
+}
+std::optional<double> optional_reading(const arm::ArmModel& model, int joint, BodyReader& r, const std::string& key,
+                                       const char* what) {
+  if (!r.has(key)) return std::nullopt;
+  return reading(model, joint, r, key, what);
+}
 
 }  // namespace
 
@@ -52,22 +61,23 @@ CalibrationRequest parse_calibration_request(const arm::ArmModel& model, const s
     q.went_as_shown = r.boolean("went_as_shown");
   } else if (step == "zero") {
     q.joint = joint_field(model, r, "joint");
-    q.mark = r.optional_number("mark", -100, 100, "the joint's true value at its mark, rad or m");
+    q.mark = optional_reading(model, q.joint, r, "mark", "the true value at its mark");
   } else if (step == "limits") {
     q.joint = joint_field(model, r, "joint");
-    q.end_a = reading(r, "end_a");
-    q.end_b = reading(r, "end_b");
+    q.end_a = reading(model, q.joint, r, "end_a", "a reading");
+    q.end_b = reading(model, q.joint, r, "end_b", "a reading");
   } else if (step == "gripper") {
-    q.open = reading(r, "open");
-    q.closed = reading(r, "closed");
+    if (!model.gripper) throw ApiError(409, fmt::format("arm {} has no gripper", model.name));
+    q.open = reading(model, model.gripper->joint, r, "open", "a reading");
+    q.closed = reading(model, model.gripper->joint, r, "closed", "a reading");
   } else if (step == "touch") {
     q.name = r.string("name", 64);
-    const json& p = r.require("position", "[x, y, z] in m");
+    const json& p = r.require("position", "[x, y, z] in mm");
     if (!p.is_array() || p.size() != 3 || !std::all_of(p.begin(), p.end(), [](const json& x) { return x.is_number(); }))
-      bad_value(r.name("position"), fmt::format("{} is not allowed; [x, y, z] in m", shown(p)));
-    for (int i = 0; i < 3; ++i) q.position[i] = p[std::size_t(i)].get<double>();
+      bad_value(r.name("position"), fmt::format("{} is not allowed; [x, y, z] in mm", shown(p)));
+    for (int i = 0; i < 3; ++i) q.position[i] = p[std::size_t(i)].get<double>() / 1000;
     if (!q.position.allFinite() || q.position.norm() > kMaxReach)
-      bad_value(r.name("position"), fmt::format("{} is not allowed; finite, within {} m of the base", shown(p), kMaxReach));
+      bad_value(r.name("position"), fmt::format("{} is not allowed; finite, within {} mm of the base", shown(p), kMaxReach * 1000));
   } else if (step == "forget") {
     if (r.has("joint")) q.joint = joint_field(model, r, "joint");
   }

@@ -3,7 +3,8 @@
 // by it; every step is the engine's, run on the arm's worker thread like any job. Nothing is
 // written until confirm; cancel, a new start, or another client starting its own session
 // drop the pending answers (nothing written). The server goes on driving with the arm file
-// it started with: a confirmed file is used from the next `armctl serve` on.
+// it started with: a confirmed file is used from the next `armctl serve` on. Values in the
+// API's units (deg or mm, the tool in mm: docs/http-api.md "Conventions").
 #include <memory>
 #include <mutex>
 
@@ -15,6 +16,7 @@
 #include "calibration/touch_sheet.hpp"
 #include "web/api_error.hpp"
 #include "web/calibration_request.hpp"
+#include "web/display_value.hpp"
 #include "web/server_state.hpp"
 
 namespace armctl::web {
@@ -32,16 +34,19 @@ struct CalibrationLane {
   std::shared_ptr<cal::CalibrationSession> session;
 };
 
+cal::JsonValues shown(const arm::ArmModel& model) { return {model, cal::Units::display}; }
+
 json state_json(const CalibrationLane& lane) {
   json out{{"active", lane.session != nullptr}};
   if (!lane.session) return out;
+  const auto v = shown(lane.session->model());
   auto changes = lane.session->changes();
-  out["changes"] = changes ? cal::to_json(*changes) : json(nullptr);
+  out["changes"] = changes ? cal::to_json(v, *changes) : json(nullptr);
   // A refused whole (check_changes) is said, not failed: the user redoes or forgets a step.
   out["refused"] = changes ? json(nullptr) : json(changes.error().message);
   out["describe"] = lane.session->describe();
   json touched = json::array();
-  for (const auto& p : lane.session->touched()) touched.push_back(cal::to_json(p));
+  for (const auto& p : lane.session->touched()) touched.push_back(cal::to_json(v, p));
   out["touched"] = touched;
   out["file"] = lane.session->model().file.string();
   return out;
@@ -76,6 +81,7 @@ void add_calibration_routes(WebServer::State& s) {
     s.lease.require(c.client);
     const arm::ArmModel& model = s.worker.model();
     const CalibrationRequest q = parse_calibration_request(model, c.params.at(0), c.body());
+    const auto v = shown(model);
     std::lock_guard lock(lane->mutex);
     if (q.step == "start") {
       // A new session replaces any other (nothing of it written): the holder of control is
@@ -87,10 +93,11 @@ void add_calibration_routes(WebServer::State& s) {
       lane->session = std::make_shared<cal::CalibrationSession>(*opened.arm, lane->servos.get(), options);
       lane->owner = c.client;
       json marks = json::object();
-      for (const auto& j : model.joints) marks[j.name] = cal::mark_of(j);
+      for (std::size_t i = 0; i < model.joints.size(); ++i)
+        marks[model.joints[i].name] = display_value(model.joints[i].dimension, cal::mark_of(model.joints[i]));
       json sheet = json::array();
       if (auto points = cal::sheet_points(model, cal::default_placement(model)))
-        for (const auto& p : *points) sheet.push_back(cal::to_json(p));
+        for (const auto& p : *points) sheet.push_back(cal::to_json(v, p));
       json out = state_json(*lane);
       out["marks"] = marks;
       out["sheet"] = sheet;
@@ -106,7 +113,7 @@ void add_calibration_routes(WebServer::State& s) {
     };
     json out;
     if (q.step == "find") {
-      out["find"] = cal::to_json(model, on_worker("find", session, [](cal::CalibrationSession& x) { return x.find(); }));
+      out["find"] = cal::to_json(v, on_worker("find", session, [](cal::CalibrationSession& x) { return x.find(); }));
     } else if (q.step == "wiggle") {
       on_worker("wiggle", session, [=](cal::CalibrationSession& x) { return status(x.wiggle(q.joint)); });
     } else if (q.step == "which") {
@@ -123,21 +130,22 @@ void add_calibration_routes(WebServer::State& s) {
       on_worker(q.step, session, [=](cal::CalibrationSession& x) { return status(on ? x.hold() : x.release()); });
       out["torque"] = on;
     } else if (q.step == "read") {
-      out["value"] = on_worker("read", session, [=](cal::CalibrationSession& x) { return x.read_joint(q.joint); });
+      out["value"] = display_value(model.joints[std::size_t(q.joint)].dimension,
+                                   on_worker("read", session, [=](cal::CalibrationSession& x) { return x.read_joint(q.joint); }));
     } else if (q.step == "zero") {
       const double mark = q.mark.value_or(cal::mark_of(model.joints[std::size_t(q.joint)]));
-      out["zero"] = cal::to_json(on_worker("zero", session, [=](cal::CalibrationSession& x) { return x.zero_here(q.joint, mark); }));
+      out["zero"] = cal::to_json(v, q.joint, on_worker("zero", session, [=](cal::CalibrationSession& x) { return x.zero_here(q.joint, mark); }));
     } else if (q.step == "limits") {
-      out["limits"] = cal::to_json(must(session->limits(q.joint, q.end_a, q.end_b)));
+      out["limits"] = cal::to_json(v, q.joint, must(session->limits(q.joint, q.end_a, q.end_b)));
     } else if (q.step == "gripper") {
-      out["gripper"] = cal::to_json(must(session->gripper(q.open, q.closed)));
+      out["gripper"] = cal::to_json(v, must(session->gripper(q.open, q.closed)));
     } else if (q.step == "touch") {
       const cal::NamedPoint point = must(cal::user_point(model, q.name, q.position));
-      out["touched"] = cal::to_json(on_worker("touch", session, [=](cal::CalibrationSession& x) { return x.touch(point); }));
+      out["touched"] = cal::to_json(v, on_worker("touch", session, [=](cal::CalibrationSession& x) { return x.touch(point); }));
     } else if (q.step == "verify") {
-      out["verify"] = cal::to_json(must(session->verify()));
+      out["verify"] = cal::to_json(v, must(session->verify()));
     } else if (q.step == "fit") {
-      out["fit"] = cal::to_json(must(session->fit()));
+      out["fit"] = cal::to_json(v, must(session->fit()));
     } else if (q.step == "forget") {
       if (q.joint < 0) session->forget_all();
       else session->forget(q.joint);
@@ -158,7 +166,7 @@ void add_calibration_routes(WebServer::State& s) {
       return c.reply(json{{"active", false}, {"written", nullptr}});
     }
     json state = state_json(*lane);
-    for (auto& [k, v] : out.items()) state[k] = v;
+    for (auto& [key, value] : out.items()) state[key] = value;
     c.reply(state);
   });
 }

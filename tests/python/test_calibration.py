@@ -62,9 +62,10 @@ def test_a_block_left_without_confirm_writes_nothing(arm_file):
                 cal.zero_here(JOINT)
                 assert not cal.changes()["empty"]
                 raise KeyError("the user walked away")
-        with pytest.raises(armctl.Error) as e:
-            cal.describe()  # the session ended with its block
-        assert e.value.kind == "invalid_argument"
+        for call in (cal.describe, lambda: cal.nudge(JOINT), cal.verify):  # the session ended with its block
+            with pytest.raises(armctl.Error) as e:
+                call()
+            assert e.value.kind == "invalid_argument"
     assert arm_file.read_bytes() == original
     assert sorted(p.name for p in arm_file.parent.iterdir()) == ["scara.arm.json", "scara.urdf"]  # no .prev
 

@@ -99,10 +99,13 @@ TEST(WebCalibration, CancelWritesNothingAndConfirmWritesTheFileWithThePreviousKe
 
   ASSERT_EQ(api.post(kCal + "start", json::object(), "page").status, 200);
   ASSERT_EQ(api.post(kCal + "direction", {{"joint", "servo3"}, {"went_as_shown", false}}, "page").status, 200);
-  // servo4 stands where it reads 0.1 rad when true (its mark): its zero moves.
-  r = api.post(kCal + "zero", {{"joint", "servo4"}, {"mark", 0.1}}, "page");
+  // servo4 stands where it reads 5 deg when true (its mark): its zero moves, by 5 deg
+  // (the API's units) since the arm stands at its zeros.
+  const double before = api.worker().snapshot().positions[std::size_t(*api.worker().model().find_joint("servo4"))];
+  r = api.post(kCal + "zero", {{"joint", "servo4"}, {"mark", 5}}, "page");
   ASSERT_EQ(r.status, 200) << r.text;
   EXPECT_EQ(r.body["zero"]["kind"], "file_zero");
+  EXPECT_NEAR(r.body["zero"]["shift"].get<double>(), 5 - before * 180 / M_PI, 0.5);
   EXPECT_EQ(r.body["changes"]["joints"].size(), 2u);
   r = api.post(kCal + "confirm", json::object(), "page");
   ASSERT_EQ(r.status, 200) << r.text;

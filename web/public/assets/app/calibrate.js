@@ -8,13 +8,12 @@ import { el, $, fmt, busy } from './dom.js';
 import { highlightJoint } from './view3d.js';
 
 const PATH = '/api/v1/calibration/';
-const DEG = 180 / Math.PI;
 
 export function initCalibrate(model) {
   const root = $('#calibrate');
   const unitOf = (name) => model.joints.find((j) => j.name === name) || model.joints[0];
-  // SI (rad, m) as the API gives it, shown in the page's units (deg, mm).
-  const shown = (name, si) => (unitOf(name).kind === 'prismatic' ? `${fmt(si * 1000, 2)} mm` : `${fmt(si * DEG, 2)} deg`);
+  // A joint's value as the API gives it (deg or mm), with its unit.
+  const shown = (name, value) => `${fmt(value, 2)} ${unitOf(name).unit}`;
   let session = null; // the start answer: marks, sheet, file
 
   const call = async (step, body = {}) => {
@@ -173,20 +172,20 @@ export function initCalibrate(model) {
     stepRow('Touch and verify', 'Torque off: put the tool point on each mark of the printed sheet; then verify.', async (ask, done) => {
       await byHand(async () => {
         for (const p of session.sheet) {
-          const at = p.position.map((v) => fmt(v * 1000, 1)).join(' ');
+          const at = p.position.map((v) => fmt(v, 1)).join(' ');
           const v = await choose(ask, `Tool on mark ${p.name} (${at} mm), then`, [['On the mark', 'touch'], ['Skip the mark', 'skip'], ['Done', 'done']]);
           if (v === 'done') break;
           if (v === 'touch') await call('touch', { name: p.name, position: p.position });
         }
       });
       const r = await call('verify');
-      ask.replaceChildren(el('pre', {}, r.verify.points.map((p) => `${p.name}: ${fmt(p.distance * 1000, 2)} mm`).join('\n')));
-      done(`rms ${fmt(r.verify.rms * 1000, 2)} mm, worst ${r.verify.worst}`);
+      ask.replaceChildren(el('pre', {}, r.verify.points.map((p) => `${p.name}: ${fmt(p.distance, 2)} mm`).join('\n')));
+      done(`rms ${fmt(r.verify.rms, 2)} mm, worst ${r.verify.worst}`);
     }),
     stepRow('Fit', 'Fits zeros and link lengths to 10..30 touched points (optional).', async (ask, done) => {
       const r = await call('fit');
-      ask.replaceChildren(el('pre', {}, r.fit.estimates.map((e) => `${e.parameter}: ${fmt(e.correction * (e.kind === 'zero' ? DEG : 1000), 3)} ${e.kind === 'zero' ? 'deg' : 'mm'}`).join('\n')));
-      done(`rms ${fmt(r.fit.before.rms * 1000, 2)} mm before, ${fmt(r.fit.after.rms * 1000, 2)} mm after`);
+      ask.replaceChildren(el('pre', {}, r.fit.estimates.map((e) => `${e.parameter}: ${e.kind === 'zero' ? shown(e.joint, e.correction) : `${fmt(e.correction, 3)} mm`}`).join('\n')));
+      done(`rms ${fmt(r.fit.before.rms, 2)} mm before, ${fmt(r.fit.after.rms, 2)} mm after`);
     }),
   ];
 
