@@ -148,7 +148,7 @@ void PyCalibration::define(py::module_& m) {
         const int i = c.joint(j);
         return must_py(c.step([&] { return c.s().read_joint(i); }));
       }, "joint"_a, "The joint's value now, as the arm file reads it before the pending changes (rad or m).")
-      .def("default_mark", [](C& c, const JointArg& j) {
+      .def("mark_of", [](C& c, const JointArg& j) {
         const int i = c.joint(j);
         return cal::mark_of(c.s().model().joints[std::size_t(i)]);
       }, "joint"_a, "Where the joint is put for its zero step: 0, or a little inside its travel when 0 is an end of it.")
@@ -157,7 +157,7 @@ void PyCalibration::define(py::module_& m) {
         const double at = mark.value_or(cal::mark_of(c.s().model().joints[std::size_t(i)]));
         return to_python(cal::to_json(c.si(), i, must_py(c.step([&] { return c.s().zero_here(i, at); }))));
       }, "joint"_a, "mark"_a = py::none(),
-           "Step 4: the joint stands at its mark (`mark`: its true value there; default default_mark(joint)).\n"
+           "Step 4: the joint stands at its mark (`mark`: its true value there; default mark_of(joint), as the pictures show it).\n"
            "{'kind': 'file_zero'|'servo_offset', 'shift', 'servo_offset', 'text'}.")
       .def("limits", [](C& c, const JointArg& j, double end_a, double end_b) {
         const int i = c.joint(j);

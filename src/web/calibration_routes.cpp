@@ -12,6 +12,7 @@
 
 #include "calibration/arm_file_writer.hpp"
 #include "calibration/calibration_json.hpp"
+#include "calibration/joint_pictures.hpp"
 #include "calibration/rc_servo_bus.hpp"
 #include "calibration/touch_sheet.hpp"
 #include "web/api_error.hpp"
@@ -69,6 +70,13 @@ void add_calibration_routes(WebServer::State& s) {
     });
     return std::move(**out).value();
   };
+
+  // The pictures the direction and zero steps refer to (docs/calibration.md "Pictures"), of the
+  // arm file the server runs: read-only, for anyone.
+  s.router.add("GET", "/api/v1/calibration/pictures", [&s](Call& c) {
+    c.response.set_header("Cache-Control", "no-cache");
+    c.response.set_content(must(cal::joint_pictures_svg(s.worker.model())), "image/svg+xml");
+  });
 
   s.router.add("GET", "/api/v1/calibration", [&s, lane](Call& c) {
     s.lease.require(c.client);

@@ -39,6 +39,8 @@ async function direction(asShown) {
 
 test('which joint, direction and zero on servo3: highlighted, answered, listed; cancel writes nothing', async () => {
   await startCalibration();
+  const pictures = page.getByRole('img', { name: 'Each joint at its mark (grey) and moved positive (blue)' });
+  await waitFor(() => pictures.evaluate((img) => img.complete && img.naturalWidth > 0), 'the joint pictures shown');
 
   await page.getByRole('button', { name: 'Run Which joint' }).click();
   const moved = page.getByLabel('Joint that moved');

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "api_server.hpp"
+#include "calibration/joint_pictures.hpp"
 #include "refusal.hpp"
 #include "web/calibration_request.hpp"
 
@@ -45,6 +46,15 @@ TEST(WebCalibration, StepsNeedControlAndAStartedSession) {
   api.take("other");
   EXPECT_EQ(api.post(kCal + "nudge", {{"joint", "servo3"}}, "other").status, 409);
   EXPECT_EQ(api.get("/api/v1/calibration", "other").body["active"], false);
+}
+
+TEST(WebCalibration, ThePicturesAreTheArmFilesOwn) {
+  ApiServer api("scara");
+  const Reply r = api.get("/api/v1/calibration/pictures");
+  ASSERT_EQ(r.status, 200) << r.text;
+  EXPECT_EQ(r.content_type, "image/svg+xml");
+  EXPECT_EQ(r.text, calibration::joint_pictures_svg(api.worker().model()).value());
+  EXPECT_NE(r.text.find("SHOULDER"), std::string::npos);  // a panel per joint, named
 }
 
 TEST(WebCalibration, BodiesAreRefusedNamingTheField) {

@@ -221,7 +221,7 @@ class Calibration:
         """Torque on where the arm stands."""
     def read_joint(self, joint: JointKey) -> float:
         """The joint's value now as the arm file reads it before the pending changes."""
-    def default_mark(self, joint: JointKey) -> float:
+    def mark_of(self, joint: JointKey) -> float:
         """Where the joint stands for its zero step."""
     def zero_here(self, joint: JointKey, mark: Optional[float] = None) -> Dict[str, Any]:
         """Step 4: {'kind': 'file_zero'|'servo_offset', 'shift', 'servo_offset', 'text'}."""

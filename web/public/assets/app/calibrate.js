@@ -28,9 +28,13 @@ export function initCalibrate(model) {
   const pending = el('pre', { class: 'pending', 'aria-label': 'Pending changes' }, '');
   const result = el('p', { role: 'status', 'aria-label': 'Calibration result' }, '');
   const steps = el('ol', { class: 'steps', 'aria-label': 'Calibration steps' });
+  // The pictures the direction and zero steps refer to: the arm at each joint's mark (grey)
+  // and moved positive (blue), drawn by the server from its arm file.
+  const pictures = el('img', { class: 'joint-pictures', alt: 'Each joint at its mark (grey) and moved positive (blue)' });
+  const picturesBox = el('details', {}, el('summary', {}, 'Pictures of the joints (each at its mark, and moved positive)'), pictures);
   const jointSelect = el('select', { 'aria-label': 'Calibration joint' },
     model.joints.map((j) => el('option', { value: j.name }, j.name)));
-  const body = el('div', { hidden: true }, el('div', { class: 'row' }, el('strong', {}, 'Joint '), jointSelect),
+  const body = el('div', { hidden: true }, picturesBox, el('div', { class: 'row' }, el('strong', {}, 'Joint '), jointSelect),
     steps, el('h3', {}, 'Pending changes'), pending,
     el('div', { class: 'row' },
       el('button', { type: 'button', onclick: (e) => busy(e.currentTarget, confirm) }, 'Confirm and write'),
@@ -52,6 +56,10 @@ export function initCalibrate(model) {
     showPending(session);
     for (const s of stepRows) s.reset();
     body.hidden = false;
+    if (!pictures.src) {
+      const svg = await api.get(`${PATH}pictures`);
+      pictures.src = URL.createObjectURL(new Blob([svg], { type: 'image/svg+xml' }));
+    }
   }
   async function confirm() {
     const answer = await api.post(`${PATH}confirm`, {});
