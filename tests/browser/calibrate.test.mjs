@@ -39,6 +39,7 @@ async function direction(asShown) {
 
 test('which joint, direction and zero on servo3: highlighted, answered, listed; cancel writes nothing', async () => {
   await startCalibration();
+  await page.getByText('Pictures of the joints').click();  // folded by default: the 3D view is the guide
   const pictures = page.getByRole('img', { name: 'Each joint at its mark (grey) and moved positive (blue)' });
   await waitFor(() => pictures.evaluate((img) => img.complete && img.naturalWidth > 0), 'the joint pictures shown');
 
