@@ -18,6 +18,7 @@
 #include "calibration/calibration_json.hpp"
 #include "calibration/rc_servo_bus.hpp"
 #include "calibration/touch_sheet.hpp"
+#include "core/miscalibration.hpp"
 #include "python_support.hpp"
 
 namespace armctl::python {
@@ -205,6 +206,31 @@ void PyCalibration::define(py::module_& m) {
          "to drive with the new file.");
 }
 
-void define_calibration(py::module_& m) { PyCalibration::define(m); }
+// armctl._armctl.testing.miscalibration: what `sim?miscal=SEED` does wrong (docs/simulator.md
+// "Mis-assembled simulators"), for tests that answer the wizard as a user who sees the
+// physical arm would. The same pure function the simulators apply; not part of the API.
+void define_testing(py::module_& m) {
+  using namespace pybind11::literals;
+  py::module_ t = m.def_submodule("testing", "For armctl's own tests: what the mis-assembled simulators do wrong.");
+  t.def("miscalibration", [](const std::string& arm, std::uint32_t seed) {
+    if (arm != "xarm" && arm != "scara")
+      raise(ErrorKind::invalid_argument, fmt::format("arm '{}': allowed xarm or scara", arm));
+    const Miscalibration truth = make_miscalibration(arm == "xarm" ? MiscalArm::xarm : MiscalArm::scara, seed);
+    nlohmann::json joints = nlohmann::json::array(), links = nlohmann::json::array();
+    for (std::size_t i = 0; i < truth.joints.size(); ++i)
+      joints.push_back({{"id", i + 1}, {"zero_shift", truth.joints[i].zero_shift}, {"flipped", truth.joints[i].flipped}});
+    for (const LinkError& l : truth.links) links.push_back({{"joint", l.joint}, {"error_mm", l.error_mm}});
+    nlohmann::json duplicate = nullptr;
+    if (truth.duplicate) duplicate = {{"place", truth.duplicate->place}, {"answers_as", truth.duplicate->answers_as}};
+    return to_python({{"pivot", truth.pivot}, {"joints", joints}, {"links", links}, {"duplicate", duplicate}});
+  }, "arm"_a, "seed"_a,
+        "{'pivot', 'joints': [{'id', 'zero_shift', 'flipped'}] (device units, by device ID), 'links', 'duplicate'};\n"
+        "true = pivot + (flipped ? -1 : 1) * (device - pivot) + zero_shift.");
+}
+
+void define_calibration(py::module_& m) {
+  PyCalibration::define(m);
+  define_testing(m);
+}
 
 }  // namespace armctl::python

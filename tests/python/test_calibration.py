@@ -87,3 +87,68 @@ def test_wrong_values_raise_armctl_error_naming_what_is_allowed(arm_file):
         assert "UAJ" in str(e.value)
         assert cal.changes()["empty"]
         assert cal.find()["silent"] == []
+
+
+def test_directions_and_a_zero_recovered_on_the_mis_assembled_scara(arm_file):
+    """`sim?miscal=7`: the user answers from what the physical arm does (the seed's truth,
+    armctl._armctl.testing), jogs one joint to where it truly stands at its zero, and
+    confirms; the written file then reads that joint as a well-built arm does, within one
+    device unit, and turns it the right way."""
+    from armctl._armctl import testing
+
+    seed = 7
+    truth = testing.miscalibration("scara", seed)
+    by_id = {t["id"]: t for t in truth["joints"]}
+    device = f"sim?miscal={seed}"
+
+    def true_position(joint_id, d):
+        t = by_id[joint_id]
+        return truth["pivot"] + (-1 if t["flipped"] else 1) * (d - truth["pivot"]) + t["zero_shift"]
+
+    with armctl.Arm(str(arm_file), device) as arm:
+        joints = arm.joints
+        j = arm.joint_names.index(JOINT)
+        ident = joints[j].joint_bus_id
+        with arm.calibration() as cal:
+            # The SCARA's arm joints; its wrist (SKE, SKF) is a differential pair, where one
+            # device's motion is not one joint's (the C++ engine tests answer those from the
+            # simulator's joint truth).
+            for i, joint in enumerate(joints):
+                if joint.name not in ("SHOULDER", "UAE", "UAJ"):
+                    continue
+                # The user sees the joint turn the way a well-built one turns when its true
+                # position grows.
+                before = arm.read().device[i]
+                cal.nudge(i)
+                after = arm.read().device[i]
+                went_as_shown = true_position(joint.joint_bus_id, after) > true_position(joint.joint_bus_id, before)
+                cal.answer_direction(i, went_as_shown)
+            flipped = {c["joint"] for c in cal.changes()["joints"] if c["flip"]}
+            assert flipped == {joints[t["id"] - 1].name for t in truth["joints"] if t["flipped"]} == {JOINT}  # seed 7
+
+            # Zero: the shipped file's zero is where a well-built joint's device reads what
+            # this file's zero reads now (device units per rad from two readings).
+            s0 = arm.read()
+            arm.move_joints({j: s0.positions[j] + 0.1}, wait=True)
+            s1 = arm.read()
+            per_rad = (s1.device[j] - s0.device[j]) / (s1.positions[j] - s0.positions[j])
+            file_zero = s1.device[j] - s1.positions[j] * per_rad  # device at reading 0, shipped file
+            # The device position where the joint truly stands at the file's zero.
+            t = by_id[ident]
+            sign = -1 if t["flipped"] else 1
+            true_zero = truth["pivot"] + sign * (file_zero - t["zero_shift"] - truth["pivot"])
+            arm.move_joints({j: s1.positions[j] + (true_zero - s1.device[j]) / per_rad}, wait=True)
+            cal.zero_here(j, 0.0)
+            cal.confirm()
+
+    with armctl.Arm(str(arm_file), device) as arm:
+        # A fresh simulator: the written file reads the joint as the shipped file reads a
+        # well-built one, wherever it stands (within a device unit), and the right way round.
+        def well_built_reading(d):
+            return (true_position(ident, d) - file_zero) / per_rad
+
+        s = arm.read()
+        assert s.positions[j] == pytest.approx(well_built_reading(s.device[j]), abs=1.0 / abs(per_rad))
+        arm.move_joints({j: s.positions[j] + 0.1}, wait=True)
+        s = arm.read()
+        assert s.positions[j] == pytest.approx(well_built_reading(s.device[j]), abs=1.0 / abs(per_rad))
