@@ -622,6 +622,7 @@ class PyArm {
   std::string protocol() { return arm::to_string(arm().device().protocol()); }
 
   DeviceGate gate_{"Arm"};  // before the session: it outlives it
+  std::shared_ptr<std::string> calibration_written_ = std::make_shared<std::string>();  // make_calibration
   std::unique_ptr<session::ArmSession> session_;
 };
 
@@ -865,7 +866,7 @@ void define_arm(py::module_& m) {
           "calibration",
           [](PyArm& a, bool servo_offsets) {
             const auto turn = a.gate_.enter();
-            return make_calibration(a.arm(), a.gate_, a.session_->board, servo_offsets);
+            return make_calibration(a.arm(), a.gate_, a.session_->board, servo_offsets, a.calibration_written_);
           },
           "servo_offsets"_a = false, py::keep_alive<0, 1>(),
           "The guided calibration (armctl.Calibration), for a with block: each step as a method, nothing written\n"

@@ -44,6 +44,12 @@ def test_direction_and_zero_are_written_on_confirm_with_the_previous_file_kept(a
             assert JOINT in cal.describe() and "flipped" in cal.describe()
             assert arm_file.read_bytes() == original  # nothing written before confirm
             written = cal.confirm()
+            with pytest.raises(armctl.Error):
+                cal.describe()  # confirm ends the session
+        # This Arm's model is the one the file no longer holds: no second calibration from it.
+        with pytest.raises(armctl.Error) as e:
+            arm.calibration()
+        assert "open the Arm again" in str(e.value)
         assert Path(written["file"]) == arm_file
         assert Path(written["previous"]).read_bytes() == original
         assert arm_file.read_bytes() != original

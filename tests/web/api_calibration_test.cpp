@@ -131,6 +131,10 @@ TEST(WebCalibration, CancelWritesNothingAndConfirmWritesTheFileWithThePreviousKe
   ASSERT_TRUE(was && now);
   EXPECT_LT(was->device_per_unit() * now->device_per_unit(), 0);  // servo3 turned the other way
   EXPECT_EQ(api.get("/api/v1/calibration", "page").body["active"], false);
+  // The server's model is the one the file no longer holds: no second calibration from it.
+  r = api.post(kCal + "start", json::object(), "page");
+  EXPECT_EQ(r.status, 409);
+  EXPECT_NE(r.text.find("restart armctl serve"), std::string::npos) << r.text;
 }
 
 }  // namespace
