@@ -87,6 +87,10 @@ TEST(WebCalibration, CancelWritesNothingAndConfirmWritesTheFileWithThePreviousKe
   EXPECT_EQ(r.body["file"], file.string());
   EXPECT_TRUE(r.body["marks"].contains("servo3"));
 
+  r = api.post(kCal + "find", json::object(), "page");
+  ASSERT_EQ(r.status, 200) << r.text;
+  EXPECT_EQ(r.body["find"]["devices"].size(), api.worker().model().joints.size());
+  EXPECT_TRUE(r.body["find"]["silent"].empty()) << r.body["find"]["text"];
   r = api.post(kCal + "wiggle", {{"joint", "servo3"}}, "page");
   ASSERT_EQ(r.status, 200) << r.text;
   r = api.post(kCal + "which", {{"joint", "servo3"}, {"moved", "servo4"}}, "page");
