@@ -158,3 +158,24 @@ def test_directions_and_a_zero_recovered_on_the_mis_assembled_scara(arm_file):
         arm.move_joints({j: s.positions[j] + 0.1}, wait=True)
         s = arm.read()
         assert s.positions[j] == pytest.approx(well_built_reading(s.device[j]), abs=1.0 / abs(per_rad))
+
+
+def test_the_docs_example_runs_as_printed(tmp_path, monkeypatch):
+    """docs/calibration.md "Python", in a folder with the copy it asks for."""
+    import re
+    import subprocess
+    import sys
+
+    docs = (Path(__file__).resolve().parents[2] / "docs" / "calibration.md").read_text()
+    section = re.search(r"^## Python\n(.*?)(?=^## )", docs, re.S | re.M).group(1)
+    (example,) = re.findall(r"^```python\n(.*?)^```", section, re.S | re.M)
+    (tmp_path / "myarm").mkdir()
+    for name in ("scara.arm.json", "scara.urdf"):
+        shutil.copy(CONFIG / name, tmp_path / "myarm" / name)
+    from conftest import script_env
+
+    run = subprocess.run([sys.executable, "-c", example], cwd=tmp_path, env=script_env(), capture_output=True,
+                         text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert "direction flipped" in run.stdout
+    assert (tmp_path / "myarm" / "scara.arm.json.prev").exists()
