@@ -4,12 +4,16 @@ other way than the picture shows, and it stands at its mark. Confirm writes the 
 one kept beside it); a block left without confirm writes nothing."""
 
 import os
+import re
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 
 import armctl
+from conftest import script_env
 
 CONFIG = Path(os.environ.get("ARMCTL_CONFIG_DIR", Path(__file__).resolve().parents[2] / "config"))
 JOINT = "UAE"  # a revolute chain joint of the SCARA
@@ -162,18 +166,12 @@ def test_directions_and_a_zero_recovered_on_the_mis_assembled_scara(arm_file):
 
 def test_the_docs_example_runs_as_printed(tmp_path, monkeypatch):
     """docs/calibration.md "Python", in a folder with the copy it asks for."""
-    import re
-    import subprocess
-    import sys
-
     docs = (Path(__file__).resolve().parents[2] / "docs" / "calibration.md").read_text()
     section = re.search(r"^## Python\n(.*?)(?=^## )", docs, re.S | re.M).group(1)
     (example,) = re.findall(r"^```python\n(.*?)^```", section, re.S | re.M)
     (tmp_path / "myarm").mkdir()
     for name in ("scara.arm.json", "scara.urdf"):
         shutil.copy(CONFIG / name, tmp_path / "myarm" / name)
-    from conftest import script_env
-
     run = subprocess.run([sys.executable, "-c", example], cwd=tmp_path, env=script_env(), capture_output=True,
                          text=True, timeout=120)
     assert run.returncode == 0, run.stderr
