@@ -44,7 +44,10 @@ export async function initView3d(model) {
   const tinted = new Map(); // mesh -> its own material, while it wears the highlight's
   view.highlighted = () => highlighted;
   highlight = (name) => {
-    for (const [mesh, material] of tinted) mesh.material = material;
+    for (const [mesh, material] of tinted) {
+      mesh.material.dispose(); // the highlight's clone
+      mesh.material = material;
+    }
     tinted.clear();
     highlighted = name && robot.joints[name] ? name : null;
     if (highlighted) {
