@@ -16,6 +16,7 @@
 #include "arm/arm_model.hpp"
 #include "web/api_error.hpp"
 #include "web/base64.hpp"
+#include "web/calibration_request.hpp"
 #include "web/group_frames.hpp"
 #include "web/request_body.hpp"
 #include "web/security.hpp"
@@ -55,7 +56,7 @@ void body(std::uint8_t kind, std::string_view text) {
   namespace web = armctl::web;
   const json b = web::parse_body(text);
   check(b.is_object(), "a body is an object");
-  switch (kind % 13) {
+  switch (kind % 14) {
     case 0: {
       const auto r = web::parse_joints_request(xarm(), b);
       check(r.targets.size() == xarm().joints.size(), "one target per joint");
@@ -123,6 +124,22 @@ void body(std::uint8_t kind, std::string_view text) {
         for (std::size_t i = 0; i < v.size(); ++i)
           check(std::abs(v[i]) <= xarm().joints[i].limits.velocity + 1e-12, "joint velocity within its limit");
       }
+      break;
+    }
+    case 13: {
+      // The step from the body's own "step" field when it is a string (else "which"), so that
+      // every step's parser is reached; the field is then taken out (it is not a body field).
+      json rest = b;
+      std::string step = "which";
+      if (rest.contains("step") && rest["step"].is_string()) step = rest["step"].get<std::string>();
+      rest.erase("step");
+      const auto q = web::parse_calibration_request(xarm(), step, rest);
+      const int n = xarm().joint_count();
+      check(q.joint >= -1 && q.joint < n && q.moved >= -1 && q.moved < n, "calibration joints in range");
+      check(std::isfinite(q.end_a) && std::isfinite(q.end_b) && std::isfinite(q.open) && std::isfinite(q.closed),
+            "calibration readings finite");
+      check(!q.mark || std::isfinite(*q.mark), "calibration mark finite");
+      check(q.position.allFinite() && q.position.norm() <= web::kMaxReach, "calibration point within reach");
       break;
     }
     default: web::export_group(xarm(), b); break;

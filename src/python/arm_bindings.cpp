@@ -622,6 +622,7 @@ class PyArm {
   std::string protocol() { return arm::to_string(arm().device().protocol()); }
 
   DeviceGate gate_{"Arm"};  // before the session: it outlives it
+  std::shared_ptr<std::string> calibration_written_ = std::make_shared<std::string>();  // make_calibration
   std::unique_ptr<session::ArmSession> session_;
 };
 
@@ -861,6 +862,16 @@ void define_arm(py::module_& m) {
           "as they are sent, within every limit, slowing near the ends of the joints' ranges, singularities and the\n"
           "scene; commands not renewed within `timeout` s bring it to rest. `speed`: fraction of the joints' velocity\n"
           "limits; the twist's speeds are clipped to max_linear_speed (m/s) and max_angular_speed (rad/s).")
+      .def(
+          "calibration",
+          [](PyArm& a, bool servo_offsets) {
+            const auto turn = a.gate_.enter();
+            return make_calibration(a.arm(), a.gate_, a.session_->board, servo_offsets, a.calibration_written_);
+          },
+          "servo_offsets"_a = false, py::keep_alive<0, 1>(),
+          "The guided calibration (armctl.Calibration), for a with block: each step as a method, nothing written\n"
+          "until confirm(). servo_offsets: an xArm joint's zero goes to the servo's own offset when it fits\n"
+          "-125..125 units (else, and by default, to the arm file; docs/calibration.md).")
       .def("set_torque", in_turn(&PyArm::set_torque), "on"_a, "off: the arm can be moved by hand; on: hold where it stands.")
       .def("gripper", in_turn(&PyArm::gripper), "closed_fraction"_a, "duration"_a = py::none(), "speed"_a = motion::kDefaultGripperSpeed,
            "wait"_a = false, "timeout"_a = seconds(arm::kArrivalTimeout), "The gripper: 0 = open, 1 = closed, anything between.")

@@ -2,10 +2,13 @@
 #pragma once
 
 #include <functional>
+#include <memory>
+#include <string>
 
 #include <pybind11/pybind11.h>
 
 #include "arm/action_groups.hpp"
+#include "arm/arm.hpp"
 #include "devices/robot_commands/client.hpp"
 
 namespace armctl::python {
@@ -14,8 +17,16 @@ namespace py = pybind11;
 
 void define_arm(py::module_& m);             // arm_bindings.cpp: Arm, Lin, Circ and their values
 void define_robot_commands(py::module_& m);  // robot_commands_bindings.cpp: RobotCommands
+void define_calibration(py::module_& m);     // calibration_bindings.cpp: Calibration
 
 class DeviceGate;
+
+// An armctl.Calibration over `arm` (Arm.calibration()); `board`: the Robot Commands board the
+// xArm's servo IDs and offsets are reached through, or nullptr. `written`: the Arm's record of
+// an arm file a calibration wrote (then no new one may start from the model loaded before:
+// its changes would undo what was written); confirm() sets it, this refuses when it is set.
+py::object make_calibration(arm::Arm& arm, DeviceGate& gate, robot_commands::Client* board, bool servo_offsets,
+                            std::shared_ptr<std::string> written);
 
 // The action-group notifications the client has queued, and those that arrive within
 // `timeout` s, as dicts {kind, group, count}. Receives in short turns on `gate` (the GIL

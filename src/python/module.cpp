@@ -13,6 +13,7 @@ PYBIND11_MODULE(_armctl, m) {
       "for scripts written for the `xarm` package. Every failure raises armctl.Error (.kind, .message).";
   m.attr("__version__") = ARMCTL_VERSION;  // the project's version, as `armctl --version` says it
   armctl::python::define_error(m);
+  armctl::python::define_calibration(m);
   armctl::python::define_arm(m);
   armctl::python::define_robot_commands(m);
 }

@@ -57,5 +57,6 @@ void add_point_routes(WebServer::State& s);
 void add_group_routes(WebServer::State& s);
 void add_program_routes(WebServer::State& s);
 void add_scene_routes(WebServer::State& s);
+void add_calibration_routes(WebServer::State& s);
 
 }  // namespace armctl::web

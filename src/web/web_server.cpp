@@ -161,6 +161,7 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
   add_scene_routes(s);
   add_group_routes(s);
   add_program_routes(s);
+  add_calibration_routes(s);
 
   GuardedServer& http = *http_;
   s.connections = &http.connections();

@@ -14,6 +14,7 @@ Docs: docs/python.md.
 
 from ._armctl import (  # noqa: F401  (the package's API)
     Arm,
+    Calibration,
     Circ,
     Error,
     IkSolution,
@@ -31,6 +32,7 @@ from ._armctl import (  # noqa: F401  (the package's API)
 
 __all__ = [
     "Arm",
+    "Calibration",
     "Circ",
     "Error",
     "IkSolution",

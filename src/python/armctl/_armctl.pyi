@@ -194,6 +194,58 @@ class Servo:
     def status(self) -> Dict[str, Any]:
         """The last cycle: positions, velocities, scale, slowdown, detail, commanded, at_rest, commands, elapsed."""
 
+class Calibration:
+    """The guided calibration's steps (docs/calibration.md), made by Arm.calibration(). ``joint``:
+    an index (0-based, the model's order) or a name. Results are plain dicts (the HTTP API's fields);
+    every failure raises armctl.Error. Nothing is written until confirm()."""
+
+    def __enter__(self) -> Calibration: ...
+    def __exit__(self, *exc: Any) -> None: ...
+    @property
+    def joint_names(self) -> list[str]: ...
+    def find(self) -> Dict[str, Any]:
+        """Step 1: {'devices': [{'id', 'joint', 'index', 'answers', 'position'}], 'silent': [ids], 'text'}."""
+    def set_servo_id(self, id: int) -> None:
+        """Step 1 on the xArm: gives the ONE servo connected the ID (unplug the others first)."""
+    def wiggle(self, joint: JointKey) -> None:
+        """Step 2: moves the joint a little and back."""
+    def answer_which(self, joint: JointKey, moved: JointKey) -> None:
+        """Step 2's answer; armctl.Error naming both joints when another one moved."""
+    def nudge(self, joint: JointKey) -> None:
+        """Step 3: moves the joint a little in its positive direction."""
+    def answer_direction(self, joint: JointKey, went_as_shown: bool) -> None:
+        """Step 3's answer: False flips the joint (pending)."""
+    def release(self) -> None:
+        """Torque off: the joints move by hand."""
+    def hold(self) -> None:
+        """Torque on where the arm stands."""
+    def read_joint(self, joint: JointKey) -> float:
+        """The joint's value now as the arm file reads it before the pending changes."""
+    def mark_of(self, joint: JointKey) -> float:
+        """Where the joint stands for its zero step."""
+    def zero_here(self, joint: JointKey, mark: Optional[float] = None) -> Dict[str, Any]:
+        """Step 4: {'kind': 'file_zero'|'servo_offset', 'shift', 'servo_offset', 'text'}."""
+    def limits(self, joint: JointKey, end_a: float, end_b: float) -> Dict[str, float]:
+        """Step 5: {'lower', 'upper'} in the new readings."""
+    def gripper(self, open: float, closed: float) -> Dict[str, float]:
+        """Step 6: {'open', 'closed'} in the new readings."""
+    def sheet_points(self) -> list[Dict[str, Any]]:
+        """Step 7: the printed sheet's marks, [{'name', 'position': [x, y, z]}] (m)."""
+    def touch(self, name: str, position: Sequence[float]) -> Dict[str, Any]:
+        """Step 7: the tool stands on `name` at `position` (m): {'name', 'position', 'joints'}."""
+    def verify(self) -> Dict[str, Any]:
+        """Step 7: {'points': [{'name', 'error', 'distance'}], 'rms', 'max', 'worst'} (m)."""
+    def fit(self) -> Dict[str, Any]:
+        """Step 8: {'estimates', 'before', 'after', 'condition', 'iterations'}."""
+    def forget(self, joint: Optional[JointKey] = None) -> None:
+        """Forgets one joint's pending answers, or all."""
+    def changes(self) -> Dict[str, Any]:
+        """{'joints': [{'joint', 'flip', 'zero_shift', 'limits'}], 'servo_offsets', 'gripper', 'link_lengths', 'empty'}."""
+    def describe(self) -> str:
+        """The pending changes for people."""
+    def confirm(self) -> Dict[str, str]:
+        """Writes them: {'file', 'previous'}."""
+
 class Arm:
     """One arm in SI units over any device: Arm(arm='xarm', device='') ('' = the embedded simulator).
 
@@ -267,6 +319,9 @@ class Arm:
         """Until every joint of the last move is there and at rest; Error (timeout) names the late joints."""
     def stop(self) -> None:
         """Stops every joint where it is and holds it; what other threads run on the arm stops first."""
+    def calibration(self, servo_offsets: bool = False) -> Calibration:
+        """The guided calibration (docs/calibration.md "Python") for a with block: nothing is written
+        until confirm(); leaving the block without it writes nothing."""
     def set_torque(self, on: bool) -> None:
         """off: the arm can be moved by hand; on: hold where it stands."""
     def gripper(self, closed_fraction: float, duration: Optional[float] = None, speed: float = 0.5,

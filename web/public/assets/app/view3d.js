@@ -12,6 +12,11 @@ import { onState } from './live.js';
 
 const DEG = Math.PI / 180;
 
+// The calibration's guide (calibrate.js): highlightJoint(name) tints the links joint `name`
+// moves, null clears it; window.armctlView.highlighted() reads it back for the tests.
+let highlight = () => {};
+export function highlightJoint(name) { highlight(name); }
+
 // deg -> rad for revolute joints, mm -> m for prismatic: the URDF's SI units.
 function toUrdf(joint, value) { return joint.kind === 'prismatic' ? value / 1000 : value * DEG; }
 function fromUrdf(joint, value) { return joint.kind === 'prismatic' ? value * 1000 : value / DEG; }
@@ -33,6 +38,28 @@ export async function initView3d(model) {
   const urdf = await api.get('/api/v1/urdf');
   const robot = new URDFLoader().parse(urdf);
   robot.rotation.x = -Math.PI / 2; // URDF is z-up, three.js y-up
+
+  let highlighted = null;
+  let redraw = () => {};
+  const tinted = new Map(); // mesh -> its own material, while it wears the highlight's
+  view.highlighted = () => highlighted;
+  highlight = (name) => {
+    for (const [mesh, material] of tinted) {
+      mesh.material.dispose(); // the highlight's clone
+      mesh.material = material;
+    }
+    tinted.clear();
+    highlighted = name && robot.joints[name] ? name : null;
+    if (highlighted) {
+      robot.joints[highlighted].traverse((o) => {
+        if (!o.isMesh) return;
+        tinted.set(o, o.material);
+        o.material = o.material.clone();
+        if (o.material.color) o.material.color.set(0xff8c00);
+      });
+    }
+    redraw();
+  };
 
   view.jointValues = () => {
     const values = {};
@@ -88,6 +115,7 @@ export async function initView3d(model) {
     requestAnimationFrame(render);
   };
   controls.addEventListener('change', requestRender);
+  redraw = requestRender;
 
   const resize = () => {
     const width = host.clientWidth || 400;
