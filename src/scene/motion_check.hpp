@@ -1,7 +1,8 @@
 // A whole motion checked against the collision world: at every step small enough that no
 // point of any body moves more than the resolution (2 mm) between two checks, every pair of
 // bodies that could touch is asked; a pair known to be apart is not (docs/scene.md, "How a
-// motion is checked").
+// motion is checked"). The world's limits (the fence, reduced mode's joint ranges) are asked
+// at every check; a limit broken is a contact whose `limit` says which.
 #pragma once
 
 #include <functional>
