@@ -115,6 +115,10 @@ class Planner {
         p.note += (p.note.empty() ? "" : "; ") +
                   fmt::format("{}: starts where {} already touch (not checked along it, so that the arm can move out)", p.label, pairs);
       }
+      for (const auto& [what, limit] : check.started_beyond)
+        p.note += (p.note.empty() ? "" : "; ") +
+                  fmt::format("{}: starts with {} beyond {} (not checked along it, so that the arm can move back)", p.label,
+                              what, limit);
       from = p.end;
     }
     return least;

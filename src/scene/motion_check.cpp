@@ -26,9 +26,8 @@ MotionCheck check_motion(const CollisionWorld& world, double duration,
   for (int pair : skip) {
     // Named by body: two shapes of one link touching the same body are one pair for people.
     auto names = world.pair_names(pair);
-    if (std::find(out.started_touching.begin(), out.started_touching.end(), names) == out.started_touching.end()) {
-      out.started_touching.push_back(std::move(names));
-    }
+    auto& list = std::size_t(pair) < n_pairs ? out.started_touching : out.started_beyond;
+    if (std::find(list.begin(), list.end(), names) == list.end()) list.push_back(std::move(names));
   }
   // Pairs touching at the start are never asked.
   std::vector<bool> asked(n_pairs, true);

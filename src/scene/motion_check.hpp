@@ -21,6 +21,9 @@ struct MotionCheck {
   // object placed where the arm stands): not checked along it, so that the arm can move
   // out; said in the plan's note.
   std::vector<std::pair<std::string, std::string>> started_touching;
+  // Limits already broken where it starts (the fence switched on with the tool outside it):
+  // not checked along it either, so that the arm can move back.
+  std::vector<std::pair<std::string, std::string>> started_beyond;
   double at = 0;  // s into the motion where the contact is (or where the clearance is smallest)
   std::vector<double> joints;  // there
   Clearance clearance;         // the smallest along the motion (no contact)
