@@ -61,7 +61,7 @@ Result<Scene> without_object(const Scene& scene, std::string_view name);
 Result<Scene> with_fence(const Scene& scene, bool on);
 Result<Scene> with_reduced_mode(const Scene& scene, bool on);
 // Its fence and reduced mode as a scene file writes them, {"fence": ..., "reduced": ...}
-// (null where it sets none): what the apps show (armctl arm limits, GET /api/v1/limits).
+// (null where it sets none): what the apps show (armctl arm limits, GET /api/v1/scene/limits).
 std::string limits_json(const Scene& scene);
 
 // The scene as a scene file's text (millimetres, degrees): what parse_scene reads back to
