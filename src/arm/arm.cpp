@@ -42,6 +42,14 @@ Status Arm::edit_scene(const std::function<Result<scene::Scene>(const scene::Sce
   return set_scene(std::move(edited).value());
 }
 
+Status Arm::set_fence(bool on) {
+  return edit_scene([&](const scene::Scene& s) { return scene::with_fence(s, on); });
+}
+
+Status Arm::set_reduced_mode(bool on) {
+  return edit_scene([&](const scene::Scene& s) { return scene::with_reduced_mode(s, on); });
+}
+
 scene::Scene Arm::scene() const {
   auto k = kinematics();
   return k->collisions() ? k->collisions()->scene() : scene::Scene{};

@@ -92,6 +92,11 @@ class Arm {
   Status edit_scene(const std::function<Result<scene::Scene>(const scene::Scene&)>& edit);
   // The scene plans are checked against (empty: self-collision only, or no collision model).
   scene::Scene scene() const;
+  // The scene's fence and reduced mode switched on or off (docs/scene.md "Fence and reduced
+  // mode"): plans made from now on are checked with them, and a motion under way is checked
+  // ahead with them (the look-ahead). Errors (invalid_argument): the scene sets none.
+  Status set_fence(bool on);
+  Status set_reduced_mode(bool on);
   ArmDevice& device() { return *device_; }
   const Clock& clock() const { return device_->clock(); }
 

@@ -79,15 +79,30 @@ Status check_shapes(const ArmModel& m) {
 
 Result<std::shared_ptr<const scene::CollisionWorld>> scene_only_world(const ArmModel& model, scene::Scene scene) {
   if (auto ok = check_shapes(model); !ok) return ok.error();
+  // The fence and reduced mode are armctl's rules, not walls: a simulated arm passes them.
+  scene.fence.reset();
+  scene.reduced.reset();
   return scene::CollisionWorld::build(arm_bodies(model, false), std::move(scene));
 }
 
 Result<std::shared_ptr<const ArmKinematics>> ArmKinematics::with_scene(scene::Scene scene) const {
   if (auto ok = check_shapes(model_); !ok) return ok.error();
-  auto world = scene::CollisionWorld::build(arm_bodies(model_), std::move(scene));
+  scene::ArmBodies bodies = arm_bodies(model_);
+  std::optional<ReducedLimits> reduced;
+  if (scene.reduced) {
+    // Checked whether on or off: switching it on later must not fail.
+    auto limits = reduced_limits(model_, *scene.reduced);
+    if (!limits) return scene.file.empty() ? limits.error() : limits.error().prefixed(scene.file.string() + ": ");
+    if (scene.reduced->on) {
+      bodies.joint_ranges = limits->joint_ranges;
+      reduced = std::move(limits).value();
+    }
+  }
+  auto world = scene::CollisionWorld::build(std::move(bodies), std::move(scene));
   if (!world) return world.error();
   auto out = std::make_shared<ArmKinematics>(*this);
   out->collisions_ = std::move(world).value();
+  out->reduced_ = std::move(reduced);
   return std::shared_ptr<const ArmKinematics>(std::move(out));
 }
 

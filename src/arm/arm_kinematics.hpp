@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "arm/arm_model.hpp"
+#include "arm/reduced_mode.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
 #include "motion/kinematics.hpp"
@@ -46,6 +47,9 @@ class ArmKinematics {
   // The same kinematics checking against `scene` (an empty scene: self-collision only).
   // Errors (invalid_config) when the arm has no collision shapes to check a scene against.
   Result<std::shared_ptr<const ArmKinematics>> with_scene(scene::Scene scene) const;
+  // Reduced mode while it is on (docs/scene.md "Fence and reduced mode"): its joint ranges
+  // are checked by the collision world, its tool speed cap by the planner.
+  const std::optional<ReducedLimits>& reduced() const { return reduced_; }
   std::optional<Protocol> device() const { return device_; }
   int joint_count() const { return model_.joint_count(); }
 
@@ -98,6 +102,7 @@ class ArmKinematics {
   ArmModel model_;
   std::optional<Protocol> device_;
   std::shared_ptr<const scene::CollisionWorld> collisions_;
+  std::optional<ReducedLimits> reduced_;
 };
 
 // "30.000 deg" / "120.000 mm" for joint `index` of `model`.

@@ -340,12 +340,16 @@ class Execution {
   Error collision_ahead(bool halted_at_once) {
     CollisionDetail d = std::move(*contact_ahead_);
     d.stopped_at = motion_.duration > 0 ? t_ / motion_.duration : 0;
+    // A limit (the fence, reduced mode's joint ranges) switched on while it moved, or a collision.
+    const bool limit = d.contact.limit != scene::Limit::none;
     const std::string message = fmt::format(
-        "{}: stopped before a collision ({}): {:.0f}% into the motion, tool point at ({:.1f}, {:.1f}, {:.1f}) mm, {} "
-        "with {} (the scene changed after the motion was planned); the arm {} at {:.0f}%",
-        motion_.what, halted_at_once ? "too near to slow down on the path" : "found ahead while moving",
-        100 * d.fraction, d.tool_point.x() * 1e3, d.tool_point.y() * 1e3, d.tool_point.z() * 1e3, d.contact.first,
-        d.contact.second, halted_at_once ? "was halted" : "is at rest on the path", 100 * d.stopped_at);
+        "{}: stopped before {} ({}): {:.0f}% into the motion, tool point at ({:.1f}, {:.1f}, {:.1f}) mm, {} "
+        "{} {} (the {} changed after the motion was planned); the arm {} at {:.0f}%",
+        motion_.what, limit ? fmt::format("leaving the {}", scene::to_string(d.contact.limit)) : "a collision",
+        halted_at_once ? "too near to slow down on the path" : "found ahead while moving", 100 * d.fraction,
+        d.tool_point.x() * 1e3, d.tool_point.y() * 1e3, d.tool_point.z() * 1e3, d.contact.first,
+        limit ? "beyond" : "with", d.contact.second, limit ? "limits" : "scene",
+        halted_at_once ? "was halted" : "is at rest on the path", 100 * d.stopped_at);
     return Error{ErrorKind::invalid_argument, message, std::move(d)};
   }
 

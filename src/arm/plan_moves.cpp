@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "arm/tool_speed.hpp"
 #include "core/quantity.hpp"
 #include "motion/move_limits.hpp"
 #include "scene/motion_check.hpp"
@@ -15,6 +16,12 @@ namespace {
 
 // A LIN from a singular start first takes the tool this far along the line (m).
 constexpr double kLeadIn = 0.03;
+// Reduced mode's tool speed cap: a PTP is stretched by this much more than the peak found
+// over the cap, at most this many times; a motion is over the cap beyond this fraction
+// (the sampled peak of a path timed at the cap lands on it within rounding).
+constexpr double kToolSpeedMargin = 0.02;
+constexpr int kToolSpeedRounds = 8;
+constexpr double kToolSpeedTolerance = 0.01;
 
 // Thrown inside the planner, caught by plan_moves.
 struct Refused {
@@ -47,6 +54,7 @@ class Planner {
       else message(k, std::get<MessageMove>(m.what));
       ++k;
     }
+    if (kin_.reduced() && kin_.reduced()->tool_speed) check_tool_speed(*kin_.reduced()->tool_speed);
     if (kin_.collisions()) out.clearance = check_collisions(*kin_.collisions(), out.start);
     for (const auto& p : pieces_) {
       out.duration += p.duration();
@@ -82,6 +90,7 @@ class Planner {
         continue;
       }
       const double duration = p.kind == PieceKind::motion ? p.motion.duration : 1.0;
+      if (check.contact && check.contact->limit != scene::Limit::none) refuse_limit(p, duration, check);
       if (check.contact) {
         CollisionDetail d;
         d.contact = *check.contact;
@@ -106,9 +115,67 @@ class Planner {
         p.note += (p.note.empty() ? "" : "; ") +
                   fmt::format("{}: starts where {} already touch (not checked along it, so that the arm can move out)", p.label, pairs);
       }
+      for (const auto& [what, limit] : check.started_beyond)
+        p.note += (p.note.empty() ? "" : "; ") +
+                  fmt::format("{}: starts with {} beyond {} (not checked along it, so that the arm can move back)", p.label,
+                              what, limit);
       from = p.end;
     }
     return least;
+  }
+
+  // A limit of the fence or reduced mode broken along piece `p` (docs/scene.md "Fence and
+  // reduced mode"), refused like a contact: the detail names what and where.
+  [[noreturn]] void refuse_limit(const PlannedPiece& p, double duration, const scene::MotionCheck& check) const {
+    CollisionDetail d;
+    d.contact = *check.contact;
+    d.first_move = p.first_move;
+    d.last_move = p.last_move;
+    d.line = p.first_line;
+    d.fraction = duration > 0 ? check.at / duration : 0;
+    d.joints = check.joints;
+    d.tool_point = kin_.pose_at(check.joints).position;
+    const std::string beyond = d.contact.limit == scene::Limit::fence
+                                   ? fmt::format("{:.1f} mm outside", d.contact.depth * 1e3)
+                                   : "beyond";
+    const std::string message =
+        fmt::format("would leave the {} {:.0f}% into the motion, tool point at ({:.1f}, {:.1f}, {:.1f}) mm: {} {} {}",
+                    d.contact.limit == scene::Limit::fence ? "fence" : "reduced mode's joint range", 100 * d.fraction,
+                    d.tool_point.x() * 1e3, d.tool_point.y() * 1e3, d.tool_point.z() * 1e3, d.contact.first, beyond,
+                    d.contact.second);
+    refuse(p.first_move, p.last_move, Error{ErrorKind::invalid_argument, message, std::move(d)});
+  }
+
+  // Reduced mode's cap on the tool speed: PTPs and paths were timed within it; a motion with
+  // its own times (a ROS trajectory) that goes faster is refused.
+  void check_tool_speed(double cap) const {
+    for (const PlannedPiece& p : pieces_) {
+      if (p.kind != PieceKind::motion) continue;
+      if (const double peak = peak_tool_speed(kin_, p.motion); peak > cap * (1 + kToolSpeedTolerance))
+        refuse(p.first_move, p.last_move,
+               Error{ErrorKind::invalid_argument,
+                     fmt::format("moves the tool at up to {:.1f} mm/s; reduced mode caps it at {:.1f} mm/s (slow the "
+                                 "motion down, or switch reduced mode off)",
+                                 peak * 1e3, cap * 1e3)});
+    }
+  }
+
+  // A PTP timed again, longer, until the tool point stays within reduced mode's cap (a
+  // jerk-limited move stretched in time is not exactly scaled: a few rounds).
+  void cap_tool_speed(std::size_t k, const ArmModel& model, JointMove& move, PlannedMotion& planned, std::string& note) const {
+    if (!kin_.reduced() || !kin_.reduced()->tool_speed) return;
+    const double cap = *kin_.reduced()->tool_speed;
+    for (int round = 0; round < kToolSpeedRounds; ++round) {
+      const double peak = peak_tool_speed(kin_, planned);
+      if (peak <= cap) break;
+      move.min_duration = planned.duration * peak / cap * (1 + kToolSpeedMargin);
+      auto again = plan_joint_move(model, state_, move);
+      if (!again) refuse(k, k, again.error());
+      planned = std::move(again).value();
+      if (round == 0)
+        note += fmt::format("{}{}: slowed to {:.2f} s to keep the tool within reduced mode's {:.1f} mm/s",
+                            note.empty() ? "" : "; ", label(k), planned.duration, cap * 1e3);
+    }
   }
 
   std::string label(std::size_t k) const {
@@ -203,6 +270,7 @@ class Planner {
     move.min_duration = timed ? std::max(timed->seconds, m.min_duration) : m.min_duration;
     auto planned = plan_joint_move(*model, state_, move);
     if (!planned) refuse(k, k, planned.error());
+    cap_tool_speed(k, *model, move, *planned, p.note);
     if (p.kind == PieceKind::board_move) {
       // The joints that move, and the partner of a coupled one (its actuator value depends on both).
       p.targets.assign(target.size(), std::nullopt);
@@ -225,6 +293,9 @@ class Planner {
     PathTiming timing = options_.timing;
     for (std::size_t k = from; k < to; ++k) {
       targets.push_back(std::get<CartesianMove>(moves_[k].what));
+      // Reduced mode: no faster than its cap on the tool speed.
+      if (kin_.reduced() && kin_.reduced()->tool_speed)
+        targets.back().speed = std::min(targets.back().speed, *kin_.reduced()->tool_speed);
       if (targets.back().acceleration) timing.acceleration = std::min(timing.acceleration, *targets.back().acceleration);
     }
     const std::vector<motion::PathSegment> segments = path_segments(kin_, state_, targets);

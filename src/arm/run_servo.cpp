@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -80,6 +81,16 @@ class ServoLoop {
       const JointLimits& l = model_.joints[i].limits;
       joints[i] = {l.lower, l.upper, motion::JerkLimits{l.velocity * options_.speed, l.acceleration, l.jerk}};
     }
+    // Reduced mode's narrower ranges slow the joints toward their ends as the joint limits do
+    // (a joint that starts outside its range keeps its own limits: it may move back in).
+    if (const auto& reduced = kinematics_->reduced())
+      for (const scene::JointRange& r : reduced->joint_ranges) {
+        const double q = start_state->positions[r.joint];
+        if (q >= r.lower && q <= r.upper) {
+          joints[r.joint].lower = r.lower;
+          joints[r.joint].upper = r.upper;
+        }
+      }
     if (auto ok = generator_.reset(joints, start_state->positions); !ok) return ok.error();
     sent_ = start_state->positions;
     world_ = kinematics_->collisions();
@@ -199,6 +210,7 @@ class ServoLoop {
         twist_goals(*t, status);
       } else if (const auto* v = std::get_if<JointVelocities>(&command_->motion)) {
         for (std::size_t i = 0; i < n_; ++i) goals_[i] = {Kind::velocity, v->values[i]};
+        cap_tool_speed(status);
         scale_near_obstacles(status);
       } else if (!unreachable_.empty()) {
         status.slowdown = ServoSlowdown::unreachable;
@@ -215,7 +227,7 @@ class ServoLoop {
 
   void twist_goals(const ToolTwist& twist, ServoStatus& status) {
     const motion::JointVector chain = kinematics_->chain_of(sent_);
-    Eigen::Vector3d linear = clipped(twist.linear, options_.max_linear_speed);
+    Eigen::Vector3d linear = clipped(twist.linear, std::min(options_.max_linear_speed, tool_speed_cap()));
     Eigen::Vector3d angular = clipped(twist.angular, options_.max_angular_speed);
     if (twist.frame == ServoFrame::tool) {
       const Eigen::Matrix3d r = kinematics_->forward(chain).orientation.toRotationMatrix();
@@ -266,6 +278,30 @@ class ServoLoop {
     scale_near_obstacles(status);
   }
 
+  // Reduced mode's cap on the tool speed (infinite without one).
+  double tool_speed_cap() const {
+    const auto& reduced = kinematics_->reduced();
+    return reduced && reduced->tool_speed ? *reduced->tool_speed : std::numeric_limits<double>::infinity();
+  }
+
+  // Joint velocities that would move the tool faster than reduced mode's cap, scaled down together.
+  void cap_tool_speed(ServoStatus& status) {
+    const double cap = tool_speed_cap();
+    if (!std::isfinite(cap)) return;
+    const motion::JointVector chain = kinematics_->chain_of(sent_);
+    motion::JointVector qd = motion::JointVector::Zero(chain.size());
+    for (int i = 0; i < qd.size(); ++i) qd[i] = goals_[std::size_t(i)].value;
+    const double speed = (tool_jacobian(*kinematics_, chain).topRows<3>() * qd).norm();
+    if (speed <= cap) return;
+    const double s = cap / speed;
+    for (int i = 0; i < qd.size(); ++i) goals_[std::size_t(i)].value *= s;
+    if (s < status.scale) {
+      status.scale = s;
+      status.slowdown = ServoSlowdown::joint_limit;
+      status.detail = fmt::format("the tool at reduced mode's {:.1f} mm/s", cap * 1e3);
+    }
+  }
+
   // Velocity goals toward something nearer than collision_slow are scaled down with the
   // clearance (only toward it: moving away is not held back).
   void scale_near_obstacles(ServoStatus& status) {
@@ -311,7 +347,8 @@ class ServoLoop {
     status.scale = 0;
     status.slowdown = ServoSlowdown::collision;
     if (auto c = world_->contact(std::span<const double>(rest.data(), n_), skip_))
-      status.detail = fmt::format("{} would touch {}", c->first, c->second);
+      status.detail =
+          fmt::format("{} would {} {}", c->first, c->limit == scene::Limit::none ? "touch" : "leave", c->second);
   }
 
   Status read_back() {

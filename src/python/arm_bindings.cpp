@@ -134,6 +134,19 @@ class PyArm {
     must(arm().set_scene(std::move(s)));
   }
 
+  // The scene's fence and reduced mode (docs/scene.md "Fence and reduced mode"): whether
+  // each is on, None where the scene sets none.
+  std::optional<bool> fence() {
+    const armctl::scene::Scene s = arm().scene();
+    return s.fence ? std::optional<bool>(s.fence->on) : std::nullopt;
+  }
+  void set_fence(bool on) { must(arm().set_fence(on)); }
+  std::optional<bool> reduced_mode() {
+    const armctl::scene::Scene s = arm().scene();
+    return s.reduced ? std::optional<bool>(s.reduced->on) : std::nullopt;
+  }
+  void set_reduced_mode(bool on) { must(arm().set_reduced_mode(on)); }
+
   // Stops what another thread runs on this arm (a wait ends, a streamed motion stops on its
   // path), waits for it, then ends the device.
   void close() {
@@ -780,6 +793,12 @@ void define_arm(py::module_& m) {
                     "The scene file (docs/scene.md) every motion is checked against before it starts, or None (the arm's\n"
                     "own links only). Set a path to load one (a bad file raises armctl.Error and keeps the old one),\n"
                     "None to clear it.")
+      .def_property("fence", in_turn(&PyArm::fence), in_turn(&PyArm::set_fence),
+                    "Whether the scene's fence is on (True, False), or None when the scene sets none. Set True or False to\n"
+                    "switch it (docs/scene.md \"Fence and reduced mode\"); setting it without a fence raises armctl.Error.")
+      .def_property("reduced_mode", in_turn(&PyArm::reduced_mode), in_turn(&PyArm::set_reduced_mode),
+                    "Whether the scene's reduced mode (tool speed cap, narrower joint ranges) is on, or None when the scene\n"
+                    "sets none. Set True or False to switch it; setting it without one raises armctl.Error.")
       .def("close", &PyArm::close, "Closes the device (an embedded simulator ends). What another thread runs is stopped first (a wait\n"
            "ends, a streamed motion stops on its path; that call raises armctl.Error) and waited for. Later\n"
            "calls raise armctl.Error.")

@@ -83,7 +83,10 @@ void set_detail(py::object& e, const Error& error) {
     e.attr("point") = r->point ? py::object(py::make_tuple(r->point->x(), r->point->y(), r->point->z())) : py::none();
     e.attr("joint") = r->joint >= 0 ? py::object(py::str(r->joint_name)) : py::none();
   } else if (const auto* c = error.detail_as<arm::CollisionDetail>()) {
-    e.attr("detail") = "collision";
+    // A limit broken (the fence, a reduced joint range) is told apart from two bodies touching.
+    e.attr("detail") = c->contact.limit == scene::Limit::none ? "collision" : "limit";
+    e.attr("broken_limit") =
+        c->contact.limit == scene::Limit::none ? py::object(py::none()) : py::object(py::str(scene::to_string(c->contact.limit)));
     e.attr("bodies") = py::make_tuple(c->contact.first, c->contact.second);
     e.attr("depth") = c->contact.depth;
     e.attr("fraction") = c->fraction;

@@ -315,6 +315,22 @@ MotionOutcome ArmBridge::remove_scene_object(const std::string& name) {
       [&](const scene::Scene& now) { return scene::without_object(now, name); }));
 }
 
+MotionOutcome ArmBridge::set_fence(bool on) {
+  return scene_edit_outcome(impl_->worker.session().arm->set_fence(on));
+}
+
+MotionOutcome ArmBridge::set_reduced_mode(bool on) {
+  return scene_edit_outcome(impl_->worker.session().arm->set_reduced_mode(on));
+}
+
+ArmBridge::Limits ArmBridge::limits() const {
+  const scene::Scene s = impl_->worker.session().arm->scene();
+  Limits out;
+  if (s.fence) out.fence = s.fence->on;
+  if (s.reduced) out.reduced_mode = s.reduced->on;
+  return out;
+}
+
 MotionOutcome ArmBridge::run_action_group(int group, int times) {
   if (group < 0 || group > 254 || times < 0 || times > 65535)
     return refusal_outcome(Error{ErrorKind::invalid_argument,

@@ -97,6 +97,14 @@ class ArmBridge {
   // for a motion: the running one's look-ahead sees it (docs/scene.md "While it moves").
   MotionOutcome set_scene_object(const std::string& object);
   MotionOutcome remove_scene_object(const std::string& name);
+  // The scene's fence and reduced mode switched on or off (docs/scene.md "Fence and reduced
+  // mode"), taken at once like a scene edit; and whether each is on (empty: none set).
+  MotionOutcome set_fence(bool on);
+  MotionOutcome set_reduced_mode(bool on);
+  struct Limits {
+    std::optional<bool> fence, reduced_mode;
+  };
+  Limits limits() const;
   // Stops what runs (it slows down on its path, then every joint holds); returns at once.
   void stop();
 

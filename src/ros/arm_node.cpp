@@ -119,6 +119,8 @@ struct ArmNode::Impl {
     services.push_back(private_nh.advertiseService("stop_action_group", &Impl::on_stop_group, this));
     services.push_back(private_nh.advertiseService("scene/set_object", &Impl::on_set_scene_object, this));
     services.push_back(private_nh.advertiseService("scene/remove_object", &Impl::on_remove_scene_object, this));
+    services.push_back(private_nh.advertiseService("set_fence", &Impl::on_set_fence, this));
+    services.push_back(private_nh.advertiseService("set_reduced_mode", &Impl::on_set_reduced_mode, this));
     server = std::make_unique<Server>(nh, "arm_controller/follow_joint_trajectory",
                                       [this](GoalHandle g) { on_goal(g); }, [this](GoalHandle g) { on_cancel(g); },
                                       false);
@@ -211,6 +213,11 @@ struct ArmNode::Impl {
     kv("last error", s.last_error);
     kv("faults", fmt::format("{}", fmt::join(s.faults, "; ")));
     kv("battery", s.battery_volts ? fmt::format("{:.2f} V", *s.battery_volts) : "");
+    // The scene's limits plans are checked with (docs/scene.md "Fence and reduced mode").
+    const ArmBridge::Limits limits = arm.limits();
+    auto on_off = [](const std::optional<bool>& on) { return !on ? "none" : *on ? "on" : "off"; };
+    kv("fence", on_off(limits.fence));
+    kv("reduced mode", on_off(limits.reduced_mode));
     {
       std::lock_guard<std::mutex> lock(counters.mutex);
       kv("refused commands", std::to_string(counters.refused));
@@ -507,6 +514,17 @@ struct ArmNode::Impl {
     const MotionOutcome o = arm.set_scene_object(req.object);
     res.kind = o.kind;
     return answer(res, o, "the scene holds it: plans are checked against it from now on");
+  }
+
+  bool on_set_fence(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
+    const bool on = req.data;
+    return answer(res, arm.set_fence(on), on ? "fence on: plans and motions are kept inside it" : "fence off");
+  }
+
+  bool on_set_reduced_mode(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
+    const bool on = req.data;
+    return answer(res, arm.set_reduced_mode(on),
+                  on ? "reduced mode on: the tool speed cap and joint ranges hold from now on" : "reduced mode off");
   }
 
   bool on_remove_scene_object(armctl_msgs::RemoveSceneObject::Request& req,

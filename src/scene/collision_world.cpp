@@ -1,4 +1,5 @@
 #include "scene/collision_world.hpp"
+#include "scene/collision_item.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,16 +12,6 @@
 #include <fmt/format.h>
 
 namespace armctl::scene {
-
-struct CollisionWorld::Item {
-  std::string label;
-  int body = -1;         // the link it moves with; -1: fixed in the base frame
-  motion::Shape shape;   // its pose in the link's frame (or the base frame)
-  std::shared_ptr<fcl::CollisionGeometryd> geometry;
-  bool scene = false;    // a scene object (fixed or held), not a link
-  Eigen::Vector3d low = Eigen::Vector3d::Zero(), high = Eigen::Vector3d::Zero();  // fixed ones: bounds
-  std::vector<int> chain;  // the links with a joint it hangs from, its own first; none when fixed
-};
 
 CollisionWorld::~CollisionWorld() = default;
 
@@ -136,6 +127,8 @@ Result<std::shared_ptr<const CollisionWorld>> CollisionWorld::build(ArmBodies ar
   }
   w->arm_ = std::move(arm);
   w->scene_ = std::move(scene);
+  w->tool_body_ = *tool;
+  w->add_limits();
   return std::shared_ptr<const CollisionWorld>(std::move(w));
 }
 
@@ -201,6 +194,11 @@ void CollisionWorld::each_touching(std::span<const double> joints, std::span<con
 }
 
 bool CollisionWorld::collides(std::span<const double> joints, std::span<const int> skip) const {
+  if (has_limits()) {
+    thread_local Placement f;
+    place(joints, f);
+    if (limit_breach(joints, f, skip)) return true;
+  }
   bool any = false;
   each_touching(joints, skip, false, [&](std::size_t, const fcl::CollisionResultd&) {
     any = true;
@@ -215,10 +213,25 @@ std::vector<int> CollisionWorld::touching(std::span<const double> joints) const 
     out.push_back(int(k));
     return true;
   });
+  if (has_limits()) {
+    thread_local Placement f;
+    place(joints, f);
+    for (std::size_t k = 0; k < limits_.size(); ++k)
+      if (limit_broken(k, joints, f)) out.push_back(int(pairs_.size() + k));
+  }
   return out;
 }
 
 std::pair<std::string, std::string> CollisionWorld::pair_names(int pair) const {
+  if (std::size_t(pair) >= pairs_.size()) {
+    // A limit (touching's numbering): what breaks it and which.
+    const LimitCheck& l = limits_[std::size_t(pair) - pairs_.size()];
+    switch (l.item) {
+      case LimitItem::tool_in_fence: return {"the tool point", "the fence"};
+      case LimitItem::links_in_fence: return {"a link", "the fence"};
+      case LimitItem::joint_range: return {arm_.joint_ranges[l.range].name, arm_.joint_ranges[l.range].words};
+    }
+  }
   const Pair& p = pairs_[std::size_t(pair)];
   return {items_[std::size_t(p.first)].label, items_[std::size_t(p.second)].label};
 }
@@ -233,6 +246,11 @@ std::optional<Contact> CollisionWorld::contact(std::span<const double> joints, s
     }
     return true;
   });
+  if (!deepest && has_limits()) {
+    thread_local Placement f;
+    place(joints, f);
+    return limit_breach(joints, f, skip);
+  }
   return deepest;
 }
 
@@ -254,6 +272,11 @@ Clearance CollisionWorld::clearance(std::span<const double> joints, double below
     const double d = std::max(0.0, result.min_distance);
     if (d < best.distance) best = Clearance{d, items_[std::size_t(i)].label, items_[std::size_t(j)].label};
   }
+  // The fence's faces are near things too (the servo mode slows toward them), unless the
+  // tool point starts outside it.
+  const int fence_index = int(pairs_.size());
+  if (const auto margin = fence_margin(f); margin && *margin < best.distance && !skipped(skip, std::size_t(fence_index)))
+    best = Clearance{*margin, "the tool point", "the fence"};
   return best;
 }
 

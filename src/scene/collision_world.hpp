@@ -31,10 +31,27 @@ namespace armctl::scene {
 // collision checks, and nobody steers by the clearance of things that far apart.
 inline constexpr double kClearanceHorizon = 0.05;  // m
 
+// What a contact is with: another body, or one of the scene's limits (scene/scene_limits.hpp).
+enum class Limit { none, fence, joint_range };
+const char* to_string(Limit limit);  // "collision", "fence", "joint range"
+
 struct Contact {
   std::string first, second;  // "link 'hand'", "the table 'table'", "box 'feeder'"
   double depth = 0;           // m: how far they overlap
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // base frame
+  // A limit broken rather than two bodies touching (docs/scene.md "Fence and reduced mode"):
+  // `first` is what breaks it ("the tool point", "link 'hand'", "joint 'servo1'"), `second`
+  // the limit ("the fence", "its reduced range -90.000..90.000 deg"), `depth` how far beyond
+  // it (m, or rad for a revolute joint) and `point` the tool point.
+  Limit limit = Limit::none;
+};
+
+// A joint's range in reduced mode (arm/reduced_mode.hpp), SI, with how people read it.
+struct JointRange {
+  std::size_t joint = 0;
+  double lower = 0, upper = 0;
+  std::string name;   // "joint 'servo1'"
+  std::string words;  // "its reduced range -90.000..90.000 deg"
 };
 
 struct Clearance {
@@ -51,6 +68,9 @@ struct ArmBodies {
   // Per joint, the largest |value| it reaches (m for a prismatic joint): bounds how far a
   // point of a link can move when the joints turn (displacement_bound).
   std::vector<double> joint_reach;
+  // Reduced mode's joint ranges while it is on (empty: off or none set); the fence is the
+  // scene's (Scene::fence, while on).
+  std::vector<JointRange> joint_ranges;
 };
 
 class CollisionWorld {
@@ -67,7 +87,8 @@ class CollisionWorld {
   bool collides(std::span<const double> joints, std::span<const int> skip = {}) const;
   // The deepest contact at `joints`, or nothing.
   std::optional<Contact> contact(std::span<const double> joints, std::span<const int> skip = {}) const;
-  // The pairs in contact at `joints` (indices for `skip`), and how they are named.
+  // The pairs in contact at `joints` (indices for `skip`), and how they are named. The
+  // limits broken there count as pairs too, numbered after them (limit_breach).
   std::vector<int> touching(std::span<const double> joints) const;
   std::pair<std::string, std::string> pair_names(int pair) const;
   // The smallest distance between two bodies that are checked, when below `below` (at most
@@ -96,6 +117,12 @@ class CollisionWorld {
   double pair_gap(int pair, Placement& at) const;
   // The shapes' distance (FCL; 0 when they touch).
   double pair_distance(int pair, Placement& at) const;
+  // The fence and reduced mode (docs/scene.md "Fence and reduced mode"), checked with the
+  // pairs: the first limit broken at the configuration placed in `at` (`joints`), not in
+  // `skip` (indices pairs_checked() and on: the tool point's fence, the links' fence, each
+  // joint range), as a Contact whose `limit` says which.
+  std::optional<Contact> limit_breach(std::span<const double> joints, Placement& at, std::span<const int> skip = {}) const;
+  bool has_limits() const { return !limits_.empty(); }
   // For a short step from the configuration placed in `at`, in which joint j travels
   // `travel[j]` (the sum of |dq| over the step's pieces: a joint that turns back counts
   // both ways): an upper bound on how far any point of any body moves (from the arm's
@@ -130,6 +157,19 @@ class CollisionWorld {
     int first_own = 0, second_own = 0;
   };
   std::vector<Pair> pairs_;
+  // The limits checked, in index order after the pairs (world_limits.cpp).
+  enum class LimitItem { tool_in_fence, links_in_fence, joint_range };
+  struct LimitCheck {
+    LimitItem item = LimitItem::tool_in_fence;
+    std::size_t range = 0;  // joint_range: which of arm_.joint_ranges
+  };
+  std::vector<LimitCheck> limits_;
+  std::optional<Fence> fence_;  // the scene's, when on
+  int tool_body_ = -1;
+  std::optional<Contact> limit_broken(std::size_t k, std::span<const double> joints, Placement& at) const;
+  // How far the tool point is inside the fence (its clearance), or nothing without a fence.
+  std::optional<double> fence_margin(Placement& at) const;
+  void add_limits();
   // reach_[body][joint]: how far a point of that body can be from the joint's axis (m);
   // for a prismatic joint 1 (the point moves as far as the joint).
   std::vector<std::vector<double>> reach_;

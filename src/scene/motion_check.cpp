@@ -26,16 +26,23 @@ MotionCheck check_motion(const CollisionWorld& world, double duration,
   for (int pair : skip) {
     // Named by body: two shapes of one link touching the same body are one pair for people.
     auto names = world.pair_names(pair);
-    if (std::find(out.started_touching.begin(), out.started_touching.end(), names) == out.started_touching.end()) {
-      out.started_touching.push_back(std::move(names));
-    }
+    auto& list = std::size_t(pair) < n_pairs ? out.started_touching : out.started_beyond;
+    if (std::find(list.begin(), list.end(), names) == list.end()) list.push_back(std::move(names));
   }
   // Pairs touching at the start are never asked.
   std::vector<bool> asked(n_pairs, true);
-  for (int pair : skip) asked[std::size_t(pair)] = false;
+  for (int pair : skip)
+    if (std::size_t(pair) < n_pairs) asked[std::size_t(pair)] = false;
 
   auto check = [&](double t, const std::vector<double>& q, CollisionWorld::Placement& at) {
     ++out.checks;
+    // The fence and reduced mode's joint ranges: cheap, asked at every check.
+    if (auto broken = world.limit_breach(q, at, skip)) {
+      out.contact = std::move(broken);
+      out.at = t;
+      out.joints = q;
+      return false;
+    }
     for (std::size_t p = 0; p < n_pairs; ++p) {
       if (!asked[p] || apart[p] > 0) continue;
       ++out.queries;

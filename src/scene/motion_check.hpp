@@ -1,7 +1,8 @@
 // A whole motion checked against the collision world: at every step small enough that no
 // point of any body moves more than the resolution (2 mm) between two checks, every pair of
 // bodies that could touch is asked; a pair known to be apart is not (docs/scene.md, "How a
-// motion is checked").
+// motion is checked"). The world's limits (the fence, reduced mode's joint ranges) are asked
+// at every check; a limit broken is a contact whose `limit` says which.
 #pragma once
 
 #include <functional>
@@ -20,6 +21,9 @@ struct MotionCheck {
   // object placed where the arm stands): not checked along it, so that the arm can move
   // out; said in the plan's note.
   std::vector<std::pair<std::string, std::string>> started_touching;
+  // Limits already broken where it starts (the fence switched on with the tool outside it):
+  // not checked along it either, so that the arm can move back.
+  std::vector<std::pair<std::string, std::string>> started_beyond;
   double at = 0;  // s into the motion where the contact is (or where the clearance is smallest)
   std::vector<double> joints;  // there
   Clearance clearance;         // the smallest along the motion (no contact)

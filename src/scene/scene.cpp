@@ -153,10 +153,16 @@ Result<Scene> parse_scene(std::string_view json_text, std::string_view source) {
     const std::string src(source);
     const json doc = json_reader::parse_document(json_text, src);
     ObjectReader top(src, doc, "");
-    const json& objects = top.require("objects");
+    Scene scene;
+    if (const json* fence = top.find("fence")) scene.fence = read_fence(src, *fence, "fence");
+    if (const json* reduced = top.find("reduced")) scene.reduced = read_reduced(src, *reduced, "reduced");
+    // A scene of limits alone needs no objects.
+    static const json kNone = json::array();
+    const json* given = top.find("objects");
+    if (!given && !scene.fence && !scene.reduced) top.require("objects");  // refused: missing
+    const json& objects = given ? *given : kNone;
     if (!objects.is_array()) top.fail("objects", "must be an array of objects (each: name, a shape, at, rpy, keep_out, attached)");
     if (objects.size() > kMaxObjects) top.fail("objects", fmt::format("{} objects; at most {}", objects.size(), kMaxObjects));
-    Scene scene;
     std::set<std::string> names;
     for (std::size_t i = 0; i < objects.size(); ++i) {
       SceneObject o = read_object(src, objects[i], fmt::format("objects[{}]", i));
@@ -209,7 +215,10 @@ std::string scene_json(const Scene& scene) {
     }
     objects.push_back(std::move(j));
   }
-  return json{{"objects", std::move(objects)}}.dump(2) + "\n";
+  json out{{"objects", std::move(objects)}};
+  if (scene.fence) out["fence"] = fence_json(*scene.fence);
+  if (scene.reduced) out["reduced"] = reduced_json(*scene.reduced);
+  return out.dump(2) + "\n";
 }
 
 Result<Scene> with_object(const Scene& scene, std::string_view object_json, std::string_view source) {
@@ -229,6 +238,29 @@ Result<Scene> with_object(const Scene& scene, std::string_view object_json, std:
     }
     return out;
   });
+}
+
+Result<Scene> with_fence(const Scene& scene, bool on) {
+  if (!scene.fence)
+    return Error{ErrorKind::invalid_argument, "the scene sets no fence: give one in a scene file's \"fence\" (docs/scene.md)"};
+  Scene out = scene;
+  out.fence->on = on;
+  return out;
+}
+
+Result<Scene> with_reduced_mode(const Scene& scene, bool on) {
+  if (!scene.reduced)
+    return Error{ErrorKind::invalid_argument,
+                 "the scene sets no reduced mode: give one in a scene file's \"reduced\" (docs/scene.md)"};
+  Scene out = scene;
+  out.reduced->on = on;
+  return out;
+}
+
+std::string limits_json(const Scene& scene) {
+  return json{{"fence", scene.fence ? fence_json(*scene.fence) : json(nullptr)},
+              {"reduced", scene.reduced ? reduced_json(*scene.reduced) : json(nullptr)}}
+      .dump();
 }
 
 Result<Scene> without_object(const Scene& scene, std::string_view name) {

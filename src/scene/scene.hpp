@@ -5,12 +5,14 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/error.hpp"
 #include "motion/link_bodies.hpp"
+#include "scene/scene_limits.hpp"
 
 namespace armctl::scene {
 
@@ -35,6 +37,9 @@ std::string describe(const SceneObject& object);
 struct Scene {
   std::vector<SceneObject> objects;
   std::filesystem::path file;  // where it was read from ("" when built in code)
+  // The workspace limits it sets (scene/scene_limits.hpp), each checked while it is on.
+  std::optional<Fence> fence = std::nullopt;
+  std::optional<ReducedMode> reduced = std::nullopt;
 };
 
 // A scene file's text; `source` names it in errors. Every error (invalid_config) names the
@@ -50,6 +55,14 @@ Result<Scene> load_scene(const std::filesystem::path& file);
 Result<Scene> with_object(const Scene& scene, std::string_view object_json, std::string_view source);
 // The scene without the object `name`; an unknown name is invalid_argument, listing the names.
 Result<Scene> without_object(const Scene& scene, std::string_view name);
+
+// The scene with its fence / reduced mode switched on or off (Scene::fence, Scene::reduced:
+// what Arm::set_fence and --fence change). Errors (invalid_argument): the scene sets none.
+Result<Scene> with_fence(const Scene& scene, bool on);
+Result<Scene> with_reduced_mode(const Scene& scene, bool on);
+// Its fence and reduced mode as a scene file writes them, {"fence": ..., "reduced": ...}
+// (null where it sets none): what the apps show (armctl arm limits, GET /api/v1/scene/limits).
+std::string limits_json(const Scene& scene);
 
 // The scene as a scene file's text (millimetres, degrees): what parse_scene reads back to
 // the same objects.

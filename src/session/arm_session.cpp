@@ -43,8 +43,11 @@ Result<std::unique_ptr<ArmSession>> open_arm_session(const std::string& arm_name
   auto model = load_arm(arm_name);
   if (!model) return model.error();
   std::optional<scene::Scene> scene;
-  if (!options.scene.empty()) {
-    auto loaded = scene::load_scene(options.scene);
+  if (!options.scene.empty() || options.fence || options.reduced_mode) {
+    auto loaded = options.scene.empty() ? Result<scene::Scene>(scene::Scene{}) : scene::load_scene(options.scene);
+    if (!loaded) return loaded.error();
+    if (options.fence && loaded) loaded = scene::with_fence(*loaded, *options.fence);
+    if (options.reduced_mode && loaded) loaded = scene::with_reduced_mode(*loaded, *options.reduced_mode);
     if (!loaded) return loaded.error();
     scene = std::move(loaded).value();
     // Checked against the arm before anything opens: a scene the arm cannot check is refused.

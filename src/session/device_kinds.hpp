@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -32,6 +33,9 @@ struct SessionOptions {
   // A scene file (docs/scene.md) every plan of the arm is checked against, read before the
   // device is opened (a bad file opens nothing). Empty: self-collision only.
   std::filesystem::path scene{};
+  // The scene's fence and reduced mode switched on or off from the start (empty: as the
+  // file says); switching one the scene does not set is refused before anything opens.
+  std::optional<bool> fence{}, reduced_mode{};
 };
 
 // What a factory is asked to open.

@@ -67,6 +67,31 @@ void add_scene_routes(WebServer::State& s) {
     c.reply({{"deleted", c.params[0]}, {"scene", scene_answer(arm_of(s).scene())}});
   });
 
+  // The fence and reduced mode (docs/scene.md "Fence and reduced mode"): as the scene sets
+  // them, each with whether it is on.
+  s.router.add("GET", "/api/v1/scene/limits", [&s](Call& c) { c.reply(json::parse(scene::limits_json(arm_of(s).scene()))); });
+
+  // Switched on or off: {"fence": true, "reduced": false}, either or both, taken together
+  // or not at all.
+  s.router.add("PUT", "/api/v1/scene/limits", [&s](Call& c) {
+    s.lease.require(c.client);
+    const json body = c.body();
+    const char* wanted = "request body: must be {\"fence\": true|false, \"reduced\": true|false} (either or both)";
+    if (!body.is_object() || body.empty()) throw ApiError(400, wanted);
+    for (const auto& [key, value] : body.items())
+      if ((key != "fence" && key != "reduced") || !value.is_boolean())
+        throw ApiError(400, fmt::format("request body: {}: {}: {}", printable(key), printable(value.dump()), wanted));
+    if (auto ok = arm_of(s).edit_scene([&](const scene::Scene& now) -> Result<scene::Scene> {
+          Result<scene::Scene> next = now;
+          if (body.contains("fence")) next = scene::with_fence(*next, body["fence"].get<bool>());
+          if (next && body.contains("reduced")) next = scene::with_reduced_mode(*next, body["reduced"].get<bool>());
+          return next;
+        });
+        !ok)
+      throw ApiError(409, ok.error());
+    c.reply(json::parse(scene::limits_json(arm_of(s).scene())));
+  });
+
   // To the scene file the server was started with (--scene FILE), in one atomic replacement.
   s.router.add("POST", "/api/v1/scene/save", [&s](Call& c) {
     s.lease.require(c.client);

@@ -108,6 +108,12 @@ json state_json(const arm::ArmKinematics& arm, const DeviceInfo& device, const s
   else
     out["program"] = nullptr;
   out["control"] = {{"you", control.you}, {"holder", control.holder}, {"since", control.since}};
+  // Which of the scene's limits plans are checked with now (docs/scene.md "Fence and reduced
+  // mode"): the dashboard's status line shows them.
+  const auto& world = arm.collisions();
+  const auto* fence = world && world->scene().fence ? &*world->scene().fence : nullptr;
+  const auto* reduced = world && world->scene().reduced ? &*world->scene().reduced : nullptr;
+  out["limits"] = {{"fence", fence ? json(fence->on) : json(nullptr)}, {"reduced", reduced ? json(reduced->on) : json(nullptr)}};
   return out;
 }
 

@@ -22,15 +22,8 @@ using ScaraLookAhead = testing::ScaraOnBus;
 
 constexpr double kDeg = std::numbers::pi / 180;
 
-// A turn of `joint` by `degrees`, planned from where the arm stands with the scene it has now.
-Plan turn(Arm& arm, std::size_t joint, double degrees) {
-  const auto from = arm.read().value().positions;
-  PtpMove ptp;
-  std::vector<std::optional<double>> targets(from.size());
-  targets[joint] = from[joint] + degrees * kDeg;
-  ptp.target = targets;
-  return plan_moves(*arm.kinematics(), from, std::vector<Move>{{ptp, "line 3 (PTP)", 3}}).value();
-}
+// A turn of `joint` by `degrees` as line 3 of a file.
+Plan turn(Arm& arm, std::size_t joint, double degrees) { return testing::turn(arm, joint, degrees * kDeg, 3); }
 
 // The tool point (mm) at `fraction` of the plan's first motion.
 Eigen::Vector3d tool_at(const Arm& arm, const Plan& plan, double fraction) {

@@ -1,7 +1,7 @@
 // The servo mode (arm/run_servo.hpp) on both simulated arms, on simulated time: a twist moves
 // the tool along a line, joint velocities and targets, the gripper, commands that stop
-// coming, the ends of the joints' ranges, a singularity, a box in the scene, a joint that is
-// held, and bad commands.
+// coming, the ends of the joints' ranges, a singularity, a box in the scene, the fence, a
+// joint that is held, and bad commands.
 #include "arm/run_servo.hpp"
 #include "arm/servo_twist.hpp"
 
@@ -207,6 +207,26 @@ TEST_F(XarmServo, ABoxInTheSceneSlowsTheToolDownAndStopsItBeforeContact) {
   const double moved = tool_mm().y() - at.y();
   EXPECT_GT(moved, 5);
   EXPECT_LT(moved, 70);
+}
+
+TEST_F(XarmServo, TheFenceSlowsTheToolDownAndStopsItInside) {
+  // The fence's face 40 mm along +y from the tool: the tool slows toward it and comes to rest
+  // inside, never beyond (docs/scene.md "Fence and reduced mode").
+  const Eigen::Vector3d at = tool_mm();
+  auto sc = scene::parse_scene(fmt::format(R"({{"fence": {{"min": [-800, -800, -100], "max": [800, {:.1f}, 800]}}}})",
+                                           at.y() + 40),
+                               "test scene");
+  ASSERT_TRUE(sc) << sc.error().message;
+  ASSERT_TRUE(arm.set_scene(*sc));
+  auto r = run(Script(input, twist({0, 40, 0}), 0, 3, 3));
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(trace.reported(ServoSlowdown::collision, "the fence"));
+  const auto k = arm.kinematics();
+  for (const auto& p : trace.points) ASSERT_LE(k->pose_at(p).position.y() * 1000, at.y() + 40);
+  ASSERT_TRUE(arm.wait());
+  const double moved = tool_mm().y() - at.y();
+  EXPECT_GT(moved, 20);
+  EXPECT_LT(moved, 40.5);
 }
 
 TEST_F(XarmServo, BadCommandsAreRefusedAndTheLastOneStays) {

@@ -7,14 +7,28 @@
 #include <memory>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "arm/arm.hpp"
 #include "arm/bus_arm_device.hpp"
+#include "arm/plan_moves.hpp"
 #include "arm/rc_arm_device.hpp"
 #include "arm_files.hpp"
 #include "joint_bus/sim_fixture.hpp"
 #include "robot_commands/sim_links.hpp"
 
 namespace armctl::arm::testing {
+
+// A turn of `joint` by `radians`, planned from where the arm stands with the scene it has
+// now, as move `line` of a file ("line N (PTP)").
+inline Plan turn(Arm& arm, std::size_t joint, double radians, std::size_t line) {
+  const auto from = arm.read().value().positions;
+  PtpMove ptp;
+  std::vector<std::optional<double>> targets(from.size());
+  targets[joint] = from[joint] + radians;
+  ptp.target = targets;
+  return plan_moves(*arm.kinematics(), from, std::vector<Move>{{ptp, fmt::format("line {} (PTP)", line), line}}).value();
+}
 
 class XarmOnEmulator : public ::testing::Test {
  protected:

@@ -113,6 +113,19 @@ std::unique_ptr<Process> start_node(const std::string& arm, const std::vector<st
   return std::make_unique<Process>(argv, ros_world().dir + "/armctl_ros-" + arm + ".log");
 }
 
+// ~move_to's request for a tool pose (x y z, then the quaternion w x y z).
+armctl_msgs::MoveTo move_to_pose(const std::vector<double>& pose) {
+  armctl_msgs::MoveTo m;
+  m.request.pose.position.x = pose[0];
+  m.request.pose.position.y = pose[1];
+  m.request.pose.position.z = pose[2];
+  m.request.pose.orientation.w = pose[3];
+  m.request.pose.orientation.x = pose[4];
+  m.request.pose.orientation.y = pose[5];
+  m.request.pose.orientation.z = pose[6];
+  return m;
+}
+
 double distance(const std::vector<double>& a, const std::vector<double>& b, std::size_t n) {
   double d = 0;
   for (std::size_t i = 0; i < n; ++i) d = std::max(d, std::abs(a.at(i) - b.at(i)));
@@ -572,14 +585,7 @@ TEST_P(RosNode, SceneObjectsAddedAndRemovedByServiceAreWhatMovesAreCheckedAgains
   ASSERT_TRUE(set.call(o));
   EXPECT_TRUE(o.response.success) << o.response.message;
 
-  armctl_msgs::MoveTo m;
-  m.request.pose.position.x = target[0];
-  m.request.pose.position.y = target[1];
-  m.request.pose.position.z = target[2];
-  m.request.pose.orientation.w = target[3];
-  m.request.pose.orientation.x = target[4];
-  m.request.pose.orientation.y = target[5];
-  m.request.pose.orientation.z = target[6];
+  armctl_msgs::MoveTo m = move_to_pose(target);
   const auto before = states_->last().position;
   ASSERT_TRUE(move_to.call(m));
   EXPECT_FALSE(m.response.success);
@@ -605,6 +611,74 @@ INSTANTIATE_TEST_SUITE_P(BothArms, RosNode, ::testing::Values("xarm", "scara"));
 // error after ~link_timeout (the launch files respawn it, which opens the device again).
 // Each arm's simulator as its own process (the SCARA's joint bus on a unix socket, the
 // xArm's board on a pty), killed while the node reads it.
+// The fence and reduced mode's services (docs/ros.md, docs/scene.md "Fence and reduced
+// mode"): the node started with a scene file whose fence the move crosses refuses it before
+// anything moves, names the fence and shows it in /diagnostics; switched off by ~set_fence the
+// same move runs; ~set_reduced_mode switches the file's reduced mode.
+TEST_P(RosNode, TheFenceSwitchedByServiceIsWhatMovesAreCheckedAgainst) {
+  const auto here = states_->last().position;
+  auto q = here;
+  for (std::size_t j = 0; j < chain_; ++j) q[j] += 0.03 * (joints_[j].upper - joints_[j].lower) * (j % 2 ? -1 : 1);
+  const auto from = reference_tool_pose(arm(), here);
+  const auto target = reference_tool_pose(arm(), q);
+  // The fence cuts the axis along which the tool travels most, halfway.
+  std::size_t axis = 0;
+  for (std::size_t i = 1; i < 3; ++i)
+    if (std::abs(target[i] - from[i]) > std::abs(target[axis] - from[axis])) axis = i;
+  double low[3], high[3];
+  for (std::size_t i = 0; i < 3; ++i) {
+    low[i] = (from[i] - 1) * 1e3;
+    high[i] = (from[i] + 1) * 1e3;
+  }
+  const double mid = 0.5 * (from[axis] + target[axis]) * 1e3;
+  (target[axis] > from[axis] ? high : low)[axis] = mid;
+  const std::string file = fmt::format("{}/fence-{}-{}.json", ros_world().dir, arm(), ::getpid());
+  std::FILE* f = std::fopen(file.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs(fmt::format(R"({{"fence": {{"min": [{:.1f}, {:.1f}, {:.1f}], "max": [{:.1f}, {:.1f}, {:.1f}]}},
+      "reduced": {{"tool_speed": 50, "on": false}}}})",
+                         low[0], low[1], low[2], high[0], high[1], high[2])
+                 .c_str(),
+             f);
+  std::fclose(f);
+  node_->terminate();
+  states_ = std::make_unique<JointStates>();
+  node_ = start_node(arm(), {"_scene:=" + file});
+  ASSERT_TRUE(wait_until([&] { return states_->count() > 0; }, 60s)) << node_->log_text();
+  Diagnostics diagnostics;
+
+  ros::NodeHandle nh;
+  auto set_fence = nh.serviceClient<std_srvs::SetBool>("/armctl_ros/set_fence");
+  auto set_reduced = nh.serviceClient<std_srvs::SetBool>("/armctl_ros/set_reduced_mode");
+  auto move_to = nh.serviceClient<armctl_msgs::MoveTo>("/armctl_ros/move_to");
+  ASSERT_TRUE(set_fence.waitForExistence(ros::Duration(10)));
+  armctl_msgs::MoveTo m = move_to_pose(target);
+  const auto before = states_->last().position;
+  ASSERT_TRUE(move_to.call(m));
+  EXPECT_FALSE(m.response.success);
+  EXPECT_THAT(m.response.message, HasSubstr("would leave the fence"));
+  EXPECT_LT(distance(states_->last().position, before, chain_), 0.002) << "nothing moved";
+  auto shown = [&](const std::string& key, const std::string& value) {
+    for (const auto& d : diagnostics.all())
+      for (const auto& kv : d.values)
+        if (kv.key == key && kv.value == value) return true;
+    return false;
+  };
+  EXPECT_TRUE(wait_until([&] { return shown("fence", "on") && shown("reduced mode", "off"); }, 5s));
+
+  std_srvs::SetBool b;
+  b.request.data = false;
+  ASSERT_TRUE(set_fence.call(b));
+  EXPECT_TRUE(b.response.success) << b.response.message;
+  b.request.data = true;
+  ASSERT_TRUE(set_reduced.call(b));
+  EXPECT_TRUE(b.response.success) << b.response.message;
+  EXPECT_TRUE(wait_until([&] { return shown("fence", "off") && shown("reduced mode", "on"); }, 5s));
+  ASSERT_TRUE(move_to.call(m));
+  EXPECT_TRUE(m.response.success) << m.response.message;
+  std::remove(file.c_str());
+}
+
 class RosNodeDevice : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(RosNodeDevice, ReportsALostDeviceThenExitsWithAClearError) {

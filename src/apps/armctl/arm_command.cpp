@@ -31,6 +31,7 @@
 #include "core/must.hpp"
 #include "core/quantity.hpp"
 #include "motion/move_limits.hpp"
+#include "scene/scene.hpp"
 
 namespace armctl::cli {
 
@@ -39,7 +40,7 @@ namespace {
 using nlohmann::json;
 
 struct ArmArgs {
-  std::string scene;  // --scene FILE
+  SceneArgs scene;  // --scene FILE, --fence, --reduced-mode
   std::string arm = "xarm";
   std::string device;
   bool json = false;
@@ -253,6 +254,35 @@ void run_joints(const ArmArgs& a) {
   print_joints(a, s->arm->model(), must(s->arm->read()));
 }
 
+// The scene's fence and reduced mode, and whether each is on (with --fence and
+// --reduced-mode applied): what every plan of the command is checked with.
+void run_limits(const ArmArgs& a) {
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
+  const scene::Scene sc = s->arm->scene();
+  if (a.json) {
+    print_json_line(json{{"limits", json::parse(scene::limits_json(sc))}});
+    return;
+  }
+  auto on = [](bool b) { return b ? "on" : "off"; };
+  if (const auto& f = sc.fence)
+    fmt::print("fence: {}: the tool point{} within x {:.1f}..{:.1f}, y {:.1f}..{:.1f}, z {:.1f}..{:.1f} mm\n", on(f->on),
+               f->links ? " and every link" : "", f->low.x() * 1e3, f->high.x() * 1e3, f->low.y() * 1e3,
+               f->high.y() * 1e3, f->low.z() * 1e3, f->high.z() * 1e3);
+  else
+    fmt::print("fence: none (a scene file's \"fence\" sets one: docs/scene.md)\n");
+  if (const auto& r = sc.reduced) {
+    std::string what = r->tool_speed ? fmt::format("tool speed up to {:.1f} mm/s", *r->tool_speed * 1e3) : "";
+    for (const auto& j : r->joints) {
+      const auto index = s->arm->model().find_joint(j.joint);
+      what += fmt::format("{}{} {:g}..{:g} {}", what.empty() ? "" : "; ", j.joint, j.lower, j.upper,
+                          index ? display_unit(s->arm->model().joints[std::size_t(*index)].dimension) : "");
+    }
+    fmt::print("reduced mode: {}: {}\n", on(r->on), what);
+  } else {
+    fmt::print("reduced mode: none (a scene file's \"reduced\" sets one: docs/scene.md)\n");
+  }
+}
+
 void run_pose(const ArmArgs& a) {
   auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
   const motion::JointVector q = s->arm->chain_of(must(s->arm->read()).positions);
@@ -463,6 +493,8 @@ void add_arm_command(CLI::App& app) {
 
   cmd->add_subcommand("joints", "Joint positions (deg or mm, and device units)")->callback([a] { run_joints(*a); });
   cmd->add_subcommand("pose", "Tool pose: x y z in mm, roll pitch yaw in deg")->callback([a] { run_pose(*a); });
+  cmd->add_subcommand("limits", "The scene's fence and reduced mode, and whether each is on (--scene, --fence, --reduced-mode)")
+      ->callback([a] { run_limits(*a); });
 
   auto* mj = cmd->add_subcommand("move-joints", "Move joints: 2=30deg 1=120mm SHOULDER=-0.5rad");
   mj->add_option("targets", a->words, "JOINT=VALUE with a unit")->required();

@@ -31,7 +31,7 @@ struct FollowArgs {
   std::string follower = "xarm", follower_device;
   std::string joint_scale, joint_offset, tool_offset;
   double tool_scale = 1;
-  std::string scene;
+  SceneArgs scene;  // --scene FILE, --fence, --reduced-mode
   double speed = 1;
   double duration = 0;  // s; 0: until Enter, the end of input or Ctrl-C
   std::string record;

@@ -23,7 +23,7 @@ namespace {
 struct JogArgs {
   std::string arm = "xarm";
   std::string device;
-  std::string scene;
+  SceneArgs scene;  // --scene FILE, --fence, --reduced-mode
   double speed = 1.0;
   std::string gamepad;  // "auto" or /dev/input/eventN
   std::string gamepad_replay;

@@ -45,7 +45,7 @@ namespace {
 using nlohmann::json;
 
 struct ProgramArgs {
-  std::string scene;  // --scene FILE
+  SceneArgs scene;  // --scene FILE, --fence, --reduced-mode
   std::string file;
   std::string arm = "xarm";
   std::string device;

@@ -23,7 +23,7 @@ namespace armctl::cli {
 namespace {
 
 struct ReplayArgs {
-  std::string scene;  // --scene FILE
+  SceneArgs scene;  // --scene FILE, --fence, --reduced-mode
   std::string file;
   std::string arm;
   std::string device;

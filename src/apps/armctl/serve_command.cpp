@@ -27,7 +27,7 @@ namespace armctl::cli {
 namespace {
 
 struct ServeArgs {
-  std::string scene;  // --scene FILE
+  SceneArgs scene;  // --scene FILE, --fence, --reduced-mode
   std::string arm = "xarm";
   std::string device;
   std::string listen = "127.0.0.1:8080";

@@ -25,7 +25,7 @@ namespace armctl::cli {
 namespace {
 
 struct TeachArgs {
-  std::string scene;  // --scene FILE
+  SceneArgs scene;  // --scene FILE, --fence, --reduced-mode
   std::string arm = "xarm";
   std::string device;
   std::string points;

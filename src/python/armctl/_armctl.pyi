@@ -19,10 +19,11 @@ class Error(RuntimeError):
 
     kind: ErrorKindName
     message: str
-    detail: Optional[Literal["following_error", "path_refusal", "collision", "source_place", "device_lost"]]
+    detail: Optional[Literal["following_error", "path_refusal", "collision", "limit", "source_place", "device_lost"]]
     # following_error: joint, measured, planned, limit; path_refusal: segment (0-based),
     # fraction, point (m), joint; collision: bodies, depth (m), fraction, point (the tool point,
-    # m); source_place: file, line, column.
+    # m); limit (the fence, a reduced joint range): the same fields, bodies = (what breaks it,
+    # the limit), broken_limit "fence" | "joint range"; source_place: file, line, column.
     joint: Optional[str]
     measured: float
     planned: float
@@ -32,6 +33,7 @@ class Error(RuntimeError):
     point: Optional[Tuple[float, float, float]]
     bodies: Tuple[str, str]
     depth: float
+    broken_limit: Optional[Literal["fence", "joint range"]]
     file: str
     line: int
     column: int
@@ -259,6 +261,18 @@ class Arm:
     @scene.setter
     def scene(self, file: Optional[str]) -> None:
         """Loads a scene file (a bad one raises Error and keeps the old scene); None clears it."""
+    @property
+    def fence(self) -> Optional[bool]:
+        """Whether the scene's fence is on, or None when the scene sets none (docs/scene.md)."""
+    @fence.setter
+    def fence(self, on: bool) -> None:
+        """Switches the scene's fence on or off (without one: raises Error)."""
+    @property
+    def reduced_mode(self) -> Optional[bool]:
+        """Whether the scene's reduced mode (tool speed cap, joint ranges) is on, or None when the scene sets none."""
+    @reduced_mode.setter
+    def reduced_mode(self, on: bool) -> None:
+        """Switches the scene's reduced mode on or off (without one: raises Error)."""
     def close(self) -> None:
         """Stops what another thread runs on the arm (a wait, a streamed motion: it raises Error), waits
         for it, then closes the device; later calls raise Error."""

@@ -99,6 +99,11 @@ export function initStatus(model) {
     const faults = state.faults || [];
     $('#faults').textContent = faults.length ? faults.join('; ') : 'none';
     $('#faults').className = faults.length ? 'bad' : 'ok';
+    // The scene's fence and reduced mode: null where the scene sets none.
+    const limits = state.limits || {};
+    const words = [['fence', limits.fence], ['reduced mode', limits.reduced]]
+      .filter(([, on]) => on != null).map(([name, on]) => `${name} ${on ? 'on' : 'off'}`);
+    $('#limits').textContent = words.length ? words.join(', ') : 'none';
     // A job that failed in the background (a run, a group) reports here, not to a request.
     if (state.last_error && state.last_error !== lastErrorShown) showError(state.last_error);
     lastErrorShown = state.last_error || '';
