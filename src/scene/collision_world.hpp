@@ -31,10 +31,18 @@ namespace armctl::scene {
 // collision checks, and nobody steers by the clearance of things that far apart.
 inline constexpr double kClearanceHorizon = 0.05;  // m
 
+// Which body, for a program (a dashboard drawing it red): a link of the URDF or a scene
+// object, by its name. The words for people are Contact::first and second.
+struct BodyId {
+  enum class Kind { link, object } kind = Kind::link;
+  std::string name;  // the link's or the scene object's; empty: not known
+};
+
 struct Contact {
   std::string first, second;  // "link 'hand'", "the table 'table'", "box 'feeder'"
   double depth = 0;           // m: how far they overlap
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // base frame
+  BodyId first_body, second_body;  // the same two bodies
 };
 
 struct Clearance {

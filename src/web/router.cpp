@@ -4,6 +4,7 @@
 
 #include "core/printable.hpp"
 #include "web/api_error.hpp"
+#include "web/error_detail.hpp"
 #include "web/request_body.hpp"
 
 namespace armctl::web {
@@ -20,7 +21,10 @@ void reply_error(httplib::Response& response, int status, const std::string& mes
   response.status = status;
   response.set_header("Cache-Control", "no-store");
   json body{{"error", message}};
-  if (error) body["kind"] = to_string(error->kind);
+  if (error) {
+    body["kind"] = to_string(error->kind);
+    add_error_detail(body, *error);
+  }
   response.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
