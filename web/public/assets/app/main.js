@@ -10,6 +10,7 @@ import { initTool } from './tool.js';
 import { initPoints } from './points.js';
 import { initGroups } from './groups.js';
 import { initProgram } from './program.js';
+import { initScene } from './scene.js';
 
 function initTabs() {
   const tabs = [...document.querySelectorAll('[role=tab]')];
@@ -48,6 +49,7 @@ async function start() {
   initPoints(model);
   initGroups(model);
   initProgram(model);
+  initScene();
   await startLive();
   // The first page to open takes control; a page opened while another has it watches.
   await takeControlIfFree(latestState());
