@@ -138,8 +138,9 @@ describe('xArm', () => {
     assert.equal((await objectNamed(page, 'desk')).red, false);
     assert.ok(near(shown.point, [150, -100, 40], 60), `the contact point at the box: ${shown.point}`);
     const note = page.getByRole('alert', { name: 'Collision' });
-    assert.match(await note.textContent(), /would collide: link '.+' with box 'box'/);
+    assert.match(await note.textContent(), /^Refused, nothing moved: would collide .*link '.+' with box 'box'/);
     assert.equal(await page.getByRole('spinbutton', { name: 'tool x target (mm)' }).inputValue(), '150');
+    await page.evaluate(() => window.scrollTo(0, 0));
     await screenshot(page, 'scene-xarm-refused');
     await waitIdle(script);
 
@@ -279,6 +280,7 @@ describe('SCARA with a scene file', () => {
     assert.ok(shown.bodies.some((b) => b.kind === 'object' && b.name === 'crate'), JSON.stringify(shown));
     assert.equal((await objectNamed(page, 'crate')).red, true);
     assert.ok(near(shown.point, [685, 0, 200], 60), `the contact point at the crate: ${shown.point}`);
+    await page.evaluate(() => window.scrollTo(0, 0));
     await screenshot(page, 'scene-scara-refused');
     // A move taken clears it.
     await waitIdle(script);

@@ -184,7 +184,7 @@ export async function initScene3d({ scene, robot, model, view, requestRender }) 
     marker.position.set(p[0] * MM, p[1] * MM, p[2] * MM);
     if (note && message !== undefined) {
       note.hidden = false;
-      note.textContent = `Refused, would collide: ${(detail.bodies || []).map((b) => b.text).join(' with ')}. ${message}`;
+      note.textContent = `Refused, nothing moved: ${message}`;
     }
     requestRender();
   }
