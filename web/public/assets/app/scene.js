@@ -78,7 +78,8 @@ export function initScene() {
   const list = el('tbody');
   const file = el('p', { class: 'muted', 'aria-label': 'Scene file' });
   const status = el('p', { role: 'status', 'aria-label': 'Scene status', class: 'muted' });
-  const formError = el('p', { role: 'alert', class: 'bad', 'aria-label': 'Scene error' });
+  // Empty, it is not shown (nor an alert to assistive technology): see style.css.
+  const formError = el('p', { role: 'alert', class: 'bad scene-error', 'aria-label': 'Scene error' });
   const sayError = (e) => { formError.textContent = e.message; status.textContent = ''; };
   const said = (text) => { formError.textContent = ''; status.textContent = text; };
 
