@@ -4,7 +4,6 @@
 
 #include "core/printable.hpp"
 #include "web/api_error.hpp"
-#include "web/error_detail.hpp"
 #include "web/request_body.hpp"
 
 namespace armctl::web {
@@ -17,13 +16,14 @@ void Call::reply(const json& body, int status) const {
   response.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
-void reply_error(httplib::Response& response, int status, const std::string& message, const Error* error) {
+void reply_error(httplib::Response& response, int status, const std::string& message, const Error* error,
+                 const ErrorDetailWriter& detail) {
   response.status = status;
   response.set_header("Cache-Control", "no-store");
   json body{{"error", message}};
   if (error) {
     body["kind"] = to_string(error->kind);
-    add_error_detail(body, *error);
+    if (detail) detail(body, *error);
   }
   response.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
@@ -53,9 +53,9 @@ bool Router::dispatch(const httplib::Request& request, httplib::Response& respon
     try {
       r.handler(call);
     } catch (const ApiError& e) {
-      reply_error(response, e.status(), e.what(), e.error());
+      reply_error(response, e.status(), e.what(), e.error(), error_detail);
     } catch (const ArmctlError& e) {
-      reply_error(response, status_of(e.error()), e.what(), &e.error());
+      reply_error(response, status_of(e.error()), e.what(), &e.error(), error_detail);
     } catch (const std::exception& e) {
       reply_error(response, 500, fmt::format("internal error: {}", printable(e.what())));
     }

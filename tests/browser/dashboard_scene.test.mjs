@@ -137,6 +137,9 @@ describe('xArm', () => {
     assert.equal((await objectNamed(page, 'box')).red, true);
     assert.equal((await objectNamed(page, 'desk')).red, false);
     assert.ok(near(shown.point, [150, -100, 40], 60), `the contact point at the box: ${shown.point}`);
+    // The arm drawn where it would touch: the red link's shapes reach the contact point.
+    assert.equal(shown.ghost, true);
+    assert.ok(shown.redLinkDistance !== null && shown.redLinkDistance < 3, `the red link ${shown.redLinkDistance} mm from the contact point`);
     const note = page.getByRole('alert', { name: 'Collision' });
     assert.match(await note.textContent(), /^Refused, nothing moved: would collide .*link '.+' with box 'box'/);
     assert.equal(await page.getByRole('spinbutton', { name: 'tool x target (mm)' }).inputValue(), '150');
@@ -280,6 +283,7 @@ describe('SCARA with a scene file', () => {
     assert.ok(shown.bodies.some((b) => b.kind === 'object' && b.name === 'crate'), JSON.stringify(shown));
     assert.equal((await objectNamed(page, 'crate')).red, true);
     assert.ok(near(shown.point, [685, 0, 200], 60), `the contact point at the crate: ${shown.point}`);
+    assert.ok(shown.ghost && shown.redLinkDistance < 3, `the red link ${shown.redLinkDistance} mm from the contact point`);
     await page.evaluate(() => window.scrollTo(0, 0));
     await screenshot(page, 'scene-scara-refused');
     // A move taken clears it.

@@ -1,6 +1,7 @@
 // The planning scene over HTTP (docs/http-api.md "Scene") on the embedded simulated xArm:
 // objects added, replaced and removed one at a time, a whole scene put, saved to the scene
 // file; a plan into an object put there is refused; bad requests change nothing.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -108,6 +109,9 @@ TEST(WebScene, AMoveIntoTheBoxIsRefusedWithItsBodiesAndGoesAroundWithAvoid) {
   EXPECT_GT(c["fraction"].get<double>(), 0) << c;
   EXPECT_TRUE(c["line"].is_null());
   EXPECT_EQ(c["while_moving"], false);
+  // Where the arm would be then, every joint in deg: not where it stands (all at 0).
+  ASSERT_EQ(c["joints"].size(), 6u) << c;
+  EXPECT_GT(std::abs(c["joints"]["servo6"].get<double>()), 10) << c;
   EXPECT_TRUE(api.wait_idle());
   const auto before = api.get("/api/v1/state").body["tool"];
 

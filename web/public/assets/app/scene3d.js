@@ -2,8 +2,9 @@
 // as GET /api/v1/scene gives them, keep-out zones see-through red, parts held by the tool
 // hung from the tool link so that they move with it; the fence (a workspace box) when the
 // model, the scene or the state has one ({"fence": {"min": [x, y, z], "max": [x, y, z]}} mm);
-// and a refused move's two bodies in red with a marker where they would touch, until the
-// next move is taken.
+// and a refused move drawn where it would collide: a see-through grey ghost of the arm at the
+// joints of the contact, its colliding link's shapes and the scene object in red, and a red
+// dot where they touch, until the next move is taken.
 // window.armctlView gains sceneObjects(), fence() and collision(): what the view draws, read
 // back from the three.js graph in the base frame (mm), for the browser tests.
 import * as THREE from 'three';
@@ -14,6 +15,8 @@ import { onScene } from './scene.js';
 
 const DEG = Math.PI / 180;
 const MM = 1 / 1000;
+// deg -> rad for revolute joints, mm -> m for prismatic: the URDF's SI units.
+const toUrdf = (joint, value) => (joint.kind === 'prismatic' ? value * MM : value * DEG);
 const TABLE_THICKNESS_MM = 50; // docs/scene.md: a slab this thick under its top
 const DEFAULT_TABLE_MM = 2000;
 const RED = 0xe0221b;
@@ -148,6 +151,18 @@ export async function initScene3d({ scene, robot, model, view, requestRender }) 
   marker.visible = false;
   base.add(marker);
   const redMaterial = new THREE.MeshStandardMaterial({ color: RED, transparent: true, opacity: 0.7, depthWrite: false });
+  // The arm where it would collide: a copy of the model, see-through, its shapes hidden
+  // except the colliding link's (red).
+  const ghost = robot.clone();
+  ghost.name = 'arm at the contact';
+  const ghostMaterial = new THREE.MeshStandardMaterial({ color: 0x8a94a0, transparent: true, opacity: 0.3, depthWrite: false });
+  ghost.traverse((n) => {
+    if (n.isMesh) n.material = ghostMaterial;
+    if (n.isURDFCollider) n.visible = false;
+  });
+  ghost.visible = false;
+  robot.parent.add(ghost);
+  const modelJoints = new Map(model.joints.map((j) => [j.name, j]));
   let collision = null;     // the refusal's detail while shown
   let reddened = [];        // [{ node, material, visible }] to put back
   const redden = (node) => {
@@ -168,16 +183,21 @@ export async function initScene3d({ scene, robot, model, view, requestRender }) 
     unredden();
     collision = detail;
     marker.visible = Boolean(detail);
+    ghost.visible = Boolean(detail && detail.joints);
     if (!detail) {
       if (note) { note.hidden = true; note.textContent = ''; }
       requestRender();
       return;
     }
+    for (const [name, value] of Object.entries(detail.joints || {})) {
+      if (modelJoints.has(name) && ghost.joints[name]) ghost.setJointValue(name, toUrdf(modelJoints.get(name), value));
+    }
+    // A link is red where it would touch (on the ghost); without the joints, on the arm.
+    const arm = ghost.visible ? ghost : robot;
     for (const body of detail.bodies || []) {
       if (body.kind === 'object' && drawn.has(body.name)) redden(drawn.get(body.name).mesh);
-      if (body.kind === 'link' && robot.links[body.name]) {
-        // The link's collision shapes (what touched), shown red even when they are hidden.
-        for (const child of robot.links[body.name].children) if (child.isURDFCollider) redden(child);
+      if (body.kind === 'link' && arm.links[body.name]) {
+        for (const child of arm.links[body.name].children) if (child.isURDFCollider) redden(child);
       }
     }
     const p = detail.point || [0, 0, 0];
@@ -213,9 +233,21 @@ export async function initScene3d({ scene, robot, model, view, requestRender }) 
     red: d.mesh.material === redMaterial, attached: Boolean(d.object.attached),
   }));
   view.fence = () => (fenceBox ? fenceBox.userData.fence : null);
+  // How far the contact point is from the red link's shapes as drawn (mm; 0 inside): the
+  // ghost stands where the arm would touch.
+  const redLinkDistance = () => {
+    const meshes = reddened.filter((r) => r.node.isMesh && r.node !== marker && !r.node.userData.sceneObject).map((r) => r.node);
+    if (!meshes.length) return null;
+    scene.updateMatrixWorld(true);
+    const box = new THREE.Box3();
+    for (const m of meshes) box.expandByObject(m);
+    return box.distanceToPoint(marker.getWorldPosition(new THREE.Vector3())) / MM;
+  };
   view.collision = () => (collision ? {
     bodies: collision.bodies.map((b) => ({ kind: b.kind, name: b.name })),
     point: inBase(marker),
     red: reddened.filter((r) => r.node.isMesh).length,
+    ghost: ghost.visible,
+    redLinkDistance: redLinkDistance(),
   } : null);
 }
