@@ -106,6 +106,17 @@ describe('xArm', () => {
     await page.getByRole('checkbox', { name: 'Show collision shapes' }).uncheck();
     assert.equal((await view(page, 'collisionShapes')).visible, 0);
     assert.equal(await view(page, 'fence'), null, 'no fence in this scene');
+    // The server gives no fence yet: a state that carries one (as it will) draws it, and a
+    // state with "fence": null takes it away.
+    const fence = { min: [-100, -200, 0], max: [300, 200, 350] };
+    const publishFence = (f) => page.evaluate(async (value) => {
+      const live = await import('/assets/app/live.js');
+      live.publish({ ...live.latestState(), fence: value });
+    }, f);
+    await publishFence(fence);
+    assert.deepEqual(await view(page, 'fence'), fence);
+    await publishFence(null);
+    assert.equal(await view(page, 'fence'), null);
     await pageMove(page, { servo6: 0, servo4: 0 });
     await waitForPosition(script, 'servo6', 0, 0.6);
     await waitIdle(script);
