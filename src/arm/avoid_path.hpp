@@ -21,6 +21,8 @@
 namespace armctl::arm {
 
 inline constexpr std::uint32_t kAvoidSeed = 23;  // issue 23
+// The time budgets an app may ask for (s): from a quick try to a long search.
+inline constexpr double kMinAvoidTime = 0.01, kMaxAvoidTime = 60;
 
 struct AvoidOptions {
   double time_budget = 1.0;  // s: searching, simplifying and checking the plan, all told

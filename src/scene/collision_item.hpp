@@ -20,6 +20,7 @@ struct CollisionWorld::Item {
   bool scene = false;    // a scene object (fixed or held), not a link
   Eigen::Vector3d low = Eigen::Vector3d::Zero(), high = Eigen::Vector3d::Zero();  // fixed ones: bounds
   std::vector<int> chain;  // the links with a joint it hangs from, its own first; none when fixed
+  BodyId id;               // which link or scene object it is
 };
 
 }  // namespace armctl::scene

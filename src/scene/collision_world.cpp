@@ -60,14 +60,16 @@ Result<std::shared_ptr<const CollisionWorld>> CollisionWorld::build(ArmBodies ar
   }
   for (std::size_t b = 0; b < n_bodies; ++b) {
     for (const auto& s : links.bodies[b].shapes) {
-      w->items_.push_back(Item{fmt::format("link '{}'", links.bodies[b].name), int(b), s, fcl_geometry(s), false, {}, {}, {}});
+      w->items_.push_back(Item{fmt::format("link '{}'", links.bodies[b].name), int(b), s, fcl_geometry(s), false, {}, {}, {},
+                               BodyId{BodyId::Kind::link, links.bodies[b].name}});
     }
   }
   const std::size_t n_links = w->items_.size();
   // Parts held by the tool hang from the tool link; what holds them never counts as a touch.
   const int holder = links.bodies[std::size_t(*tool)].parent;
   for (const auto& o : scene.objects) {
-    Item item{describe(o), o.attached ? *tool : -1, o.shape, fcl_geometry(o.shape), true, {}, {}, {}};
+    Item item{describe(o), o.attached ? *tool : -1, o.shape, fcl_geometry(o.shape), true, {}, {}, {},
+              BodyId{BodyId::Kind::object, o.name}};
     if (o.attached) {
       item.shape.pose = arm.tool_frame * o.shape.pose;
     } else {
@@ -241,8 +243,8 @@ std::optional<Contact> CollisionWorld::contact(std::span<const double> joints, s
   each_touching(joints, skip, true, [&](std::size_t k, const fcl::CollisionResultd& result) {
     const fcl::Contactd& c = result.getContact(0);
     if (!deepest || c.penetration_depth > deepest->depth) {
-      const auto [first, second] = pair_names(int(k));
-      deepest = Contact{first, second, c.penetration_depth, c.pos};
+      const Item &a = items_[std::size_t(pairs_[k].first)], &b = items_[std::size_t(pairs_[k].second)];
+      deepest = Contact{a.label, b.label, c.penetration_depth, c.pos, a.id, b.id};
     }
     return true;
   });

@@ -35,10 +35,18 @@ inline constexpr double kClearanceHorizon = 0.05;  // m
 enum class Limit { none, fence, joint_range };
 const char* to_string(Limit limit);  // "collision", "fence", "joint range"
 
+// Which body, for a program (a dashboard drawing it red): a link of the URDF or a scene
+// object, by its name. The words for people are Contact::first and second.
+struct BodyId {
+  enum class Kind { link, object } kind = Kind::link;
+  std::string name;  // the link's or the scene object's; empty: not known
+};
+
 struct Contact {
   std::string first, second;  // "link 'hand'", "the table 'table'", "box 'feeder'"
   double depth = 0;           // m: how far they overlap
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // base frame
+  BodyId first_body, second_body;  // the same two bodies (a limit: first_body only)
   // A limit broken rather than two bodies touching (docs/scene.md "Fence and reduced mode"):
   // `first` is what breaks it ("the tool point", "link 'hand'", "joint 'servo1'"), `second`
   // the limit ("the fence", "its reduced range -90.000..90.000 deg"), `depth` how far beyond

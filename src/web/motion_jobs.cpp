@@ -4,6 +4,7 @@
 
 #include <fmt/core.h>
 
+#include "arm/avoid_path.hpp"
 #include "arm/plan_moves.hpp"
 #include "arm/run_motion.hpp"
 #include "core/quantity.hpp"
@@ -29,9 +30,10 @@ arm::RunHooks job_hooks(session::JobContext& ctx) {
 }
 
 // Plans `moves` from where the arm stands (arm::plan_moves), answers the request (the plan's
-// duration, and a note when it takes longer than asked), then runs it (arm::run_motion).
+// duration, and a note when it takes longer than asked; `also`'s keys too), then runs it
+// (arm::run_motion).
 Status plan_and_run(arm::Arm& arm, session::JobContext& ctx, const Accept& accept, const arm::JointState& here,
-                    const std::vector<arm::Move>& moves) {
+                    const std::vector<arm::Move>& moves, const json& also = json::object()) {
   auto plan = arm::plan_moves(*arm.kinematics(), here.positions, moves);
   if (!plan) return plan.error();
   // As every app answers a move: how long it takes and where it ends (each joint as the API
@@ -42,6 +44,7 @@ Status plan_and_run(arm::Arm& arm, session::JobContext& ctx, const Accept& accep
     targets[model.joints[i].name] = display_value(model.joints[i].dimension, plan->end()[i]);
   json answer{{"moving", true}, {"duration_s", plan->duration}, {"targets", targets}};
   if (const std::string note = plan->notes(); !note.empty()) answer["note"] = note;
+  answer.update(also);
   accept(answer);
   auto report = arm::run_motion(arm, *plan, job_hooks(ctx));
   if (!report && !ctx.stopping()) return report.error();
@@ -49,12 +52,25 @@ Status plan_and_run(arm::Arm& arm, session::JobContext& ctx, const Accept& accep
 }
 
 // The tool to `goal`: PTP to the IK solution nearest where the arm stands, or a straight line.
+// With `avoid_time`, a PTP whose direct motion would collide goes around the obstacles
+// (arm::avoiding_move, as `armctl arm move-to --avoid`), searching that long at most.
 Status tool_move(arm::Arm& arm, session::JobContext& ctx, const Accept& accept, const arm::JointState& here,
-                 const arm::CartesianGoal& goal, bool linear, double speed) {
+                 const arm::CartesianGoal& goal, bool linear, double speed, std::optional<double> avoid_time = {}) {
   if (!linear) {
     arm::PtpMove ptp;
     ptp.target = goal;
     ptp.speed = speed;
+    if (avoid_time) {
+      arm::AvoidOptions around;
+      around.time_budget = *avoid_time;
+      auto avoided = arm::avoiding_move(*arm.kinematics(), here.positions, ptp, around);
+      if (!avoided) return avoided.error();
+      ptp = avoided->move;
+      // As the CLI's --json says it: how many waypoints the detour has (0: the direct move
+      // is clear) and how long the search took.
+      return plan_and_run(arm, ctx, accept, here, {arm::Move{ptp}},
+                          json{{"avoided", {{"waypoints", avoided->waypoints}, {"planning_s", avoided->planning_s}}}});
+    }
     return plan_and_run(arm, ctx, accept, here, {arm::Move{ptp}});
   }
   // The request's speed, a fraction, checked as given (not as the m/s it becomes).
@@ -91,7 +107,7 @@ MotionJob tool_move_job(ToolRequest r) {
     goal.roll = r.roll;
     goal.pitch = r.pitch;
     goal.yaw = r.yaw;
-    return tool_move(arm, ctx, accept, *here, goal, r.linear, r.speed);
+    return tool_move(arm, ctx, accept, *here, goal, r.linear, r.speed, r.avoid_time);
   };
 }
 

@@ -4,6 +4,7 @@
 
 #include <fmt/core.h>
 
+#include "arm/avoid_path.hpp"
 #include "core/printable.hpp"
 #include "core/quantity.hpp"
 #include "core/strict_json.hpp"
@@ -213,6 +214,12 @@ ToolRequest parse_tool_request(const json& body) {
   out.yaw = rad(r.optional_number("yaw", -360, 360, angle));
   out.linear = r.optional_boolean("linear").value_or(false);
   out.speed = speed_field(r, out.linear);
+  const bool avoid = r.optional_boolean("avoid").value_or(false);
+  const std::string budget = fmt::format("s, {:g}..{:g} (with \"avoid\": true; default 1)", arm::kMinAvoidTime, arm::kMaxAvoidTime);
+  const auto avoid_time = r.optional_number("avoid_time", arm::kMinAvoidTime, arm::kMaxAvoidTime, budget);
+  if (avoid && out.linear) bad_value("avoid", "true is not allowed with \"linear\": true: a straight line has no detour (avoid is for a PTP move)");
+  if (avoid_time && !avoid) bad_value("avoid_time", "is allowed only with \"avoid\": true");
+  if (avoid) out.avoid_time = avoid_time.value_or(arm::AvoidOptions{}.time_budget);
   r.finish();
   return out;
 }

@@ -86,6 +86,9 @@ struct ToolRequest {
   std::optional<double> roll, pitch, yaw;
   bool linear = false;
   double speed = motion::kDefaultJointSpeed;  // (0, 1]: of the joints' velocity limits, or linear of kMaxLinearSpeed
+  // "avoid": true: when the direct PTP would collide, around the obstacles (arm/avoid_path.hpp),
+  // searching for at most "avoid_time" s. A PTP only: a straight line has no detour.
+  std::optional<double> avoid_time;  // s; nothing: no avoiding
 };
 inline constexpr double kMaxLinearSpeed = 0.2;  // m/s of the tool at speed 1
 inline constexpr double kMaxReach = 2.0;          // m: no target further from the base

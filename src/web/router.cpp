@@ -16,11 +16,15 @@ void Call::reply(const json& body, int status) const {
   response.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
-void reply_error(httplib::Response& response, int status, const std::string& message, const Error* error) {
+void reply_error(httplib::Response& response, int status, const std::string& message, const Error* error,
+                 const ErrorDetailWriter& detail) {
   response.status = status;
   response.set_header("Cache-Control", "no-store");
   json body{{"error", message}};
-  if (error) body["kind"] = to_string(error->kind);
+  if (error) {
+    body["kind"] = to_string(error->kind);
+    if (detail) detail(body, *error);
+  }
   response.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
@@ -49,9 +53,9 @@ bool Router::dispatch(const httplib::Request& request, httplib::Response& respon
     try {
       r.handler(call);
     } catch (const ApiError& e) {
-      reply_error(response, e.status(), e.what(), e.error());
+      reply_error(response, e.status(), e.what(), e.error(), error_detail);
     } catch (const ArmctlError& e) {
-      reply_error(response, status_of(e.error()), e.what(), &e.error());
+      reply_error(response, status_of(e.error()), e.what(), &e.error(), error_detail);
     } catch (const std::exception& e) {
       reply_error(response, 500, fmt::format("internal error: {}", printable(e.what())));
     }

@@ -26,9 +26,14 @@ struct Call {
   void reply(const json& body, int status = 200) const;
 };
 
+// Adds an armctl error's typed detail to the body of its answer (web/error_detail.hpp).
+using ErrorDetailWriter = std::function<void(json& body, const Error& error)>;
+
 // {"error": message} with `status`; with the armctl error behind it, also {"kind": its kind}
-// as every armctl app names kinds ("invalid argument", "busy"...; README "Exit status").
-void reply_error(httplib::Response& response, int status, const std::string& message, const Error* error = nullptr);
+// as every armctl app names kinds ("invalid argument", "busy"...; README "Exit status"), and
+// what `detail` adds.
+void reply_error(httplib::Response& response, int status, const std::string& message, const Error* error = nullptr,
+                 const ErrorDetailWriter& detail = {});
 
 class Router {
  public:
@@ -38,6 +43,8 @@ class Router {
   bool knows(const std::string& path) const;
   // Runs the route for the request; false when no pattern matches its path.
   bool dispatch(const httplib::Request& request, httplib::Response& response, const std::string& client) const;
+  // How the errors of the routes' handlers show their detail (none by default).
+  ErrorDetailWriter error_detail;
 
  private:
   struct Route {

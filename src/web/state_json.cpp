@@ -64,6 +64,11 @@ json model_json(const arm::ArmModel& model, const DeviceInfo& device) {
           {"protocol", arm::to_string(device.protocol)},
           {"joints", std::move(joints)},
           {"tool_frame", tool_frame},
+          // The same as numbers, as a scene object is placed (docs/scene.md): where the
+          // dashboard hangs the parts the tool holds.
+          {"tool_link", model.tool_link},
+          {"tool_offset", {{"at", {mm(model.tool.position.x()), mm(model.tool.position.y()), mm(model.tool.position.z())}},
+                           {"rpy", {deg(rpy.roll), deg(rpy.pitch), deg(rpy.yaw)}}}},
           {"has_gripper", model.gripper.has_value()},
           {"groups_supported", device.groups_supported}};
 }

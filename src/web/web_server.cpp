@@ -9,6 +9,7 @@
 
 #include "core/printable.hpp"
 #include "web/api_error.hpp"
+#include "web/error_detail.hpp"
 #include "web/connection_guard.hpp"
 #include "web/request_body.hpp"
 #include "web/server_state.hpp"
@@ -156,6 +157,7 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
       s.points = std::move(read).value();
     }
   }
+  s.router.error_detail = [&s](json& body, const Error& e) { add_error_detail(body, e, s.worker.model()); };
   add_arm_routes(s);
   add_point_routes(s);
   add_scene_routes(s);

@@ -223,7 +223,7 @@ test('hold to move: the speed slider sets the speed sent; a held joint button mo
     await waitFor(async () => sent.length > 0, 'a servo request while the button is held');
     await page.mouse.up();
     await waitFor(async () => sent.at(-1).speed === 0, 'the request that stops it when the button is let go');
-    assert.deepEqual(sent[0], { axis: 'y', speed: -40 }, 'the slider\'s speed, signed by the button');
+    assert.deepEqual(sent[0], { axis: 'y', speed: -40, frame: 'base' }, 'the slider\'s speed, signed by the button');
     assert.deepEqual(sent.at(-1), { axis: 'y', speed: 0 });
     await waitIdle(script);
 

@@ -1,6 +1,7 @@
 // The planning scene over HTTP (docs/http-api.md "Scene") on the embedded simulated xArm:
 // objects added, replaced and removed one at a time, a whole scene put, saved to the scene
 // file; a plan into an object put there is refused; bad requests change nothing.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -72,6 +73,80 @@ TEST(WebScene, ObjectsAreAddedReplacedAndRemovedAndPlansSeeThem) {
   r = api.post("/api/v1/scene/save", json::object(), "page");
   EXPECT_EQ(r.status, 409);
   EXPECT_NE(error_of(r).find("--scene FILE"), std::string::npos) << r.text;
+}
+
+// The xArm's desk scene (examples/scenes/xarm-desk.json): a box to the right front.
+const char* kDesk = R"({"objects": [{"name": "desk", "table": {"top": 0, "size": [800, 600], "center": [150, 0]}},
+                                    {"name": "box", "box": [50, 50, 80], "at": [150, -100, 40]}]})";
+
+// A refused move answers with the collision's detail (which two bodies, where), so that a
+// page draws them without reading the message; "avoid": true goes around the same box, as
+// `armctl arm move-to --avoid` does, and the arm arrives (the simulator, which knows the
+// scene too, would have stalled it at a contact).
+TEST(WebScene, AMoveIntoTheBoxIsRefusedWithItsBodiesAndGoesAroundWithAvoid) {
+  ApiServer api("xarm");
+  api.take("page");
+  api.first_positions();
+  ASSERT_EQ(api.send("PUT", "/api/v1/scene", kDesk, "page").status, 200);
+  const json behind{{"x", 150}, {"y", -190}, {"z", 40}};
+  Reply r = api.post("/api/v1/tool", behind, "page");
+  ASSERT_EQ(r.status, 400) << r.text;
+  ASSERT_TRUE(r.body.contains("collision")) << r.text;
+  const json& c = r.body["collision"];
+  ASSERT_EQ(c["bodies"].size(), 2u);
+  bool box = false, link = false;
+  for (const json& b : c["bodies"]) {
+    box = box || (b["kind"] == "object" && b["name"] == "box" && b["text"] == "box 'box'");
+    link = link || (b["kind"] == "link" && b["name"].is_string() && error_of(r).find(b["text"].get<std::string>()) != std::string::npos);
+  }
+  EXPECT_TRUE(box) << c;
+  EXPECT_TRUE(link) << c;
+  // Where they touch: at the box (its faces are 25 mm from its centre, a few mm of depth).
+  ASSERT_EQ(c["point"].size(), 3u);
+  EXPECT_NEAR(c["point"][0].get<double>(), 150, 40) << c;
+  EXPECT_NEAR(c["point"][1].get<double>(), -100, 40) << c;
+  EXPECT_GT(c["depth_mm"].get<double>(), 0) << c;
+  EXPECT_GT(c["fraction"].get<double>(), 0) << c;
+  EXPECT_TRUE(c["line"].is_null());
+  EXPECT_EQ(c["while_moving"], false);
+  // Where the arm would be then, every joint in deg: not where it stands (all at 0).
+  ASSERT_EQ(c["joints"].size(), 6u) << c;
+  EXPECT_GT(std::abs(c["joints"]["servo6"].get<double>()), 10) << c;
+  EXPECT_TRUE(api.wait_idle());
+  const auto before = api.get("/api/v1/state").body["tool"];
+
+  // Bad avoid requests: nothing moves.
+  json bad = behind;
+  bad["avoid"] = true;
+  bad["linear"] = true;
+  r = api.post("/api/v1/tool", bad, "page");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_NE(error_of(r).find("a straight line has no detour"), std::string::npos) << r.text;
+  bad = behind;
+  bad["avoid_time"] = 2;
+  r = api.post("/api/v1/tool", bad, "page");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_NE(error_of(r).find("avoid_time: is allowed only with \"avoid\": true"), std::string::npos) << r.text;
+  bad["avoid"] = true;
+  bad["avoid_time"] = 120;
+  r = api.post("/api/v1/tool", bad, "page");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_NE(error_of(r).find("0.01..60"), std::string::npos) << r.text;
+  EXPECT_EQ(api.get("/api/v1/state").body["tool"], before);
+
+  json around = behind;
+  around["avoid"] = true;
+  around["avoid_time"] = 5;
+  r = api.post("/api/v1/tool", around, "page");
+  ASSERT_EQ(r.status, 200) << r.text;
+  EXPECT_GE(r.body["avoided"]["waypoints"].get<int>(), 1) << r.text;
+  EXPECT_GT(r.body["avoided"]["planning_s"].get<double>(), 0) << r.text;
+  ASSERT_TRUE(api.wait_idle(60s));
+  const json state = api.get("/api/v1/state").body;
+  EXPECT_EQ(state["last_error"], "") << state;
+  EXPECT_NEAR(state["tool"]["x"].get<double>(), 150, 1) << state;
+  EXPECT_NEAR(state["tool"]["y"].get<double>(), -190, 1) << state;
+  EXPECT_NEAR(state["tool"]["z"].get<double>(), 40, 1) << state;
 }
 
 TEST(WebScene, SavesToTheSceneFileItWasStartedWith) {

@@ -13,19 +13,25 @@ function randomClientId() {
 }
 export const clientId = randomClientId();
 
-// A refused request: the server's message, its status and what was asked.
+// A refused request: the server's message, its status, what was asked, and the answer's
+// whole body (its typed detail: "collision" for a move that would collide).
 export class ApiError extends Error {
-  constructor(status, message, method, path) {
+  constructor(status, message, method, path, body = null) {
     super(message);
     this.status = status;
     this.method = method;
     this.path = path;
+    this.body = body;
   }
 }
 
 const listeners = new Set();
 // fn(error) for every refused or failed request (the page shows them all in one place).
 export function onApiError(fn) { listeners.add(fn); }
+const answerListeners = new Set();
+// fn(method, path, answer) for every accepted request (the 3D view clears a refusal's red
+// bodies when a move is taken).
+export function onApiAnswer(fn) { answerListeners.add(fn); }
 
 function headers(hasBody) {
   const h = { 'X-Armctl-Client': clientId };
@@ -53,10 +59,11 @@ async function request(method, path, body, { quiet = false } = {}) {
   if (!response.ok) {
     const message = payload && typeof payload === 'object' && payload.error
       ? payload.error : `${response.status} ${response.statusText}`;
-    const error = new ApiError(response.status, message, method, path);
+    const error = new ApiError(response.status, message, method, path, payload && typeof payload === 'object' ? payload : null);
     if (!quiet) listeners.forEach((fn) => fn(error));
     throw error;
   }
+  answerListeners.forEach((fn) => fn(method, path, payload));
   return payload;
 }
 

@@ -11,6 +11,7 @@ import { initPoints } from './points.js';
 import { initGroups } from './groups.js';
 import { initProgram } from './program.js';
 import { initCalibrate } from './calibrate.js';
+import { initScene } from './scene.js';
 
 function initTabs() {
   const tabs = [...document.querySelectorAll('[role=tab]')];
@@ -50,6 +51,7 @@ async function start() {
   initGroups(model);
   initProgram(model);
   initCalibrate(model);
+  initScene();
   await startLive();
   // The first page to open takes control; a page opened while another has it watches.
   await takeControlIfFree(latestState());

@@ -1,9 +1,10 @@
 // The tool in millimetres and degrees: the live pose, jog buttons per axis with a step
 // size (POST /api/v1/jog) or, with "hold to move", moving while held (POST /api/v1/servo every
-// 50 ms; released, it stops: the server brings the arm to rest when the posts stop coming,
-// also when the page is closed or the connection lost), the keys w/s a/d r/f doing the same
-// for x, y, z; per-joint buttons that move one joint while held (the same POST, with a joint);
-// speed sliders for both; and a "move tool to" form (POST /api/v1/tool).
+// 50 ms, along or about the base frame's axes or the tool's; released, it stops: the server
+// brings the arm to rest when the posts stop coming, also when the page is closed or the
+// connection lost), the keys w/s a/d r/f doing the same for x, y, z; per-joint buttons that
+// move one joint while held (the same POST, with a joint); speed sliders for both; and a
+// "move tool to" form (POST /api/v1/tool), optionally around obstacles ("avoid").
 import { api } from './api.js';
 import { el, $, fmt, busy } from './dom.js';
 import { onState } from './live.js';
@@ -33,6 +34,10 @@ export function initTool(model) {
   const stepDeg = el('input', { type: 'number', min: 0.1, max: 90, step: 'any', value: 5, 'aria-label': 'Jog step (deg)' });
   const linear = el('input', { type: 'checkbox', checked: true, 'aria-label': 'Straight line' });
   const hold = el('input', { type: 'checkbox', 'aria-label': 'Hold to move' });
+  // Held axes move in the base frame or the tool's own (x along the approach).
+  const frame = el('select', { 'aria-label': 'Hold to move frame' },
+    el('option', { value: 'base' }, 'base frame'), el('option', { value: 'tool' }, 'tool frame'));
+  const avoid = el('input', { type: 'checkbox', 'aria-label': 'Avoid obstacles' });
   const speedMm = speedSlider('Hold speed (mm/s)', 'mm/s', 1, 100, 25);
   const speedDeg = speedSlider('Hold speed (deg/s)', 'deg/s', 1, 60, 20);
   const speedJoint = speedSlider('Joint hold speed (% of its limit)', '%', 5, 100, 20);
@@ -42,6 +47,7 @@ export function initTool(model) {
   const press = (body, speed) => {
     if (held) release();
     const command = { ...body, speed: speed() };
+    if (body.axis) command.frame = frame.value;
     servo(command);
     held = { body, timer: setInterval(() => servo(command), 50) };
   };
@@ -113,6 +119,8 @@ export function initTool(model) {
 
   const moveTo = el('button', { type: 'button', onclick: (e) => busy(e.currentTarget, () => {
     const body = { linear: linear.checked };
+    // Around obstacles: a PTP only (a straight line has no detour).
+    if (avoid.checked && !linear.checked) body.avoid = true;
     for (const [axis, input] of targets) {
       if (input.value !== '') body[axis] = Number(input.value);
     }
@@ -127,11 +135,16 @@ export function initTool(model) {
       el('label', {}, 'Step ', stepMm, ' mm'), el('label', {}, ' ', stepDeg, ' deg'),
       el('label', {}, linear, ' straight line')),
     el('div', { class: 'row' },
-      el('label', {}, hold, ' hold to move'), ' at ', speedMm.label, speedDeg.label),
+      el('label', {}, hold, ' hold to move'), ' in the ', frame, ' at ', speedMm.label, speedDeg.label),
     table,
     el('div', { class: 'row' }, 'Joints, held: ', speedJoint.label),
     jointTable,
-    el('div', { class: 'row' }, copy, moveTo));
+    el('div', { class: 'row' }, copy, moveTo,
+      el('label', { title: 'When the direct move would collide, go around the scene\'s objects (not with straight line)' },
+        avoid, ' avoid obstacles')));
+  const avoidUsable = () => { avoid.disabled = linear.checked; };
+  linear.addEventListener('change', avoidUsable);
+  avoidUsable();
 
   onState((state) => {
     for (const { axis } of AXES) {
