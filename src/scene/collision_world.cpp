@@ -244,7 +244,7 @@ std::optional<Contact> CollisionWorld::contact(std::span<const double> joints, s
     const fcl::Contactd& c = result.getContact(0);
     if (!deepest || c.penetration_depth > deepest->depth) {
       const Item &a = items_[std::size_t(pairs_[k].first)], &b = items_[std::size_t(pairs_[k].second)];
-      deepest = Contact{a.label, b.label, c.penetration_depth, c.pos, a.id, b.id};
+      deepest = Contact{a.label, b.label, c.penetration_depth, c.pos, Limit::none, a.id, b.id};
     }
     return true;
   });

@@ -46,12 +46,14 @@ struct Contact {
   std::string first, second;  // "link 'hand'", "the table 'table'", "box 'feeder'"
   double depth = 0;           // m: how far they overlap
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // base frame
-  BodyId first_body, second_body;  // the same two bodies (a limit: first_body only)
   // A limit broken rather than two bodies touching (docs/scene.md "Fence and reduced mode"):
   // `first` is what breaks it ("the tool point", "link 'hand'", "joint 'servo1'"), `second`
   // the limit ("the fence", "its reduced range -90.000..90.000 deg"), `depth` how far beyond
   // it (m, or rad for a revolute joint) and `point` the tool point.
   Limit limit = Limit::none;
+  // The same two bodies for programs (a link outside the fence: first_body only; the tool
+  // point or a joint: neither).
+  BodyId first_body, second_body;
 };
 
 // A joint's range in reduced mode (arm/reduced_mode.hpp), SI, with how people read it.

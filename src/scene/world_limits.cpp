@@ -43,7 +43,7 @@ std::optional<Contact> CollisionWorld::limit_broken(std::size_t k, std::span<con
   const Eigen::Vector3d tool = at.bodies[std::size_t(tool_body_)] * arm_.tool_frame.translation();
   switch (l.item) {
     case LimitItem::tool_in_fence:
-      if (const double d = outside(*fence_, tool, tool); d > 0) return Contact{"the tool point", "the fence", d, tool, Limit::fence};
+      if (const double d = outside(*fence_, tool, tool); d > 0) return Contact{"the tool point", "the fence", d, tool, Limit::fence, {}, {}};
       return std::nullopt;
     case LimitItem::links_in_fence: {
       std::optional<Contact> worst;
@@ -52,14 +52,14 @@ std::optional<Contact> CollisionWorld::limit_broken(std::size_t k, std::span<con
         if (item.scene || item.body < 0 || !arm_.links->moves(item.body)) continue;
         complete(at, i);
         if (const double d = outside(*fence_, at.low[i], at.high[i]); d > 0 && (!worst || d > worst->depth))
-          worst = Contact{item.label, "the fence", d, tool, Limit::fence};
+          worst = Contact{item.label, "the fence", d, tool, Limit::fence, item.id, {}};
       }
       return worst;
     }
     case LimitItem::joint_range: {
       const JointRange& r = arm_.joint_ranges[l.range];
       const double q = r.joint < joints.size() ? joints[r.joint] : 0.0;
-      if (const double d = std::max(r.lower - q, q - r.upper); d > 0) return Contact{r.name, r.words, d, tool, Limit::joint_range};
+      if (const double d = std::max(r.lower - q, q - r.upper); d > 0) return Contact{r.name, r.words, d, tool, Limit::joint_range, {}, {}};
       return std::nullopt;
     }
   }

@@ -25,7 +25,11 @@ json collision_json(const arm::CollisionDetail& d, const arm::ArmModel& model) {
   return {{"bodies", json::array({body_json(d.contact.first_body, d.contact.first),
                                   body_json(d.contact.second_body, d.contact.second)})},
           {"point", mm(d.contact.point)},
-          {"depth_mm", tidy(d.contact.depth * 1e3)},
+          // What was met: "collision" (two bodies), "fence" or "joint range" (a limit of the
+          // scene: the first body breaks it, the second is the limit's words).
+          {"limit", scene::to_string(d.contact.limit)},
+          // A joint range's depth is an angle or a length of that joint, not a distance in space.
+          {"depth_mm", d.contact.limit == scene::Limit::joint_range ? json(nullptr) : json(tidy(d.contact.depth * 1e3))},
           {"tool_point", mm(d.tool_point)},
           {"fraction", tidy(d.fraction)},
           {"line", d.line ? json(d.line) : json(nullptr)},
