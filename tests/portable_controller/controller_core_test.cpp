@@ -167,6 +167,55 @@ TEST(ControllerCore, MoveWhileTheJointIsUnderWayStartsFromWhereItIsPlannedToBe) 
   EXPECT_NEAR(s.plan_from, 5000, 600) << "half way along the first move's line";
 }
 
+TEST(SetpointMotion, FromRestItIsTheTrapezoid) {
+  const float a = ramp_accel(15000);
+  const SetpointMotion m{0.0f, 0.0f, 10000.0f, 8000.0f, a};
+  const float t = motion_arrival_s(m);
+  EXPECT_NEAR(t, shortest_time_s(10000.0f, 8000.0f, a), 1e-4);
+  EXPECT_NEAR(motion_at(m, t / 2).x, 5000.0f, 0.5f) << "symmetric";
+  EXPECT_NEAR(motion_at(m, t / 2).v, 8000.0f, 0.5f) << "cruising";
+  EXPECT_NEAR(motion_at(m, 0.1f).x, a * 0.01f / 2, 0.5f) << "accelerating";
+  EXPECT_EQ(motion_at(m, t + 0.1f).x, 10000.0f);
+  EXPECT_EQ(motion_at(m, t + 0.1f).v, 0.0f);
+}
+
+TEST(SetpointMotion, MovingAwayOrTooFastItBrakesToRestFirstAndComesBack) {
+  const float a = ramp_accel(40000);
+  // Moving away at 4000 clicks/s: it stops 4000^2 / 2a beyond its start, then turns.
+  const SetpointMotion away{0.0f, -4000.0f, 1000.0f, 12000.0f, a};
+  const float turn_s = 4000.0f / a;
+  EXPECT_NEAR(motion_at(away, turn_s).x, -4000.0f * 4000.0f / (2 * a), 0.5f);
+  EXPECT_NEAR(motion_at(away, turn_s).v, 0.0f, 1.0f);
+  const float back = 1000.0f + 4000.0f * 4000.0f / (2 * a);
+  EXPECT_NEAR(motion_arrival_s(away), turn_s + shortest_time_s(back, 12000.0f, a), 1e-4);
+  // Toward a target nearer than its stopping distance: it overshoots and comes back.
+  const SetpointMotion fast{0.0f, 8000.0f, 100.0f, 12000.0f, a};
+  EXPECT_NEAR(motion_at(fast, 8000.0f / a).x, 8000.0f * 8000.0f / (2 * a), 0.5f);
+  EXPECT_EQ(motion_at(fast, 1.0f).x, 100.0f);
+  // Speed 0 (GroupStop): it comes to rest where it can, short of its target, and stays.
+  const SetpointMotion held{0.0f, 3000.0f, 9000.0f, 0.0f, a};
+  EXPECT_NEAR(motion_at(held, 1.0f).x, 3000.0f * 3000.0f / (2 * a), 0.5f);
+  EXPECT_LT(motion_arrival_s(held), 0.0f) << "never arrives";
+}
+
+TEST(SetpointMotion, TheLimitForAnArrivalArrivesThen) {
+  const float a = ramp_accel(15000), top = ramp_speed(8000, 100);
+  // Moving toward its target: speeding up, and slowing down to a lower limit.
+  for (const float v0 : {0.0f, 1500.0f, 5000.0f, -2000.0f}) {
+    for (const float time_s : {1.5f, 2.0f, 4.0f}) {
+      SetpointMotion m{200.0f, v0, 6200.0f, top, a};
+      const float limit = limit_for_arrival(m, time_s, top);
+      SCOPED_TRACE(::testing::Message() << "v0 " << v0 << " time " << time_s << " limit " << limit);
+      ASSERT_GT(limit, 0.0f);
+      ASSERT_LT(limit, top);
+      m.limit = limit;
+      EXPECT_NEAR(motion_arrival_s(m), time_s, 2e-3);
+    }
+  }
+  const SetpointMotion far{0.0f, 0.0f, 20000.0f, top, a};
+  EXPECT_EQ(limit_for_arrival(far, 1.0f, top), top) << "out of reach: flat out";
+}
+
 TEST(ControllerCore, MoveTooFastForAJointIsStretchedToItsReach) {
   CoreRig rig;
   rig.request(rc_multi_servo_move, CoreRig::move(100, {{2, 1000}}));  // 20000 clicks in 0.1 s
