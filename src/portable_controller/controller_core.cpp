@@ -62,6 +62,7 @@ void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus
   pending_count_ = 0;
   poll_index_ = 0;
   convert_ = no_convert;
+  check_ = no_convert;
   stats_ = CoreStats{};
   for (uint8_t i = 0; i < max_joints; ++i) {
     state_[i] = JointState{};
@@ -151,7 +152,16 @@ bool ControllerCore::upsert(uint32_t due_us, uint8_t index, OpKind kind, int16_t
     Op& op = ops_[i];
     if (op.joint != joints_[index].number || op.kind != kind) continue;
     op.value = value;
-    if (static_cast<int32_t>(due_us - op.due_us) < 0) op.due_us = due_us;
+    if (static_cast<int32_t>(due_us - op.due_us) < 0) {
+      op.due_us = due_us;
+      // Due sooner: ahead of the ops due after it (the queue stays in order of due time;
+      // start_next() looks at its head only).
+      for (uint8_t k = i; k > 0 && static_cast<int32_t>(ops_[k - 1].due_us - ops_[k].due_us) > 0; --k) {
+        const Op moved = ops_[k];
+        ops_[k] = ops_[k - 1];
+        ops_[k - 1] = moved;
+      }
+    }
     return true;
   }
   return schedule(due_us, index, kind, value);
@@ -170,6 +180,7 @@ void ControllerCore::cancel_ops(uint8_t index, bool drives_only) {
 }
 
 void ControllerCore::poll(uint32_t now_us) {
+  last_now_us_ = now_us;
   if (have_groups_) service_groups();
   master_.poll(now_us);
   BusResult r;
@@ -178,6 +189,12 @@ void ControllerCore::poll(uint32_t now_us) {
   // on the Mega that `now_us` is stale afterwards: the next transaction starts at the next
   // poll, with a fresh time (else its timeout would run from before the planning).
   if (!master_.busy()) {
+    // Planning, in passes between two transactions: the models of the move's joints first,
+    // a joint a pass, then the plan (each pass stays short enough for the receive ring).
+    if (plan_due() && fold_pending(now_us)) {
+      after_poll(now_us);
+      return;
+    }
     if (plan_pending(now_us)) {
       after_poll(now_us);
       return;
@@ -194,23 +211,56 @@ void ControllerCore::poll(uint32_t now_us) {
 
 void ControllerCore::after_poll(uint32_t now_us) {
   // The polled reading in Robot Commands units (a 32-bit division, about 700 cycles on the
-  // Mega) and its check against the joint's plan (floating point while it moves: the ramp
-  // check), done once the next joint is selected, while that joint prepares its READY,
-  // not between the two transactions. Nothing reads `position` before poll() returns.
-  if (convert_ == no_convert) return;
+  // Mega), done once the next joint is selected, while that joint prepares its READY, not
+  // between the two transactions; nothing reads `position` before poll() returns. Its
+  // check against the joint's plan (floating point while it moves: the ramp check) in the
+  // next pass, which has nothing else to do (a transaction lasts many passes): each pass
+  // stays under a word at 115200.
+  if (convert_ == no_convert) {
+    if (check_ != no_convert) {
+      const uint8_t index = check_;
+      check_ = no_convert;
+      check_following(index, check_before_, now_us);  // may leave a ramp check for the next pass
+    } else if (ramp_check_ != no_convert) {
+      const uint8_t index = ramp_check_;
+      ramp_check_ = no_convert;
+      check_ramp(index, now_us);
+    }
+    return;
+  }
+  // (Transactions faster than passes, as scripted joints answer in host tests: the checks
+  // still waiting are done first, so that none is skipped. On the Mega a transaction lasts
+  // dozens of passes.)
+  if (check_ != no_convert) {
+    const uint8_t waiting = check_;
+    check_ = no_convert;
+    check_following(waiting, check_before_, now_us);
+  }
+  if (ramp_check_ != no_convert) {
+    const uint8_t waiting = ramp_check_;
+    ramp_check_ = no_convert;
+    check_ramp(waiting, now_us);
+  }
   const uint8_t index = convert_;
   convert_ = no_convert;
   JointState& s = state_[index];
   s.position = to_position(joints_[index].number, s.clicks);
-  check_following(index, polled_before_, now_us);
+  check_ = index;
+  check_before_ = polled_before_;
+}
+
+bool ControllerCore::plan_due() const {
+  // Moves streamed faster than they can be planned: the bus work of the last plan gets a
+  // few transactions first (else, at 115200, plans of 8 ms each would follow each other
+  // and no command would ever go out). Work due later (a part-way speed switch) does not
+  // hold a plan back.
+  return pending_count_ > 0 && (op_count_ == 0 || txns_since_plan_ >= min_txns_between_plans ||
+                                !reached(last_now_us_, ops_[0].due_us));
 }
 
 bool ControllerCore::plan_pending(uint32_t now_us, bool now_or_never) {
   if (pending_count_ == 0) return false;
-  // Moves streamed faster than they can be planned: the bus work of the last plan gets a
-  // few transactions first (else, at 115200, plans of 8 ms each would follow each other
-  // and no command would ever go out).
-  if (!now_or_never && op_count_ > 0 && txns_since_plan_ < min_txns_between_plans) return false;
+  if (!now_or_never && !plan_due()) return false;
   txns_since_plan_ = 0;
   const uint8_t n = pending_count_;
   pending_count_ = 0;
@@ -220,7 +270,16 @@ bool ControllerCore::plan_pending(uint32_t now_us, bool now_or_never) {
 
 void ControllerCore::start_next(uint32_t now_us) {
   if (count_ == 0) return;
-  if (op_count_ > 0 && reached(now_us, ops_[0].due_us)) {
+  // Streamed moves keep commands due all the time: every few commands of a move a poll
+  // still goes out (else no position is read while a host streams, ServoPositionRead
+  // answers the positions from before the stream, and no joint is checked against its
+  // plan). A halt (set_speed 0) never waits for one.
+  const OpKind head = ops_[0].kind;
+  const bool poll_first = op_count_ > 0 && commands_in_row_ >= max_commands_in_row &&
+                          (head == OpKind::drive_to || head == OpKind::speed_switch ||
+                           (head == OpKind::speed && ops_[0].value != 0));
+  if (op_count_ > 0 && reached(now_us, ops_[0].due_us) && !poll_first) {
+    if (commands_in_row_ < 255) ++commands_in_row_;
     const Op op = ops_[0];
     for (uint8_t i = 1; i < op_count_; ++i) ops_[i - 1] = ops_[i];
     --op_count_;
@@ -238,24 +297,127 @@ void ControllerCore::start_next(uint32_t now_us) {
     inflight_is_op_ = true;
     inflight_kind_ = op.kind;
     inflight_value_ = op.value;
+    inflight_index_ = static_cast<uint8_t>(index_of(op.joint));
     count_up(stats_.commands);
     master_.start(op.joint, command, op.value, now_us);
     return;
   }
   // A poll would delay a command due before it ends: keep the bus free for the command.
-  if (op_count_ > 0 && static_cast<int32_t>(ops_[0].due_us - now_us) < int32_t(master_.transaction_estimate_us()))
+  if (!poll_first && op_count_ > 0 &&
+      static_cast<int32_t>(ops_[0].due_us - now_us) < int32_t(master_.transaction_estimate_us()))
     return;
+  commands_in_row_ = 0;
   inflight_is_op_ = false;
   ++stats_.polls;
   master_.start(joints_[poll_index_].number, jb::cmd_get_position, 0, now_us);
 }
 
-float ControllerCore::start_clicks(uint8_t index, uint32_t now_us) const {
-  const JointState& s = state_[index];
-  if (!s.planned || reached(now_us, s.plan_end_us)) return float(s.clicks);
-  if (!reached(now_us, s.plan_start_us)) return float(s.plan_from);
-  const float done = float(now_us - s.plan_start_us) / float(s.plan_end_us - s.plan_start_us);
-  return float(s.plan_from) + (float(s.plan_to) - float(s.plan_from)) * done;
+void ControllerCore::note_model(uint8_t index, uint8_t kind, int16_t value, uint32_t at_us) {
+  JointState& s = state_[index];
+  if (!s.model_known) return;
+  if (s.model_events == sizeof s.events / sizeof s.events[0]) {
+    forget_model(index);  // more commands than a plan's between two plans: start afresh
+    return;
+  }
+  s.events[s.model_events++] = ModelEvent{at_us, value, kind};
+}
+
+void ControllerCore::forget_model(uint8_t index) {
+  state_[index].model_known = false;
+  state_[index].model_events = 0;
+}
+
+void ControllerCore::rest_model(uint8_t index, float at, uint8_t percent, uint32_t now_us) {
+  JointState& s = state_[index];
+  const JointSetup& j = joints_[index];
+  s.model = SetpointMotion{at, 0.0f, at, percent == model_unknown_percent ? 0.0f : ramp_speed(j.max_speed_cps, percent),
+                           ramp_accel(j.max_accel_cps2)};
+  s.model_percent = percent;
+  s.model_events = 0;
+  s.model_us = now_us;
+  s.model_known = true;
+  s.model_resting = true;
+  s.model_arrives = false;
+  s.phases = MotionPhases{};
+  s.phases.x1 = at;
+  s.phases.sign = 1.0f;
+}
+
+void ControllerCore::fold_model(uint8_t index, uint32_t now_us) {
+  JointState& s = state_[index];
+  const JointSetup& j = joints_[index];
+  if (!s.model_known || !s.loop_on) {
+    // Nothing known: at rest where it was polled (held: the start-up's set_speed 0), its
+    // speed to be set by the move. (A joint whose loop is off gets loop-on first, which
+    // anchors the model again where the joint then is.)
+    rest_model(index, float(s.clicks), model_unknown_percent, now_us);
+    return;
+  }
+  if (s.model_events == 0) return;
+  if (s.planned && reached(now_us, s.plan_end_us + settled_us) && !queued(index, OpKind::drive_to) &&
+      !queued(index, OpKind::speed) && !queued(index, OpKind::speed_switch) && !master_.busy()) {
+    // Its move ended a while ago with nothing more on its way: its plan had it at rest on
+    // its target by then (no arithmetic: the Mega computes floating point slowly).
+    float target = s.model.target;
+    uint8_t percent = s.model_percent;
+    bool anchored = false;  // loop-on: not this shortcut
+    for (uint8_t e = 0; e < s.model_events; ++e) {
+      if (s.events[e].kind == model_drive) target = float(s.events[e].value);
+      if (s.events[e].kind == model_speed) percent = static_cast<uint8_t>(s.events[e].value);
+      if (s.events[e].kind == model_rest) anchored = true;
+    }
+    if (!anchored && target == float(s.plan_to) && percent != model_unknown_percent && percent != 0) {
+      rest_model(index, target, percent, now_us);
+      return;
+    }
+  }
+  // The noted commands in the order they took effect (one after another on the bus). One
+  // that took effect within a transaction of the one before is taken as if with it (a
+  // moving joint's drive and speed): an evaluation and a shaping fewer.
+  const uint32_t together_us = master_.transaction_estimate_us() + master_.word_time_us();
+  bool shaped = true;  // s.phases are those of s.model
+  for (uint8_t e = 0; e < s.model_events; ++e) {
+    const ModelEvent& ev = s.events[e];
+    const bool with_last = e > 0 && static_cast<uint32_t>(ev.at_us - s.model_us) < together_us;
+    if (!with_last) {
+      if (!s.model_resting) {
+        if (!shaped) s.phases = motion_phases(s.model);
+        const SetpointState st =
+            motion_at(s.model, s.phases, float(static_cast<int32_t>(ev.at_us - s.model_us)) * 1e-6f);
+        s.model.x0 = st.x;
+        s.model.v0 = st.v;
+      }
+      s.model_us = ev.at_us;
+    }
+    if (ev.kind == model_drive) {
+      s.model.target = float(ev.value);
+    } else if (ev.kind == model_speed) {
+      s.model_percent = static_cast<uint8_t>(ev.value);
+      s.model.limit = ramp_speed(j.max_speed_cps, s.model_percent);
+    } else {
+      s.model.x0 = float(ev.value);
+      s.model.v0 = 0.0f;
+      s.model.target = float(ev.value);
+    }
+    s.model_resting = s.model.v0 == 0.0f && (s.model.x0 == s.model.target || s.model.limit == 0.0f);
+    shaped = false;
+  }
+  s.model_events = 0;
+  s.phases = motion_phases(s.model);
+  const float arrival_s = motion_arrival_s(s.phases);
+  s.model_arrives = !s.model_resting && arrival_s >= 0.0f && arrival_s < 1000.0f;
+  if (s.model_arrives) s.model_rest_us = s.model_us + static_cast<uint32_t>(arrival_s * 1e6f);
+}
+
+bool ControllerCore::fold_pending(uint32_t now_us) {
+  for (uint8_t k = 0; k < pending_count_; ++k) {
+    const JointState& s = state_[pending_[k].index];
+    if (s.model_known && s.loop_on && s.model_events > 0) {
+      fold_model(pending_[k].index, now_us);
+      return true;
+    }
+  }
+  return false;
 }
 
 void ControllerCore::note_fault(uint8_t index, int16_t status) {
@@ -263,6 +425,7 @@ void ControllerCore::note_fault(uint8_t index, int16_t status) {
   count_up(s.faults);
   s.answering = false;
   s.planned = false;  // what it does now is not known
+  forget_model(index);
   s.last_fault = status;
 }
 
@@ -295,6 +458,17 @@ void ControllerCore::take_result(const BusResult& r, uint32_t now_us) {
   if (r.ok) {
     s.answering = true;
     if (inflight_kind_ == OpKind::loop_on) s.loop_on = true;
+    // The model learns what took effect: a command's DATA crossed the wire a STATUS word
+    // (and the joint's turnaround) before this result.
+    const uint32_t effect_us = now_us - master_.word_time_us();
+    switch (inflight_kind_) {
+      case OpKind::drive_to: note_model(index, model_drive, inflight_value_, effect_us); break;
+      case OpKind::speed:
+      case OpKind::speed_switch: note_model(index, model_speed, inflight_value_, effect_us); break;
+      case OpKind::loop_on: note_model(index, model_rest, s.clicks, effect_us); break;
+      case OpKind::loop_off: forget_model(index); break;
+      default: break;
+    }
     // Its ramp began when DATA arrived, a little before this answer: a late start keeps the
     // ramp check's model behind the joint's setpoint, never ahead.
     if (inflight_kind_ == OpKind::drive_to && s.planned && inflight_value_ == s.plan_to && s.ramp_percent != 0) {
@@ -442,106 +616,218 @@ void ControllerCore::on_move(const uint8_t* data, uint8_t length) {
   pending_ms_ = time_ms;
 }
 
+bool ControllerCore::queued(uint8_t index, OpKind kind) const {
+  for (uint8_t i = 0; i < op_count_; ++i)
+    if (ops_[i].joint == joints_[index].number && ops_[i].kind == kind) return true;
+  return false;
+}
+
+bool ControllerCore::in_flight(uint8_t index, OpKind kind) const {
+  return master_.busy() && inflight_is_op_ && inflight_index_ == index && inflight_kind_ == kind;
+}
+
+void ControllerCore::want_speed(uint8_t index, uint8_t percent, uint32_t due_us) {
+  const JointState& s = state_[index];
+  // Already at that speed (and no other on its way): a transaction saved for the drives.
+  if (!queued(index, OpKind::speed) && !in_flight(index, OpKind::speed) &&
+      !in_flight(index, OpKind::speed_switch) && s.model_known && s.model_percent == percent)
+    return;
+  upsert(due_us, index, OpKind::speed, percent);
+}
+
+void ControllerCore::want_drive(uint8_t index, int16_t clicks, uint32_t due_us) {
+  const JointState& s = state_[index];
+  if (!queued(index, OpKind::drive_to) && !in_flight(index, OpKind::drive_to) && s.model_known &&
+      s.model.target == float(clicks))
+    return;
+  upsert(due_us, index, OpKind::drive_to, clicks);
+}
+
 void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_ms, uint32_t now_us) {
-  // Bus order: loop-on for joints that were off, every speed, then the drives. A joint at
-  // rest does not move on a speed change, so only the drives start motion. Joint k's drive
-  // can take effect `effect[k]` after now at the earliest (behind the speeds and k drives);
-  // the common arrival is the time asked, or later if a joint cannot make it. Each joint
-  // gets the smallest whole percent that arrives in time, and its drive is delayed so that
-  // its profile ends at the common instant. The 1 % steps of set_speed are absorbed by a
-  // second set_speed, one percent slower, part-way through (switch_time_s), not by delaying
-  // the drive: a delay of up to 1/p of the move would leave a slow joint standing for
-  // seconds, and a stop in that time would find it never started.
+  // Each joint starts from its setpoint as its model has it (docs/mega-controller.md,
+  // "Moving start"). A joint at rest on its target starts from rest: bus order loop-on for
+  // joints that were off, every speed, then the drives. A joint at rest does not move on a
+  // speed change, so only the drives start motion; joint k's drive can take effect
+  // `effect[k]` after now at the earliest; each gets the smallest whole percent that
+  // arrives in time, and its drive is delayed so that its profile ends at the common
+  // instant. The 1 % steps of set_speed are absorbed by a second set_speed, one percent
+  // slower, part-way through (switch_time_s), not by delaying the drive: a delay of up to
+  // 1/p of the move would leave a slow joint standing for seconds, and a stop in that time
+  // would find it never started.
+  // A joint still moving (or held short of its target by set_speed 0) gets its drive_to
+  // first, at once (the moving joints take the first bus slots): a speed change first would
+  // push it on toward its old target, and a delayed drive would let it run on there. Its
+  // speed follows (only if it changes), the smallest percent that brings its ramp, from
+  // where the model puts it when the drive takes effect, to rest on the new target in time.
+  // The joints starting from rest arrive together: at the time asked, or later if one
+  // cannot make it (as an xArm stretches a move to its servos' limits). A joint still
+  // moving arrives at the time asked or as soon as it can (then at 100 %: one that fell
+  // behind a streamed target catches up), not held back for the others (below).
   const uint32_t txn = master_.transaction_estimate_us();
   // drive_to takes effect once READY, COMMAND and DATA (3 words) have crossed the wire.
-  const float latency_s = float(3 * master_.word_time_us()) / 1e6f;
+  const float latency_s = float(3 * master_.word_time_us()) * 1e-6f;
+  const float txn_s = float(txn) * 1e-6f;
   uint8_t loop_ons = 0;
-  for (uint8_t k = 0; k < n; ++k)
-    if (!state_[targets[k].index].loop_on) ++loop_ons;
+  bool moving[max_joints];
+  bool idle[max_joints];  // at rest on this very target: nothing to send
   float effect_s[max_joints];
   float distance[max_joints];
   float from[max_joints];
-  uint16_t slack[max_joints];
-  float arrive_s = float(time_ms) / 1000.0f;
+  float fastest_s[max_joints];
+  float arrive_k[max_joints];  // a moving joint's own arrival
+  SetpointMotion start[max_joints];  // a moving joint's, when its drive takes effect
+  MotionPhases phases[max_joints];   // those of `start` at 100 %
+  uint8_t movers = 0, resting = 0;
+  for (uint8_t k = 0; k < n; ++k) {
+    const uint8_t index = targets[k].index;
+    JointState& st = state_[index];
+    if (!st.loop_on) ++loop_ons;
+    fold_model(index, now_us);  // (usually done already, a joint a pass: fold_pending)
+    // Come to rest on its target since: at rest there from now on.
+    if (st.model_arrives && reached(now_us, st.model_rest_us))
+      rest_model(index, st.model.target, st.model_percent, now_us);
+    from[k] = st.model_resting ? st.model.x0 : st.model.target;  // moving: set below
+    moving[k] = !st.model_resting || st.model.x0 != st.model.target;
+    idle[k] = !moving[k] && st.loop_on && st.model.x0 == float(targets[k].clicks);
+    if (moving[k]) ++movers;
+    else if (!idle[k]) ++resting;
+  }
+  const float asked_s = float(time_ms) * 0.001f;
+  float arrive_s = asked_s;
+  // Per joint, once (each a 32-bit division on the Mega): its ramp's acceleration and top speed.
+  float accel_k[max_joints];
+  float top_k[max_joints];
   for (uint8_t k = 0; k < n; ++k) {
     const JointSetup& j = joints_[targets[k].index];
-    effect_s[k] = float(uint32_t(loop_ons + n + k) * txn) / 1e6f + latency_s;
-    from[k] = start_clicks(targets[k].index, now_us);
-    {
-      // A joint still moving may be anywhere near `from` (a straight line, not its ramp) and
-      // run on while it turns: v^2 / 2a at its full speed.
-      const JointState& st = state_[targets[k].index];
-      const bool moving = st.planned && !reached(now_us, st.plan_end_us);
-      const float v = moving ? float(j.max_speed_cps) : 0.0f;
-      const float over = v * v / (2.0f * ramp_accel(j.max_accel_cps2));
-      slack[k] = over > 30000.0f ? 30000 : static_cast<uint16_t>(over);
-    }
-    const float d = float(targets[k].clicks) - from[k];
-    distance[k] = d < 0.0f ? -d : d;
-    const float earliest = effect_s[k] + shortest_time_s(distance[k], j.max_speed_cps, ramp_accel(j.max_accel_cps2));
-    if (earliest > arrive_s) arrive_s = earliest;
+    accel_k[k] = ramp_accel(j.max_accel_cps2);
+    top_k[k] = ramp_speed(j.max_speed_cps, 100);
   }
-  planned_ms_ = static_cast<uint32_t>(arrive_s * 1000.0f + 0.5f);
+  uint8_t mover = 0, rester = 0;
+  for (uint8_t k = 0; k < n; ++k) {
+    const JointSetup& j = joints_[targets[k].index];
+    const float accel = accel_k[k];
+    const float top = top_k[k];
+    fastest_s[k] = 0.0f;
+    if (moving[k]) {
+      effect_s[k] = float(loop_ons + mover++) * txn_s + latency_s;
+      const JointState& st = state_[targets[k].index];
+      const SetpointState then =
+          motion_at(st.model, st.phases, float(static_cast<int32_t>(now_us - st.model_us)) * 1e-6f + effect_s[k]);
+      from[k] = then.x;
+      start[k] = SetpointMotion{then.x, then.v, float(targets[k].clicks), top, accel};
+      phases[k] = motion_phases(start[k]);
+      fastest_s[k] = motion_arrival_s(phases[k]);
+      const float d = float(targets[k].clicks) - then.x;
+      distance[k] = d < 0.0f ? -d : d;
+    } else {
+      // Behind the moving joints' drives and the speeds (a moving joint's speed usually stays).
+      effect_s[k] = float(loop_ons + movers + resting + rester++) * txn_s + latency_s;
+      const float d = float(targets[k].clicks) - from[k];
+      distance[k] = d < 0.0f ? -d : d;
+      if (!idle[k]) fastest_s[k] = shortest_time_s(distance[k], j.max_speed_cps, accel);
+    }
+    // The joints that start from rest arrive together, at the time asked or when the last
+    // of them can. A moving joint arrives at the time asked, or as soon as it can: moves
+    // that find joints moving are streamed, and a joint made to wait for a slower one (or
+    // for one that must brake through its target and come back, which streamed targets,
+    // closer together than a joint's stopping distance, often ask) falls behind its stream.
+    if (!idle[k] && !moving[k] && effect_s[k] + fastest_s[k] > arrive_s) arrive_s = effect_s[k] + fastest_s[k];
+  }
+  float end_s = arrive_s;  // the latest arrival of any joint
+  for (uint8_t k = 0; k < n; ++k) {
+    if (!moving[k]) continue;
+    arrive_k[k] = asked_s;
+    if (phases[k].brake_s > 0.0f || effect_s[k] + fastest_s[k] > arrive_k[k]) arrive_k[k] = effect_s[k] + fastest_s[k];
+    if (arrive_k[k] > end_s) end_s = arrive_k[k];
+  }
+  planned_ms_ = static_cast<uint32_t>(end_s * 1000.0f + 0.5f);
   for (uint8_t i = 0; i < max_joints; ++i) percent_[i] = 0;
   // Streamed moves come faster than a move's bus commands go out (seven speeds and seven
   // drives take 150 ms at 9600 baud, a point comes every 27 ms): a joint's speed and drive
   // still queued from the move before keep their place and take the new values, so every
   // joint gets its latest target in turn (cancelling them let the next move cancel its
-  // commands again, and the joints last in bus order never moved).
+  // commands again, and the joints last in bus order never moved). Commands that would
+  // change nothing (the speed it runs at, the target it has) are not sent.
   for (uint8_t k = 0; k < n; ++k) {
     const uint8_t index = targets[k].index;
     uint8_t kept = 0;
     for (uint8_t i = 0; i < op_count_; ++i) {
       const Op& op = ops_[i];
       const bool drop = op.joint == joints_[index].number &&
-                        (op.kind == OpKind::loop_off || op.kind == OpKind::speed_switch);
+                        (op.kind == OpKind::loop_off || op.kind == OpKind::speed_switch ||
+                         (idle[k] && (op.kind == OpKind::speed || op.kind == OpKind::drive_to)));
       if (!drop) ops_[kept++] = op;
     }
     op_count_ = kept;
     if (!state_[index].loop_on) upsert(now_us, index, OpKind::loop_on, 1);
   }
+  for (uint8_t k = 0; k < n; ++k)
+    if (moving[k]) want_drive(targets[k].index, targets[k].clicks, now_us);
   for (uint8_t k = 0; k < n; ++k) {
     const uint8_t index = targets[k].index;
-    const JointSetup& j = joints_[index];
-    percent_[index] = percent_for(distance[k], arrive_s - effect_s[k], j.max_speed_cps, ramp_accel(j.max_accel_cps2));
-    upsert(now_us, index, OpKind::speed, percent_[index]);
-    state_[index].loop_on = true;
-    state_[index].jogging = false;
+    JointState& s = state_[index];
+    s.jogging = false;
+    if (idle[k] || !moving[k]) continue;
+    const float top = top_k[k];
+    const float available_s = arrive_k[k] - effect_s[k];
+    uint8_t percent = 100;
+    if (phases[k].brake_s <= 0.0f && effect_s[k] + fastest_s[k] + 0.005f < arrive_k[k]) {
+      const float limit = limit_for_arrival(start[k], phases[k], available_s, top);
+      const float p = ceilf(100.0f * limit / top);
+      percent = p >= 100.0f ? 100 : p < 1.0f ? 1 : static_cast<uint8_t>(p);
+    }
+    percent_[index] = percent;
+    want_speed(index, percent, now_us);
   }
   for (uint8_t k = 0; k < n; ++k) {
     const uint8_t index = targets[k].index;
     const JointSetup& j = joints_[index];
-    const float accel = ramp_accel(j.max_accel_cps2);
-    const uint8_t percent = percent_[index];
-    const float speed = float(j.max_speed_cps) * float(percent) / 100.0f;
-    const float available_s = arrive_s - effect_s[k];
-    float ramp_s = distance[k] > 0.0f ? shortest_time_s(distance[k], speed, accel) : 0.0f;
-    float switch_s = 0.0f;
-    if (percent > 1 && available_s - ramp_s > 0.003f &&
-        switch_time_s(distance[k], available_s, speed, float(j.max_speed_cps) * float(percent - 1) / 100.0f, accel,
-                      &switch_s)) {
-      ramp_s = available_s;  // the drive at once, the slower speed from switch_s on
-    }
-    float start_s = arrive_s - ramp_s - latency_s;
-    if (start_s < 0.0f) start_s = 0.0f;
-    upsert(now_us + static_cast<uint32_t>(start_s * 1e6f), index, OpKind::drive_to, targets[k].clicks);
-    if (switch_s > 0.0f) {
-      schedule(now_us + static_cast<uint32_t>((start_s + switch_s) * 1e6f), index, OpKind::speed_switch,
-               static_cast<int16_t>(percent - 1));
-    }
+    if (idle[k] || moving[k]) continue;
+    percent_[index] = percent_for(distance[k], arrive_s - effect_s[k], j.max_speed_cps, accel_k[k]);
+    want_speed(index, percent_[index], now_us);
+    state_[index].loop_on = true;
+  }
+  for (uint8_t k = 0; k < n; ++k) {
+    const uint8_t index = targets[k].index;
+    const JointSetup& j = joints_[index];
     JointState& s = state_[index];
+    const float accel = accel_k[k];
+    const uint8_t percent = percent_[index];
+    float start_s = effect_s[k] - latency_s;
+    float switch_s = 0.0f;
+    if (!idle[k] && !moving[k]) {
+      const float speed = float(j.max_speed_cps) * float(percent) * 0.01f;
+      const float available_s = arrive_s - effect_s[k];
+      float ramp_s = distance[k] > 0.0f ? shortest_time_s(distance[k], speed, accel) : 0.0f;
+      if (percent > 1 && available_s - ramp_s > 0.003f &&
+          switch_time_s(distance[k], available_s, speed, float(j.max_speed_cps) * float(percent - 1) * 0.01f, accel,
+                        &switch_s)) {
+        ramp_s = available_s;  // the drive at once, the slower speed from switch_s on
+      }
+      start_s = arrive_s - ramp_s - latency_s;
+      if (start_s < 0.0f) start_s = 0.0f;
+      want_drive(index, targets[k].clicks, now_us + static_cast<uint32_t>(start_s * 1e6f));
+      if (switch_s > 0.0f) {
+        schedule(now_us + static_cast<uint32_t>((start_s + switch_s) * 1e6f), index, OpKind::speed_switch,
+                 static_cast<int16_t>(percent - 1));
+      }
+    }
+    // A joint still moving may be anywhere near `from` and run on while it turns: v^2 / 2a
+    // at its full speed.
+    const float v = moving[k] ? float(j.max_speed_cps) : 0.0f;
+    const float over = v * v / (2.0f * accel);
     s.planned = true;
     s.plan_from = static_cast<int16_t>(from[k] < 0.0f ? from[k] - 0.5f : from[k] + 0.5f);
     s.plan_to = targets[k].clicks;
     s.plan_start_us = now_us + static_cast<uint32_t>((start_s + latency_s) * 1e6f);
-    s.plan_end_us = now_us + static_cast<uint32_t>(arrive_s * 1e6f);
-    s.plan_slack = slack[k];
+    s.plan_end_us = now_us + static_cast<uint32_t>((moving[k] ? arrive_k[k] : arrive_s) * 1e6f);
+    s.plan_slack = over > 30000.0f ? 30000 : static_cast<uint16_t>(over);
     // The ramp check needs a ramp from rest; the slower speed keeps its model a lower bound.
     s.ramp_armed = false;
     s.behind_ramp = false;
-    s.ramp_percent = slack[k] != 0 ? 0 : switch_s > 0.0f ? static_cast<uint8_t>(percent - 1) : percent;
+    s.ramp_percent = moving[k] || idle[k] ? 0 : switch_s > 0.0f ? static_cast<uint8_t>(percent - 1) : percent;
     if (s.ramp_percent != 0)
-      s.ramp = ramp_shape(distance[k], float(j.max_speed_cps) * float(s.ramp_percent) / 100.0f, accel);
+      s.ramp = ramp_shape(distance[k], float(j.max_speed_cps) * float(s.ramp_percent) * 0.01f, accel);
     s.plan_seen = s.clicks;
   }
 }

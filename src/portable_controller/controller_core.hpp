@@ -64,6 +64,15 @@ class UpstreamPort {
   ~UpstreamPort() {}
 };
 
+// A command that took effect on a joint, waiting to be folded into its model.
+struct ModelEvent {
+  uint32_t at_us;
+  int16_t value;  // clicks (drive, rest) or percent (speed)
+  uint8_t kind;   // ModelEventKind
+};
+enum ModelEventKind : uint8_t { model_drive, model_speed, model_rest };
+static const uint8_t model_unknown_percent = 0xFF;
+
 struct JointState {
   int16_t clicks;     // last good get_position
   int16_t position;   // the same in Robot Commands units (to_position)
@@ -74,9 +83,9 @@ struct JointState {
   uint16_t faults;
   int16_t last_fault; // STATUS of the last failure (990 no answer, 910, 940, ...)
   // The joint's last planned motion: from `plan_from` (drive taking effect at
-  // plan_start_us) to `plan_to`, arriving at plan_end_us. A move planned while it is still
-  // under way starts from where this line puts the joint now, not from the last poll,
-  // which is up to a sweep old on a moving joint (streamed moves).
+  // plan_start_us) to `plan_to`, arriving at plan_end_us (what the fault checks compare
+  // its polls with). Where a new move starts is the model below, not the last poll, which
+  // is up to a sweep old on a moving joint (streamed moves).
   bool planned;
   bool jogging;       // ServoSpeed motor mode
   int8_t offset;      // ServoOffsetAdjust (ServoOffsetWrite: persisted)
@@ -115,6 +124,22 @@ struct JointState {
   RampShape ramp;               // its ramp at ramp_percent, shaped when planned
   uint32_t ramp_start_us;       // when its drive_to was answered (the ramp began before)
   uint32_t stalled_us;          // when it was found behind its ramp
+  // Its setpoint as the controller models it (docs/mega-controller.md "Moving start"): the
+  // joint's ramp from `model` at model_us, fed with every speed, drive and loop-on that
+  // succeeded, at the instant it took effect. A command is noted when it succeeds (integers
+  // only: a main-loop pass that takes a result stays short) and folded into the model when
+  // a move is planned (floating point, the planning pass). Unknown at start, after a failure
+  // and while the loop is off: then the planner takes the joint at rest where it was polled.
+  bool model_known;
+  bool model_resting;           // at rest (on its target, or held short) as of model_us
+  uint8_t model_percent;        // the speed last set (model_unknown_percent: none known)
+  uint8_t model_events;         // commands noted since the last fold
+  bool model_arrives;           // (not resting) comes to rest on its target at model_rest_us
+  uint32_t model_us;
+  uint32_t model_rest_us;
+  SetpointMotion model;
+  MotionPhases phases;          // of `model`, from model_us
+  ModelEvent events[4];
 };
 
 struct CoreStats {
@@ -153,6 +178,9 @@ class ControllerCore {
   static const uint32_t stall_watch_us = 1000000;
   // After the planned end, a joint has this long to settle before it counts as not arrived.
   static const uint32_t settle_us = 500000;
+  // A joint's model is taken at rest on its target this long after its planned end, if
+  // nothing more was sent to it (its plan had it there by then).
+  static const uint32_t settled_us = 100000;
   // A joint this much closer to its target than at its previous poll is on its way.
   static const int16_t approaching_clicks = 8;
 
@@ -226,8 +254,22 @@ class ControllerCore {
   void lost_following(uint8_t index, uint32_t now_us);
   void read_diagnostics(uint8_t index, uint32_t now_us);
   void on_joint_fault_read(const uint8_t* data, uint8_t length);
-  // Where joint `index` is taken to be at `now_us` when a move is planned (see JointState).
-  float start_clicks(uint8_t index, uint32_t now_us) const;
+  // The joint's model (see JointState): a command that took effect noted; forgotten; the
+  // noted commands folded in (an unknown model anchored at rest where the joint was last
+  // polled, at `now_us`), its phases shaped; anchored at rest on a spot.
+  void note_model(uint8_t index, uint8_t kind, int16_t value, uint32_t at_us);
+  void forget_model(uint8_t index);
+  void fold_model(uint8_t index, uint32_t now_us);
+  void rest_model(uint8_t index, float at, uint8_t percent, uint32_t now_us);
+  // One joint of the pending move whose model has commands to fold: folded (true).
+  bool fold_pending(uint32_t now_us);
+  bool plan_due() const;
+  // A move's set_speed for the joint: a queued one takes the new value; else one is queued
+  // unless the joint already runs at that speed. Likewise its drive_to (queued at `due_us`).
+  void want_speed(uint8_t index, uint8_t percent, uint32_t due_us);
+  void want_drive(uint8_t index, int16_t clicks, uint32_t due_us);
+  bool queued(uint8_t index, OpKind kind) const;
+  bool in_flight(uint8_t index, OpKind kind) const;
 
   Check check_targets(const uint8_t* servos, const uint16_t* positions, uint8_t n, Target* out,
                       uint8_t* moving) const;
@@ -275,12 +317,16 @@ class ControllerCore {
   bool inflight_is_op_ = false;
   OpKind inflight_kind_ = OpKind::set_zone;
   int16_t inflight_value_ = 0;
+  uint8_t inflight_index_ = 0;
   uint8_t poll_index_ = 0;
   // The joint whose polled clicks still wait for their conversion to position and their
   // check against its plan (after_poll), and its reading before.
   static const uint8_t no_convert = 0xFF;
   uint8_t convert_ = no_convert;
   int16_t polled_before_ = 0;
+  uint8_t check_ = no_convert;  // the joint whose converted reading waits for its check
+  int16_t check_before_ = 0;
+  uint8_t ramp_check_ = no_convert;  // the joint whose reading waits for its ramp check
   uint16_t battery_mv_ = 0;
   uint32_t planned_ms_ = 0;
   CoreStats stats_{};
@@ -290,6 +336,9 @@ class ControllerCore {
   uint16_t pending_ms_ = 0;
   static const uint8_t min_txns_between_plans = 4;
   uint8_t txns_since_plan_ = 255;  // commands started since the last plan
+  uint32_t last_now_us_ = 0;        // poll()'s time
+  static const uint8_t max_commands_in_row = 3;
+  uint8_t commands_in_row_ = 0;     // commands started since the last poll
 
   GroupStore groups_;
   bool have_groups_ = false;

@@ -55,8 +55,9 @@ void ControllerCore::check_following(uint8_t index, int16_t before, uint32_t now
     }
     gap = at < low ? low - at : at > high ? at - high : 0;
     // Inside that stretch, but behind the least its setpoint ramp has covered: stalled (a
-    // joint outside it runs away, and is dealt with below).
-    if (gap <= not_following_clicks && check_ramp(index, now_us)) return;
+    // joint outside it runs away, and is dealt with below). Floating point: in the next
+    // main-loop pass (ControllerCore::after_poll), so that no pass exceeds a word at 115200.
+    if (gap <= not_following_clicks && s.ramp_armed && !s.behind_ramp) ramp_check_ = index;
   }
   if (gap > not_following_clicks && !approaching) {
     if (s.following) {
@@ -75,7 +76,7 @@ void ControllerCore::check_following(uint8_t index, int16_t before, uint32_t now
 
 bool ControllerCore::check_ramp(uint8_t index, uint32_t now_us) {
   JointState& s = state_[index];
-  if (!s.ramp_armed || s.behind_ramp) return false;
+  if (!s.ramp_armed || s.behind_ramp || !s.planned) return false;
   // The reading is from the joint's RESPONSE, up to a transaction before now: judged at
   // that earlier instant, the model is behind the setpoint, never ahead. (Shaped when the
   // move was planned: here only multiplications, as this runs on every poll of a moving

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <vector>
 
@@ -165,6 +166,113 @@ TEST(ControllerCore, MoveWhileTheJointIsUnderWayStartsFromWhereItIsPlannedToBe) 
   const JointState& s = moving.core.joint_state(1);
   EXPECT_TRUE(s.planned);
   EXPECT_NEAR(s.plan_from, 5000, 600) << "half way along the first move's line";
+}
+
+TEST(SetpointMotion, FromRestItIsTheTrapezoid) {
+  const float a = ramp_accel(15000);
+  const SetpointMotion m{0.0f, 0.0f, 10000.0f, 8000.0f, a};
+  const float t = motion_arrival_s(m);
+  EXPECT_NEAR(t, shortest_time_s(10000.0f, 8000.0f, a), 1e-4);
+  EXPECT_NEAR(motion_at(m, t / 2).x, 5000.0f, 0.5f) << "symmetric";
+  EXPECT_NEAR(motion_at(m, t / 2).v, 8000.0f, 0.5f) << "cruising";
+  EXPECT_NEAR(motion_at(m, 0.1f).x, a * 0.01f / 2, 0.5f) << "accelerating";
+  EXPECT_EQ(motion_at(m, t + 0.1f).x, 10000.0f);
+  EXPECT_EQ(motion_at(m, t + 0.1f).v, 0.0f);
+}
+
+TEST(SetpointMotion, MovingAwayOrTooFastItBrakesToRestFirstAndComesBack) {
+  const float a = ramp_accel(40000);
+  // Moving away at 4000 clicks/s: it stops 4000^2 / 2a beyond its start, then turns.
+  const SetpointMotion away{0.0f, -4000.0f, 1000.0f, 12000.0f, a};
+  const float turn_s = 4000.0f / a;
+  EXPECT_NEAR(motion_at(away, turn_s).x, -4000.0f * 4000.0f / (2 * a), 0.5f);
+  EXPECT_NEAR(motion_at(away, turn_s).v, 0.0f, 1.0f);
+  const float back = 1000.0f + 4000.0f * 4000.0f / (2 * a);
+  EXPECT_NEAR(motion_arrival_s(away), turn_s + shortest_time_s(back, 12000.0f, a), 1e-4);
+  // Toward a target nearer than its stopping distance: it overshoots and comes back.
+  const SetpointMotion fast{0.0f, 8000.0f, 100.0f, 12000.0f, a};
+  EXPECT_NEAR(motion_at(fast, 8000.0f / a).x, 8000.0f * 8000.0f / (2 * a), 0.5f);
+  EXPECT_EQ(motion_at(fast, 1.0f).x, 100.0f);
+  // Speed 0 (GroupStop): it comes to rest where it can, short of its target, and stays.
+  const SetpointMotion held{0.0f, 3000.0f, 9000.0f, 0.0f, a};
+  EXPECT_NEAR(motion_at(held, 1.0f).x, 3000.0f * 3000.0f / (2 * a), 0.5f);
+  EXPECT_LT(motion_arrival_s(held), 0.0f) << "never arrives";
+}
+
+TEST(SetpointMotion, TheLimitForAnArrivalArrivesThen) {
+  const float a = ramp_accel(15000), top = ramp_speed(8000, 100);
+  // Moving toward its target: speeding up, and slowing down to a lower limit.
+  for (const float v0 : {0.0f, 1500.0f, 5000.0f, -2000.0f}) {
+    for (const float time_s : {1.5f, 2.0f, 4.0f}) {
+      SetpointMotion m{200.0f, v0, 6200.0f, top, a};
+      const float limit = limit_for_arrival(m, time_s, top);
+      SCOPED_TRACE(::testing::Message() << "v0 " << v0 << " time " << time_s << " limit " << limit);
+      ASSERT_GT(limit, 0.0f);
+      ASSERT_LT(limit, top);
+      m.limit = limit;
+      EXPECT_NEAR(motion_arrival_s(m), time_s, 2e-3);
+    }
+  }
+  const SetpointMotion far{0.0f, 0.0f, 20000.0f, top, a};
+  EXPECT_EQ(limit_for_arrival(far, 1.0f, top), top) << "out of reach: flat out";
+}
+
+TEST(ControllerCore, MoveWhileAJointStillMovesDrivesItFirstFromItsRamp) {
+  // Joint 1 at full cruise half way through a move: the next move's drive goes out first
+  // (a speed change first would push it on toward the old target), then its speed, chosen
+  // from where its ramp is and how fast it goes.
+  CoreRig rig;
+  rig.joints.ramps_from(scara_joints, scara_joint_count, rig.now);
+  rig.request(rc_multi_servo_move, CoreRig::move(2000, {{1, 750}}));  // 0 -> 10000 clicks
+  rig.run_us(1000000);
+  const int first_percent = rig.core.planned_percent(1);
+  rig.joints.log.clear();
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{1, 800}}));  // 12000 clicks
+  rig.run_us(50000);
+  auto sent = rig.motion_commands();
+  ASSERT_GE(sent.size(), 1u);
+  EXPECT_EQ(sent[0].command, jb::cmd_drive_to);
+  EXPECT_EQ(sent[0].data, 12000);
+  // 1 s in, it is about half way (5000 clicks) at its cruise speed: 7000 clicks in a second
+  // from there needs a little more than the first move's speed, not the start from rest.
+  const int p = rig.core.planned_percent(1);
+  EXPECT_GT(p, first_percent) << "farther, sooner";
+  EXPECT_LT(p, 80) << "not the 100 % a start from rest would need";
+  ASSERT_EQ(sent.size(), 2u);
+  EXPECT_EQ(sent[1].command, jb::cmd_set_speed);
+  EXPECT_EQ(sent[1].data, p);
+  EXPECT_NEAR(rig.core.joint_state(1).plan_from, 5000, 300);
+  // Its ramp, replayed by the fake joint, arrives when the plan says.
+  const std::uint32_t planned_end = rig.core.joint_state(1).plan_end_us;
+  std::uint32_t arrived = 0;
+  for (int ms = 0; ms < 1500 && arrived == 0; ++ms) {
+    rig.run_us(1000);
+    if (rig.joints.position[1] == 12000) arrived = rig.now;
+  }
+  ASSERT_NE(arrived, 0u);
+  EXPECT_NEAR(static_cast<std::int32_t>(arrived - planned_end) / 1000.0, 0.0, 40.0) << "ms from the planned end";
+}
+
+TEST(ControllerCore, StreamedMovesSendOnlyWhatChanges) {
+  // A joint resting on its target is not sent anything by a move that names the same
+  // target.
+  CoreRig rig;
+  rig.joints.ramps_from(scara_joints, scara_joint_count, rig.now);
+  rig.request(rc_multi_servo_move, CoreRig::move(500, {{1, 520}, {2, 500}, {3, 480}}));
+  rig.run_us(1000000);  // all at rest on their targets (joint 2: where it was)
+  rig.joints.log.clear();
+  rig.request(rc_multi_servo_move, CoreRig::move(500, {{1, 520}, {2, 500}, {3, 480}}));
+  rig.run_us(100000);
+  EXPECT_TRUE(rig.motion_commands().empty()) << "nothing changes";
+  rig.request(rc_multi_servo_move, CoreRig::move(2000, {{1, 620}, {2, 500}}));
+  rig.run_us(500000);
+  rig.joints.log.clear();
+  rig.request(rc_multi_servo_move, CoreRig::move(1500, {{1, 640}, {2, 500}}));
+  rig.run_us(50000);
+  const auto sent = rig.motion_commands();
+  ASSERT_GE(sent.size(), 1u);
+  for (const auto& c : sent) EXPECT_EQ(c.joint, 1) << "joint 2 rests on its target";
+  EXPECT_EQ(sent[0].command, jb::cmd_drive_to);
 }
 
 TEST(ControllerCore, MoveTooFastForAJointIsStretchedToItsReach) {
@@ -366,6 +474,60 @@ TEST(ControllerCore, StreamedMovesReachEveryJointInTurn) {
       if (c.joint == j) last = c.data;
     EXPECT_EQ(last, rig.core.to_clicks(j, 600)) << "joint " << j << ": its last drive is the newest target";
   }
+}
+
+TEST(ControllerCore, StreamedMovesKeepEveryJointOnTheStream) {
+  // A line streamed as the motion executor streams it through RcArmDevice at 9600 baud: a
+  // point of all seven joints every 27 ms, each to be reached in 27 ms. The joints run their
+  // own setpoint ramps (fake_joints.hpp). Each moving joint must keep up with the line and
+  // never stand still on the way (bench_mega_streaming's stall: the joints were planned
+  // from where the last plan's straight line put them, at rest, while they lagged behind).
+  CoreRig rig;
+  rig.joints.ramps_from(scara_joints, scara_joint_count, rig.now);
+  const double rate[8] = {0, 0, 3000, -4000, 1500, 0, 200, 0};  // clicks/s along the line
+  const double period = 0.027;
+  const int points = 40;
+  double worst_lag[8] = {};
+  int last_moved_ms[8] = {}, longest_still_ms[8] = {};
+  std::int16_t last_at[8] = {};
+  for (int j = 1; j <= 7; ++j) last_at[j] = rig.joints.position[j];
+  auto position_of = [&](int j, double clicks) {
+    const JointSetup& s = scara_joints[j - 1];
+    return static_cast<int>(std::lround(1000.0 * (clicks - s.clicks_at_0) / (s.clicks_at_1000 - s.clicks_at_0)));
+  };
+  int ms = 0;
+  for (int i = 1; i <= points + 40; ++i) {
+    if (i <= points) {
+      std::vector<std::pair<int, int>> targets;
+      for (int j = 1; j <= 7; ++j) targets.push_back({j, position_of(j, rate[j] * period * i)});
+      rig.request(rc_multi_servo_move, CoreRig::move(27, targets));
+    }
+    for (int k = 0; k < 27; ++k, ++ms) {
+      rig.run_us(1000);
+      const double t = std::min(ms / 1000.0, period * points);
+      for (int j : {2, 3, 4, 6}) {
+        if (ms > 200 && i <= points) worst_lag[j] = std::max(worst_lag[j], std::abs(rate[j] * t - rig.joints.position[j]));
+        if (std::abs(rig.joints.position[j] - last_at[j]) >= 5) {
+          last_at[j] = rig.joints.position[j];
+          last_moved_ms[j] = ms;
+        }
+        if (ms > 200 && i <= points) longest_still_ms[j] = std::max(longest_still_ms[j], ms - last_moved_ms[j]);
+      }
+    }
+  }
+  for (int j : {2, 3, 4, 6}) {
+    SCOPED_TRACE(::testing::Message() << "joint " << j);
+    std::printf("joint %d: worst lag behind the line %.0f clicks (%.0f ms of it), longest still %d ms, ends at %d (line %.0f)\n",
+                j, worst_lag[j], 1000 * worst_lag[j] / std::abs(rate[j]), longest_still_ms[j], rig.joints.position[j],
+                rate[j] * period * points);
+    // (Joint 6 moves a Robot Commands unit, 20 clicks, every 100 ms: it rests between.)
+    if (j != 6) {
+      EXPECT_LT(longest_still_ms[j], 30) << "it never stands still on the way";
+    }
+    EXPECT_LT(worst_lag[j], 0.2 * std::abs(rate[j])) << "less than 200 ms behind the line";
+    EXPECT_NEAR(rig.joints.position[j], rate[j] * period * points, 30) << "at the end of the line";
+  }
+  for (int j : {1, 5, 7}) EXPECT_EQ(rig.joints.position[j], 0) << "joint " << j << " stays";
 }
 
 // ------------------------------------------------------------------ joint faults

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "portable/joint_bus_codes.hpp"
+#include "portable/setpoint_ramp.hpp"
 #include "portable_controller/bus_master.hpp"
 #include "portable_controller/controller_core.hpp"
 
@@ -46,8 +47,12 @@ class FakeJoints final : public BusPort {
     log.push_back(SentCommand{j, command, data});
     std::int16_t response = 0;
     if (command == joint_bus::cmd_get_position) response = position[j];
-    // Instant, for these tests (or never: a joint whose polls lag behind its motion).
-    if (command == joint_bus::cmd_drive_to && drives_move && !refuses_drives[j] && !stuck[j]) position[j] = static_cast<std::int16_t>(data);
+    // Instant, for these tests (or never: a joint whose polls lag behind its motion), or
+    // through the joint's own setpoint ramp (ramps_from()).
+    if (command == joint_bus::cmd_drive_to && drives_move && !ramping_ && !refuses_drives[j] && !stuck[j])
+      position[j] = static_cast<std::int16_t>(data);
+    if (ramping_ && command == joint_bus::cmd_drive_to && !refuses_drives[j]) target_q8_[j] = std::int32_t{data} * 256;
+    if (ramping_ && command == joint_bus::cmd_set_speed) ramp_[j].set_speed_percent(static_cast<std::uint8_t>(data));
     if (command == joint_bus::cmd_ping) response = static_cast<std::int16_t>(data);
     if (command == joint_bus::cmd_read_diagnostic && data >= 0 && data < joint_bus::diagnostic_count)
       response = diagnostics[j][data];
@@ -73,6 +78,33 @@ class FakeJoints final : public BusPort {
     return out;
   }
 
+  // From now on each joint runs its setpoint ramp as the joint firmware does (1 ms ticks,
+  // the joint's limits from `setup`), at rest where it is, and tracks it exactly: its
+  // position is its setpoint. Time moves with advance_to().
+  void ramps_from(const JointSetup* setup, int count, std::uint32_t now_us) {
+    ramping_ = true;
+    tick_us_ = now_us;
+    for (int i = 0; i < count && i < 7; ++i) {
+      const int j = setup[i].number;
+      ramp_[j].configure((std::int32_t{setup[i].max_speed_cps} * 32 + 62) / 125,
+                         (std::int32_t{setup[i].max_accel_cps2} * 32 + 62500) / 125000);
+      ramp_[j].set_speed_percent(0);
+      ramp_[j].reset(std::int32_t{position[j]} * 256);
+      target_q8_[j] = std::int32_t{position[j]} * 256;
+    }
+  }
+  void advance_to(std::uint32_t now_us) {
+    if (!ramping_) return;
+    while (static_cast<std::int32_t>(now_us - (tick_us_ + 1000)) >= 0) {
+      tick_us_ += 1000;
+      for (int j = 1; j < 8; ++j) {
+        if (stuck[j]) continue;
+        const std::int32_t q8 = ramp_[j].step(target_q8_[j]);
+        position[j] = static_cast<std::int16_t>(q8 >= 0 ? (q8 + 128) / 256 : -((-q8 + 128) / 256));
+      }
+    }
+  }
+
   std::int16_t position[8] = {};
   bool dead[8] = {};
   int answers_as[8] = {};  // != 0: READY says this number instead
@@ -89,6 +121,10 @@ class FakeJoints final : public BusPort {
     wire_.push_back(joint_bus::word_low(static_cast<std::int16_t>(word)));
     wire_.push_back(joint_bus::word_high(static_cast<std::int16_t>(word)));
   }
+  bool ramping_ = false;
+  std::uint32_t tick_us_ = 0;
+  joint_bus::SetpointRamp ramp_[8];
+  std::int32_t target_q8_[8] = {};
   int selected_ = 0;
   std::vector<std::uint8_t> received_;
   std::optional<std::int16_t> pending_status_;
@@ -115,6 +151,7 @@ inline void run_core(ControllerCore& core, FakeJoints& joints, std::uint32_t& no
                      std::uint32_t step_us) {
   const std::uint32_t end = now + us;
   while (static_cast<std::int32_t>(now - end) < 0) {
+    joints.advance_to(now);
     joints.pump([&](std::uint8_t b) { core.on_bus_byte(b, now); });
     core.poll(now);
     now += step_us;
