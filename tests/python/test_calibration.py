@@ -164,6 +164,74 @@ def test_directions_and_a_zero_recovered_on_the_mis_assembled_scara(arm_file):
         assert s.positions[j] == pytest.approx(well_built_reading(s.device[j]), abs=1.0 / abs(per_rad))
 
 
+
+@pytest.fixture
+def xarm_file(tmp_path):
+    folder = tmp_path / "xarm"
+    folder.mkdir()
+    for name in ("xarm.arm.json", "xarm.urdf"):
+        shutil.copy(CONFIG / name, folder / name)
+    return folder / "xarm.arm.json"
+
+
+def test_limits_gripper_and_touched_points_on_the_xarm(xarm_file):
+    """Steps 5 to 7 from Python on the embedded xArm: limits from two ends pulled in by the
+    margin (3 deg), limits that exclude the zero refused; the gripper's open and closed
+    readings; points touched where the sheet has them verify within the servos' resolution,
+    and one given 20 mm off is the worst by about 20 mm. Confirm writes limits and gripper."""
+    import json
+    import math
+
+    margin = math.radians(3)
+    with armctl.Arm(str(xarm_file)) as arm, arm.calibration() as cal:
+        limits = cal.limits("servo3", 1.6, -1.5)  # either order
+        assert limits["lower"] == pytest.approx(-1.5 + margin, abs=1e-6)
+        assert limits["upper"] == pytest.approx(1.6 - margin, abs=1e-6)
+        with pytest.raises(armctl.Error) as e:
+            cal.limits("servo4", 0.3, 1.0)  # the joint's zero would be outside
+        assert e.value.kind == "invalid_argument"
+        assert "zero" in str(e.value)
+
+        grip = cal.gripper(-1.2, 0.8)
+        assert grip["open"] == pytest.approx(-1.2, abs=1e-6)
+        assert grip["closed"] == pytest.approx(0.8, abs=1e-6)
+        with pytest.raises(armctl.Error):
+            cal.gripper(0.10, 0.11)  # open and closed cannot be told apart
+
+        # The tool is put 5 mm above the three marks farthest out (C, D, E), each point given
+        # as where it stands. (Nearer the base, at A and B, the fingers come within the base
+        # plate's collision box, which a planned move refuses; a user touching by hand in the
+        # wizard has the torque off.)
+        marks = [{"name": m["name"], "position": [m["position"][0], m["position"][1], m["position"][2] + 0.005]}
+                 for m in cal.sheet_points()[2:]]
+        assert len(marks) == 3
+        for mark in marks:
+            arm.move_to(mark["position"], wait=True)
+            cal.touch(mark["name"], mark["position"])
+        report = cal.verify()
+        assert [p["name"] for p in report["points"]] == [m["name"] for m in marks]
+        assert report["max"] < 0.003  # a well-built arm: within its servos' 0.24 deg steps
+        # The user put the tool on the wrong mark: 20 mm from where they said it stands.
+        wrong = list(marks[-1]["position"])
+        wrong[0] += 0.020
+        cal.touch(marks[-1]["name"], wrong)  # touching a name again replaces it
+        report = cal.verify()
+        assert report["worst"] == marks[-1]["name"]
+        assert report["max"] == pytest.approx(0.020, abs=0.003)
+        cal.forget()
+        cal.limits("servo3", 1.6, -1.5)
+        cal.gripper(-1.2, 0.8)
+        written = cal.confirm()
+
+    data = json.loads(Path(written["file"]).read_text())
+    servo3 = next(j for j in data["joints"] if j["name"] == "servo3")
+    low, high = servo3["limits"]["position"]
+    # Written in the file's own units (deg), as the steps gave them.
+    assert float(low.removesuffix("deg")) == pytest.approx(math.degrees(-1.5 + margin), abs=1e-3)
+    assert float(high.removesuffix("deg")) == pytest.approx(math.degrees(1.6 - margin), abs=1e-3)
+    assert float(data["gripper"]["open"].removesuffix("deg")) == pytest.approx(math.degrees(-1.2), abs=1e-3)
+    assert float(data["gripper"]["closed"].removesuffix("deg")) == pytest.approx(math.degrees(0.8), abs=1e-3)
+
 def test_the_docs_example_runs_as_printed(tmp_path, monkeypatch):
     """docs/calibration.md "Python", in a folder with the copy it asks for."""
     docs = (Path(__file__).resolve().parents[2] / "docs" / "calibration.md").read_text()
