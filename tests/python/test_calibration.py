@@ -19,13 +19,18 @@ CONFIG = Path(os.environ.get("ARMCTL_CONFIG_DIR", Path(__file__).resolve().paren
 JOINT = "UAE"  # a revolute chain joint of the SCARA
 
 
+def copy_of_shipped_arm(tmp_path, family):
+    """The shipped arm file of `family` and its URDF, copied into a folder of the test's own."""
+    folder = tmp_path / family
+    folder.mkdir()
+    for name in (f"{family}.arm.json", f"{family}.urdf"):
+        shutil.copy(CONFIG / name, folder / name)
+    return folder / f"{family}.arm.json"
+
+
 @pytest.fixture
 def arm_file(tmp_path):
-    folder = tmp_path / "arm"
-    folder.mkdir()
-    for name in ("scara.arm.json", "scara.urdf"):
-        shutil.copy(CONFIG / name, folder / name)
-    return folder / "scara.arm.json"
+    return copy_of_shipped_arm(tmp_path, "scara")
 
 
 def test_direction_and_zero_are_written_on_confirm_with_the_previous_file_kept(arm_file):
@@ -167,11 +172,7 @@ def test_directions_and_a_zero_recovered_on_the_mis_assembled_scara(arm_file):
 
 @pytest.fixture
 def xarm_file(tmp_path):
-    folder = tmp_path / "xarm"
-    folder.mkdir()
-    for name in ("xarm.arm.json", "xarm.urdf"):
-        shutil.copy(CONFIG / name, folder / name)
-    return folder / "xarm.arm.json"
+    return copy_of_shipped_arm(tmp_path, "xarm")
 
 
 def test_limits_gripper_and_touched_points_on_the_xarm(xarm_file):
