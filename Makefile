@@ -12,7 +12,7 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
   libcli11-dev libfmt-dev nlohmann-json3-dev \
   libhidapi-dev libgpiod-dev \
   gcc-avr avr-libc binutils-avr avrdude simavr libsimavr-dev libelf-dev \
-  clang libclang-rt-14-dev ccache \
+  clang libclang-rt-14-dev ccache lld \
   liburdfdom-dev liborocos-kdl-dev libkdl-parser-dev libeigen3-dev libfcl-dev libompl-dev \
   pybind11-dev python3-dev python3-pytest python3-numpy \
   libcpp-httplib-dev libevdev-dev tmux \
@@ -24,7 +24,7 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
 # What `make demo` installs: only what configuring and building the armctl CLI (Release)
 # needs, and python3 for the demo's picture (scripts/demo_picture.py). Not the test, benchmark,
 # firmware, Python-module or ROS packages above: the demo builds none of that.
-DEMO_PACKAGES := build-essential cmake ninja-build pkg-config \
+DEMO_PACKAGES := build-essential cmake ninja-build pkg-config lld \
   libcli11-dev libfmt-dev nlohmann-json3-dev libhidapi-dev libgpiod-dev \
   libeigen3-dev liburdfdom-dev libfcl-dev libompl-dev libcpp-httplib-dev libevdev-dev python3
 
@@ -49,8 +49,9 @@ WITH_ROS := -DARMCTL_ROS=ON
 FUZZ_BUILD := build/fuzz
 FUZZ_SECONDS ?= 60
 # make test runs each fuzz target on a fixed number of inputs from its seeds with a fixed seed:
-# the same inputs on every machine (scripts/fuzz.sh), about 10 s per target here.
-TEST_FUZZ_RUNS ?= 20000
+# the same inputs on every machine (scripts/fuzz.sh), two targets at a time; the slowest
+# (fuzz_arm_file, fuzz_arm_config: whole arm files under ASan) take about 90 s each.
+TEST_FUZZ_RUNS ?= 5000
 
 .PHONY: all deps deb-deps demo-deps web-deps configure build test demo python bench fuzz firmware flash flash-controller install uninstall clean format
 
@@ -144,7 +145,7 @@ bench: deps
 fuzz: deps
 	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARMCTL_FUZZ=ON
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target armctl_fuzz_all
-	./scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_SEED) $(FUZZ_RUNS)
+	JOBS=$(JOBS) ./scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_SEED) $(FUZZ_RUNS)
 
 # Joint controller firmware into build/firmware/ (docs/firmware.md). flash programs one
 # board through its bootloader and sets its joint number in EEPROM:

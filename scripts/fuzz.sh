@@ -18,8 +18,11 @@ limit_flags=(-max_total_time="$seconds")
 shopt -s nullglob
 artifacts="$build/artifacts"
 mkdir -p "$artifacts"
-for f in "$build"/fuzz/fuzz_*; do
-  [ -x "$f" ] || continue
+# One target: its log in $build/<target>.log; prints its last lines, or on a finding what the
+# fuzzer said about it and the input that caused it (written to $artifacts), so that CI's
+# output is enough to reproduce it.
+run_target() {
+  local f=$1 name corpus log status
   name=$(basename "$f")
   corpus="$build/corpus/$name"
   # A fixed number of runs starts from nothing but the seeds: what earlier runs found would
@@ -28,13 +31,11 @@ for f in "$build"/fuzz/fuzz_*; do
   log="$build/$name.log"
   mkdir -p "$corpus"
   rm -f "$artifacts/$name-"*
-  dirs=("$corpus")
+  local dirs=("$corpus")
   [ -d "fuzz/corpus/$name" ] && dirs+=("fuzz/corpus/$name")
-  if [ -n "$runs" ]; then echo "== $name for $runs inputs (seed ${seed:-1})"; else echo "== $name for ${seconds}s"; fi
-  # The whole log stays in $log; a finding prints what the fuzzer said about it and the input
-  # that caused it (written to $artifacts), so that CI's output is enough to reproduce it.
   if "$f" "${limit_flags[@]}" -print_final_stats=1 \
        -artifact_prefix="$artifacts/$name-" "${dirs[@]}" > "$log" 2>&1; then
+    if [ -n "$runs" ]; then echo "== $name: $runs inputs (seed ${seed:-1})"; else echo "== $name: ${seconds}s"; fi
     tail -n 3 "$log"
   else
     status=$?
@@ -44,6 +45,28 @@ for f in "$build"/fuzz/fuzz_*; do
       od -c "$a" | head -n 20
     done
     echo "== $name FAILED (exit $status)"
-    exit "$status"
+    return "$status"
   fi
+}
+
+# Targets run JOBS at a time (each fuzzer is one process on one core); their lines are printed
+# at the end, target by target, so that two never interleave. Any failure fails the run.
+jobs=${JOBS:-2}
+targets=()
+for f in "$build"/fuzz/fuzz_*; do [ -x "$f" ] && targets+=("$f"); done
+failed=0
+running=0
+for f in "${targets[@]}"; do
+  if [ "$running" -ge "$jobs" ]; then
+    wait -n || failed=1
+    running=$((running - 1))
+  fi
+  run_target "$f" > "$build/$(basename "$f").out" 2>&1 &
+  running=$((running + 1))
 done
+while [ "$running" -gt 0 ]; do
+  wait -n || failed=1
+  running=$((running - 1))
+done
+for f in "${targets[@]}"; do cat "$build/$(basename "$f").out"; done
+exit "$failed"

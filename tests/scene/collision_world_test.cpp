@@ -210,7 +210,7 @@ TEST_P(ArmCollisions, AgreesWithABruteForceOverRandomConfigurations) {
   const arm::ArmModel m = arm::load_arm_model(arm::arm_file_path(GetParam())).value();
   std::mt19937_64 rng(20261202);
   std::uniform_real_distribution<double> unit(0, 1);
-  const int kConfigs = std::getenv("ARMCTL_SCENE_CONFIGS") ? std::atoi(std::getenv("ARMCTL_SCENE_CONFIGS")) : 100000, kScenes = 20;
+  const int kConfigs = std::getenv("ARMCTL_SCENE_CONFIGS") ? std::atoi(std::getenv("ARMCTL_SCENE_CONFIGS")) : 30000, kScenes = 20;
   int collided = 0, deep_checked = 0;
   std::vector<Eigen::Isometry3d> poses;
   std::vector<std::vector<Sampled>> link_samples;
