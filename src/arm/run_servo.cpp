@@ -36,6 +36,9 @@ double seconds(Duration d) { return std::chrono::duration<double>(d).count(); }
 constexpr double kLookAhead = 0.2;
 // Nearer than this within the look-ahead counts as moving toward something (m).
 constexpr double kCloser = 1e-4;
+// Position targets aim this far under reduced mode's tool speed cap: the caps are taken where
+// the arm stands at the start of each cycle, and the arm moves on during it.
+constexpr double kToolSpeedMargin = 0.95;
 
 Status check_options(const ServoOptions& o) {
   if (auto ok = check_fraction_in(o.speed, "servo speed", motion::kMinSpeedFraction, motion::kMaxSpeedFraction); !ok)
@@ -202,6 +205,7 @@ class ServoLoop {
   void goals_for(bool commanded, ServoStatus& status) {
     using Kind = motion::ServoGoal::Kind;
     for (auto& g : goals_) g = {Kind::velocity, 0};
+    capped_positions_ = false;
     // A twist's joints change their velocities together (the tool stays on its line); so do
     // they when they stop (the command ended, timed out): the ratio they had is kept.
     together_ = !commanded || std::holds_alternative<ToolTwist>(command_->motion);
@@ -218,6 +222,7 @@ class ServoLoop {
       } else {
         for (std::size_t i = 0; i < n_ && i < targets_.size(); ++i)
           if (std::isfinite(targets_[i])) goals_[i] = {Kind::position, targets_[i]};
+        cap_position_speeds(status);
       }
     }
     // The gripper goes to its last target whether commands come or not: it is a place,
@@ -302,6 +307,51 @@ class ServoLoop {
     }
   }
 
+  // Position goals (joint and pose targets) under reduced mode's tool speed cap. The joints
+  // of a synchronized move go at speeds in proportion to what each has left to go (d), so the
+  // tool point moves at (speed) |J d| / |d|: each chain joint's speed is capped in
+  // proportion to its |d_i|, so that the tool point's speed stays under the cap. Recomputed
+  // every cycle from where the arm is and what is left; step() checks the result and steps
+  // again slower when the tool would still go faster (the joints not yet in proportion).
+  void cap_position_speeds(ServoStatus& status) {
+    capped_positions_ = false;
+    const double cap = kToolSpeedMargin * tool_speed_cap();
+    if (!std::isfinite(cap)) return;
+    const motion::JointVector chain = kinematics_->chain_of(sent_);
+    motion::JointVector left = motion::JointVector::Zero(chain.size());
+    for (int i = 0; i < chain.size(); ++i) {
+      const motion::ServoGoal& g = goals_[std::size_t(i)];
+      if (g.kind == motion::ServoGoal::Kind::position) left[i] = g.value - sent_[std::size_t(i)];
+    }
+    const double tool = (tool_jacobian(*kinematics_, chain).topRows<3>() * left).norm();
+    if (!(tool > 0)) return;  // nothing left that moves the tool point
+    bool at_cap = false;
+    for (int i = 0; i < chain.size(); ++i) {
+      motion::ServoGoal& g = goals_[std::size_t(i)];
+      if (g.kind != motion::ServoGoal::Kind::position) continue;
+      g.max_speed = cap * std::abs(left[i]) / tool;
+      at_cap = at_cap || (g.max_speed < joint_speed_limit(std::size_t(i)) &&
+                          std::abs(generator_.velocity()[std::size_t(i)]) >= 0.95 * g.max_speed);
+    }
+    capped_positions_ = true;
+    if (at_cap) {
+      status.slowdown = ServoSlowdown::joint_limit;
+      status.detail = fmt::format("the tool at reduced mode's {:.1f} mm/s", tool_speed_cap() * 1e3);
+    }
+  }
+
+  // The tool point's speed with the joints at the generator's velocities now.
+  double tool_speed_now() const {
+    const motion::JointVector chain = kinematics_->chain_of(sent_);
+    motion::JointVector qd = motion::JointVector::Zero(chain.size());
+    for (int i = 0; i < qd.size(); ++i) qd[i] = generator_.velocity()[std::size_t(i)];
+    return (tool_jacobian(*kinematics_, chain).topRows<3>() * qd).norm();
+  }
+
+  double joint_speed_limit(std::size_t joint) const {
+    return model_.joints[joint].limits.velocity * options_.speed;
+  }
+
   // Velocity goals toward something nearer than collision_slow are scaled down with the
   // clearance (only toward it: moving away is not held back).
   void scale_near_obstacles(ServoStatus& status) {
@@ -331,6 +381,17 @@ class ServoLoop {
   void step(double dt, ServoStatus& status) {
     const motion::ServoGenerator::State before = generator_.state();
     generator_.step(goals_, dt, together_);
+    // Position goals under reduced mode's cap whose joints are not yet in proportion: once
+    // more, each joint's cap lowered by as much as the tool would go too fast.
+    if (capped_positions_) {
+      const double cap = kToolSpeedMargin * tool_speed_cap(), speed = tool_speed_now();
+      if (speed > cap) {
+        generator_.restore(before);
+        for (auto& g : goals_)
+          if (g.kind == motion::ServoGoal::Kind::position) g.max_speed *= cap / speed;
+        generator_.step(goals_, dt, together_);
+      }
+    }
     for (std::size_t i = 0; i < n_; ++i)
       if (generator_.limited(int(i)) && status.slowdown == ServoSlowdown::none) {
         status.slowdown = ServoSlowdown::joint_limit;
@@ -398,6 +459,7 @@ class ServoLoop {
   std::string pose_error_;
   double gripper_ = NAN;         // its target
   bool together_ = false;        // velocity changes synchronized this cycle
+  bool capped_positions_ = false;  // position goals capped by reduced mode's tool speed this cycle
   ServoReport report_;
 };
 

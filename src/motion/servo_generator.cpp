@@ -201,6 +201,7 @@ void ServoGenerator::step_positions(std::span<const ServoGoal> goals, double dt)
   TrajectoryInput in;
   int index[kMaxTrajectoryJoints];
   int m = 0;
+  bool capped = false, faster = false;
   for (int i = 0; i < count_; ++i) {
     if (!(i < int(goals.size()) && goals[i].kind == ServoGoal::Kind::position && std::isfinite(goals[i].value)))
       continue;
@@ -212,15 +213,25 @@ void ServoGenerator::step_positions(std::span<const ServoGoal> goals, double dt)
     in.position[m] = position_[i];
     in.target_position[m] = std::clamp(goals[i].value, j.lower, j.upper);
     limited_[i] = in.target_position[m] != goals[i].value;
-    in.max_velocity[m] = j.limits.velocity;
+    const double cap = std::clamp(goals[i].max_speed, kMinTrajectoryLimit, j.limits.velocity);
+    capped = capped || cap < j.limits.velocity;
+    // (Slowing to a cap may leave the velocity a rounding error above it.)
+    faster = faster || std::abs(velocity_[i]) > cap * (1 + 1e-9);
+    in.velocity[m] = std::clamp(in.velocity[m], -cap, cap);
+    in.max_velocity[m] = cap;
     in.max_acceleration[m] = j.limits.acceleration;
     in.max_jerk[m] = j.limits.jerk;
     ++m;
   }
   in.joints = m;
-  if (!calculate_trajectory(in, trajectory_)) {
-    // A start the generator cannot plan from (the velocity limit cannot be kept): brake.
-    for (int k = 0; k < m; ++k) step_velocity(index[k], 0, dt, joints_[index[k]].limits);
+  if (faster || !calculate_trajectory(in, trajectory_)) {
+    // A start the generator cannot plan from (the velocity limit cannot be kept): brake, or
+    // under a cap (that may have just come down) slow to it, each joint keeping its direction.
+    for (int k = 0; k < m; ++k) {
+      const int i = index[k];
+      const double goal = capped ? std::clamp(velocity_[i], -in.max_velocity[k], in.max_velocity[k]) : 0.0;
+      step_velocity(i, goal, dt, joints_[i].limits);
+    }
     return;
   }
   const TrajectoryState s = trajectory_.at(dt);

@@ -11,10 +11,12 @@
 // A joint never leaves its position range: a velocity goal is capped so that the joint can
 // still stop before the end of its range with half its acceleration and jerk (it slows down
 // as it nears it), and a step that would leave it unable to stop there with the full limits
-// brakes instead. Position goals are clamped into the range.
+// brakes instead. Position goals are clamped into the range, and kept under their own speed
+// cap when they carry one.
 // Pure code: value types in and out, no I/O, no allocation once reset.
 #pragma once
 
+#include <limits>
 #include <span>
 
 #include "core/error.hpp"
@@ -32,6 +34,10 @@ struct ServoGoal {
   enum class Kind { velocity, position };
   Kind kind = Kind::velocity;
   double value = 0;  // rad/s or m/s; rad or m
+  // A position goal's speed cap below the joint's velocity limit (rad/s or m/s): the caller's
+  // own limit, such as reduced mode's tool speed turned into joint speeds. A joint moving
+  // faster slows to it first, keeping its direction.
+  double max_speed = std::numeric_limits<double>::infinity();
 };
 
 // The largest speed from which a joint at rest in acceleration can stop within `distance`

@@ -33,13 +33,9 @@ __attribute__((noinline)) int32_t clamp_setting(int32_t v, int32_t lo, int32_t h
 
 void PositionLoop::begin(const JointTuning& tuning, int32_t count) {
   tuning_ = clamped(tuning);
-  // clicks/s -> Q8 clicks/tick: * 256 / 1000 = * 32 / 125 (rounded); clicks/s^2 -> Q8
-  // clicks/tick^2: * 256 / 1e6 = * 32 / 125000 (rounded). Both stay far inside int32.
-  // (Unsigned: both are clamped positive, and one division routine less in the firmware.)
-  const int32_t top_speed_q8 =
-      static_cast<int32_t>((static_cast<uint32_t>(tuning_.max_speed_cps) * 32u + 62u) / 125u);
-  const int32_t accel_q8 =
-      static_cast<int32_t>((static_cast<uint32_t>(tuning_.max_accel_cps2) * 32u + 62500u) / UINT32_C(125000));
+  // (Both settings are clamped positive: fixed_point.hpp's conversions.)
+  const int32_t top_speed_q8 = static_cast<int32_t>(speed_q8_per_tick(static_cast<uint32_t>(tuning_.max_speed_cps)));
+  const int32_t accel_q8 = static_cast<int32_t>(accel_q8_per_tick2(static_cast<uint32_t>(tuning_.max_accel_cps2)));
   ramp_.configure(top_speed_q8, accel_q8);
   pid_.configure(tuning_.kp_q8, tuning_.ki_q8, tuning_.kd_q8, tuning_.pwm_max);
   speed_percent_ = 100;

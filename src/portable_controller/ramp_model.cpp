@@ -2,12 +2,14 @@
 
 #include <math.h>
 
+#include "portable/fixed_point.hpp"
+
 namespace armctl {
 namespace controller {
 
 float ramp_accel(uint32_t cps2) {
-  uint32_t q8 = (cps2 * 32u + 62500u) / 125000u;
-  if (q8 < 1) q8 = 1;
+  uint32_t q8 = joint_bus::accel_q8_per_tick2(cps2);
+  if (q8 < 1) q8 = 1;  // as the joint's ramp takes it (portable/setpoint_ramp.cpp)
   return float(q8) * (1e6f / 256.0f);
 }
 
@@ -35,7 +37,7 @@ float ramp_covered(const RampShape& r, float t_s) {
 }
 
 float ramp_speed(uint32_t cps, uint8_t percent) {
-  const uint32_t top_q8 = (cps * 32u + 62u) / 125u;
+  const uint32_t top_q8 = joint_bus::speed_q8_per_tick(cps);
   return float(top_q8 * percent / 100u) * (1000.0f / 256.0f);
 }
 

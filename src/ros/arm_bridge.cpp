@@ -154,6 +154,8 @@ std::unique_ptr<session::ArmSession> open_session(const BridgeOptions& o) {
   session::SessionOptions so;
   so.wall_clock = true;
   so.scene = o.scene;
+  so.fence = o.fence;
+  so.reduced_mode = o.reduced_mode;
   return session::open_arm_session(o.arm, o.device, so).value();  // the bridge's constructor throws it
 }
 

@@ -22,6 +22,8 @@ struct BridgeOptions {
   std::string arm = "xarm";
   std::string device;       // "": the embedded simulator
   std::string scene;        // a scene file every plan is checked against (docs/scene.md); "": none
+  // Its fence and reduced mode switched on or off from the start (empty: as the file says).
+  std::optional<bool> fence, reduced_mode;
   double goal_time = 1.0;   // s: goal_time_tolerance when a goal gives none
   double move_speed = motion::kDefaultJointSpeed;  // pose goals: fraction of the velocity limits
   // s between position reads while idle (joint_states' period); 0: back to back, as fast

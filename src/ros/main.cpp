@@ -32,6 +32,18 @@ double param_in(ros::NodeHandle& nh, const char* name, double fallback, double l
   return v;
 }
 
+// An optional true/false parameter: empty when it is not set; anything else than a boolean
+// is refused naming it.
+std::optional<bool> switch_param(ros::NodeHandle& nh, const char* name) {
+  if (!nh.hasParam(name)) return std::nullopt;
+  bool on = false;
+  if (!nh.getParam(name, on))
+    throw std::invalid_argument(fmt::format("parameter ~{} is not allowed: true or false (or leave it out: as the "
+                                            "scene file says)",
+                                            name));
+  return on;
+}
+
 int run(int argc, char** argv) {
   ros::init(argc, argv, "armctl_ros");
   ros::NodeHandle private_nh("~");
@@ -39,6 +51,8 @@ int run(int argc, char** argv) {
   private_nh.param<std::string>("arm", options.arm, "xarm");
   private_nh.param<std::string>("device", options.device, "");
   private_nh.param<std::string>("scene", options.scene, "");
+  options.fence = switch_param(private_nh, "fence");
+  options.reduced_mode = switch_param(private_nh, "reduced_mode");
   options.goal_time = param_in(private_nh, "goal_time_tolerance", 1.0, 0.01, 60);
   options.move_speed = param_in(private_nh, "speed", options.move_speed, 0.01, 1);
   const double link_timeout = param_in(private_nh, "link_timeout", 5.0, 0, 3600);

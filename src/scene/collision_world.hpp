@@ -51,8 +51,8 @@ struct Contact {
   // the limit ("the fence", "its reduced range -90.000..90.000 deg"), `depth` how far beyond
   // it (m, or rad for a revolute joint) and `point` the tool point.
   Limit limit = Limit::none;
-  // The same two bodies for programs (a link outside the fence: first_body only; the tool
-  // point or a joint: neither).
+  // The same two bodies as typed ids, for apps to show and match without reading the text
+  // (a link outside the fence: first_body only; the tool point or a joint: neither).
   BodyId first_body, second_body;
 };
 

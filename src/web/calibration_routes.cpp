@@ -1,8 +1,9 @@
 // The guided calibration over HTTP (docs/http-api.md "Calibration"): one server-side
 // calibration::CalibrationSession, started by the client that holds control and used only
 // by it; every step is the engine's, run on the arm's worker thread like any job. Nothing is
-// written until confirm; cancel, a new start, or another client starting its own session
-// drop the pending answers (nothing written). The server goes on driving with the arm file
+// written until confirm; cancel, a new start, another client starting its own session, or
+// the client losing control (the torque goes back on) drop the pending answers (nothing
+// written). The server goes on driving with the arm file
 // it started with: a confirmed file is used from the next `armctl serve` on. Values in the
 // API's units (deg or mm, the tool in mm: docs/http-api.md "Conventions").
 #include <memory>
@@ -48,6 +49,12 @@ struct CalibrationLane {
 
 cal::JsonValues shown(const arm::ArmModel& model) { return {model, cal::Units::display}; }
 
+// A step that gives nothing back, as the value on_worker carries.
+Result<bool> status(Status st) {
+  if (!st) return st.error();
+  return true;
+}
+
 json state_json(const CalibrationLane& lane) {
   json out{{"active", lane.calibrating != nullptr}};
   if (!lane.calibrating) return out;
@@ -82,6 +89,23 @@ void add_calibration_routes(WebServer::State& s) {
     });
     return std::move(**out).value();
   };
+
+  // The client that calibrates lost control (another took it, it released it, its page went
+  // away and its control ended): its session ends as a cancel ends it, the torque back on
+  // where the arm stands, so that a page closed with the joints released leaves no limp arm
+  // and no session behind.
+  s.control_changed.push_back([lane, on_worker](const std::optional<std::string>& holder) {
+    std::lock_guard lock(lane->mutex);
+    if (!lane->calibrating || (holder && *holder == lane->owner)) return;
+    try {
+      on_worker("hold", lane->calibrating, [](cal::CalibrationSession& x) { return status(x.hold()); });
+    } catch (const std::exception&) {
+      // The worker is busy with the new holder's motion (which has the torque on), or the
+      // device failed (the session has nothing left to hold): it ends all the same.
+    }
+    lane->calibrating.reset();
+    lane->owner.clear();
+  });
 
   // The pictures the direction and zero steps refer to (docs/calibration.md "Pictures"), of the
   // arm file the server runs: read-only, for anyone.
@@ -130,10 +154,6 @@ void add_calibration_routes(WebServer::State& s) {
       throw ApiError(409, "no calibration started by this client: POST /api/v1/calibration/start first");
     auto calibrating = lane->calibrating;
     cal::CalibrationSession* session = &calibrating->session;
-    auto status = [](Status st) -> Result<bool> {
-      if (!st) return st.error();
-      return true;
-    };
     json out;
     if (q.step == "find") {
       out["find"] = cal::to_json(v, on_worker("find", calibrating, [](cal::CalibrationSession& x) { return x.find(); }));
@@ -174,10 +194,7 @@ void add_calibration_routes(WebServer::State& s) {
       else session->forget(q.joint);
     } else if (q.step == "confirm") {
       // The torque goes back on before anything is written: the arm holds where it stands.
-      on_worker("hold", calibrating, [](cal::CalibrationSession& x) -> Result<bool> {
-        if (Status st = x.hold(); !st) return st.error();
-        return true;
-      });
+      on_worker("hold", calibrating, [](cal::CalibrationSession& x) { return status(x.hold()); });
       const arm::ArmModel written = on_worker("confirm", calibrating, [](cal::CalibrationSession& x) { return x.confirm(); });
       out["written"] = cal::written_json(written);
       lane->written = written.file.string();

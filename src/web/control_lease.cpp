@@ -78,6 +78,12 @@ ControlView ControlLease::view(const std::string& client) const {
   return {holder_ && !client.empty() && *holder_ == client, holder_.has_value(), since_};
 }
 
+std::optional<std::string> ControlLease::holder() const {
+  std::lock_guard lock(mutex_);
+  expire();
+  return holder_;
+}
+
 void ControlLease::require(const std::string& client) const {
   std::lock_guard lock(mutex_);
   expire();

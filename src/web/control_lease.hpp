@@ -44,6 +44,8 @@ class ControlLease {
   // Releases it if `client` holds it.
   void release(const std::string& client);
   ControlView view(const std::string& client) const;
+  // Who holds control now (nobody: empty), after ending an idle holder's.
+  std::optional<std::string> holder() const;
   // Throws ApiError 409 unless `client` holds control.
   void require(const std::string& client) const;
 

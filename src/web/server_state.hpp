@@ -3,6 +3,9 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
+#include <optional>
+#include <vector>
 #include <mutex>
 #include <string>
 
@@ -36,6 +39,11 @@ struct WebServer::State {
 
   std::mutex points_mutex;
   files::PointsFile points;
+  // Called on the server's control watcher thread when control passed to another client or
+  // to nobody (taken over, released, the holder's page gone): what a holder had started
+  // for itself ends there (a calibration puts the torque back on). Added before start().
+  std::vector<std::function<void(const std::optional<std::string>& holder)>> control_changed;
+
   // Hold-to-jog (POST /api/v1/servo): one servo session on the worker for every client.
   session::ServoLane servo{worker};
 

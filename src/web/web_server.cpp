@@ -288,10 +288,33 @@ void WebServer::start() {
     http_->listen_after_bind();
     listen_ended_ = true;
   });
+  watcher_ = std::thread([this] { watch_control(); });
+}
+
+void WebServer::watch_control() {
+  // Often enough that a calibration left with its torque off by a closed page is held again
+  // within a second of its control ending (web/control_lease.hpp: 5 s after the page went).
+  constexpr auto kEvery = std::chrono::milliseconds(250);
+  std::optional<std::string> last = state_->lease.holder();
+  std::unique_lock lock(watcher_mutex_);
+  while (!watcher_wake_.wait_for(lock, kEvery, [this] { return watcher_stop_; })) {
+    std::optional<std::string> now = state_->lease.holder();
+    if (now == last) continue;
+    last = std::move(now);
+    lock.unlock();
+    for (const auto& changed : state_->control_changed) changed(last);
+    lock.lock();
+  }
 }
 
 void WebServer::stop() {
   state_->stopping = true;
+  {
+    std::lock_guard lock(watcher_mutex_);
+    watcher_stop_ = true;
+  }
+  watcher_wake_.notify_all();
+  if (watcher_.joinable()) watcher_.join();
   // httplib's stop() does nothing until its loop runs: wait for that (or for its end).
   while (thread_.joinable() && !http_->is_running() && !listen_ended_) std::this_thread::sleep_for(1ms);
   http_->stop();

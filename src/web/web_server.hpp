@@ -5,6 +5,8 @@
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
+#include <mutex>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -70,6 +72,13 @@ class WebServer {
   std::unique_ptr<GuardedServer> http_;
   std::function<void(const httplib::Request&, httplib::Response&)> dispatch_;  // routes, then files
   std::thread thread_;
+  // Watches who holds control (State::control_changed): an idle holder's control ends only
+  // when somebody asks, and a page that closed asks nothing.
+  void watch_control();
+  std::thread watcher_;
+  std::mutex watcher_mutex_;
+  std::condition_variable watcher_wake_;
+  bool watcher_stop_ = false;
   int port_ = 0;
   std::atomic<bool> listen_ended_{false};
 };

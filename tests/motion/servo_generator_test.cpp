@@ -177,6 +177,41 @@ TEST(ServoGenerator, APositionGoalBeyondTheRangeStopsAtItsEnd) {
   EXPECT_TRUE(g.limited(0));
 }
 
+TEST(ServoGenerator, APositionGoalsSpeedCapHoldsAndOneThatComesDownIsSlowedTo) {
+  // Two joints to far goals, capped at 0.3 and 0.2 rad/s (their limit 1): neither goes
+  // faster, both arrive. Then, halfway back at full speed, the cap comes down to 0.25: each
+  // slows to it within one velocity change, keeping its direction, and still arrives.
+  std::vector<ServoJoint> joints{joint(), joint()};
+  ServoGenerator g;
+  ASSERT_TRUE(g.reset(joints, std::vector<double>{0, 0}));
+  LimitWatch watch{joints};
+  std::vector<ServoGoal> goals{{ServoGoal::Kind::position, 1.5, 0.3}, {ServoGoal::Kind::position, -1.0, 0.2}};
+  const auto at = [&](double a, double b) { return std::abs(g.position()[0] - a) < 1e-9 && std::abs(g.position()[1] - b) < 1e-9; };
+  int cycles = 0;
+  for (; cycles < 5000 && !at(1.5, -1.0); ++cycles) {
+    ASSERT_TRUE(watch.step(g, goals));
+    ASSERT_LE(std::abs(g.velocity()[0]), 0.3 + 1e-12);
+    ASSERT_LE(std::abs(g.velocity()[1]), 0.2 + 1e-12);
+  }
+  EXPECT_LT(cycles, 5000);
+  EXPECT_GT(cycles * kDt, 1.5 / 0.3);  // slower than its own limit would allow
+  goals = {{ServoGoal::Kind::position, -1.5}, {ServoGoal::Kind::position, 1.0}};
+  while (g.position()[0] > 0) ASSERT_TRUE(watch.step(g, goals));
+  ASSERT_GT(std::abs(g.velocity()[0]), 0.9);
+  goals[0].max_speed = goals[1].max_speed = 0.25;
+  // One velocity change from 1 to 0.25 rad/s (a = 4, j = 40): 0.29 s.
+  for (int k = 0; k < int(0.35 / kDt); ++k) {
+    ASSERT_TRUE(watch.step(g, goals));
+    ASSERT_LT(g.velocity()[0], 0);  // never turned back
+  }
+  for (cycles = 0; cycles < 5000 && !at(-1.5, 1.0); ++cycles) {
+    ASSERT_TRUE(watch.step(g, goals));
+    ASSERT_LE(std::abs(g.velocity()[0]), 0.25 + 1e-12);
+    ASSERT_LE(std::abs(g.velocity()[1]), 0.25 + 1e-12);
+  }
+  EXPECT_LT(cycles, 5000);
+}
+
 TEST(ServoGenerator, RandomGoalsOfBothKindsNeverBreakALimit) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0, 1);

@@ -8,6 +8,7 @@
 
 #include "api_server.hpp"
 #include "calibration/joint_pictures.hpp"
+#include "devices/xarm_emulator/emulator_runner.hpp"
 #include "refusal.hpp"
 #include "web/calibration_request.hpp"
 
@@ -46,6 +47,49 @@ TEST(WebCalibration, StepsNeedControlAndAStartedSession) {
   api.take("other");
   EXPECT_EQ(api.post(kCal + "nudge", {{"joint", "servo3"}}, "other").status, 409);
   EXPECT_EQ(api.get("/api/v1/calibration", "other").body["active"], false);
+}
+
+// Whether every servo of the emulated board has its torque `on`.
+bool every_torque(xarm::EmulatorRunner& board, bool on) {
+  bool all = true;
+  board.with_servos([&](xarm::XarmServos& servos) {
+    for (auto id : servos.servos()) all = all && servos.torque(id) == on;
+  });
+  return all;
+}
+
+TEST(WebCalibration, ASessionWhoseClientLosesControlEndsWithTheTorqueBackOn) {
+  // The board on a pty, so that the test sees its servos' torque.
+  xarm::EmulatorRunner board(xarm::EmulatorRunnerOptions{});
+  board.start();
+  ServerOptions options;
+  options.control_idle = 2s;  // a client without an event stream, as this test is
+  const fs::path file = arm_copy();
+  ApiServer api(file.string(), options, "serial:" + board.device_path());
+  api.first_positions();
+  const auto released = [&] {
+    ASSERT_EQ(api.post(kCal + "start", json::object(), "page").status, 200);
+    const Reply r = api.post(kCal + "release", json::object(), "page");
+    ASSERT_EQ(r.status, 200) << r.text;
+    ASSERT_TRUE(every_torque(board, false));
+  };
+  const auto held_again = [&] { return api.wait_until([&](const session::ArmSnapshot&) { return every_torque(board, true); }, 20s); };
+
+  // Taken over while the joints hang limp: the session ends, the torque back on.
+  api.take("page");
+  released();
+  api.take("other");
+  ASSERT_TRUE(held_again());
+  api.take("page");
+  EXPECT_EQ(api.get("/api/v1/calibration", "page").body["active"], false);
+
+  // Gone: the page stops asking (closed, its network lost); its control ends after
+  // control_idle, and the session with it.
+  released();
+  ASSERT_TRUE(held_again());
+  EXPECT_EQ(api.get("/api/v1/state", "other").body["control"]["holder"], false);
+  api.take("page");
+  EXPECT_EQ(api.get("/api/v1/calibration", "page").body["active"], false);
 }
 
 TEST(WebCalibration, ThePicturesAreTheArmFilesOwn) {

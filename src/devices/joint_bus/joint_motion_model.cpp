@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "portable/fixed_point.hpp"
+
 namespace armctl::joint_bus {
 
 namespace {
@@ -9,11 +11,10 @@ constexpr Duration kTick = std::chrono::milliseconds(1);
 }  // namespace
 
 JointMotionModel::JointMotionModel(const JointProfile& configured) {
-  // clicks/s -> Q8 clicks/tick and clicks/s^2 -> Q8 clicks/tick^2, rounded as the joint does
-  // (portable/position_loop.cpp).
-  const auto top = static_cast<std::int32_t>(configured.max_speed_cps);
-  const auto accel = static_cast<std::int32_t>(configured.max_accel_cps2);
-  ramp_.configure((top * 32 + 62) / 125, (accel * 32 + 62500) / 125000);
+  // Converted as the joint converts them (portable/fixed_point.hpp).
+  const auto top = static_cast<std::uint32_t>(configured.max_speed_cps);
+  const auto accel = static_cast<std::uint32_t>(configured.max_accel_cps2);
+  ramp_.configure(static_cast<std::int32_t>(speed_q8_per_tick(top)), static_cast<std::int32_t>(accel_q8_per_tick2(accel)));
 }
 
 void JointMotionModel::rest_at(std::int32_t clicks, TimePoint t) {

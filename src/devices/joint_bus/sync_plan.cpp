@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "portable/fixed_point.hpp"
+
 namespace armctl::joint_bus {
 
 namespace {
@@ -14,10 +16,10 @@ double to_seconds(Duration d) { return std::chrono::duration<double>(d).count();
 }  // namespace
 
 JointProfile as_quantized_by_joint(JointProfile p) {
-  // top speed: Q8 clicks per tick = (cps * 32 + 62) / 125; acceleration: Q8 clicks per
-  // tick^2 = (cps2 * 32 + 62500) / 125000, at least 1.
-  const double top_q8 = std::floor((p.max_speed_cps * 32 + 62) / 125);
-  const double accel_q8 = std::max(1.0, std::floor((p.max_accel_cps2 * 32 + 62500) / 125000));
+  // Converted as the joint converts them (portable/fixed_point.hpp), the acceleration at
+  // least 1 as its ramp takes it (portable/setpoint_ramp.cpp).
+  const double top_q8 = speed_q8_per_tick(static_cast<std::uint32_t>(p.max_speed_cps));
+  const double accel_q8 = std::max(1u, accel_q8_per_tick2(static_cast<std::uint32_t>(p.max_accel_cps2)));
   return JointProfile{top_q8 * 1000.0 / 256.0, accel_q8 * 1e6 / 256.0};
 }
 
