@@ -289,21 +289,32 @@ class ServoLoop {
     return reduced && reduced->tool_speed ? *reduced->tool_speed : std::numeric_limits<double>::infinity();
   }
 
+  // The tool point's speed (m/s) where the arm was sent last, chain joint i moving at
+  // velocity(i) (rad/s or m/s): a twist, the goals, the generator's state.
+  template <typename Velocity>
+  double tool_point_speed(Velocity velocity) const {
+    const motion::JointVector chain = kinematics_->chain_of(sent_);
+    motion::JointVector qd(chain.size());
+    for (int i = 0; i < qd.size(); ++i) qd[i] = velocity(std::size_t(i));
+    return (tool_jacobian(*kinematics_, chain).topRows<3>() * qd).norm();
+  }
+
+  void report_reduced_speed(ServoStatus& status) const {
+    status.slowdown = ServoSlowdown::joint_limit;
+    status.detail = fmt::format("the tool at reduced mode's {:.1f} mm/s", tool_speed_cap() * 1e3);
+  }
+
   // Joint velocities that would move the tool faster than reduced mode's cap, scaled down together.
   void cap_tool_speed(ServoStatus& status) {
     const double cap = tool_speed_cap();
     if (!std::isfinite(cap)) return;
-    const motion::JointVector chain = kinematics_->chain_of(sent_);
-    motion::JointVector qd = motion::JointVector::Zero(chain.size());
-    for (int i = 0; i < qd.size(); ++i) qd[i] = goals_[std::size_t(i)].value;
-    const double speed = (tool_jacobian(*kinematics_, chain).topRows<3>() * qd).norm();
+    const double speed = tool_point_speed([&](std::size_t i) { return goals_[i].value; });
     if (speed <= cap) return;
     const double s = cap / speed;
-    for (int i = 0; i < qd.size(); ++i) goals_[std::size_t(i)].value *= s;
+    for (std::size_t i = 0; i < std::size_t(model_.chain_joints()); ++i) goals_[i].value *= s;
     if (s < status.scale) {
       status.scale = s;
-      status.slowdown = ServoSlowdown::joint_limit;
-      status.detail = fmt::format("the tool at reduced mode's {:.1f} mm/s", cap * 1e3);
+      report_reduced_speed(status);
     }
   }
 
@@ -314,42 +325,25 @@ class ServoLoop {
   // every cycle from where the arm is and what is left; step() checks the result and steps
   // again slower when the tool would still go faster (the joints not yet in proportion).
   void cap_position_speeds(ServoStatus& status) {
-    capped_positions_ = false;
     const double cap = kToolSpeedMargin * tool_speed_cap();
     if (!std::isfinite(cap)) return;
-    const motion::JointVector chain = kinematics_->chain_of(sent_);
-    motion::JointVector left = motion::JointVector::Zero(chain.size());
-    for (int i = 0; i < chain.size(); ++i) {
-      const motion::ServoGoal& g = goals_[std::size_t(i)];
-      if (g.kind == motion::ServoGoal::Kind::position) left[i] = g.value - sent_[std::size_t(i)];
-    }
-    const double tool = (tool_jacobian(*kinematics_, chain).topRows<3>() * left).norm();
+    const auto left = [&](std::size_t i) {
+      const motion::ServoGoal& g = goals_[i];
+      return g.kind == motion::ServoGoal::Kind::position ? g.value - sent_[i] : 0.0;
+    };
+    const double tool = tool_point_speed(left);  // of a unit of time's worth of what is left
     if (!(tool > 0)) return;  // nothing left that moves the tool point
     bool at_cap = false;
-    for (int i = 0; i < chain.size(); ++i) {
-      motion::ServoGoal& g = goals_[std::size_t(i)];
+    for (std::size_t i = 0; i < std::size_t(model_.chain_joints()); ++i) {
+      motion::ServoGoal& g = goals_[i];
       if (g.kind != motion::ServoGoal::Kind::position) continue;
-      g.max_speed = cap * std::abs(left[i]) / tool;
-      at_cap = at_cap || (g.max_speed < joint_speed_limit(std::size_t(i)) &&
-                          std::abs(generator_.velocity()[std::size_t(i)]) >= 0.95 * g.max_speed);
+      g.max_speed = cap * std::abs(left(i)) / tool;
+      // (Reported while a joint is held at its cap: near its target it slows of itself.)
+      at_cap = at_cap || (g.max_speed < model_.joints[i].limits.velocity * options_.speed &&
+                          std::abs(generator_.velocity()[i]) >= 0.95 * g.max_speed);
     }
     capped_positions_ = true;
-    if (at_cap) {
-      status.slowdown = ServoSlowdown::joint_limit;
-      status.detail = fmt::format("the tool at reduced mode's {:.1f} mm/s", tool_speed_cap() * 1e3);
-    }
-  }
-
-  // The tool point's speed with the joints at the generator's velocities now.
-  double tool_speed_now() const {
-    const motion::JointVector chain = kinematics_->chain_of(sent_);
-    motion::JointVector qd = motion::JointVector::Zero(chain.size());
-    for (int i = 0; i < qd.size(); ++i) qd[i] = generator_.velocity()[std::size_t(i)];
-    return (tool_jacobian(*kinematics_, chain).topRows<3>() * qd).norm();
-  }
-
-  double joint_speed_limit(std::size_t joint) const {
-    return model_.joints[joint].limits.velocity * options_.speed;
+    if (at_cap) report_reduced_speed(status);
   }
 
   // Velocity goals toward something nearer than collision_slow are scaled down with the
@@ -384,7 +378,8 @@ class ServoLoop {
     // Position goals under reduced mode's cap whose joints are not yet in proportion: once
     // more, each joint's cap lowered by as much as the tool would go too fast.
     if (capped_positions_) {
-      const double cap = kToolSpeedMargin * tool_speed_cap(), speed = tool_speed_now();
+      const double cap = kToolSpeedMargin * tool_speed_cap();
+      const double speed = tool_point_speed([&](std::size_t i) { return generator_.velocity()[i]; });
       if (speed > cap) {
         generator_.restore(before);
         for (auto& g : goals_)

@@ -4,10 +4,10 @@
 
 #include <atomic>
 #include <functional>
-#include <optional>
-#include <vector>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
