@@ -23,12 +23,46 @@ Arm::Arm(ArmModel model, std::unique_ptr<ArmDevice> device) : device_(std::move(
     throw ArmctlError(ErrorKind::invalid_argument,
                       fmt::format("arm '{}' has no {} mapping for its joints, so {} cannot drive it", model.name,
                                   to_string(device_->protocol()), device_->description()));
-  model_kinematics_ = std::make_shared<const ArmKinematics>(std::move(model), device_->protocol());
-  kinematics_ = model_kinematics_;
+  models_.push_back(std::make_shared<const ArmKinematics>(std::move(model), device_->protocol()));
+  current_ = models_.back().get();
+  kinematics_ = models_.back();
+}
+
+Status Arm::use_model(ArmModel model) {
+  const ArmModel& now = this->model();
+  const Protocol protocol = device_->protocol();
+  if (!model.supports(protocol))
+    return refuse(fmt::format("arm file {}: no {} mapping for its joints", model.file.string(), to_string(protocol)));
+  if (model.joints.size() != now.joints.size())
+    return refuse(fmt::format("arm file {}: {} joints where the arm has {} (open the arm again to drive another arm)",
+                              model.file.string(), model.joints.size(), now.joints.size()));
+  for (std::size_t i = 0; i < model.joints.size(); ++i) {
+    const JointModel& a = now.joints[i];
+    const JointModel& b = model.joints[i];
+    if (a.name != b.name || a.map(protocol)->id != b.map(protocol)->id)
+      return refuse(fmt::format("arm file {}: joint {} is {} (ID {}) where the arm has {} (ID {}): open the arm again "
+                                "to drive other joints",
+                                model.file.string(), i + 1, b.name, b.map(protocol)->id, a.name, a.map(protocol)->id));
+  }
+  auto fresh = std::make_shared<const ArmKinematics>(std::move(model), protocol);
+  std::lock_guard edit(scene_edit_mutex_);
+  // The scene (with its fence and reduced mode switches) checked against the new model.
+  std::shared_ptr<const ArmKinematics> with_scene = fresh;
+  if (fresh->collisions()) {
+    auto with = fresh->with_scene(scene());
+    if (!with) return with.error();
+    with_scene = std::move(with).value();
+  }
+  std::lock_guard lock(kinematics_mutex_);
+  models_.push_back(fresh);
+  current_.store(fresh.get(), std::memory_order_release);
+  kinematics_ = std::move(with_scene);
+  last_targets_.clear();  // in the old model's values: nothing left to wait for
+  return Ok{};
 }
 
 Status Arm::set_scene(scene::Scene scene) {
-  auto with = model_kinematics_->with_scene(std::move(scene));
+  auto with = current()->with_scene(std::move(scene));
   if (!with) return with.error();
   std::lock_guard lock(kinematics_mutex_);
   kinematics_ = std::move(with).value();
@@ -68,11 +102,11 @@ Result<JointState> Arm::read() {
 Result<motion::Pose> Arm::pose() {
   auto s = read();
   if (!s) return s.error();
-  return model_kinematics_->pose_at(s->positions);
+  return current()->pose_at(s->positions);
 }
 
 Status Arm::move_joints(const std::vector<std::optional<double>>& targets, const MoveOptions& options) {
-  if (auto ok = model_kinematics_->check_targets(targets); !ok) return ok;
+  if (auto ok = current()->check_targets(targets); !ok) return ok;
   PtpMove move;
   move.target = targets;
   return move_board(std::move(move), options);
@@ -102,7 +136,7 @@ Status Arm::move_board(PtpMove move, const MoveOptions& options) {
 }
 
 Status Arm::send(const std::vector<std::optional<double>>& targets, Duration duration) {
-  if (auto ok = model_kinematics_->check_targets(targets); !ok) return ok;
+  if (auto ok = current()->check_targets(targets); !ok) return ok;
   if (duration.count() < 0) return refuse("a move's duration cannot be negative");
   // A coupled joint's device value depends on its partner: the plan gives both.
   for (const Coupling& c : model().couplings)
@@ -115,7 +149,7 @@ Status Arm::send(const std::vector<std::optional<double>>& targets, Duration dur
     full[i] = targets[i].value_or(0.0);
     carried[i] = targets[i].has_value();
   }
-  auto device_targets = model_kinematics_->device_targets(full, carried);
+  auto device_targets = current()->device_targets(full, carried);
   if (!device_targets) return device_targets.error();
   if (auto sent = device_->move(*device_targets, duration); !sent) return sent;
   last_targets_ = targets;

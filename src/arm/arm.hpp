@@ -8,6 +8,7 @@
 // thread-safe: one thread uses one Arm.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -74,7 +75,15 @@ class Arm {
  public:
   Arm(ArmModel model, std::unique_ptr<ArmDevice> device);
 
-  const ArmModel& model() const { return model_kinematics_->model(); }
+  // The model the arm drives with now. The reference stays valid as long as the Arm, also
+  // after use_model (a caller that keeps it goes on reading the model it was given).
+  const ArmModel& model() const { return current()->model(); }
+  // Drives with `model` from now on (a calibration was confirmed: new zeros, directions,
+  // limits, gripper or link lengths), the scene, fence and reduced mode kept as they are.
+  // It must name the same joints with the same device IDs (what the device talks to does
+  // not change); nothing changes when it does not (invalid_argument, naming what differs).
+  // Call it while the arm does not move: plans made before keep the model they were made with.
+  Status use_model(ArmModel model);
   // The arm's kinematics (model, FK/IK, target checks with this device's range, the
   // collision world with the scene): an immutable value other threads and the planner may
   // hold and use while the arm moves. A new scene makes a new value (set_scene).
@@ -104,17 +113,17 @@ class Arm {
   // The tool pose where the arm stands now.
   Result<motion::Pose> pose();
   // The kinematics' (ArmKinematics), for callers that hold an Arm.
-  motion::Pose forward(const motion::JointVector& chain) const { return model_kinematics_->forward(chain); }
+  motion::Pose forward(const motion::JointVector& chain) const { return current()->forward(chain); }
   Result<std::vector<motion::IkSolution>> inverse(const CartesianGoal& goal, const JointState& now) const {
-    return model_kinematics_->inverse(goal, now.positions);
+    return current()->inverse(goal, now.positions);
   }
   motion::Rpy tool_rpy(const motion::Pose& pose, const motion::JointVector& chain) const {
-    return model_kinematics_->tool_rpy(pose, chain);
+    return current()->tool_rpy(pose, chain);
   }
-  motion::Rpy goal_rpy(const CartesianGoal& goal, const motion::Rpy& current) const {
-    return model_kinematics_->goal_rpy(goal, current);
+  motion::Rpy goal_rpy(const CartesianGoal& goal, const motion::Rpy& current_rpy) const {
+    return current()->goal_rpy(goal, current_rpy);
   }
-  motion::JointVector chain_of(const std::vector<double>& positions) const { return model_kinematics_->chain_of(positions); }
+  motion::JointVector chain_of(const std::vector<double>& positions) const { return current()->chain_of(positions); }
 
   // Moves the joints that have a target (SI; the vector has one entry per joint): a board
   // move (the device interpolates) planned by arm::plan_moves, then sent (send()).
@@ -147,13 +156,17 @@ class Arm {
   // Checks targets against the joint limits and the device's range (ArmKinematics); the
   // error names the joint, the value and what is allowed.
   Status check_targets(const std::vector<std::optional<double>>& targets) const {
-    return model_kinematics_->check_targets(targets);
+    return current()->check_targets(targets);
   }
 
  private:
+  const ArmKinematics* current() const { return current_.load(std::memory_order_acquire); }
   Status move_board(PtpMove move, const MoveOptions& options);
 
-  std::shared_ptr<const ArmKinematics> model_kinematics_;  // as built: model() refers into it
+  // The model's kinematics without the scene: the newest is current_. Those replaced by
+  // use_model stay alive with the Arm, so that references model() gave out stay valid.
+  std::vector<std::shared_ptr<const ArmKinematics>> models_;
+  std::atomic<const ArmKinematics*> current_{nullptr};
   mutable std::mutex kinematics_mutex_;
   std::shared_ptr<const ArmKinematics> kinematics_;  // with the scene; replaced by set_scene
   std::mutex scene_edit_mutex_;  // one edit_scene at a time

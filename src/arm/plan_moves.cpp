@@ -117,7 +117,7 @@ class Planner {
       }
       for (const auto& [what, limit] : check.started_beyond)
         p.note += (p.note.empty() ? "" : "; ") +
-                  fmt::format("{}: starts with {} beyond {} (not checked along it, so that the arm can move back)", p.label,
+                  fmt::format("{}: starts with {} beyond {} (it may move back, not further beyond)", p.label,
                               what, limit);
       from = p.end;
     }

@@ -11,6 +11,7 @@
 #include "core/quantity.hpp"
 #include "motion/servo_generator.hpp"
 #include "scene/collision_world.hpp"
+#include "scene/motion_check.hpp"
 
 namespace armctl::arm {
 
@@ -98,7 +99,10 @@ class ServoLoop {
     sent_ = start_state->positions;
     world_ = kinematics_->collisions();
     // Pairs already touching at the start may move apart: they are not held against it.
-    if (world_) skip_ = world_->touching(start_state->positions);
+    if (world_) {
+      skip_ = world_->touching(start_state->positions);
+      beyond_ = scene::LimitsBeyond(*world_, skip_);
+    }
     if (model_.gripper) gripper_ = start_state->positions[std::size_t(model_.gripper->joint)];
 
     report_.period = options_.period.value_or(device_.stream_period(false));
@@ -394,7 +398,15 @@ class ServoLoop {
       }
     if (!world_) return;
     const motion::JointArray rest = generator_.resting_place();
-    if (!world_->collides(std::span<const double>(rest.data(), n_), skip_)) return;
+    const std::span<const double> resting(rest.data(), n_);
+    // A limit broken at the start (the fence switched on with the tool outside): the arm may
+    // come back, never go further beyond it than it has been.
+    std::optional<scene::Contact> deeper;
+    if (!beyond_.empty()) {
+      world_->place(resting, placed_);
+      deeper = beyond_.deeper(resting, placed_, false);
+    }
+    if (!deeper && !world_->collides(resting, skip_)) return note_beyond();
     generator_.restore(before);
     std::vector<motion::ServoGoal> brake(n_);
     // The gripper keeps going where it was sent: it is not part of what is checked moving.
@@ -402,9 +414,20 @@ class ServoLoop {
     generator_.step(brake, dt);
     status.scale = 0;
     status.slowdown = ServoSlowdown::collision;
-    if (auto c = world_->contact(std::span<const double>(rest.data(), n_), skip_))
+    if (deeper)
+      status.detail = fmt::format("{} would leave {}", deeper->first, deeper->second);
+    else if (auto c = world_->contact(resting, skip_))
       status.detail =
           fmt::format("{} would {} {}", c->first, c->limit == scene::Limit::none ? "touch" : "leave", c->second);
+    note_beyond();
+  }
+
+  // The limits broken at the start take the depth where the arm is now as their least.
+  void note_beyond() {
+    if (beyond_.empty()) return;
+    const std::span<const double> now(generator_.position().data(), n_);
+    world_->place(now, placed_);
+    (void)beyond_.deeper(now, placed_, true);
   }
 
   Status read_back() {
@@ -444,6 +467,8 @@ class ServoLoop {
   std::vector<double> positions_, velocities_, sent_;
   std::shared_ptr<const scene::CollisionWorld> world_;
   std::vector<int> skip_;
+  scene::LimitsBeyond beyond_;
+  scene::CollisionWorld::Placement placed_;
   std::optional<ServoCommand> command_;
   TimePoint received_{};
   std::uint64_t seen_ = 0;

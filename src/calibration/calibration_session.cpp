@@ -426,7 +426,14 @@ Result<arm::ArmModel> CalibrationSession::confirm() {
     put_back();
     return written.error();
   }
+  // The answers and touched points were read in the old model's values: they go with it.
   forget_all();
+  touched_.clear();
+  // Every app drives with the new file from here on, and may calibrate again from it.
+  if (auto used = arm_.use_model(*written); !used)
+    return Error{used.error().kind, fmt::format("{} was written, but the arm goes on with the model it was opened with "
+                                                "(open it again to drive with the new file): {}",
+                                                written->file.string(), used.error().message)};
   return written;
 }
 

@@ -123,8 +123,9 @@ class CalibrationSession {
   std::string describe() const;
   // Writes: the servo offsets (adjust, save, read back), then the arm file (write_calibration,
   // `.prev` kept). A servo offset that does not read back stops it before the file; a file
-  // that cannot be written puts the offsets back. Returns the model of the new file. Pending
-  // answers are cleared after a successful write.
+  // that cannot be written puts the offsets back. Returns the model of the new file, which
+  // the arm then drives with (Arm::use_model): pending answers and touched points are cleared,
+  // and the session may go on calibrating from the new file.
   Result<arm::ArmModel> confirm();
 
  private:

@@ -426,12 +426,18 @@ class PyArm {
     arm::PtpMove m = ptp_move(duration, speed);
     m.target = goal_of(position, roll, pitch, yaw, elbow, nearest);
     std::optional<arm::AvoidOptions> around;
-    if (avoid) {
-      if (!(avoid_time >= 0.01 && avoid_time <= 60))
-        raise(ErrorKind::invalid_argument, fmt::format("avoid_time {:g} s is outside 0.01..60 s", avoid_time));
-      around.emplace().time_budget = avoid_time;
-    }
+    if (avoid) around = avoid_options(avoid_time);
     return board_move(m, wait_for_it, timeout, around);
+  }
+
+  // The search's budget for avoid=True (s), refused outside what the planner allows.
+  static arm::AvoidOptions avoid_options(double avoid_time) {
+    if (!(avoid_time >= arm::kMinAvoidTime && avoid_time <= arm::kMaxAvoidTime))
+      raise(ErrorKind::invalid_argument, fmt::format("avoid_time {:g} s is outside {:g}..{:g} s", avoid_time,
+                                                     arm::kMinAvoidTime, arm::kMaxAvoidTime));
+    arm::AvoidOptions o;
+    o.time_budget = avoid_time;
+    return o;
   }
 
   PyPlannedMove gripper(double closed_fraction, std::optional<double> duration, double speed, bool wait_for_it,
@@ -572,14 +578,17 @@ class PyArm {
 
   // ---- programs (docs/programs.md): the CLI's `program check` and `program run`
   // Needs the GIL (errors are raised); here() releases it for its read.
-  program::ProgramPlan plan_program_file(const std::string& file, const std::string& points) {
+  program::ProgramPlan plan_program_file(const std::string& file, const std::string& points, bool avoid,
+                                        double avoid_time) {
+    program::PlanOptions o;
+    if (avoid) o.avoid = avoid_options(avoid_time);
     const program::LoadedProgram l = must(program::load_program(file, points));
     const std::vector<double> from = here();
-    return must(program::plan_program(*arm().kinematics(), from, l.flow, l.program.source));
+    return must(program::plan_program(*arm().kinematics(), from, l.flow, l.program.source, o));
   }
 
-  py::dict check_program(const std::string& file, const std::string& points) {
-    const program::ProgramPlan p = plan_program_file(file, points);
+  py::dict check_program(const std::string& file, const std::string& points, bool avoid, double avoid_time) {
+    const program::ProgramPlan p = plan_program_file(file, points, avoid, avoid_time);
     py::dict out;
     out["duration"] = p.duration;
     out["moves"] = p.moves;
@@ -587,9 +596,10 @@ class PyArm {
     return out;
   }
 
-  py::dict run_program(const std::string& file, const std::string& points, double speed_override) {
+  py::dict run_program(const std::string& file, const std::string& points, double speed_override, bool avoid,
+                       double avoid_time) {
     must(check_fraction_in(speed_override, "speed_override", motion::kMinSpeedFraction, motion::kMaxSpeedFraction));
-    const program::ProgramPlan plan = plan_program_file(file, points);  // every check first
+    const program::ProgramPlan plan = plan_program_file(file, points, avoid, avoid_time);  // every check first
     arm::Arm& a = arm();  // may raise: not where the GIL is released
     InterruptWatch watch;
     bool closed = false;
@@ -635,7 +645,6 @@ class PyArm {
   std::string protocol() { return arm::to_string(arm().device().protocol()); }
 
   DeviceGate gate_{"Arm"};  // before the session: it outlives it
-  std::shared_ptr<std::string> calibration_written_ = std::make_shared<std::string>();  // make_calibration
   std::unique_ptr<session::ArmSession> session_;
 };
 
@@ -845,13 +854,18 @@ void define_arm(py::module_& m) {
            "yaw"_a = py::none(), "speed"_a = motion::kDefaultToolSpeed, "angular_speed"_a = motion::kDefaultToolAngularSpeed, "speed_override"_a = 1.0,
            "LIN: the tool along a straight line to `position` (m) at `speed` m/s, planned and checked on the host and\n"
            "streamed; returns when it is there (MotionReport). Ctrl-C stops on the line, then KeyboardInterrupt.")
-      .def("check_program", in_turn(&PyArm::check_program), "file"_a, "points"_a = "",
+      .def("check_program", in_turn(&PyArm::check_program), "file"_a, "points"_a = "", "avoid"_a = false,
+           "avoid_time"_a = 1.0,
            "Checks a robot program (docs/programs.md) before anything moves: every point resolves, every move is\n"
            "reachable and inside the joint limits along its whole path. Returns {'duration': s, 'moves', 'pieces'};\n"
-           "armctl.Error names the file, line and why. `points`: the points file (default FILE.points if it exists).")
+           "armctl.Error names the file, line and why. `points`: the points file (default FILE.points if it exists).\n"
+           "avoid=True: a PTP whose direct motion would collide goes around (as move_to's avoid), each search\n"
+           "`avoid_time` s at most.")
       .def("run_program", in_turn(&PyArm::run_program), "file"_a, "points"_a = "", "speed_override"_a = 1.0,
+           "avoid"_a = false, "avoid_time"_a = 1.0,
            "Checks, then runs a robot program on the arm. Returns {'completed', 'pieces', 'elapsed', \n"
-           "'largest_following_error', 'printed'}. Ctrl-C stops on the path, then KeyboardInterrupt.")
+           "'largest_following_error', 'printed'}. Ctrl-C stops on the path, then KeyboardInterrupt. avoid, avoid_time:\n"
+           "as check_program's.")
       .def("path", in_turn(&PyArm::path), "segments"_a, "speed_override"_a = 1.0, "acceleration"_a = motion::kDefaultToolAcceleration,
            "angular_acceleration"_a = motion::kDefaultToolAngularAcceleration,
            "Runs a Cartesian path: a list of armctl.Lin / armctl.Circ, corners blended by their zones, timed with\n"
@@ -885,7 +899,7 @@ void define_arm(py::module_& m) {
           "calibration",
           [](PyArm& a, bool servo_offsets) {
             const auto turn = a.gate_.enter();
-            return make_calibration(a.arm(), a.gate_, a.session_->board, servo_offsets, a.calibration_written_);
+            return make_calibration(a.arm(), a.gate_, a.session_->board, servo_offsets);
           },
           "servo_offsets"_a = false, py::keep_alive<0, 1>(),
           "The guided calibration (armctl.Calibration), for a with block: each step as a method, nothing written\n"

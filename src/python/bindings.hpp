@@ -22,11 +22,8 @@ void define_calibration(py::module_& m);     // calibration_bindings.cpp: Calibr
 class DeviceGate;
 
 // An armctl.Calibration over `arm` (Arm.calibration()); `board`: the Robot Commands board the
-// xArm's servo IDs and offsets are reached through, or nullptr. `written`: the Arm's record of
-// an arm file a calibration wrote (then no new one may start from the model loaded before:
-// its changes would undo what was written); confirm() sets it, this refuses when it is set.
-py::object make_calibration(arm::Arm& arm, DeviceGate& gate, robot_commands::Client* board, bool servo_offsets,
-                            std::shared_ptr<std::string> written);
+// xArm's servo IDs and offsets are reached through, or nullptr.
+py::object make_calibration(arm::Arm& arm, DeviceGate& gate, robot_commands::Client* board, bool servo_offsets);
 
 // The action-group notifications the client has queued, and those that arrive within
 // `timeout` s, as dicts {kind, group, count}. Receives in short turns on `gate` (the GIL

@@ -43,12 +43,7 @@ void must_py(Status s) {
 
 class PyCalibration {
  public:
-  PyCalibration(arm::Arm& arm, DeviceGate& gate, robot_commands::Client* board, bool servo_offsets,
-                std::shared_ptr<std::string> written)
-      : gate_(gate), written_(std::move(written)) {
-    if (!written_->empty())
-      raise(ErrorKind::invalid_argument, fmt::format("the arm file was written by a calibration ({}); open the Arm "
-                                                     "again to calibrate from it", *written_));
+  PyCalibration(arm::Arm& arm, DeviceGate& gate, robot_commands::Client* board, bool servo_offsets) : gate_(gate) {
     if (board) servos_ = std::make_unique<calibration::RcServoBus>(*board);
     calibration::SessionOptions options;
     options.servo_offsets = servo_offsets;
@@ -90,14 +85,12 @@ class PyCalibration {
 
  private:
   DeviceGate& gate_;
-  std::shared_ptr<std::string> written_;
   std::unique_ptr<calibration::RcServoBus> servos_;
   std::unique_ptr<calibration::CalibrationSession> session_;
 };
 
-py::object make_calibration(arm::Arm& arm, DeviceGate& gate, robot_commands::Client* board, bool servo_offsets,
-                            std::shared_ptr<std::string> written) {
-  return py::cast(std::make_unique<PyCalibration>(arm, gate, board, servo_offsets, std::move(written)));
+py::object make_calibration(arm::Arm& arm, DeviceGate& gate, robot_commands::Client* board, bool servo_offsets) {
+  return py::cast(std::make_unique<PyCalibration>(arm, gate, board, servo_offsets));
 }
 
 void PyCalibration::define(py::module_& m) {
@@ -208,12 +201,11 @@ void PyCalibration::define(py::module_& m) {
            "The pending changes for people, one line each.")
       .def("confirm", [](C& c) {
         const arm::ArmModel written = must_py(c.step([&] { return c.s().confirm(); }));
-        *c.written_ = written.file.string();
-        c.end();  // the session is done: its model is the one the file no longer holds
+        c.end();
         return to_python(cal::written_json(written));
       }, "Writes the pending changes: servo offsets, then the arm file in one atomic replacement with the previous\n"
-         "file kept beside it. {'file', 'previous'}. The session ends. The Arm goes on with the model it was opened\n"
-         "with: open it again to drive with the new file (or to calibrate again).");
+         "file kept beside it. {'file', 'previous'}. The session ends; the Arm drives with the new file from now on\n"
+         "(arm.calibration() again starts from it).");
 }
 
 // armctl._armctl.testing.miscalibration: what `sim?miscal=SEED` does wrong (docs/simulator.md

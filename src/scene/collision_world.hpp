@@ -132,6 +132,11 @@ class CollisionWorld {
   // `skip` (indices pairs_checked() and on: the tool point's fence, the links' fence, each
   // joint range), as a Contact whose `limit` says which.
   std::optional<Contact> limit_breach(std::span<const double> joints, Placement& at, std::span<const int> skip = {}) const;
+  // One limit (index pairs_checked() and on, as touching gives it) at the configuration
+  // placed in `at`: how far beyond it the arm is, as a Contact, or nothing when within it.
+  std::optional<Contact> limit_at(int index, std::span<const double> joints, Placement& at) const {
+    return limit_broken(std::size_t(index) - pairs_.size(), joints, at);
+  }
   bool has_limits() const { return !limits_.empty(); }
   // For a short step from the configuration placed in `at`, in which joint j travels
   // `travel[j]` (the sum of |dq| over the step's pieces: a joint that turns back counts

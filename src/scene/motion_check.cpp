@@ -1,6 +1,7 @@
 #include "scene/motion_check.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace armctl::scene {
 
@@ -9,8 +10,31 @@ namespace {
 // FCL's distance between primitives is exact to well below this; taken off each measured
 // distance so that a pair skipped as apart surely is.
 constexpr double kDistanceTolerance = 1e-6;  // m
+// How much further beyond a limit it started beyond a motion may go between two checks
+// without a refusal: rounding, not motion (m for the fence, rad for a joint range).
+constexpr double kBeyondTolerance = 1e-6;
 
 }  // namespace
+
+LimitsBeyond::LimitsBeyond(const CollisionWorld& world, std::span<const int> skip) : world_(&world) {
+  for (int index : skip)
+    if (std::size_t(index) >= world.pairs_checked()) limits_.emplace_back(index, std::numeric_limits<double>::infinity());
+}
+
+std::optional<Contact> LimitsBeyond::deeper(std::span<const double> joints, CollisionWorld::Placement& at, bool update) {
+  std::optional<Contact> out;
+  for (auto& [index, least] : limits_) {
+    auto c = world_->limit_at(index, joints, at);
+    const double depth = c ? c->depth : 0.0;
+    if (depth > least + kBeyondTolerance && !out) {
+      // (The depth says how far beyond it; the words say why a limit already broken is refused.)
+      c->second += ", further beyond it than the motion has been since it started";
+      out = std::move(c);
+    }
+    if (update) least = std::min(least, depth);
+  }
+  return out;
+}
 
 MotionCheck check_motion(const CollisionWorld& world, double duration,
                          const std::function<void(double, std::vector<double>&)>& sample, double resolution) {
@@ -29,15 +53,18 @@ MotionCheck check_motion(const CollisionWorld& world, double duration,
     auto& list = std::size_t(pair) < n_pairs ? out.started_touching : out.started_beyond;
     if (std::find(list.begin(), list.end(), names) == list.end()) list.push_back(std::move(names));
   }
-  // Pairs touching at the start are never asked.
+  // Pairs touching at the start are never asked; limits broken there may not get deeper.
   std::vector<bool> asked(n_pairs, true);
   for (int pair : skip)
     if (std::size_t(pair) < n_pairs) asked[std::size_t(pair)] = false;
+  LimitsBeyond beyond(world, skip);
 
   auto check = [&](double t, const std::vector<double>& q, CollisionWorld::Placement& at) {
     ++out.checks;
     // The fence and reduced mode's joint ranges: cheap, asked at every check.
-    if (auto broken = world.limit_breach(q, at, skip)) {
+    auto broken = world.limit_breach(q, at, skip);
+    if (!broken && !beyond.empty()) broken = beyond.deeper(q, at, true);
+    if (broken) {
       out.contact = std::move(broken);
       out.at = t;
       out.joints = q;

@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,7 +23,8 @@ struct MotionCheck {
   // out; said in the plan's note.
   std::vector<std::pair<std::string, std::string>> started_touching;
   // Limits already broken where it starts (the fence switched on with the tool outside it):
-  // not checked along it either, so that the arm can move back.
+  // along the motion the arm may move back but never further beyond them than it has been
+  // since the start (a contact saying "further beyond ... than where the motion started").
   std::vector<std::pair<std::string, std::string>> started_beyond;
   double at = 0;  // s into the motion where the contact is (or where the clearance is smallest)
   std::vector<double> joints;  // there
@@ -31,6 +33,25 @@ struct MotionCheck {
   std::size_t queries = 0;     // pairs asked at them: contact or distance (FCL after a box test)
 };
 inline constexpr double kCheckResolution = 0.002;  // m
+
+// The limits (fence, reduced mode's joint ranges) broken where a motion starts: the arm may
+// move back, but never further beyond one than it has been since the start (the least depth
+// so far), so that a fence switched on with the tool outside lets it come in, not go out.
+// Used by check_motion along a plan and by the servo mode for each step's resting place.
+class LimitsBeyond {
+ public:
+  LimitsBeyond() = default;
+  // `skip`: CollisionWorld::touching at the start (its pairs are ignored here, its limits taken).
+  LimitsBeyond(const CollisionWorld& world, std::span<const int> skip);
+  bool empty() const { return limits_.empty(); }
+  // The limit the configuration placed in `at` is further beyond than the least so far, as a
+  // Contact that says so, or nothing; `update`: the least depths take this configuration's.
+  std::optional<Contact> deeper(std::span<const double> joints, CollisionWorld::Placement& at, bool update);
+
+ private:
+  const CollisionWorld* world_ = nullptr;
+  std::vector<std::pair<int, double>> limits_;  // index, least depth so far
+};
 
 // `sample(t, joints)`: every joint at t (s) of a motion lasting `duration` s.
 //

@@ -5,6 +5,7 @@
 #include "web/api_error.hpp"
 #include "web/request_body.hpp"
 #include "web/server_state.hpp"
+#include "web/state_json.hpp"
 
 namespace armctl::web {
 
@@ -43,7 +44,8 @@ void add_event_stream(WebServer::State& s) {
 }  // namespace
 
 void add_arm_routes(WebServer::State& s) {
-  s.router.add("GET", "/api/v1/model", [&s](Call& c) { c.reply(s.model); });
+  // Made at each request: a confirmed calibration changes the model the server drives with.
+  s.router.add("GET", "/api/v1/model", [&s](Call& c) { c.reply(model_json(s.worker.model(), s.options.device)); });
   s.router.add("GET", "/api/v1/urdf", [&s](Call& c) {
     c.response.set_header("Cache-Control", "no-cache");
     c.response.set_content(s.options.urdf, "application/xml");

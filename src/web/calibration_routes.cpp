@@ -3,9 +3,9 @@
 // by it; every step is the engine's, run on the arm's worker thread like any job. Nothing is
 // written until confirm; cancel, a new start, another client starting its own session, or
 // the client losing control (the torque goes back on) drop the pending answers (nothing
-// written). The server goes on driving with the arm file
-// it started with: a confirmed file is used from the next `armctl serve` on. Values in the
-// API's units (deg or mm, the tool in mm: docs/http-api.md "Conventions").
+// written). A confirmed file is what the server drives with from then on (the engine's
+// confirm hands it to the Arm), and what a next calibration starts from. Values in the API's
+// units (deg or mm, the tool in mm: docs/http-api.md "Conventions").
 #include <memory>
 #include <mutex>
 
@@ -42,9 +42,6 @@ struct CalibrationLane {
   std::mutex mutex;
   std::string owner;  // the client that started it
   std::shared_ptr<Calibrating> calibrating;
-  // The arm file this server runs was written: a new session would start from the model
-  // loaded before, and its changes would undo what was written.
-  std::string written;
 };
 
 cal::JsonValues shown(const arm::ArmModel& model) { return {model, cal::Units::display}; }
@@ -128,9 +125,6 @@ void add_calibration_routes(WebServer::State& s) {
     const auto v = shown(model);
     std::lock_guard lock(lane->mutex);
     if (q.step == "start") {
-      if (!lane->written.empty())
-        throw ApiError(409, fmt::format("the arm file was written by a calibration ({}); restart armctl serve to "
-                                        "calibrate again from it", lane->written));
       // A new session replaces any other (nothing of it written): the holder of control is
       // the one who calibrates.
       cal::SessionOptions options;
@@ -197,7 +191,6 @@ void add_calibration_routes(WebServer::State& s) {
       on_worker("hold", calibrating, [](cal::CalibrationSession& x) { return status(x.hold()); });
       const arm::ArmModel written = on_worker("confirm", calibrating, [](cal::CalibrationSession& x) { return x.confirm(); });
       out["written"] = cal::written_json(written);
-      lane->written = written.file.string();
       lane->calibrating.reset();
       lane->owner.clear();
       return c.reply(out);

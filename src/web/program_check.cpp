@@ -25,7 +25,9 @@ CheckedProgram check_program(const ProgramRequest& r, const arm::ArmKinematics* 
   auto flow = program::run_flow(*parsed, *points);
   if (!flow) return fail(flow.error());
   if (arm == nullptr) return out;
-  auto plan = program::plan_program(*arm, start, *flow, kProgramSource);
+  program::PlanOptions options;
+  if (r.avoid_time) options.avoid.emplace().time_budget = *r.avoid_time;
+  auto plan = program::plan_program(*arm, start, *flow, kProgramSource, options);
   if (!plan) return fail(plan.error());
   out.plan = std::move(plan).value();
   return out;

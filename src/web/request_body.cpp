@@ -198,6 +198,17 @@ double speed_field(BodyReader& r, bool linear) {
       .value_or(linear ? motion::kDefaultToolSpeed / kMaxLinearSpeed : motion::kDefaultJointSpeed);
 }
 
+// "avoid" (a PTP may go around obstacles) and "avoid_time" (the search's budget): the
+// budget when avoiding, else nothing.
+std::optional<double> avoid_fields(BodyReader& r) {
+  const bool avoid = r.optional_boolean("avoid").value_or(false);
+  const std::string budget = fmt::format("s, {:g}..{:g} (with \"avoid\": true; default 1)", arm::kMinAvoidTime, arm::kMaxAvoidTime);
+  const auto avoid_time = r.optional_number("avoid_time", arm::kMinAvoidTime, arm::kMaxAvoidTime, budget);
+  if (avoid_time && !avoid) bad_value("avoid_time", "is allowed only with \"avoid\": true");
+  if (!avoid) return std::nullopt;
+  return avoid_time.value_or(arm::AvoidOptions{}.time_budget);
+}
+
 }  // namespace
 
 ToolRequest parse_tool_request(const json& body) {
@@ -214,12 +225,9 @@ ToolRequest parse_tool_request(const json& body) {
   out.yaw = rad(r.optional_number("yaw", -360, 360, angle));
   out.linear = r.optional_boolean("linear").value_or(false);
   out.speed = speed_field(r, out.linear);
-  const bool avoid = r.optional_boolean("avoid").value_or(false);
-  const std::string budget = fmt::format("s, {:g}..{:g} (with \"avoid\": true; default 1)", arm::kMinAvoidTime, arm::kMaxAvoidTime);
-  const auto avoid_time = r.optional_number("avoid_time", arm::kMinAvoidTime, arm::kMaxAvoidTime, budget);
-  if (avoid && out.linear) bad_value("avoid", "true is not allowed with \"linear\": true: a straight line has no detour (avoid is for a PTP move)");
-  if (avoid_time && !avoid) bad_value("avoid_time", "is allowed only with \"avoid\": true");
-  if (avoid) out.avoid_time = avoid_time.value_or(arm::AvoidOptions{}.time_budget);
+  out.avoid_time = avoid_fields(r);
+  if (out.avoid_time && out.linear)
+    bad_value("avoid", "true is not allowed with \"linear\": true: a straight line has no detour (avoid is for a PTP move)");
   r.finish();
   return out;
 }
@@ -336,6 +344,7 @@ ProgramRequest parse_program_request(const json& body, bool run) {
   if (run)
     out.speed = r.optional_number("speed", 0, 1, "above 0 up to 1: a fraction of the programmed speeds", true)
                     .value_or(1.0);
+  out.avoid_time = avoid_fields(r);
   r.finish();
   return out;
 }

@@ -125,6 +125,9 @@ struct ProgramRequest {
   std::string source;
   std::string points;  // a points file's text, may be empty
   double speed = 1.0;  // run: override of the programmed speeds, (0, 1]
+  // "avoid": true: a PTP whose direct motion would collide goes around (as move-to's
+  // "avoid"), each search given this long at most (s; "avoid_time", default 1).
+  std::optional<double> avoid_time;
 };
 ProgramRequest parse_program_request(const json& body, bool run);
 

@@ -30,7 +30,6 @@ struct WebServer::State {
   session::ArmWorker& worker;
   ServerOptions options;
   SecurityPolicy policy;
-  json model;
   ControlLease lease;
   ProgramRun program;
   std::atomic<bool> stopping{false};

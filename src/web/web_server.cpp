@@ -148,7 +148,6 @@ WebServer::WebServer(session::ArmWorker& worker, ServerOptions options)
     throw ArmctlError(ErrorKind::invalid_argument,
                       fmt::format("listening on {} (not the loopback address) needs a token", s.options.host));
   s.policy = {s.options.host, s.options.port, s.options.token};
-  s.model = model_json(worker.model(), s.options.device);
   if (!s.options.points_file.empty()) {
     std::error_code ec;
     if (std::filesystem::exists(s.options.points_file, ec)) {

@@ -11,6 +11,7 @@
 #include "arm_files.hpp"
 #include "portable/joint_bus_codes.hpp"
 #include "robot_commands/sim_links.hpp"
+#include "scene/scene.hpp"
 
 namespace armctl::arm {
 namespace {
@@ -193,6 +194,47 @@ TEST_F(RcArm, StopHoldsWhereTheServosAre) {
   EXPECT_TRUE(arm.device().idle(std::chrono::milliseconds(2000)));
   EXPECT_NEAR(arm.read()->positions[0], at_stop, 0.5 * kDeg);
   EXPECT_LT(at_stop, 60 * kDeg);
+}
+
+// A calibration confirmed (Arm::use_model): the arm drives with the new model at once, the
+// scene and reduced mode kept, and a reference to the model given out before still reads the
+// old one. A model of other joints or IDs is refused and changes nothing.
+TEST_F(RcArm, UseModelDrivesWithTheNewModelKeepingTheSceneAndOldReferences) {
+  ASSERT_TRUE(arm.set_scene(scene::parse_scene(R"({"objects": [{"name": "box", "box": [50, 50, 50], "at": [200, 0, 25]}],
+                                                  "reduced": {"tool_speed": 20}})",
+                                               "scene")
+                                .value()));
+  ASSERT_TRUE(arm.set_reduced_mode(true));
+  const ArmModel& before = arm.model();
+  ArmModel shifted = before;
+  DeviceMap& servo4 = shifted.joints[2].devices.find(Protocol::robot_commands.name())->second;
+  const double per_unit = servo4.device_per_unit();
+  servo4.device_a += 10 * kDeg * per_unit;  // the zero 10 deg further along the servo
+  servo4.device_b += 10 * kDeg * per_unit;
+  ASSERT_TRUE(arm.use_model(shifted));
+  EXPECT_NEAR(arm.read()->positions[2], -10 * kDeg, 0.3 * kDeg);
+  EXPECT_NEAR(before.from_device(Protocol::robot_commands, arm.read()->device)[2], 0, 0.3 * kDeg);  // still the old
+  EXPECT_EQ(arm.scene().objects.size(), 1u);
+  ASSERT_TRUE(arm.kinematics()->reduced());
+  // Plans are made with the new model too (the kinematics with the scene).
+  EXPECT_EQ(arm.kinematics()->model().joints[2].devices.find(Protocol::robot_commands.name())->second.device_a,
+            servo4.device_a);
+  auto t = none();
+  t[2] = 0.0;
+  ASSERT_TRUE(arm.move_joints(t));
+  auto s = arm.wait();
+  ASSERT_TRUE(s) << s.error().message;
+  EXPECT_NEAR(s->device[2], 500 + 10 * kDeg * per_unit, 1.0);  // the new zero, on the servo
+
+  ArmModel other = arm.model();
+  other.joints[1].devices.find(Protocol::robot_commands.name())->second.id = 9;
+  const Status refused = arm.use_model(other);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("ID 9"), std::string::npos) << refused.error().message;
+  other = arm.model();
+  other.joints.pop_back();
+  EXPECT_FALSE(arm.use_model(other));
+  EXPECT_NEAR(arm.read()->positions[2], 0, 0.5 * kDeg);  // the model used before the refusals
 }
 
 // An xArm ignores JointFaultRead (CMD 40, an armctl extension): health() is the battery

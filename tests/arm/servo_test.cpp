@@ -229,6 +229,32 @@ TEST_F(XarmServo, TheFenceSlowsTheToolDownAndStopsItInside) {
   EXPECT_LT(moved, 40.5);
 }
 
+// The fence switched on with the tool 10 mm beyond its +y face: a twist further out is held
+// where the arm stands (it never goes further beyond), a twist back in moves the tool in.
+TEST_F(XarmServo, StartedBeyondTheFenceItComesBackButGoesNoFurther) {
+  const Eigen::Vector3d at = tool_mm();
+  auto sc = scene::parse_scene(fmt::format(R"({{"fence": {{"min": [-800, -800, -100], "max": [800, {:.1f}, 800]}}}})",
+                                           at.y() - 10),
+                               "test scene");
+  ASSERT_TRUE(sc) << sc.error().message;
+  ASSERT_TRUE(arm.set_scene(*sc));
+  auto out = run(Script(input, twist({0, 30, 0}), 0, 1, 1));
+  ASSERT_TRUE(out) << out.error().message;
+  EXPECT_TRUE(trace.reported(ServoSlowdown::collision, "further beyond"));
+  const auto k = arm.kinematics();
+  for (const auto& p : trace.points) ASSERT_LE(k->pose_at(p).position.y() * 1000, at.y() + 0.01);
+  ServoInput back_input{arm.model()};
+  trace = {};
+  ServoOptions o;
+  Script back(back_input, twist({0, -30, 0}), 0, 1, 1);
+  o.before_cycle = std::ref(back);
+  o.on_cycle = std::ref(trace);
+  auto in = run_servo(arm, back_input, o);
+  ASSERT_TRUE(in) << in.error().message;
+  ASSERT_TRUE(arm.wait());
+  EXPECT_LT(tool_mm().y(), at.y() - 15);  // back inside the fence
+}
+
 // The tool point's fastest speed between consecutive points sent (mm/s).
 double fastest_tool_speed(const ArmKinematics& k, const Trace& trace) {
   double fastest = 0;

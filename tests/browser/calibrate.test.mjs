@@ -1,13 +1,16 @@
 // The Calibrate tab (docs/calibration.md "Dashboard") on the embedded xArm with an arm file of
 // the test's own: the wiggle highlights the joint in the 3D view, the user answers which
-// joint moved and which way it went, puts it at its mark; the pending changes are listed;
-// Cancel writes nothing; Confirm writes the arm file with the previous one kept beside it.
+// joint moved and which way it went, puts it at its mark; limits from two ends the joint was
+// moved to, a gripper whose open and closed cannot be told apart refused, a mark touched and
+// verified; the pending changes are listed; Cancel writes nothing; Confirm writes the arm file
+// with the previous one kept beside it, and after the page reloads (keeping control) the
+// server calibrates again from the new file.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { waitFor, screenshot, dashboardForFile, clickAnswered } from './harness.mjs';
+import { waitFor, screenshot, dashboardForFile, clickAnswered, pageMove, waitForPosition, waitIdle, expectRefused } from './harness.mjs';
 
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armctl-calibrate-'));
 for (const f of ['xarm.arm.json', 'xarm.urdf']) fs.copyFileSync(path.resolve('config', f), path.join(dir, f));
@@ -15,11 +18,15 @@ const armFile = path.join(dir, 'xarm.arm.json');
 const original = fs.readFileSync(armFile, 'utf8');
 
 let page;
-dashboardForFile(armFile, (s) => ({ page } = s));
+let script;
+let problems;
+dashboardForFile(armFile, (s) => ({ page, script, problems } = s));
 
 const state = (title) => page.getByRole('status', { name: `${title} state` });
 const highlighted = () => page.evaluate(() => window.armctlView.highlighted());
 const pendingText = () => page.getByLabel('Pending changes').textContent();
+// A button of one step's row (the page has other buttons of the same name: the gripper's Open).
+const stepButton = (step, name) => page.getByRole('listitem', { name: step }).getByRole('button', { name, exact: true });
 
 async function startCalibration() {
   await page.getByRole('tab', { name: 'Calibrate' }).click();
@@ -71,6 +78,58 @@ test('which joint, direction and zero on servo3: highlighted, answered, listed; 
   assert.ok(!fs.existsSync(`${armFile}.prev`), 'and keeps no previous file');
 });
 
+test('limits from the two ends, a gripper too close to tell refused, a mark touched and verified', async () => {
+  await startCalibration();
+  // The joint "moved by hand" to each end: the page's own moves put it there (a move puts the
+  // torque back on; the step reads where the joint stands).
+  await page.getByRole('button', { name: 'Run Limits' }).click();
+  await stepButton('Limits', 'At one end').waitFor();
+  await pageMove(page, { servo3: -60 });
+  await waitForPosition(script, 'servo3', -60);
+  await waitIdle(script);
+  await clickAnswered(page, stepButton('Limits', 'At one end'), '/calibration/read');
+  await stepButton('Limits', 'At the other end').waitFor();
+  await pageMove(page, { servo3: 60 }, 0.8);
+  await waitForPosition(script, 'servo3', 60);
+  await waitIdle(script);
+  await clickAnswered(page, stepButton('Limits', 'At the other end'), '/calibration/limits');
+  const limits = await waitFor(async () => {
+    const t = await state('Limits').textContent();
+    return t.startsWith('servo3:') && t;
+  }, 'the limits answered');
+  const [lower, upper] = [...limits.matchAll(/-?\d+(\.\d+)?/g)].slice(1).map((m) => Number(m[0]));
+  assert.ok(lower > -60 && lower < -55 && upper < 60 && upper > 55, `the ends pulled in by the margin: ${limits}`);
+  await waitFor(async () => /servo3: limits/.test(await pendingText()), 'the limits pending');
+
+  // Open and closed read where the gripper stands both times: refused, saying why.
+  await page.getByRole('button', { name: 'Run Gripper' }).click();
+  await stepButton('Gripper', 'Open').click();
+  await stepButton('Gripper', 'Closed').click();
+  const refused = await waitFor(async () => {
+    const t = await state('Gripper').textContent();
+    return t.startsWith('failed:') && t;
+  }, 'the gripper refused');
+  assert.match(refused, /too close to tell apart/);
+  expectRefused(problems, 400);
+
+  // One mark touched where the tool stands (not on it): verify names it with its distance.
+  await page.getByRole('button', { name: 'Run Touch and verify' }).click();
+  await clickAnswered(page, stepButton('Touch and verify', 'On the mark'), '/calibration/touch');
+  await clickAnswered(page, stepButton('Touch and verify', 'Done'), '/calibration/verify');
+  const verified = await waitFor(async () => {
+    const t = await state('Touch and verify').textContent();
+    return t.startsWith('rms') && t;
+  }, 'verified');
+  assert.match(verified, /^rms \d+(\.\d+)? mm, worst \S+/);
+  await screenshot(page, 'calibrate-limits-verify');
+
+  await clickAnswered(page, page.getByRole('button', { name: 'Cancel calibration' }), '/calibration/cancel');
+  assert.equal(fs.readFileSync(armFile, 'utf8'), original, 'cancel writes nothing');
+  await pageMove(page, { servo3: 0 });
+  await waitForPosition(script, 'servo3', 0);
+  await waitIdle(script);
+});
+
 test('confirm writes the arm file, the previous one kept beside it', async () => {
   await startCalibration();
   await direction(false);
@@ -85,4 +144,17 @@ test('confirm writes the arm file, the previous one kept beside it', async () =>
   const previous = fs.readdirSync(dir).filter((f) => f !== 'xarm.arm.json' && f !== 'xarm.urdf');
   assert.equal(previous.length, 1, `one previous file beside it: ${previous}`);
   assert.equal(fs.readFileSync(path.join(dir, previous[0]), 'utf8'), original, 'the previous file is the old one');
+
+  // The server drives with the new file at once: the page reloads, keeping control, and a
+  // new calibration starts from the new file (no restart of armctl serve).
+  const before = problems.length;
+  await page.getByRole('button', { name: 'Reload the page' }).click();
+  await page.waitForFunction(() => document.body.dataset.ready === 'true' && window.armctlView && window.armctlView.ready);
+  // The reload cut the old page's requests under way (its event stream, a state poll): those
+  // are the failures a reload makes; anything else stays on the list and fails the run.
+  const cut = problems.splice(before).filter((p) => !/^request failed: .*\/api\/v1\/.* net::ERR_ABORTED$/.test(p));
+  problems.push(...cut);
+  await startCalibration();
+  assert.equal(await pendingText().then((t) => /servo3/.test(t)), false, 'nothing pending in the new session');
+  await clickAnswered(page, page.getByRole('button', { name: 'Cancel calibration' }), '/calibration/cancel');
 });

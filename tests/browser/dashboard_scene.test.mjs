@@ -3,7 +3,8 @@
 // held parts moving with the tool, the links' collision shapes on request; objects added,
 // moved and removed from the page, field errors before anything is sent, the scene saved to
 // its file (and the 409 without one); a refused move's two bodies red with the contact
-// point; "avoid obstacles" going around; hold to move sending the frame chosen.
+// point; "avoid obstacles" going around, for a tool move and for a program's check; hold to
+// move sending the frame chosen.
 import { describe, test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -247,6 +248,33 @@ describe('xArm', () => {
     assert.ok(base.length >= 1 && base.filter((b) => b.speed !== 0).every((b) => b.frame === 'base'), JSON.stringify(base));
     const tool = await holdX(page, script, 'tool');
     assert.ok(tool.length >= 1 && tool.filter((b) => b.speed !== 0).every((b) => b.frame === 'tool' && b.axis === 'x'), JSON.stringify(tool));
+    assert.deepEqual(problems, []);
+  });
+
+  test('a program line through the box is an error at its line; "go around obstacles" checks it', async () => {
+    await pageMove(page, { servo6: 0, servo5: 0, servo4: 0, servo3: 0, servo2: 0 });
+    await waitForPosition(script, 'servo3', 0, 0.6);
+    await waitIdle(script);
+    await pagePut(page, '/api/v1/scene', { objects: [
+      { name: 'desk', table: { top: 0, size: [800, 600], center: [150, 0] } },
+      { name: 'box', box: [50, 50, 80], at: [150, -100, 40] },
+    ] });
+    await waitIdle(script);
+    await page.getByRole('tab', { name: 'Program' }).click();
+    await page.getByRole('textbox', { name: 'Program source' }).fill('wait 0.1s\nptp pose(x=150mm, y=-190mm, z=40mm)\n');
+    const result = page.getByRole('status', { name: 'Check result' });
+    const sent = await sentTo(page, '/api/v1/program/check', async () => {
+      await page.getByRole('button', { name: 'Check', exact: true }).click();
+      await waitFor(async () => (await result.textContent()) === '1 error', 'the line refused');
+      assert.match(await page.getByRole('list', { name: 'Program errors' }).textContent(), /line 2: .*box 'box'/);
+      await page.getByRole('checkbox', { name: 'Go around obstacles' }).check();
+      await page.getByRole('button', { name: 'Check', exact: true }).click();
+      await waitFor(async () => (await result.textContent()).startsWith('OK: no errors'), 'checked going around');
+    });
+    assert.deepEqual(sent.map((b) => b.avoid), [undefined, true]);
+    await page.getByRole('checkbox', { name: 'Go around obstacles' }).uncheck();
+    await page.getByRole('tab', { name: 'Move' }).click();
+    await pagePut(page, '/api/v1/scene', { objects: [] });
     assert.deepEqual(problems, []);
   });
 });

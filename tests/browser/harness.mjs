@@ -157,9 +157,17 @@ export async function screenshot(page, name) {
 }
 
 // Waits until the joint's live position is within `tolerance` of `target` (via the API).
+// On a timeout the error carries the server's state (where the joints stand, the job, the
+// motion, the last error), so that a failure says why the joint did not arrive.
 export async function waitForPosition(client, name, target, tolerance = 1) {
-  return waitFor(async () => Math.abs((await client.position(name)) - target) <= tolerance,
-    `${name} at ${target}`);
+  try {
+    return await waitFor(async () => Math.abs((await client.position(name)) - target) <= tolerance,
+      `${name} at ${target}`);
+  } catch (e) {
+    const s = await client.state().catch((err) => ({ unreadable: err.message }));
+    e.message += `; the server's state: ${JSON.stringify(s)}`;
+    throw e;
+  }
 }
 
 // A refused request is logged by chromium as a console error ("Failed to load resource: the

@@ -192,6 +192,22 @@ def test_action_groups_on_the_emulated_xarm(xarm):
     xarm.stop_group()
 
 
+def test_a_program_goes_around_the_box_with_avoid(tmp_path):
+    # The same move as a program line: refused naming the line and the box, run with avoid.
+    scene = str(Path(__file__).resolve().parents[2] / "examples" / "scenes" / "xarm-desk.json")
+    program = tmp_path / "behind.prog"
+    program.write_text("wait 0.1s\nptp pose(x=150mm, y=-190mm, z=40mm)\n")
+    with armctl.Arm(scene=scene) as arm:
+        with pytest.raises(armctl.Error, match=r"behind.prog:2.*box 'box'"):
+            arm.check_program(str(program))
+        assert arm.check_program(str(program), avoid=True)["duration"] > 0.1
+        with pytest.raises(armctl.Error, match="avoid_time"):
+            arm.run_program(str(program), avoid=True, avoid_time=0)
+        report = arm.run_program(str(program), avoid=True, avoid_time=5)
+        assert report["completed"]
+        assert np.allclose(arm.pose().position, [0.15, -0.19, 0.04], atol=0.003)
+
+
 def test_move_to_avoid_goes_around_the_box():
     # The README's scene: behind the box the direct move swings the wrist through it.
     scene = str(Path(__file__).resolve().parents[2] / "examples" / "scenes" / "xarm-desk.json")

@@ -1,7 +1,8 @@
 """armctl.Calibration (docs/calibration.md "Python"): the wizard's steps on the embedded SCARA
 simulator with an arm file of the test's own, answered as a user would: the joint went the
 other way than the picture shows, and it stands at its mark. Confirm writes the file (the old
-one kept beside it); a block left without confirm writes nothing."""
+one kept beside it) and the Arm drives with it from then on; a block left without confirm writes
+nothing."""
 
 import os
 import re
@@ -55,10 +56,11 @@ def test_direction_and_zero_are_written_on_confirm_with_the_previous_file_kept(a
             written = cal.confirm()
             with pytest.raises(armctl.Error):
                 cal.describe()  # confirm ends the session
-        # This Arm's model is the one the file no longer holds: no second calibration from it.
-        with pytest.raises(armctl.Error) as e:
-            arm.calibration()
-        assert "open the Arm again" in str(e.value)
+        # The Arm drives with the new file at once: the joint, where it stands, reads its
+        # mark, and a second calibration starts from the new file.
+        assert arm.read().positions[j] == pytest.approx(0.0, abs=2e-3)
+        with arm.calibration() as cal:
+            assert cal.changes()["empty"]
         assert Path(written["file"]) == arm_file
         assert Path(written["previous"]).read_bytes() == original
         assert arm_file.read_bytes() != original
@@ -246,3 +248,45 @@ def test_the_docs_example_runs_as_printed(tmp_path, monkeypatch):
     assert run.returncode == 0, run.stderr
     assert "direction flipped" in run.stdout
     assert (tmp_path / "myarm" / "scara.arm.json.prev").exists()
+
+
+def test_the_fit_finds_a_wrong_link_length_and_the_arm_drives_with_it_after_confirm(xarm_file):
+    """Step 8 from Python: an arm file whose servo3 link says 100.5 mm where the embedded xArm
+    is built with the shipped 96.5 mm. The tool is put at 16 poses and each point given where
+    the tool truly stands (the shipped arm's forward kinematics: what a ruler would read). The
+    fit finds the 4 mm, its residuals fall below half a millimetre, and after confirm the same
+    Arm puts the tool where it truly is, at a pose the fit never saw."""
+    import json
+    import math
+
+    data = json.loads(xarm_file.read_text())
+    data["link_lengths"] = {"servo3": "100.500000mm"}
+    xarm_file.write_text(json.dumps(data, indent=2))
+    truth = armctl.Arm(str(CONFIG / "xarm.arm.json"))  # forward kinematics only: nothing sent
+    poses = [[0.7 * math.sin(1.3 * i), 0.5 * math.sin(0.9 * i + 1), 0.8 * math.cos(0.7 * i),
+              0.6 * math.sin(1.7 * i + 2), 0.4 * math.cos(2.3 * i)] for i in range(16)]
+    unseen = [0.3, -0.4, 0.5, 0.2, -0.1]
+    try:
+        with armctl.Arm(str(xarm_file)) as arm:
+            with arm.calibration() as cal:
+                for i, q in enumerate(poses):
+                    arm.move_joints(q + [None], speed=1.0, wait=True)
+                    stands = arm.read().positions[:5]
+                    cal.touch(f"P{i + 1}", list(truth.forward(stands).position))
+                before = cal.verify()
+                fit = cal.fit()
+                after = cal.verify()
+                lengths = {e["joint"]: e for e in fit["estimates"] if e["kind"] == "length"}
+                assert "servo3" in lengths, fit["estimates"]
+                assert lengths["servo3"]["correction"] == pytest.approx(-0.004, abs=0.0005)
+                assert before["rms"] > 0.002  # 4 mm of link shows at the tool
+                assert after["rms"] < 0.0005
+                cal.confirm()
+            # The same Arm, no reopening: its forward kinematics are the true arm's.
+            got = arm.forward(unseen).position
+            want = truth.forward(unseen).position
+            assert math.dist(got, want) < 0.0005
+    finally:
+        truth.close()
+    written = json.loads(xarm_file.read_text())
+    assert float(written["link_lengths"]["servo3"].removesuffix("mm")) == pytest.approx(96.5, abs=0.5)

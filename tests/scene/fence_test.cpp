@@ -123,6 +123,50 @@ TEST_P(FenceAndReduced, AMoveOutOfTheFenceIsRefusedBeforeAnythingMoves) {
   EXPECT_TRUE(plan_moves(*with(fenced(tool - margin, tool + margin, false, false)), arm.start, moves).ok());
 }
 
+// A limit already broken where a motion starts (the fence or reduced mode switched on with
+// the arm beyond it): the arm may come back, never go further beyond it, and once back in,
+// not out again.
+TEST_P(FenceAndReduced, AMotionThatStartsBeyondALimitMayComeBackButGoesNoFurther) {
+  // The fence 10 mm away along where turning the joint by 20 deg takes the tool (the axis it
+  // moves along most): the tool starts beyond that face, turning on goes in through it.
+  std::vector<double> turned = arm.start;
+  turned[arm.joint] += 20 * kDeg;
+  const Eigen::Vector3d v = plain->pose_at(turned).position - tool;
+  Eigen::Index axis = 0;
+  v.cwiseAbs().maxCoeff(&axis);
+  const double side = v[axis] > 0 ? 1 : -1;
+  ASSERT_GT(std::abs(v[axis]), 0.02);
+  Eigen::Vector3d low = tool - Eigen::Vector3d::Constant(0.3), high = tool + Eigen::Vector3d::Constant(0.3);
+  (side > 0 ? low : high)[axis] = tool[axis] + side * 0.010;
+  const auto k = with(fenced(low, high));
+  ASSERT_TRUE(k->collisions()->collides(arm.start));
+  auto back = plan_moves(*k, arm.start, std::vector<Move>{turn(20)});
+  EXPECT_TRUE(back.ok()) << back.error().message;  // in through the face it is beyond
+  auto further = plan_moves(*k, arm.start, std::vector<Move>{turn(-5)});
+  ASSERT_FALSE(further.ok());
+  const auto* d = further.error().detail_as<CollisionDetail>();
+  ASSERT_NE(d, nullptr) << further.error().message;
+  EXPECT_EQ(d->contact.limit, scene::Limit::fence);
+  EXPECT_LT(d->fraction, 0.3) << further.error().message;  // soon, not at the end
+  EXPECT_NE(further.error().message.find("further beyond"), std::string::npos) << further.error().message;
+
+  // The same with a reduced range the joint starts 10 deg below.
+  const std::string range = fmt::format(R"({{"joints": {{"{}": [{}, {}]}}}})", joint_name(),
+                                        arm.start[arm.joint] / kDeg + 10, arm.start[arm.joint] / kDeg + 40);
+  const auto r = with(reduced(range));
+  EXPECT_TRUE(plan_moves(*r, arm.start, std::vector<Move>{turn(20)}).ok());  // into the range
+  EXPECT_TRUE(plan_moves(*r, arm.start, std::vector<Move>{turn(5)}).ok());   // nearer it
+  auto away = plan_moves(*r, arm.start, std::vector<Move>{turn(-5)});
+  ASSERT_FALSE(away.ok());
+  EXPECT_EQ(away.error().detail_as<CollisionDetail>()->contact.limit, scene::Limit::joint_range);
+  // In through the lower end and out through the upper one: refused where it leaves again.
+  auto through = plan_moves(*r, arm.start, std::vector<Move>{turn(60)});
+  ASSERT_FALSE(through.ok());
+  const auto* t = through.error().detail_as<CollisionDetail>();
+  ASSERT_NE(t, nullptr) << through.error().message;
+  EXPECT_NEAR(t->joints[arm.joint], arm.start[arm.joint] + 40 * kDeg, 0.5 * kDeg) << through.error().message;
+}
+
 TEST_P(FenceAndReduced, AJointMoveBeyondAReducedRangeIsRefused) {
   const std::string range = fmt::format(R"({{"joints": {{"{}": [{}, {}]}}}})", joint_name(),
                                         arm.start[arm.joint] / kDeg - 10, arm.start[arm.joint] / kDeg + 10);

@@ -120,7 +120,7 @@ TEST(WebCalibration, BodiesAreRefusedNamingTheField) {
   EXPECT_EQ(parse_calibration_request(m, "which", {{"joint", "servo2"}, {"moved", 3}}).moved, 3);
 }
 
-TEST(WebCalibration, CancelWritesNothingAndConfirmWritesTheFileWithThePreviousKept) {
+TEST(WebCalibration, CancelWritesNothingAndConfirmWritesTheFileThatTheServerThenDrivesWith) {
   const fs::path file = arm_copy();
   const std::string original = text_of(file);
   ApiServer api(file.string());
@@ -179,10 +179,14 @@ TEST(WebCalibration, CancelWritesNothingAndConfirmWritesTheFileWithThePreviousKe
   ASSERT_TRUE(was && now);
   EXPECT_LT(was->device_per_unit() * now->device_per_unit(), 0);  // servo3 turned the other way
   EXPECT_EQ(api.get("/api/v1/calibration", "page").body["active"], false);
-  // The server's model is the one the file no longer holds: no second calibration from it.
+  // The server drives with the new file at once: a second calibration starts from it, and
+  // servo4, where it stands, reads its mark.
   r = api.post(kCal + "start", json::object(), "page");
-  EXPECT_EQ(r.status, 409);
-  EXPECT_NE(r.text.find("restart armctl serve"), std::string::npos) << r.text;
+  ASSERT_EQ(r.status, 200) << r.text;
+  r = api.post(kCal + "read", {{"joint", "servo4"}}, "page");
+  ASSERT_EQ(r.status, 200) << r.text;
+  EXPECT_NEAR(r.body["value"].get<double>(), 5, 0.5);
+  ASSERT_EQ(api.post(kCal + "cancel", json::object(), "page").status, 200);
 }
 
 }  // namespace

@@ -149,6 +149,39 @@ TEST(WebScene, AMoveIntoTheBoxIsRefusedWithItsBodiesAndGoesAroundWithAvoid) {
   EXPECT_NEAR(state["tool"]["z"].get<double>(), 40, 1) << state;
 }
 
+// A program whose PTP goes through the box: the check and the run are refused naming the line
+// and the box; with "avoid": true both go around it, and the arm arrives behind it.
+TEST(WebScene, AProgramGoesAroundTheBoxWithAvoid) {
+  ApiServer api("xarm");
+  api.take("page");
+  api.first_positions();
+  ASSERT_EQ(api.send("PUT", "/api/v1/scene", kDesk, "page").status, 200);
+  const json program{{"source", "wait 0.1s\nptp pose(x=150mm, y=-190mm, z=40mm)\n"}};
+  Reply r = api.post("/api/v1/program/check", program, "page");
+  ASSERT_EQ(r.status, 200) << r.text;
+  EXPECT_EQ(r.body["ok"], false) << r.text;
+  ASSERT_EQ(r.body["errors"].size(), 1u) << r.text;
+  EXPECT_EQ(r.body["errors"][0]["line"], 2) << r.text;
+  EXPECT_NE(r.body["errors"][0]["message"].get<std::string>().find("box 'box'"), std::string::npos) << r.text;
+  json bad = program;
+  bad["avoid_time"] = 2;
+  EXPECT_EQ(api.post("/api/v1/program/check", bad, "page").status, 400);
+  json around = program;
+  around["avoid"] = true;
+  around["avoid_time"] = 5;
+  r = api.post("/api/v1/program/check", around, "page");
+  ASSERT_EQ(r.status, 200) << r.text;
+  EXPECT_EQ(r.body["ok"], true) << r.text;
+  r = api.post("/api/v1/program/run", around, "page");
+  ASSERT_EQ(r.status, 202) << r.text;
+  ASSERT_TRUE(api.wait_idle(60s));
+  const json state = api.get("/api/v1/state").body;
+  EXPECT_EQ(state["last_error"], "") << state;
+  EXPECT_NEAR(state["tool"]["x"].get<double>(), 150, 1) << state;
+  EXPECT_NEAR(state["tool"]["y"].get<double>(), -190, 1) << state;
+  EXPECT_NEAR(state["tool"]["z"].get<double>(), 40, 1) << state;
+}
+
 TEST(WebScene, SavesToTheSceneFileItWasStartedWith) {
   const auto dir = std::filesystem::temp_directory_path() / ("armctl-web-scene-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);

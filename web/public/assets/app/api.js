@@ -11,7 +11,24 @@ function randomClientId() {
   crypto.getRandomValues(bytes);
   return Array.from(bytes, (b) => b.toString(16).padStart(2, '0')).join('');
 }
-export const clientId = randomClientId();
+// A reload the page asks for itself (reloadKeepingControl) keeps its client id, and so the
+// control it holds: handed over once through this tab's session storage.
+const HANDOVER = 'armctl.client';
+function pageClientId() {
+  try {
+    const kept = sessionStorage.getItem(HANDOVER);
+    sessionStorage.removeItem(HANDOVER);
+    if (kept && /^[0-9a-f]{32}$/.test(kept)) return kept;
+  } catch (e) {
+    // no session storage (a locked-down browser): a new id, control taken again
+  }
+  return randomClientId();
+}
+export const clientId = pageClientId();
+export function reloadKeepingControl() {
+  try { sessionStorage.setItem(HANDOVER, clientId); } catch (e) { /* the reloaded page asks for control */ }
+  window.location.reload();
+}
 
 // A refused request: the server's message, its status, what was asked, and the answer's
 // whole body (its typed detail: "collision" for a move that would collide).

@@ -3,7 +3,7 @@
 // module only shows the steps in order, each with Run / Redo / Skip, asks the user's
 // answers, and lists the pending changes. The 3D view highlights the joint being wiggled or
 // nudged. Nothing is written until Confirm; Cancel (or leaving the page) writes nothing.
-import { api } from './api.js';
+import { api, reloadKeepingControl } from './api.js';
 import { el, $, fmt, busy } from './dom.js';
 import { highlightJoint } from './view3d.js';
 
@@ -63,8 +63,9 @@ export function initCalibrate(model) {
   }
   async function confirm() {
     const answer = await api.post(`${PATH}confirm`, {});
-    end(`Written to ${answer.written.file} (previous: ${answer.written.previous}). armctl serve goes on with the `
-      + 'file it started with: restart it to drive with the new one.');
+    end(`Written to ${answer.written.file} (previous: ${answer.written.previous}). The arm drives with it now; `
+      + 'reload the page to see its new limits in the panels. ');
+    result.append(el('button', { type: 'button', onclick: reloadKeepingControl }, 'Reload the page'));
   }
   async function cancel() {
     await api.post(`${PATH}cancel`, {});

@@ -36,6 +36,8 @@ export function initProgram(model) {
   const speed = el('input', { type: 'range', min: 0.05, max: 1, step: 0.05, value: 0.5, 'aria-label': 'Program speed' });
   const speedValue = el('output', {}, '50%');
   speed.addEventListener('input', () => { speedValue.textContent = `${Math.round(speed.value * 100)}%`; });
+  // PTPs whose direct motion would collide go around the scene's objects (docs/scene.md).
+  const avoid = el('input', { type: 'checkbox', 'aria-label': 'Go around obstacles' });
   let errorLines = new Map();
   let currentLine = 0;
 
@@ -89,6 +91,7 @@ export function initProgram(model) {
   const body = () => {
     const b = { source: source.value };
     if (points.value.trim()) b.points = points.value;
+    if (avoid.checked) b.avoid = true;
     return b;
   };
   const check = async () => {
@@ -115,7 +118,8 @@ export function initProgram(model) {
     el('div', { class: 'row' },
       button('Check', check), button('Run', run), pauseButton,
       button('Stop program', () => api.post('/api/v1/program/stop', {})),
-      el('label', {}, ' Speed ', speed, ' '), speedValue),
+      el('label', {}, ' Speed ', speed, ' '), speedValue,
+      el('label', {}, avoid, ' go around obstacles')),
     el('div', { class: 'editor' }, gutter, el('div', { class: 'code' }, currentMark, source)),
     result, errorList, progress,
     el('details', {}, el('summary', {}, 'Points file (optional)'), points),
