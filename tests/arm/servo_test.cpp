@@ -85,6 +85,13 @@ class XarmServo : public ::testing::Test {
   Trace trace;
 
   Eigen::Vector3d tool_mm() { return arm.pose().value().position * 1000; }
+  // A fence whose +y face is at `y_mm`, reaching far every other way.
+  void fence_at_y(double y_mm) {
+    auto sc = scene::parse_scene(fmt::format(R"({{"fence": {{"min": [-800, -800, -100], "max": [800, {:.1f}, 800]}}}})", y_mm),
+                                 "test scene");
+    ASSERT_TRUE(sc) << sc.error().message;
+    ASSERT_TRUE(arm.set_scene(*sc));
+  }
   Result<ServoReport> run(Script script, ServoOptions o = {}) {
     o.before_cycle = std::ref(script);
     o.on_cycle = std::ref(trace);
@@ -213,11 +220,7 @@ TEST_F(XarmServo, TheFenceSlowsTheToolDownAndStopsItInside) {
   // The fence's face 40 mm along +y from the tool: the tool slows toward it and comes to rest
   // inside, never beyond (docs/scene.md "Fence and reduced mode").
   const Eigen::Vector3d at = tool_mm();
-  auto sc = scene::parse_scene(fmt::format(R"({{"fence": {{"min": [-800, -800, -100], "max": [800, {:.1f}, 800]}}}})",
-                                           at.y() + 40),
-                               "test scene");
-  ASSERT_TRUE(sc) << sc.error().message;
-  ASSERT_TRUE(arm.set_scene(*sc));
+  fence_at_y(at.y() + 40);
   auto r = run(Script(input, twist({0, 40, 0}), 0, 3, 3));
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_TRUE(trace.reported(ServoSlowdown::collision, "the fence"));
@@ -233,11 +236,7 @@ TEST_F(XarmServo, TheFenceSlowsTheToolDownAndStopsItInside) {
 // where the arm stands (it never goes further beyond), a twist back in moves the tool in.
 TEST_F(XarmServo, StartedBeyondTheFenceItComesBackButGoesNoFurther) {
   const Eigen::Vector3d at = tool_mm();
-  auto sc = scene::parse_scene(fmt::format(R"({{"fence": {{"min": [-800, -800, -100], "max": [800, {:.1f}, 800]}}}})",
-                                           at.y() - 10),
-                               "test scene");
-  ASSERT_TRUE(sc) << sc.error().message;
-  ASSERT_TRUE(arm.set_scene(*sc));
+  fence_at_y(at.y() - 10);
   auto out = run(Script(input, twist({0, 30, 0}), 0, 1, 1));
   ASSERT_TRUE(out) << out.error().message;
   EXPECT_TRUE(trace.reported(ServoSlowdown::collision, "further beyond"));

@@ -79,6 +79,16 @@ TEST(WebScene, ObjectsAreAddedReplacedAndRemovedAndPlansSeeThem) {
 const char* kDesk = R"({"objects": [{"name": "desk", "table": {"top": 0, "size": [800, 600], "center": [150, 0]}},
                                     {"name": "box", "box": [50, 50, 80], "at": [150, -100, 40]}]})";
 
+// The motion ends with the tool behind the desk's box (150, -190, 40 mm), no error.
+void expect_behind_the_box(ApiServer& api) {
+  ASSERT_TRUE(api.wait_idle(60s));
+  const json state = api.get("/api/v1/state").body;
+  EXPECT_EQ(state["last_error"], "") << state;
+  EXPECT_NEAR(state["tool"]["x"].get<double>(), 150, 1) << state;
+  EXPECT_NEAR(state["tool"]["y"].get<double>(), -190, 1) << state;
+  EXPECT_NEAR(state["tool"]["z"].get<double>(), 40, 1) << state;
+}
+
 // A refused move answers with the collision's detail (which two bodies, where), so that a
 // page draws them without reading the message; "avoid": true goes around the same box, as
 // `armctl arm move-to --avoid` does, and the arm arrives (the simulator, which knows the
@@ -141,12 +151,7 @@ TEST(WebScene, AMoveIntoTheBoxIsRefusedWithItsBodiesAndGoesAroundWithAvoid) {
   ASSERT_EQ(r.status, 200) << r.text;
   EXPECT_GE(r.body["avoided"]["waypoints"].get<int>(), 1) << r.text;
   EXPECT_GT(r.body["avoided"]["planning_s"].get<double>(), 0) << r.text;
-  ASSERT_TRUE(api.wait_idle(60s));
-  const json state = api.get("/api/v1/state").body;
-  EXPECT_EQ(state["last_error"], "") << state;
-  EXPECT_NEAR(state["tool"]["x"].get<double>(), 150, 1) << state;
-  EXPECT_NEAR(state["tool"]["y"].get<double>(), -190, 1) << state;
-  EXPECT_NEAR(state["tool"]["z"].get<double>(), 40, 1) << state;
+  expect_behind_the_box(api);
 }
 
 // A program whose PTP goes through the box: the check and the run are refused naming the line
@@ -174,12 +179,7 @@ TEST(WebScene, AProgramGoesAroundTheBoxWithAvoid) {
   EXPECT_EQ(r.body["ok"], true) << r.text;
   r = api.post("/api/v1/program/run", around, "page");
   ASSERT_EQ(r.status, 202) << r.text;
-  ASSERT_TRUE(api.wait_idle(60s));
-  const json state = api.get("/api/v1/state").body;
-  EXPECT_EQ(state["last_error"], "") << state;
-  EXPECT_NEAR(state["tool"]["x"].get<double>(), 150, 1) << state;
-  EXPECT_NEAR(state["tool"]["y"].get<double>(), -190, 1) << state;
-  EXPECT_NEAR(state["tool"]["z"].get<double>(), 40, 1) << state;
+  expect_behind_the_box(api);
 }
 
 TEST(WebScene, SavesToTheSceneFileItWasStartedWith) {
