@@ -229,6 +229,9 @@ void ArmWorker::loop() {
       snapshot_.job.clear();
       snapshot_.progress.reset();
       snapshot_.last_error = result ? std::string() : result.error().message;
+      snapshot_.last_collision.reset();
+      if (!result)
+        if (const auto* c = result.error().detail_as<arm::CollisionDetail>()) snapshot_.last_collision = *c;
       ++snapshot_.sequence;
       changed_.notify_all();
       lock.unlock();

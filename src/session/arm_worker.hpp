@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "arm/arm.hpp"
+#include "arm/collision_detail.hpp"
 #include "arm/motion_executor.hpp"
 #include "core/error.hpp"
 #include "session/arm_session.hpp"
@@ -44,6 +45,9 @@ struct ArmSnapshot {
   std::string job;                 // what runs now ("" = idle)
   std::optional<arm::MotionProgress> progress;  // of the running streamed motion
   std::string last_error;          // of the last job that failed ("" after a success)
+  // That job's collision or broken limit, when it failed on one (refused before moving, or
+  // stopped before contact by the look-ahead: while_moving), for apps to draw.
+  std::optional<arm::CollisionDetail> last_collision;
 };
 
 // The detail of an error from ArmWorker::run's future when the job never ran: refused at

@@ -7,6 +7,7 @@
 
 #include "core/quantity.hpp"
 #include "web/display_value.hpp"
+#include "web/error_detail.hpp"
 
 namespace armctl::web {
 
@@ -99,7 +100,8 @@ json state_json(const arm::ArmKinematics& arm, const DeviceInfo& device, const s
            {"battery_volts", s.status.battery_volts ? number(*s.status.battery_volts) : json(nullptr)},
            {"faults", s.status.faults},
            {"job", s.job},
-           {"last_error", s.last_error}};
+           {"last_error", s.last_error},
+           {"last_collision", s.last_collision ? collision_json(*s.last_collision, model) : json(nullptr)}};
   if (s.progress)
     out["motion"] = {{"t", s.progress->t}, {"duration", s.progress->duration}, {"paused", s.progress->paused}};
   else

@@ -16,6 +16,8 @@
 namespace armctl::web::testing {
 namespace {
 
+using namespace std::chrono_literals;
+
 std::string error_of(const Reply& r) {
   return r.body.is_object() && r.body.contains("error") ? r.body["error"].get<std::string>() : r.text;
 }
@@ -60,6 +62,10 @@ void fence_and_reduced_mode(const ArmCase& c) {
   EXPECT_EQ(r.status, 400) << r.text;
   EXPECT_NE(error_of(r).find("would leave the fence"), std::string::npos) << r.text;
   EXPECT_EQ(positions(api), before);
+  // The live state carries it too, for a page that did not send the move.
+  json last = api.get("/api/v1/state", "page").body["last_collision"];
+  EXPECT_EQ(last["limit"], "fence") << last;
+  EXPECT_EQ(last["while_moving"], false) << last;
 
   // Switching needs control; a bad body and a limit the scene does not set change nothing.
   EXPECT_EQ(api.send("PUT", "/api/v1/scene/limits", R"({"fence": false})", "watcher").status, 409);
@@ -82,6 +88,24 @@ void fence_and_reduced_mode(const ArmCase& c) {
   ASSERT_EQ(r.status, 200) << r.text;
   r = api.post("/api/v1/tool", c.target, "page");
   EXPECT_EQ(r.status, 200) << r.text;
+  ASSERT_TRUE(api.wait_idle(30s));
+  EXPECT_TRUE(api.get("/api/v1/state", "page").body["last_collision"].is_null());  // a success clears it
+
+  // The fence switched on while the arm moves back out of it: the look-ahead stops the arm
+  // before it leaves, and the state says where, while moving.
+  r = api.post("/api/v1/tool", json{{"x", c.target["x"]}, {"y", -c.target["y"].get<double>()}, {"z", c.target["z"]}}, "page");
+  ASSERT_EQ(r.status, 200) << r.text;
+  ASSERT_TRUE(api.wait_idle(30s));
+  r = api.post("/api/v1/tool", c.target, "page");
+  ASSERT_EQ(r.status, 200) << r.text;
+  ASSERT_EQ(api.send("PUT", "/api/v1/scene/limits", R"({"fence": true})", "page").status, 200);
+  ASSERT_TRUE(api.wait_idle(30s));
+  const json state = api.get("/api/v1/state", "page").body;
+  EXPECT_NE(state["last_error"].get<std::string>().find("fence"), std::string::npos) << state;
+  last = state["last_collision"];
+  EXPECT_EQ(last["limit"], "fence") << state;
+  EXPECT_EQ(last["while_moving"], true) << state;
+  EXPECT_LE(state["tool"]["y"].get<double>(), c.y_max) << state;
   std::filesystem::remove(file);
 }
 

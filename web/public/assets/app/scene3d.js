@@ -205,7 +205,7 @@ export async function initScene3d({ scene, robot, model, view, requestRender }) 
     marker.position.set(p[0] * MM, p[1] * MM, p[2] * MM);
     if (note && message !== undefined) {
       note.hidden = false;
-      note.textContent = `Refused, nothing moved: ${message}`;
+      note.textContent = detail.while_moving ? `Stopped before contact: ${message}` : `Refused, nothing moved: ${message}`;
     }
     requestRender();
   }
@@ -220,7 +220,15 @@ export async function initScene3d({ scene, robot, model, view, requestRender }) 
 
   onScene(drawScene);
   drawFence(model.fence);
-  onState((state) => { if ('fence' in state) drawFence(state.fence); });
+  // A motion the look-ahead stopped before contact (or a job refused on a collision) is in
+  // the live state: drawn once when it appears, as a refusal the page asked for is.
+  let lastCollision = '';
+  onState((state) => {
+    if ('fence' in state) drawFence(state.fence);
+    const key = state.last_collision ? JSON.stringify(state.last_collision) + state.last_error : '';
+    if (key && key !== lastCollision) showCollision(state.last_collision, state.last_error);
+    lastCollision = key;
+  });
   onScene((s) => { if ('fence' in s) drawFence(s.fence); });
 
   // Readers for the tests: what is drawn, in the base frame (mm).
