@@ -13,7 +13,7 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
   libhidapi-dev libgpiod-dev \
   gcc-avr avr-libc binutils-avr avrdude simavr libsimavr-dev libelf-dev \
   clang libclang-rt-14-dev ccache lld \
-  liburdfdom-dev liborocos-kdl-dev libkdl-parser-dev libeigen3-dev libfcl-dev libompl-dev \
+  liburdfdom-dev libtinyxml-dev liborocos-kdl-dev libkdl-parser-dev libeigen3-dev libfcl-dev libompl-dev \
   pybind11-dev python3-dev python3-pytest python3-numpy \
   libcpp-httplib-dev libevdev-dev tmux \
   libroscpp-dev libactionlib-dev libactionlib-msgs-dev libsensor-msgs-dev libtrajectory-msgs-dev \
@@ -26,7 +26,7 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config \
 # firmware, Python-module or ROS packages above: the demo builds none of that.
 DEMO_PACKAGES := build-essential cmake ninja-build pkg-config lld \
   libcli11-dev libfmt-dev nlohmann-json3-dev libhidapi-dev libgpiod-dev \
-  libeigen3-dev liburdfdom-dev libfcl-dev libompl-dev libcpp-httplib-dev libevdev-dev python3
+  libeigen3-dev liburdfdom-dev libtinyxml-dev libfcl-dev libompl-dev libcpp-httplib-dev libevdev-dev python3
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 JOBS ?= 2

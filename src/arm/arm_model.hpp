@@ -101,6 +101,10 @@ struct ArmModel {
   double reach = 0;
   std::filesystem::path file;  // the arm file it came from ("" if parsed from text)
   std::filesystem::path urdf;
+  // The URDF the arm drives with: that file's text with link_lengths written into the joints'
+  // origins (motion/urdf_with_lengths.hpp), for viewers that read a URDF themselves (the
+  // dashboard's 3D view, ROS's robot_description).
+  std::string urdf_text;
   // Every link with its URDF <collision> shapes (docs/scene.md), the link pairs the arm
   // file's "collision" section allows to touch (found by sampling, reviewed in docs/scene.md),
   // and the tool's link, where parts held by the tool hang.

@@ -5,6 +5,7 @@
 // consume it.
 #pragma once
 
+#include <any>
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -20,6 +21,9 @@ struct SourcePlace {
   std::size_t line = 0;    // from 1
   std::size_t column = 0;  // from 1; 0: the line as a whole
   std::string reason;      // the message without its "file:line:column: " prefix
+  // The detail of the error found at this place, if it had one (a program line whose move
+  // would collide: its arm::CollisionDetail), for apps that draw it (detail_or_cause).
+  std::any cause{};
 };
 
 // The Error "file:line:column: reason" ("file:line: reason" without a column) with the place
@@ -32,5 +36,13 @@ inline Error source_error(ErrorKind kind, SourcePlace place) {
 
 // The SourcePlace behind an error, or nullptr.
 inline const SourcePlace* source_place(const Error& error) { return error.detail_as<SourcePlace>(); }
+
+// The error's detail D, or that of the error its SourcePlace was made from; nullptr if neither.
+template <class D>
+const D* detail_or_cause(const Error& error) {
+  if (const D* d = error.detail_as<D>()) return d;
+  if (const SourcePlace* at = source_place(error)) return std::any_cast<D>(&at->cause);
+  return nullptr;
+}
 
 }  // namespace armctl

@@ -53,10 +53,13 @@ class Planner {
   static std::string what(const Action& a) {
     return fmt::format("line {} ({} {})", a.at.line, to_string(a.move.kind), a.move.target.label);
   }
-  [[noreturn]] void refuse(const Action& a, const std::string& why) const {
+  // The planner's refusal of the action's move at its line, its detail (a collision's bodies)
+  // kept as the place's cause.
+  [[noreturn]] void refuse(const Action& a, const Error& e) const {
     throw ArmctlError(source_error(ErrorKind::invalid_argument,
                                    {std::string(source_), a.at.line, 0,
-                                    fmt::format("({} {}): {}", to_string(a.move.kind), a.move.target.label, why)}));
+                                    fmt::format("({} {}): {}", to_string(a.move.kind), a.move.target.label, e.message),
+                                    e.detail}));
   }
   motion::JointVector chain(const std::vector<double>& q) const { return kin_.chain_of(q); }
 
@@ -76,7 +79,7 @@ class Planner {
   // One action's moves: a refusal names its line.
   void add(const Action& a, const std::vector<arm::Move>& moves) {
     auto plan = plan_from_here(moves);
-    if (!plan) refuse(a, plan.error().message);
+    if (!plan) refuse(a, plan.error());
     append(std::move(plan).value());
   }
 
@@ -90,7 +93,7 @@ class Planner {
     Goal g;
     if (!t.joints.empty()) {
       auto given = arm::joint_values_targets(model_, t.joints);
-      if (!given) refuse(a, given.error().message);
+      if (!given) refuse(a, given.error());
       if (!t.offset_frame) {
         g.joints = std::move(given).value();
         return g;
@@ -135,7 +138,7 @@ class Planner {
     move.acceleration_scale = a.move.acceleration.value_or(1.0);
     if (options_.avoid) {
       auto around = arm::avoiding_move(kin_, state_, move, *options_.avoid);
-      if (!around) refuse(a, around.error().message);
+      if (!around) refuse(a, around.error());
       move = around->move;
     }
     add(a, {arm::Move{move, what(a), a.at.line, a.at.column}});
@@ -196,7 +199,7 @@ class Planner {
                                               fmt::format("({} {}): {}", to_string(at.move.kind),
                                                           at.move.target.label, r->reason)}));
     }
-    throw ArmctlError(source_error(e.kind, {std::string(source_), a[from].at.line, 0, e.message}));
+    throw ArmctlError(source_error(e.kind, {std::string(source_), a[from].at.line, 0, e.message, e.detail}));
   }
 
   const arm::ArmKinematics& kin_;

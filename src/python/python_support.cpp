@@ -60,6 +60,12 @@ void define_error(py::module_& m) {
 
 namespace {
 
+void set_place(py::object& e, const SourcePlace& at) {
+  e.attr("file") = at.file;
+  e.attr("line") = at.line;
+  e.attr("column") = at.column;
+}
+
 // The error's typed detail as attributes (docs/python.md "Errors"): e.detail names which
 // detail it carried (None: none), and its fields follow.
 void set_detail(py::object& e, const Error& error) {
@@ -82,7 +88,7 @@ void set_detail(py::object& e, const Error& error) {
     e.attr("fraction") = r->fraction ? py::object(py::float_(*r->fraction)) : py::none();
     e.attr("point") = r->point ? py::object(py::make_tuple(r->point->x(), r->point->y(), r->point->z())) : py::none();
     e.attr("joint") = r->joint >= 0 ? py::object(py::str(r->joint_name)) : py::none();
-  } else if (const auto* c = error.detail_as<arm::CollisionDetail>()) {
+  } else if (const auto* c = detail_or_cause<arm::CollisionDetail>(error)) {
     // A limit broken (the fence, a reduced joint range) is told apart from two bodies touching.
     e.attr("detail") = c->contact.limit == scene::Limit::none ? "collision" : "limit";
     e.attr("broken_limit") =
@@ -93,11 +99,11 @@ void set_detail(py::object& e, const Error& error) {
     e.attr("point") = py::make_tuple(c->tool_point.x(), c->tool_point.y(), c->tool_point.z());
     // Found while moving (the scene changed under the motion): the arm stopped before it.
     e.attr("while_moving") = c->while_moving;
+    // A program's line whose move it is: where, as a source_place detail says it.
+    if (const auto* at = source_place(error)) set_place(e, *at);
   } else if (const auto* at = source_place(error)) {
     e.attr("detail") = "source_place";
-    e.attr("file") = at->file;
-    e.attr("line") = at->line;
-    e.attr("column") = at->column;
+    set_place(e, *at);
   } else if (joint_bus::device_lost(error)) {
     e.attr("detail") = "device_lost";
   }

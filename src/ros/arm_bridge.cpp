@@ -43,7 +43,7 @@ ArmInfo info_of(const session::ArmSession& session) {
                       fmt::format("{}: base_link and tool_link (strings) are needed", model.file.string()));
   info.base_frame = j["base_link"].get<std::string>();
   info.tool_frame = j["tool_link"].get<std::string>();
-  info.urdf = read_text(model.urdf);
+  info.urdf = model.urdf_text;  // with the arm file's calibrated link lengths
   info.action_groups = session.arm->device().action_groups() != nullptr;
   return info;
 }

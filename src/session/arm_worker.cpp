@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <exception>
 
+#include "core/source_place.hpp"
 
 namespace armctl::session {
 
@@ -231,7 +232,7 @@ void ArmWorker::loop() {
       snapshot_.last_error = result ? std::string() : result.error().message;
       snapshot_.last_collision.reset();
       if (!result)
-        if (const auto* c = result.error().detail_as<arm::CollisionDetail>()) snapshot_.last_collision = *c;
+        if (const auto* c = detail_or_cause<arm::CollisionDetail>(result.error())) snapshot_.last_collision = *c;
       ++snapshot_.sequence;
       changed_.notify_all();
       lock.unlock();

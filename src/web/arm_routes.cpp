@@ -48,7 +48,7 @@ void add_arm_routes(WebServer::State& s) {
   s.router.add("GET", "/api/v1/model", [&s](Call& c) { c.reply(model_json(s.worker.model(), s.options.device)); });
   s.router.add("GET", "/api/v1/urdf", [&s](Call& c) {
     c.response.set_header("Cache-Control", "no-cache");
-    c.response.set_content(s.options.urdf, "application/xml");
+    c.response.set_content(s.worker.model().urdf_text, "application/xml");
   });
   s.router.add("GET", "/api/v1/state", [&s](Call& c) { c.reply(s.state_for(c.client, s.worker.snapshot())); });
   add_event_stream(s);

@@ -1,5 +1,6 @@
 #include "web/error_detail.hpp"
 
+#include "core/source_place.hpp"
 #include "web/display_value.hpp"
 
 namespace armctl::web {
@@ -38,7 +39,7 @@ json collision_json(const arm::CollisionDetail& d, const arm::ArmModel& model) {
 }
 
 void add_error_detail(json& body, const Error& error, const arm::ArmModel& model) {
-  if (const auto* c = error.detail_as<arm::CollisionDetail>()) body["collision"] = collision_json(*c, model);
+  if (const auto* c = detail_or_cause<arm::CollisionDetail>(error)) body["collision"] = collision_json(*c, model);
 }
 
 }  // namespace armctl::web

@@ -4,12 +4,15 @@
 #include "files/points_file.hpp"
 #include "program/program_flow.hpp"
 #include "program/program_parser.hpp"
+#include "web/error_detail.hpp"
 
 namespace armctl::web {
 
 PlacedError place_error(const Error& e) {
-  if (const SourcePlace* at = source_place(e)) return {at->file, at->line, at->column, at->reason};
-  return {kProgramSource, 0, 0, e.message};
+  PlacedError out{kProgramSource, 0, 0, e.message};
+  if (const SourcePlace* at = source_place(e)) out = {at->file, at->line, at->column, at->reason};
+  if (const auto* c = detail_or_cause<arm::CollisionDetail>(e)) out.collision = *c;
+  return out;
 }
 
 CheckedProgram check_program(const ProgramRequest& r, const arm::ArmKinematics* arm, const std::vector<double>& start) {
@@ -33,10 +36,13 @@ CheckedProgram check_program(const ProgramRequest& r, const arm::ArmKinematics* 
   return out;
 }
 
-nlohmann::json errors_json(const std::vector<PlacedError>& errors) {
+nlohmann::json errors_json(const std::vector<PlacedError>& errors, const arm::ArmModel& model) {
   nlohmann::json out = nlohmann::json::array();
-  for (const auto& e : errors)
-    out.push_back({{"file", e.file}, {"line", e.line}, {"column", e.column}, {"message", e.message}});
+  for (const auto& e : errors) {
+    nlohmann::json one{{"file", e.file}, {"line", e.line}, {"column", e.column}, {"message", e.message}};
+    if (e.collision) one["collision"] = collision_json(*e.collision, model);
+    out.push_back(std::move(one));
+  }
   return out;
 }
 

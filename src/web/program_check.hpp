@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "arm/arm.hpp"
+#include "arm/collision_detail.hpp"
 #include "program/program_plan.hpp"
 #include "web/request_body.hpp"
 
@@ -24,6 +25,8 @@ struct PlacedError {
   std::string file;  // "program" or "points"
   std::size_t line = 0, column = 0;  // 0: not known
   std::string message;  // without the place
+  // The line's move would collide or break a limit of the scene: the page draws it.
+  std::optional<arm::CollisionDetail> collision{};
 };
 
 // An error's place from its SourcePlace detail ({program, 12, 5, "found ..."}); an error
@@ -38,6 +41,7 @@ struct CheckedProgram {
 // Parse, flow, and (with `arm` and `start`) plan.
 CheckedProgram check_program(const ProgramRequest& request, const arm::ArmKinematics* arm, const std::vector<double>& start);
 
-nlohmann::json errors_json(const std::vector<PlacedError>& errors);
+// [{file, line, column, message, collision?}], a collision as error_detail.hpp's.
+nlohmann::json errors_json(const std::vector<PlacedError>& errors, const arm::ArmModel& model);
 
 }  // namespace armctl::web

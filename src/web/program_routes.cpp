@@ -15,9 +15,11 @@ namespace {
 
 // A placed error as the Error a refusal returns: "file:line:column: message" ("file:line:"
 // without a column), the place its detail; an error at line 0 is the message alone.
+// A collision stays the detail (the place's cause) for the page to draw.
 Error placed_error(const PlacedError& e) {
-  if (!e.line) return Error{ErrorKind::invalid_argument, e.message};
-  return source_error(ErrorKind::invalid_argument, {e.file, e.line, e.column, e.message});
+  std::any collision = e.collision ? std::any(*e.collision) : std::any{};
+  if (!e.line) return Error{ErrorKind::invalid_argument, e.message, std::move(collision)};
+  return source_error(ErrorKind::invalid_argument, {e.file, e.line, e.column, e.message, std::move(collision)});
 }
 
 // The program run as a worker job: planned from a fresh read (accepted or refused with
@@ -69,7 +71,7 @@ void add_program_routes(WebServer::State& s) {
                                       snapshot.link_error.empty() ? "" : ": " + snapshot.link_error));
     // Planned from the last positions the worker published (a check moves nothing).
     const CheckedProgram checked = check_program(r, &s.kinematics(), snapshot.positions);
-    json out{{"ok", checked.errors.empty()}, {"errors", errors_json(checked.errors)}};
+    json out{{"ok", checked.errors.empty()}, {"errors", errors_json(checked.errors, s.worker.model())}};
     out["duration_s"] = checked.plan ? json(checked.plan->duration) : json(nullptr);
     c.reply(out);
   });
@@ -79,7 +81,7 @@ void add_program_routes(WebServer::State& s) {
     // The text's own errors before the arm is asked anything.
     const CheckedProgram text = check_program(r, nullptr, {});
     if (!text.errors.empty()) {
-      c.reply({{"error", placed_error(text.errors.front()).message}, {"errors", errors_json(text.errors)}}, 400);
+      c.reply({{"error", placed_error(text.errors.front()).message}, {"errors", errors_json(text.errors, s.worker.model())}}, 400);
       return;
     }
     try {
@@ -87,7 +89,7 @@ void add_program_routes(WebServer::State& s) {
     } catch (const ApiError& e) {
       if (e.status() != 400) throw;
       const PlacedError placed = e.error() ? place_error(*e.error()) : PlacedError{kProgramSource, 0, 0, e.what()};
-      c.reply({{"error", e.what()}, {"errors", errors_json({placed})}}, 400);
+      c.reply({{"error", e.what()}, {"errors", errors_json({placed}, s.worker.model())}}, 400);
     }
   });
   s.router.add("POST", "/api/v1/program/pause", [&s](Call& c) {

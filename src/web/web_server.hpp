@@ -33,7 +33,6 @@ struct ServerOptions {
   std::string token;
   // Where POST /api/v1/points saves (program points-file format); "" keeps them in memory.
   std::filesystem::path points_file;
-  std::string urdf;  // the arm's URDF text, for GET /api/v1/urdf
   DeviceInfo device;
   // SSE: a state event at least this often while nothing changes (a keep-alive).
   std::chrono::milliseconds idle_event_interval{500};

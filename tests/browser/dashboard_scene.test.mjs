@@ -3,8 +3,8 @@
 // held parts moving with the tool, the links' collision shapes on request; objects added,
 // moved and removed from the page, field errors before anything is sent, the scene saved to
 // its file (and the 409 without one); a refused move's two bodies red with the contact
-// point; "avoid obstacles" going around, for a tool move and for a program's check; hold to
-// move sending the frame chosen.
+// point, for a move, a program's line and a motion the look-ahead stopped; "avoid obstacles"
+// going around, for a tool move and for a program's check; hold to move sending the frame chosen.
 import { describe, test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -22,6 +22,11 @@ const near = (a, b, tolerance = 0.5) => a.every((v, i) => Math.abs(v - b[i]) <= 
 const pagePut = (page, p, body) => page.evaluate(async ({ p: path_, b }) => {
   const { api } = await import('/assets/app/api.js');
   await api.put(path_, b);
+}, { p, b: body });
+
+const pagePost = (page, p, body) => page.evaluate(async ({ p: path_, b }) => {
+  const { api } = await import('/assets/app/api.js');
+  await api.post(path_, b);
 }, { p, b: body });
 
 // The console's line for a refused request comes a moment after the answer: waited for,
@@ -267,14 +272,45 @@ describe('xArm', () => {
       await page.getByRole('button', { name: 'Check', exact: true }).click();
       await waitFor(async () => (await result.textContent()) === '1 error', 'the line refused');
       assert.match(await page.getByRole('list', { name: 'Program errors' }).textContent(), /line 2: .*box 'box'/);
+      // The 3D view draws the line's collision as it draws a refused move's.
+      const shown = await waitFor(async () => view(page, 'collision'), 'the program line\'s collision drawn');
+      assert.ok(shown.bodies.some((b) => b.kind === 'object' && b.name === 'box'), JSON.stringify(shown.bodies));
+      assert.ok(shown.red > 0 && shown.ghost, JSON.stringify(shown));
+      await waitFor(async () => (await objectNamed(page, 'box'))?.red, 'the box drawn red');
+      assert.match(await page.locator('#collision-note').textContent(), /^Refused, nothing moved: line 2: .*box 'box'/);
       await page.getByRole('checkbox', { name: 'Go around obstacles' }).check();
       await page.getByRole('button', { name: 'Check', exact: true }).click();
       await waitFor(async () => (await result.textContent()).startsWith('OK: no errors'), 'checked going around');
+      await waitFor(async () => (await view(page, 'collision')) === null, 'the red cleared by the check that passed');
     });
     assert.deepEqual(sent.map((b) => b.avoid), [undefined, true]);
     await page.getByRole('checkbox', { name: 'Go around obstacles' }).uncheck();
     await page.getByRole('tab', { name: 'Move' }).click();
     await pagePut(page, '/api/v1/scene', { objects: [] });
+    assert.deepEqual(problems, []);
+  });
+
+  test('a motion stopped before a box put in its way is drawn from the live state', async () => {
+    await pagePost(page, '/api/v1/tool', { x: 150, y: 100, z: 40 });
+    await waitFor(async () => {
+      const s = await script.state();
+      return s.job === '' && Math.hypot(s.tool.x - 150, s.tool.y - 100, s.tool.z - 40) < 1.5;
+    }, 'the tool at y 100');
+    // The box goes where the move ends once the move is under way: the look-ahead stops it.
+    await pagePost(page, '/api/v1/tool', { x: 150, y: -100, z: 40 });
+    await pagePut(page, '/api/v1/scene', { objects: [{ name: 'box', box: [50, 50, 80], at: [150, -100, 40] }] });
+    await waitIdle(script);
+    const state = await script.state();
+    assert.equal(state.last_collision.while_moving, true, JSON.stringify(state.last_collision));
+    assert.ok(state.tool.y > -75, `the tool stopped outside the box: y ${state.tool.y}`);
+    const shown = await waitFor(async () => view(page, 'collision'), 'the stop drawn');
+    assert.ok(shown.bodies.some((b) => b.kind === 'object' && b.name === 'box'), JSON.stringify(shown.bodies));
+    await waitFor(async () => (await objectNamed(page, 'box'))?.red, 'the box drawn red');
+    assert.match(await page.locator('#collision-note').textContent(), /^Stopped before contact: .*box 'box'/);
+    await pagePut(page, '/api/v1/scene', { objects: [] });
+    await pageMove(page, { servo6: 0, servo5: 0, servo4: 0, servo3: 0 });
+    await waitForPosition(script, 'servo3', 0, 0.6);
+    await waitIdle(script);
     assert.deepEqual(problems, []);
   });
 });

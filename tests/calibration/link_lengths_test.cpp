@@ -45,6 +45,11 @@ TEST(LinkLengths, AStraightXarmGrowsByTheUpperArmsChange) {
   changed->bodies->poses(q, b);
   const int forearm = *nominal.bodies->find("forearm");
   EXPECT_NEAR((b[std::size_t(forearm)].translation() - a[std::size_t(forearm)].translation()).z(), 2.35 * kMm, 1e-9);
+  // And so does the URDF viewers get (the dashboard, ROS): the joint's origin is 100 mm long.
+  EXPECT_EQ(nominal.urdf_text, arm::testing::urdf_text("xarm"));
+  auto drawn = motion::read_urdf_chain(changed->urdf_text, "base_link", changed->tool_link);
+  ASSERT_TRUE(drawn) << drawn.error().message;
+  EXPECT_NEAR(drawn->joints[2].origin_xyz.norm(), 100 * kMm, 1e-12);
 }
 
 TEST(LinkLengths, TheFitsChainAgreesWithTheLoadedModelOnBothArms) {

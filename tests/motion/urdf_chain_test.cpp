@@ -1,6 +1,7 @@
 // The URDF chain reader on the shipped URDFs and on broken ones: each refusal names the
 // element and what is allowed.
 #include "motion/urdf_chain.hpp"
+#include "motion/urdf_with_lengths.hpp"
 
 #include <algorithm>
 
@@ -58,6 +59,44 @@ TEST(UrdfChain, OriginLengthsReplaceTheOffsetsKeepingTheirDirection) {
     ASSERT_FALSE(r) << bad[0].joint;
     EXPECT_NE(r.error().message.find(bad[0].joint), std::string::npos) << r.error().message;
   }
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// The URDF text a viewer gets with calibrated lengths: read back without lengths it is the
+// chain read with them, and nothing else of the file is lost.
+TEST(UrdfChain, LengthsWrittenIntoTheTextGiveTheChainReadWithThem) {
+  const std::string urdf = testing::urdf_text("scara");
+  const std::vector<OriginLength> lengths{{"UAE", 0.26}, {"tool_point", 0.18}};
+  auto text = urdf_with_origin_lengths(urdf, lengths);
+  ASSERT_TRUE(text) << text.error().message;
+  auto want = read_urdf_chain(urdf, "base_link", "tool", lengths);
+  auto got = read_urdf_chain(*text, "base_link", "tool");
+  ASSERT_TRUE(want && got);
+  ASSERT_EQ(got->joints.size(), want->joints.size());
+  for (std::size_t i = 0; i < got->joints.size(); ++i)
+    EXPECT_TRUE(got->joints[i].from_previous.isApprox(want->joints[i].from_previous, 1e-12)) << i;
+  EXPECT_TRUE(got->tip_from_last.isApprox(want->tip_from_last, 1e-12));
+  EXPECT_NEAR(got->joints[2].origin_xyz.x(), 0.26, 1e-12);
+  // Visuals, collisions and comments are kept.
+  for (const char* element : {"<visual", "<collision", "<!--", "<material", "<limit"})
+    EXPECT_EQ(count(*text, element), count(urdf, element)) << element;
+  // No lengths: the text as written; a bad one: refused naming the joint.
+  auto same = urdf_with_origin_lengths(urdf, {});
+  ASSERT_TRUE(same);
+  EXPECT_EQ(*same, urdf);
+  for (const std::vector<OriginLength>& bad :
+       {std::vector<OriginLength>{{"SHOULDER", 0.1}}, std::vector<OriginLength>{{"nope", 0.1}},
+        std::vector<OriginLength>{{"UAE", -1.0}}}) {
+    auto r = urdf_with_origin_lengths(urdf, bad);
+    ASSERT_FALSE(r) << bad[0].joint;
+    EXPECT_THAT(r.error().message, HasSubstr(bad[0].joint));
+  }
+  EXPECT_FALSE(urdf_with_origin_lengths("<robot", lengths));
 }
 
 TEST(UrdfChain, XarmChainIsFiveServosBaseToWrist) {

@@ -198,8 +198,13 @@ def test_a_program_goes_around_the_box_with_avoid(tmp_path):
     program = tmp_path / "behind.prog"
     program.write_text("wait 0.1s\nptp pose(x=150mm, y=-190mm, z=40mm)\n")
     with armctl.Arm(scene=scene) as arm:
-        with pytest.raises(armctl.Error, match=r"behind.prog:2.*box 'box'"):
+        with pytest.raises(armctl.Error, match=r"behind.prog:2.*box 'box'") as refused:
             arm.check_program(str(program))
+        # The collision's detail, at the program's line.
+        assert refused.value.detail == "collision"
+        assert "box 'box'" in refused.value.bodies
+        assert (refused.value.file, refused.value.line) == (str(program), 2)
+        assert refused.value.while_moving is False
         assert arm.check_program(str(program), avoid=True)["duration"] > 0.1
         with pytest.raises(armctl.Error, match="avoid_time"):
             arm.run_program(str(program), avoid=True, avoid_time=0)

@@ -8,6 +8,7 @@
 
 #include "api_server.hpp"
 #include "calibration/joint_pictures.hpp"
+#include "motion/urdf_chain.hpp"
 #include "devices/xarm_emulator/emulator_runner.hpp"
 #include "refusal.hpp"
 #include "web/calibration_request.hpp"
@@ -187,6 +188,23 @@ TEST(WebCalibration, CancelWritesNothingAndConfirmWritesTheFileThatTheServerThen
   ASSERT_EQ(r.status, 200) << r.text;
   EXPECT_NEAR(r.body["value"].get<double>(), 5, 0.5);
   ASSERT_EQ(api.post(kCal + "cancel", json::object(), "page").status, 200);
+}
+
+// The 3D view draws the arm the server drives with: calibrated link lengths are in the URDF
+// the page gets, not only in the kinematics.
+TEST(WebCalibration, TheUrdfServedHasTheArmFilesLinkLengths) {
+  const fs::path file = arm_copy();
+  json doc = json::parse(text_of(file));
+  doc["link_lengths"] = {{"servo4", "100mm"}};  // the shipped URDF's 97.65 mm
+  std::ofstream(file) << doc.dump(2);
+  ApiServer api(file.string());
+  const Reply u = api.get("/api/v1/urdf");
+  ASSERT_EQ(u.status, 200);
+  auto chain = motion::read_urdf_chain(u.text, "base_link", api.worker().model().tool_link);
+  ASSERT_TRUE(chain) << chain.error().message;
+  EXPECT_EQ(chain->joints[2].name, "servo4");
+  EXPECT_NEAR(chain->joints[2].origin_xyz.norm(), 0.100, 1e-12);
+  EXPECT_NE(u.text, text_of(file.parent_path() / "xarm.urdf"));
 }
 
 }  // namespace

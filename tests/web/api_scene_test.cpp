@@ -168,6 +168,17 @@ TEST(WebScene, AProgramGoesAroundTheBoxWithAvoid) {
   ASSERT_EQ(r.body["errors"].size(), 1u) << r.text;
   EXPECT_EQ(r.body["errors"][0]["line"], 2) << r.text;
   EXPECT_NE(r.body["errors"][0]["message"].get<std::string>().find("box 'box'"), std::string::npos) << r.text;
+  // The line's collision, for the page to draw: the box and the line.
+  const json collision = r.body["errors"][0]["collision"];
+  const json box{{"kind", "object"}, {"name", "box"}, {"text", "box 'box'"}};
+  EXPECT_TRUE(collision["bodies"][0] == box || collision["bodies"][1] == box) << r.text;
+  EXPECT_EQ(collision["line"], 2) << r.text;
+  EXPECT_EQ(collision["while_moving"], false) << r.text;
+  // A run refused the same way carries it too, and so does the live state.
+  r = api.post("/api/v1/program/run", program, "page");
+  ASSERT_EQ(r.status, 400) << r.text;
+  EXPECT_EQ(r.body["errors"][0]["collision"]["bodies"], collision["bodies"]) << r.text;
+  EXPECT_EQ(api.get("/api/v1/state", "page").body["last_collision"]["bodies"], collision["bodies"]);
   json bad = program;
   bad["avoid_time"] = 2;
   EXPECT_EQ(api.post("/api/v1/program/check", bad, "page").status, 400);

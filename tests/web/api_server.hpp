@@ -43,7 +43,6 @@ class ApiServer {
     options.port = 0;
     if (options.host.empty()) options.host = "127.0.0.1";
     options.device = describe_device(*session, device);
-    options.urdf = read_regular_file(session->arm->model().urdf, "urdf", 1 << 20).value();
     worker_ = std::make_unique<session::ArmWorker>(std::move(session));
     server_ = std::make_unique<WebServer>(*worker_, options);
     server_->start();

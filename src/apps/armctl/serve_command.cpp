@@ -81,7 +81,6 @@ void run_serve(const ServeArgs& a) {
   session_options.reconnect = true;  // a restarted simulator or a replugged adapter is picked up again
   auto session = armctl::session::open_arm_session(a.arm, a.device, session_options).value();
   const arm::ArmModel& model = session->arm->model();
-  options.urdf = read_regular_file(model.urdf, "the arm's URDF", 1 << 20).value();
   options.device = web::describe_device(*session, a.device);
   const std::string arm_name = model.name;
 

@@ -211,11 +211,20 @@ export async function initScene3d({ scene, robot, model, view, requestRender }) 
   }
 
   const MOVES = /\/api\/v1\/(joints|tool|jog|program\/run)$/;
+  // A program's line that would collide: its placed error carries the collision.
+  const programCollision = (errors) => (errors || []).find((e) => e.collision);
   onApiError((error) => {
+    const placed = error.body && programCollision(error.body.errors);
     if (error.body && error.body.collision) showCollision(error.body.collision, error.message);
+    else if (placed) showCollision(placed.collision, `line ${placed.line}: ${placed.message}`);
   });
   onApiAnswer((method, path, answer) => {
     if (collision && method === 'POST' && MOVES.test(path) && answer && (answer.moving || answer.started)) showCollision(null);
+    if (method === 'POST' && path === '/api/v1/program/check' && answer) {
+      const placed = programCollision(answer.errors);
+      if (placed) showCollision(placed.collision, `line ${placed.line}: ${placed.message}`);
+      else if (collision) showCollision(null);
+    }
   });
 
   onScene(drawScene);
