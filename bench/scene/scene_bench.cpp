@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
 #include <fmt/core.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
@@ -54,6 +55,7 @@ std::shared_ptr<fcl::CollisionGeometryd> geometry(const motion::Shape& s) {
     case motion::Shape::Kind::box: return std::make_shared<fcl::Boxd>(s.size.x(), s.size.y(), s.size.z());
     case motion::Shape::Kind::cylinder: return std::make_shared<fcl::Cylinderd>(s.size.x(), s.size.y());
     case motion::Shape::Kind::sphere: return std::make_shared<fcl::Sphered>(s.size.x());
+    case motion::Shape::Kind::capsule: return std::make_shared<fcl::Capsuled>(s.size.x(), s.size.y());
   }
   return nullptr;
 }

@@ -3,20 +3,26 @@
 // with invalid_config or return a chain whose every value is usable: finite origins, unit
 // axes, finite limits with lower < upper. A chain a family accepts must then solve its own
 // forward kinematics: IK of the pose at the limits' middle returns only solutions inside
-// the limits that reach that pose.
+// the limits that reach that pose. The text for viewers (motion/urdf_for_viewers.hpp, a
+// link length and capsules rewritten) must be refused the same way or read back as a URDF
+// without capsules whose chain has that length.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include <sanitizer/lsan_interface.h>
 
 #include "core/error.hpp"
 #include "motion/kinematics.hpp"
 #include "motion/scara_kinematics.hpp"
+#include "motion/urdf_capsules.hpp"
 #include "motion/urdf_chain.hpp"
+#include "motion/urdf_for_viewers.hpp"
+#include "motion/urdf_model.hpp"
 #include "motion/xarm_kinematics.hpp"
 
 namespace {
@@ -63,6 +69,34 @@ void check_kinematics(const Kinematics& k, const std::vector<PositionLimits>& li
   }
 }
 
+// The chain's first joint with an offset made 1.5 times as long in the text for viewers.
+void check_viewer_text(const std::string& text, const UrdfChain& chain) {
+  std::vector<OriginLength> lengths;
+  for (const auto& j : chain.joints)
+    if (j.origin_xyz.norm() > 1e-3 && j.origin_xyz.norm() < 10) {
+      lengths.push_back({j.name, 1.5 * j.origin_xyz.norm()});
+      break;
+    }
+  __lsan_disable();
+  auto viewer = urdf_for_viewers(text, lengths);
+  __lsan_enable();
+  if (!viewer.ok()) {
+    check(viewer.error().kind == armctl::ErrorKind::invalid_config, "viewer text error kind invalid_config");
+    return;
+  }
+  __lsan_disable();
+  std::vector<UrdfCapsule> capsules;
+  auto again = parse_urdf_model(*viewer, &capsules);
+  auto back = read_urdf_chain(*viewer, "base_link", "tool");
+  __lsan_enable();
+  check(again.ok() && back.ok(), "the text for viewers reads back");
+  check(capsules.empty(), "no capsule left for viewers");
+  for (std::size_t i = 0; i < back->joints.size() && i < chain.joints.size(); ++i)
+    if (!lengths.empty() && back->joints[i].name == lengths[0].joint)
+      check(std::abs(back->joints[i].origin_xyz.norm() - lengths[0].length) < 1e-6 * (1 + lengths[0].length),
+            "the length written for viewers");
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -78,6 +112,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   check_chain(*chain);
+  check_viewer_text(text, *chain);
   const auto limits = urdf_position_limits(*chain);
   for (auto make : {make_scara_kinematics, make_xarm_kinematics}) {
     auto k = make(*chain, limits);

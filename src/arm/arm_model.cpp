@@ -16,7 +16,7 @@
 #include "core/json_reader.hpp"
 #include "motion/urdf_chain.hpp"
 #include "motion/urdf_model.hpp"
-#include "motion/urdf_with_lengths.hpp"
+#include "motion/urdf_for_viewers.hpp"
 
 namespace armctl::arm {
 
@@ -335,7 +335,7 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
   if (!kin) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, kin.error().message));
   m.kinematics = std::shared_ptr<const motion::Kinematics>(std::move(kin.value()));
   m.chain = std::make_shared<const motion::UrdfChain>(std::move(chain).value());
-  auto drawn = motion::urdf_with_origin_lengths(urdf_text, m.link_lengths);
+  auto drawn = motion::urdf_for_viewers(urdf_text, m.link_lengths);
   if (!drawn) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, drawn.error().message));
   m.urdf_text = std::move(drawn).value();
   return m;

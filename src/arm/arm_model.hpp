@@ -102,7 +102,7 @@ struct ArmModel {
   std::filesystem::path file;  // the arm file it came from ("" if parsed from text)
   std::filesystem::path urdf;
   // The URDF the arm drives with: that file's text with link_lengths written into the joints'
-  // origins (motion/urdf_with_lengths.hpp), for viewers that read a URDF themselves (the
+  // origins (motion/urdf_for_viewers.hpp), for viewers that read a URDF themselves (the
   // dashboard's 3D view, ROS's robot_description).
   std::string urdf_text;
   // Every link with its URDF <collision> shapes (docs/scene.md), the link pairs the arm

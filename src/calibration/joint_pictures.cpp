@@ -65,12 +65,17 @@ void outline_points(const motion::Shape& shape, const Eigen::Isometry3d& body, c
       }
       break;
     case motion::Shape::Kind::sphere:
-      for (int i = 0; i < kCircleSamples; ++i) {
-        const double a = 2 * std::numbers::pi * i / kCircleSamples;
-        const Eigen::Vector3d c = frame.translation();
-        out.push_back(view.project(c + shape.size.x() * (std::cos(a) * view.u + std::sin(a) * view.v)));
-      }
+    case motion::Shape::Kind::capsule: {
+      // A sphere's outline about its centre; a capsule's about each end's centre.
+      const double h = shape.kind == motion::Shape::Kind::capsule ? shape.size.y() / 2 : 0.0;
+      for (const double end : {-h, h})
+        for (int i = 0; i < kCircleSamples; ++i) {
+          const double a = 2 * std::numbers::pi * i / kCircleSamples;
+          const Eigen::Vector3d c = frame * Eigen::Vector3d(0, 0, end);
+          out.push_back(view.project(c + shape.size.x() * (std::cos(a) * view.u + std::sin(a) * view.v)));
+        }
       break;
+    }
   }
 }
 

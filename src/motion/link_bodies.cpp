@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <urdf_model/model.h>
 
+#include "motion/urdf_capsules.hpp"
 #include "motion/urdf_model.hpp"
 
 namespace armctl::motion {
@@ -15,6 +16,7 @@ const char* to_string(Shape::Kind kind) {
     case Shape::Kind::box: return "box";
     case Shape::Kind::cylinder: return "cylinder";
     case Shape::Kind::sphere: return "sphere";
+    case Shape::Kind::capsule: return "capsule";
   }
   return "?";
 }
@@ -24,6 +26,7 @@ double bounding_radius(const Shape& s) {
     case Shape::Kind::box: return 0.5 * s.size.norm();
     case Shape::Kind::cylinder: return std::hypot(s.size.x(), 0.5 * s.size.y());
     case Shape::Kind::sphere: return s.size.x();
+    case Shape::Kind::capsule: return 0.5 * s.size.y() + s.size.x();
   }
   return 0;
 }
@@ -44,6 +47,10 @@ void world_bounds(const Shape& s, const Eigen::Isometry3d& pose, Eigen::Vector3d
     }
     case Shape::Kind::sphere:
       half = Eigen::Vector3d::Constant(s.size.x());
+      break;
+    case Shape::Kind::capsule:
+      // The segment between the half spheres' centres, grown by the radius every way.
+      half = 0.5 * s.size.y() * r.col(2).cwiseAbs() + Eigen::Vector3d::Constant(s.size.x());
       break;
   }
   low = pose.translation() - half;
@@ -94,14 +101,23 @@ Error config_error(std::string message) { return Error{ErrorKind::invalid_config
 
 bool positive(double v) { return std::isfinite(v) && v > 0; }
 
-Result<Shape> collision_shape(const urdf::Collision& c, const std::string& link, std::size_t n) {
+Result<Shape> collision_shape(const urdf::Collision& c, const std::string& link, std::size_t n,
+                              std::span<const UrdfCapsule> capsules) {
   const std::string what = fmt::format("link '{}' <collision> {}", link, n + 1);
   if (!c.geometry) return config_error(fmt::format("URDF {}: no <geometry>", what));
   Shape s;
   auto pose = urdf_pose(c.origin, what);
   if (!pose) return pose.error();
   s.pose = *pose;
-  const char* allowed = "a <box size>, <cylinder radius length> or <sphere radius> with sizes above 0 (m)";
+  // urdfdom read it as a cylinder of its size (motion/urdf_capsules.hpp), checked there.
+  for (const UrdfCapsule& capsule : capsules) {
+    if (capsule.link != link || capsule.collision != n) continue;
+    s.kind = Shape::Kind::capsule;
+    s.size = {capsule.radius, capsule.length, 0};
+    return s;
+  }
+  const char* allowed =
+      "a <box size>, <cylinder radius length>, <sphere radius> or <capsule radius length> with sizes above 0 (m)";
   switch (c.geometry->type) {
     case urdf::Geometry::BOX: {
       const auto& d = static_cast<const urdf::Box&>(*c.geometry).dim;
@@ -139,7 +155,8 @@ Result<Shape> collision_shape(const urdf::Collision& c, const std::string& link,
 Result<LinkBodies> read_link_bodies(std::string_view urdf_xml, std::string_view base_link,
                                     std::span<const std::string> joint_names,
                                     std::span<const OriginLength> lengths) {
-  auto parsed = parse_urdf_model(std::string(urdf_xml));
+  std::vector<UrdfCapsule> capsules;
+  auto parsed = parse_urdf_model(std::string(urdf_xml), &capsules);
   if (!parsed) return parsed.error();
   if (Status s = apply_origin_lengths(**parsed, lengths); !s) return s.error();
   const urdf::ModelInterface& model = **parsed;
@@ -179,7 +196,7 @@ Result<LinkBodies> read_link_bodies(std::string_view urdf_xml, std::string_view 
       }
     }
     for (std::size_t n = 0; n < link->collision_array.size(); ++n) {
-      auto shape = collision_shape(*link->collision_array[n], link->name, n);
+      auto shape = collision_shape(*link->collision_array[n], link->name, n, capsules);
       if (!shape) return shape.error();
       body.shapes.push_back(*shape);
     }

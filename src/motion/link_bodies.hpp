@@ -18,14 +18,17 @@
 namespace armctl::motion {
 
 // A convex primitive centred on its frame, as URDF and FCL define them: a box's edge
-// lengths, a cylinder's radius and length along its z axis, a sphere's radius (m).
+// lengths, a cylinder's radius and length along its z axis, a sphere's radius (m); a capsule
+// (FCL's, MuJoCo's; URDF has none: motion/urdf_capsules.hpp) is a cylinder of `length` along z
+// with a half sphere of its radius on each end, so `length` + 2 radius long in all.
 struct Shape {
-  enum class Kind { box, cylinder, sphere };
+  enum class Kind { box, cylinder, sphere, capsule };
   Kind kind = Kind::box;
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();  // box: x y z; cylinder: radius, length, 0; sphere: radius, 0, 0
+  // box: x y z; cylinder and capsule: radius, length, 0; sphere: radius, 0, 0
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // in its body's frame
 };
-const char* to_string(Shape::Kind kind);  // "box", "cylinder", "sphere"
+const char* to_string(Shape::Kind kind);  // "box", "cylinder", "sphere", "capsule"
 
 // Half the widest extent of `shape` about its own centre (m): every point of it lies within.
 double bounding_radius(const Shape& shape);

@@ -119,7 +119,7 @@ std::string line_column(std::string_view text, std::size_t at) {
 
 }  // namespace
 
-Result<urdf::ModelInterfaceSharedPtr> parse_urdf_model(const std::string& xml) {
+Result<urdf::ModelInterfaceSharedPtr> parse_urdf_model(const std::string& xml, std::vector<UrdfCapsule>* capsules) {
   if (const auto at = bad_utf8_at(xml); at != std::string_view::npos) {
     return config_error(fmt::format("URDF not accepted: byte {} is not UTF-8 text (a URDF is XML, UTF-8 encoded)", at));
   }
@@ -128,13 +128,17 @@ Result<urdf::ModelInterfaceSharedPtr> parse_urdf_model(const std::string& xml) {
                                     "(URDF values are numbers, names and file names)",
                                     line_column(xml, at)));
   }
+  // Checked UTF-8 above: TinyXML may read it.
+  auto plain = without_capsules(xml);
+  if (!plain) return plain.error();
+  if (capsules) *capsules = std::move(plain->capsules);
   std::lock_guard lock(parse_mutex());
   CollectingHandler handler;
   console_bridge::useOutputHandler(&handler);
   urdf::ModelInterfaceSharedPtr model;
   std::string exception_text;
   try {
-    model = urdf::parseURDF(without_percent_signs(xml));
+    model = urdf::parseURDF(without_percent_signs(plain->xml));
   } catch (const std::exception& e) {
     exception_text = e.what();
   }

@@ -6,18 +6,23 @@
 
 #include <span>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <urdf_world/types.h>
 #include <urdf_model/model.h>
 
 #include "core/error.hpp"
+#include "motion/urdf_capsules.hpp"
 #include "motion/urdf_chain.hpp"
 
 namespace armctl::motion {
 
-// The parsed document, or invalid_config saying what urdfdom (or the guards) refused.
-Result<urdf::ModelInterfaceSharedPtr> parse_urdf_model(const std::string& xml);
+// The parsed document, or invalid_config saying what urdfdom (or the guards) refused. Its
+// <capsule> shapes, which urdfdom does not know, reach it as cylinders of their size; where
+// they were goes to `capsules` when given (motion/urdf_capsules.hpp).
+Result<urdf::ModelInterfaceSharedPtr> parse_urdf_model(const std::string& xml,
+                                                        std::vector<UrdfCapsule>* capsules = nullptr);
 
 // Every joint named in `lengths` gets its <origin> offset scaled to that length, the
 // direction kept. Refused (invalid_config, naming the joint): a joint the URDF does not have,

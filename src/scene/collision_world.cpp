@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
@@ -22,6 +23,7 @@ std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry(const motion::Shape& s) {
     case motion::Shape::Kind::box: return std::make_shared<fcl::Boxd>(s.size.x(), s.size.y(), s.size.z());
     case motion::Shape::Kind::cylinder: return std::make_shared<fcl::Cylinderd>(s.size.x(), s.size.y());
     case motion::Shape::Kind::sphere: return std::make_shared<fcl::Sphered>(s.size.x());
+    case motion::Shape::Kind::capsule: return std::make_shared<fcl::Capsuled>(s.size.x(), s.size.y());
   }
   return nullptr;
 }

@@ -64,20 +64,25 @@ Eigen::Vector3d mm_vector(ObjectReader& r, const json& v, const std::string& pat
 }
 
 motion::Shape read_shape(const std::string& src, ObjectReader& r, ObjectRole& role) {
-  const char* kinds = "exactly one of box: [x, y, z], cylinder: {radius, length}, sphere: {radius}, table: {top, size, center} (mm)";
+  const char* kinds =
+      "exactly one of box: [x, y, z], cylinder: {radius, length}, capsule: {radius, length}, sphere: {radius}, table: "
+      "{top, size, center} (mm)";
   const json* box = r.find("box");
   const json* cylinder = r.find("cylinder");
+  const json* capsule = r.find("capsule");
   const json* sphere = r.find("sphere");
   const json* table = r.find("table");
-  const int given = (box != nullptr) + (cylinder != nullptr) + (sphere != nullptr) + (table != nullptr);
+  const int given = (box != nullptr) + (cylinder != nullptr) + (capsule != nullptr) + (sphere != nullptr) + (table != nullptr);
   if (given != 1) r.fail(r.at("box"), fmt::format("{} shapes given; wants {}", given, kinds));
   motion::Shape s;
   if (box != nullptr) {
     s.kind = motion::Shape::Kind::box;
     s.size = mm_vector(r, *box, r.at("box"), 3, kMinSizeMm, kMaxSizeMm);
-  } else if (cylinder != nullptr) {
-    ObjectReader c(src, *cylinder, r.at("cylinder"));
-    s.kind = motion::Shape::Kind::cylinder;
+  } else if (cylinder != nullptr || capsule != nullptr) {
+    // A capsule's length is its straight part's, between the centres of its half spheres.
+    const char* key = cylinder != nullptr ? "cylinder" : "capsule";
+    ObjectReader c(src, cylinder != nullptr ? *cylinder : *capsule, r.at(key));
+    s.kind = cylinder != nullptr ? motion::Shape::Kind::cylinder : motion::Shape::Kind::capsule;
     s.size = {c.number("radius", kMinSizeMm, kMaxSizeMm) / kMmPerM, c.number("length", kMinSizeMm, kMaxSizeMm) / kMmPerM, 0};
     c.finish();
   } else if (sphere != nullptr) {
@@ -141,7 +146,7 @@ SceneObject read_object(const std::string& src, const json& v, const std::string
     if (!attached->is_string() || attached->get<std::string>() != "tool") {
       r.fail(r.at("attached"), fmt::format("{}: the only place a part can be held is \"tool\"", printable(attached->dump())));
     }
-    if (o.role != ObjectRole::obstacle) r.fail(r.at("attached"), "only a box, cylinder or sphere can be held by the tool");
+    if (o.role != ObjectRole::obstacle) r.fail(r.at("attached"), "only a box, cylinder, capsule or sphere can be held by the tool");
     o.attached = true;
   }
   r.finish();
@@ -202,7 +207,8 @@ std::string scene_json(const Scene& scene) {
       switch (o.shape.kind) {
         case motion::Shape::Kind::box: j["box"] = mm(o.shape.size, 3); break;
         case motion::Shape::Kind::cylinder:
-          j["cylinder"] = {{"radius", o.shape.size.x() * kMmPerM}, {"length", o.shape.size.y() * kMmPerM}};
+        case motion::Shape::Kind::capsule:
+          j[motion::to_string(o.shape.kind)] = {{"radius", o.shape.size.x() * kMmPerM}, {"length", o.shape.size.y() * kMmPerM}};
           break;
         case motion::Shape::Kind::sphere: j["sphere"] = {{"radius", o.shape.size.x() * kMmPerM}}; break;
       }

@@ -1,4 +1,4 @@
-// What stands around the arm: a table, boxes, cylinders, spheres and keep-out zones, each
+// What stands around the arm: a table, boxes, cylinders, capsules, spheres and keep-out zones, each
 // named and placed in the arm's base frame, and parts held by the tool, which move with it.
 // Read from a scene file (docs/scene.md): JSON, lengths in millimetres, angles in degrees;
 // held here in SI (m, rad) like every other value of the arm layer. Pure: text in, value out.

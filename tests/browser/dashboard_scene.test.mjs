@@ -79,8 +79,11 @@ describe('xArm', () => {
       { name: 'camera', keep_out: true, box: [200, 100, 300], at: [-200, 0, 150] },
       { name: 'ball', sphere: { radius: 15 }, at: [300, 200, 15] },
       { name: 'part', cylinder: { radius: 10, length: 40 }, at: [0, 0, 0], attached: 'tool' },
+      { name: 'pipe', capsule: { radius: 15, length: 200 }, at: [0, 250, 40], rpy: [0, 90, 0] },
     ] });
-    await waitFor(async () => (await view(page, 'sceneObjects')).length === 5, 'five objects drawn');
+    await waitFor(async () => (await view(page, 'sceneObjects')).length === 6, 'six objects drawn');
+    const pipe = await objectNamed(page, 'pipe');
+    assert.deepEqual([pipe.kind, pipe.at], ['capsule', [0, 250, 40]]);
     const box = await objectNamed(page, 'box');
     assert.deepEqual([box.role, box.kind], ['obstacle', 'box']);
     assert.ok(near(box.at, [150, -100, 40]), JSON.stringify(box));

@@ -1,7 +1,7 @@
 // The URDF chain reader on the shipped URDFs and on broken ones: each refusal names the
 // element and what is allowed.
 #include "motion/urdf_chain.hpp"
-#include "motion/urdf_with_lengths.hpp"
+#include "motion/urdf_for_viewers.hpp"
 
 #include <algorithm>
 
@@ -72,7 +72,7 @@ std::size_t count(const std::string& text, const std::string& what) {
 TEST(UrdfChain, LengthsWrittenIntoTheTextGiveTheChainReadWithThem) {
   const std::string urdf = testing::urdf_text("scara");
   const std::vector<OriginLength> lengths{{"UAE", 0.26}, {"tool_point", 0.18}};
-  auto text = urdf_with_origin_lengths(urdf, lengths);
+  auto text = urdf_for_viewers(urdf, lengths);
   ASSERT_TRUE(text) << text.error().message;
   auto want = read_urdf_chain(urdf, "base_link", "tool", lengths);
   auto got = read_urdf_chain(*text, "base_link", "tool");
@@ -86,17 +86,17 @@ TEST(UrdfChain, LengthsWrittenIntoTheTextGiveTheChainReadWithThem) {
   for (const char* element : {"<visual", "<collision", "<!--", "<material", "<limit"})
     EXPECT_EQ(count(*text, element), count(urdf, element)) << element;
   // No lengths: the text as written; a bad one: refused naming the joint.
-  auto same = urdf_with_origin_lengths(urdf, {});
+  auto same = urdf_for_viewers(urdf, {});
   ASSERT_TRUE(same);
   EXPECT_EQ(*same, urdf);
   for (const std::vector<OriginLength>& bad :
        {std::vector<OriginLength>{{"SHOULDER", 0.1}}, std::vector<OriginLength>{{"nope", 0.1}},
         std::vector<OriginLength>{{"UAE", -1.0}}}) {
-    auto r = urdf_with_origin_lengths(urdf, bad);
+    auto r = urdf_for_viewers(urdf, bad);
     ASSERT_FALSE(r) << bad[0].joint;
     EXPECT_THAT(r.error().message, HasSubstr(bad[0].joint));
   }
-  EXPECT_FALSE(urdf_with_origin_lengths("<robot", lengths));
+  EXPECT_FALSE(urdf_for_viewers("<robot", lengths));
 }
 
 TEST(UrdfChain, XarmChainIsFiveServosBaseToWrist) {

@@ -13,6 +13,7 @@
 #include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "arm/arm_model.hpp"
 #include "random_scene.hpp"
@@ -38,6 +39,10 @@ double signed_distance(const Shape& s, const Eigen::Vector3d& q) {
     case Shape::Kind::cylinder:
       return combine(std::hypot(q.x(), q.y()) - s.size.x(), std::abs(q.z()) - 0.5 * s.size.y(), -1.0);
     case Shape::Kind::sphere: return q.norm() - s.size.x();
+    case Shape::Kind::capsule: {  // from the segment between the half spheres' centres
+      const double h = 0.5 * s.size.y();
+      return (q - Eigen::Vector3d(0, 0, std::clamp(q.z(), -h, h))).norm() - s.size.x();
+    }
   }
   return 0;
 }
@@ -76,16 +81,26 @@ std::vector<Eigen::Vector3d> samples(const Shape& s, double step) {
       }
       break;
     }
-    case Shape::Kind::sphere: {
-      const double r = s.size.x();
-      const int n = std::max(8, count(M_PI * r));
-      out.emplace_back(0, 0, 0);
-      for (int i = 0; i <= n; ++i) {
-        const double th = M_PI * i / n;
-        for (int j = 0; j < 2 * n; ++j) {
-          const double ph = M_PI * j / n;
-          out.emplace_back(r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), r * std::cos(th));
+    case Shape::Kind::sphere:
+    case Shape::Kind::capsule: {
+      // A sphere's surface about each end of the segment (one point for a sphere), and the
+      // segment's own points with the cylinder's surface about them.
+      const double r = s.size.x(), h = (s.kind == Shape::Kind::capsule ? 0.5 * s.size.y() : 0.0);
+      const int n = std::max(8, count(M_PI * r)), nz = h > 0 ? count(2 * h) : 0;
+      const std::vector<double> ends = h > 0 ? std::vector<double>{-h, h} : std::vector<double>{0.0};
+      for (const double end : ends) {
+        for (int i = 0; i <= n; ++i) {
+          const double th = M_PI * i / n;
+          for (int j = 0; j < 2 * n; ++j) {
+            const double ph = M_PI * j / n;
+            out.emplace_back(r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), end + r * std::cos(th));
+          }
         }
+      }
+      for (int k = 0; k <= nz; ++k) {
+        const double z = nz ? -h + 2 * h * k / nz : 0.0;
+        out.emplace_back(0, 0, z);
+        for (int j = 0; nz && j < 2 * n; ++j) out.emplace_back(r * std::cos(M_PI * j / n), r * std::sin(M_PI * j / n), z);
       }
       break;
     }
@@ -187,6 +202,24 @@ TEST(CollisionWorld, HandCheckedTouchingGrazingInside) {
     const Clearance c = w->clearance(zero);
     EXPECT_EQ(c.distance, kClearanceHorizon);
     EXPECT_TRUE(c.first.empty());
+  }
+}
+
+// A capsule's ends are half spheres: along its axis it reaches its radius past the straight
+// part, where a cylinder of the same length ends flat.
+TEST(CollisionWorld, ACapsuleReachesItsRadiusBeyondItsStraightPart) {
+  for (const auto kind : {Shape::Kind::capsule, Shape::Kind::cylinder}) {
+    SceneObject o;
+    o.name = "pipe";
+    o.shape.kind = kind;
+    o.shape.size = {0.01, 0.06, 0};  // r 10 mm, straight part 60 mm
+    o.shape.pose.translation() = Eigen::Vector3d(0.15, 0, 0);  // its axis along x: 120..180 mm
+    o.shape.pose.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    auto w = world_of(Scene{{o}, {}});
+    const std::vector<double> zero{0.0};
+    const Clearance c = w->clearance(zero);  // from the box's end at 100 mm
+    EXPECT_NEAR(c.distance, kind == Shape::Kind::capsule ? 0.01 : 0.02, 1e-6) << motion::to_string(kind);
+    EXPECT_EQ(c.second, kind == Shape::Kind::capsule ? "capsule 'pipe'" : "cylinder 'pipe'");
   }
 }
 

@@ -18,7 +18,7 @@ inline Scene random_scene(double reach, int count, std::mt19937_64& rng) {
   for (int k = 0; k < count; ++k) {
     SceneObject o;
     o.name = "o" + std::to_string(k);
-    o.shape.kind = static_cast<motion::Shape::Kind>(k % 3);
+    o.shape.kind = static_cast<motion::Shape::Kind>(k % 4);  // box, cylinder, sphere, capsule
     o.shape.size = {0.01 + 0.06 * unit(rng), 0.01 + 0.06 * unit(rng), 0.01 + 0.06 * unit(rng)};
     const double r = reach * unit(rng), a = 2 * M_PI * unit(rng);
     o.shape.pose.translation() = Eigen::Vector3d(r * std::cos(a), r * std::sin(a), reach * (unit(rng) - 0.3));

@@ -23,10 +23,14 @@ TEST(SceneFile, ReadsEveryKindInMillimetresAndDegrees) {
       {"name": "can", "cylinder": {"radius": 30, "length": 120}, "at": [0, 200, 60]},
       {"name": "ball", "sphere": {"radius": 25}, "at": [100, -100, 25]},
       {"name": "door", "keep_out": true, "box": [200, 100, 300], "at": [0, -220, 150]},
-      {"name": "part", "attached": "tool", "box": [20, 20, 40], "at": [20, 0, 0]}]})",
+      {"name": "part", "attached": "tool", "box": [20, 20, 40], "at": [20, 0, 0]},
+      {"name": "pipe", "capsule": {"radius": 15, "length": 200}, "at": [0, 250, 40], "rpy": [0, 90, 0]}]})",
                        "s.json");
   ASSERT_TRUE(s.ok()) << s.error().message;
-  ASSERT_EQ(s->objects.size(), 6u);
+  ASSERT_EQ(s->objects.size(), 7u);
+  EXPECT_EQ(s->objects[6].shape.kind, motion::Shape::Kind::capsule);
+  EXPECT_TRUE(s->objects[6].shape.size.isApprox(Eigen::Vector3d(0.015, 0.2, 0), 1e-12));
+  EXPECT_EQ(describe(s->objects[6]), "capsule 'pipe'");
   const auto& desk = s->objects[0];
   EXPECT_EQ(desk.role, ObjectRole::table);
   EXPECT_NEAR(desk.shape.pose.translation().z() + 0.5 * desk.shape.size.z(), -0.005, 1e-12);  // the top
@@ -49,7 +53,8 @@ TEST(SceneFile, ReadsEveryKindInMillimetresAndDegrees) {
 TEST(SceneFile, WritesWhatItReadsBack) {
   auto s = parse_scene(R"({"objects": [{"name": "desk", "table": {"top": 12}},
       {"name": "box", "box": [60, 80, 100], "at": [170, 0, 50], "rpy": [10, 20, 30]},
-      {"name": "part", "attached": "tool", "sphere": {"radius": 5}, "at": [1, 2, 3]}]})",
+      {"name": "part", "attached": "tool", "sphere": {"radius": 5}, "at": [1, 2, 3]},
+      {"name": "pipe", "capsule": {"radius": 15, "length": 200}, "at": [0, 250, 40], "rpy": [0, 90, 0]}]})",
                        "s.json");
   ASSERT_TRUE(s.ok()) << s.error().message;
   auto back = parse_scene(scene_json(*s), "written");
@@ -61,6 +66,7 @@ TEST(SceneFile, WritesWhatItReadsBack) {
     EXPECT_EQ(back->objects[i].attached, s->objects[i].attached);
     EXPECT_TRUE(back->objects[i].shape.pose.isApprox(s->objects[i].shape.pose, 1e-9)) << i;
     EXPECT_TRUE(back->objects[i].shape.size.isApprox(s->objects[i].shape.size, 1e-9)) << i;
+    EXPECT_EQ(back->objects[i].shape.kind, s->objects[i].shape.kind) << i;
   }
 }
 
@@ -73,7 +79,13 @@ TEST(SceneFile, TheShippedExampleReads) {
 TEST(SceneFile, EveryMistakeNamesTheKeyAndWhatIsAllowed) {
   EXPECT_EQ(error_of(R"({})"), "s.json: objects: missing");
   EXPECT_EQ(error_of(R"({"objects": [{"name": "a", "box": [1, 1, 1], "at": [0, 0, 0], "colour": 1}]})"),
-            "s.json: objects[0].colour: unknown key (allowed here: comment, at, attached, box, cylinder, keep_out, name, rpy, sphere, table)");
+            "s.json: objects[0].colour: unknown key (allowed here: comment, at, attached, box, capsule, cylinder, keep_out, name, rpy, sphere, table)");
+  EXPECT_NE(error_of(R"({"objects": [{"name": "a", "capsule": {"radius": 5}, "at": [0, 0, 0]}]})")
+                .find("objects[0].capsule.length: missing"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"objects": [{"name": "a", "capsule": {"radius": 5, "length": 1, "height": 2}, "at": [0, 0, 0]}]})")
+                .find("objects[0].capsule.height: unknown key"),
+            std::string::npos);
   EXPECT_NE(error_of(R"({"objects": [{"name": "a", "box": [1, 1], "at": [0, 0, 0]}]})")
                 .find("objects[0].box: must be an array of 3 numbers in 0.1..10000 (mm)"),
             std::string::npos);

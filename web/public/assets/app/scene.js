@@ -1,5 +1,5 @@
 // The planning scene (docs/scene.md, docs/http-api.md "Scene"): the objects listed, a box,
-// cylinder or sphere added with its size and place, an object moved (its position edited)
+// cylinder, capsule or sphere added with its size and place, an object moved (its position edited)
 // or removed, and the scene saved to the file armctl serve was started with. Changes need
 // control (the panel is disabled while another client has it).
 // The scene itself is shared with the 3D view (onScene): read at start, after each change
@@ -39,6 +39,7 @@ export async function refreshScene() {
 const SHAPES = {
   box: [['x', 'size x'], ['y', 'size y'], ['z', 'size z']],
   cylinder: [['radius', 'radius'], ['length', 'length']],
+  capsule: [['radius', 'radius'], ['length', 'length']],
   sphere: [['radius', 'radius']],
 };
 
@@ -48,6 +49,7 @@ function describe(o) {
   const role = o.keep_out ? 'keep-out ' : o.attached ? 'held ' : '';
   if (o.box) return `${role}box ${o.box.map((v) => fmt(v)).join(' × ')} mm`;
   if (o.cylinder) return `${role}cylinder r ${fmt(o.cylinder.radius)} × ${fmt(o.cylinder.length)} mm`;
+  if (o.capsule) return `${role}capsule r ${fmt(o.capsule.radius)} × ${fmt(o.capsule.length)} mm`;
   if (o.sphere) return `${role}sphere r ${fmt(o.sphere.radius)} mm`;
   return 'unknown shape';
 }

@@ -1,4 +1,4 @@
-// The planning scene in the 3D view (docs/scene.md): the table, boxes, cylinders and spheres
+// The planning scene in the 3D view (docs/scene.md): the table, boxes, cylinders, capsules and spheres
 // as GET /api/v1/scene gives them, keep-out zones see-through red, parts held by the tool
 // hung from the tool link so that they move with it; the fence (a workspace box) when the
 // model, the scene or the state has one ({"fence": {"min": [x, y, z], "max": [x, y, z]}} mm);
@@ -54,6 +54,11 @@ function shapeOf(object) {
     kind = 'cylinder';
     geometry = new THREE.CylinderGeometry(object.cylinder.radius * MM, object.cylinder.radius * MM, object.cylinder.length * MM, 32);
     geometry.rotateX(Math.PI / 2); // three.js cylinders stand along y; the scene's along z
+  } else if (object.capsule) {
+    // Its length is the straight part's, between the centres of its two half spheres (as FCL's).
+    kind = 'capsule';
+    geometry = new THREE.CapsuleGeometry(object.capsule.radius * MM, object.capsule.length * MM, 8, 32);
+    geometry.rotateX(Math.PI / 2);
   } else if (object.sphere) {
     kind = 'sphere';
     geometry = new THREE.SphereGeometry(object.sphere.radius * MM, 32, 16);
