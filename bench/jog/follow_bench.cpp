@@ -18,6 +18,9 @@
 //    position read on the leader's link plus the wire time of one command on the
 //    follower's (the xArm: its multi-servo frame; the SCARA: one transaction per joint).
 //  - follow_latency_..._mean: the same, the mean over the readings.
+//  - follow_latency_..._no_readback: the worst over the points that no read-back of the
+//    follower (its following-error and stall checks, every few cycles) came before: how far
+//    the rest of the chain is from the limit.
 //  - follow_latency_..._one_thread: the leader read on the follower's thread instead, once
 //    per cycle (the two links' times add up: the follower's own read-backs, every few
 //    cycles, then stand between a sample and the point).
@@ -81,6 +84,7 @@ class TimedDevice final : public arm::ArmDevice {
   }
   // One read of the device itself; `took` its time on the device's clock.
   Result<std::vector<double>> read_inner(Duration* took = nullptr) {
+    ++reads;
     const TimePoint t0 = clock().now();
     auto r = cpu_.run([&] { return inner_->read_positions(); });
     if (took) *took = clock().now() - t0;
@@ -107,6 +111,7 @@ class TimedDevice final : public arm::ArmDevice {
 
   std::function<Result<std::vector<double>>()> read_as;  // instead of a plain read
   std::function<void(TimePoint)> on_stream;  // a command's first byte on this device's clock
+  std::size_t reads = 0;  // of the device itself (a follower's read-backs)
   arm::ArmDevice& inner() { return *inner_; }
 
  private:
@@ -181,6 +186,9 @@ enum class LeaderReader { own_thread, one_thread };
 
 struct Figures {
   double worst_ms = 0, mean_ms = 0, floor_ms = 0;
+  // The worst over the points that no read-back of the follower's came before (since the
+  // point before): what the latency is where the follower's own link does not hold it up.
+  double worst_no_readback_ms = 0;
   std::size_t points = 0, over = 0;
   jog::FollowReport report;
 };
@@ -234,12 +242,17 @@ Figures run(const Session& session, LeaderReader reader, Xarm& leader, arm::Arm&
   std::size_t followed = 0;  // readings taken by the points so far
   double cpu_at_point = thread_cpu_ns(), sim_at_point = cpu.ns;
   std::vector<double> latencies;
+  std::vector<bool> behind_readback;  // per latency: a read-back since the point before
+  std::size_t reads_at_point = follower_device.reads;
   follower_device.on_stream = [&](TimePoint first_byte) {
     if (!start) return;
     const double host_ns = (thread_cpu_ns() - cpu_at_point) - (cpu.ns - sim_at_point);
     cpu_at_point = thread_cpu_ns(), sim_at_point = cpu.ns;
-    if (readings.size() > followed && followed > 0)
+    if (readings.size() > followed && followed > 0) {
       latencies.push_back(ms(first_byte - readings[followed - 1]) + host_ns / 1e6);
+      behind_readback.push_back(follower_device.reads != reads_at_point);
+    }
+    reads_at_point = follower_device.reads;
     followed = readings.size();
   };
 
@@ -261,7 +274,9 @@ Figures run(const Session& session, LeaderReader reader, Xarm& leader, arm::Arm&
   f.report = std::move(*r);
   f.floor_ms = ms(read_total) / double(readings.size()) + ms(follower_device.stream_period(false));
   f.points = latencies.size();
-  for (double l : latencies) {
+  for (std::size_t k = 0; k < latencies.size(); ++k) {
+    const double l = latencies[k];
+    if (!behind_readback[k]) f.worst_no_readback_ms = std::max(f.worst_no_readback_ms, l);
     f.worst_ms = std::max(f.worst_ms, l);
     f.mean_ms += l / double(latencies.size());
     f.over += l > 1.5 * f.floor_ms;
@@ -292,6 +307,7 @@ void bench_session(const Session& session, std::vector<std::optional<double>> le
   const std::string name = "follow_latency_" + session.name;
   print(name, own.worst_ms, "ms", 1.5 * own.floor_ms);
   print(name + "_mean", own.mean_ms, "ms", 1.5 * own.floor_ms);
+  print(name + "_no_readback", own.worst_no_readback_ms, "ms", 1.5 * own.floor_ms);
   print(name + "_one_thread", one.worst_ms, "ms", 1.5 * one.floor_ms);
   const double tracking_limit_mm = fastest * 0.1 * 1e3;
   print("follow_tracking_" + session.name + "_largest", own.report.largest_tracking_error * 1e3, "mm",
