@@ -244,6 +244,29 @@ describe('xArm', () => {
     await page.getByRole('button', { name: 'Remove crate' }).click();
     await waitFor(async () => (await script.get('/api/v1/scene')).objects.length === 0, 'the crate removed');
     await waitFor(async () => (await view(page, 'sceneObjects')).length === 0, 'the crate gone from the view');
+
+    // A capsule at a slant: turned 45 deg about y. An angle past the file's limits says so.
+    await page.getByRole('textbox', { name: 'New object name' }).fill('pipe');
+    await page.getByRole('combobox', { name: 'New object shape' }).selectOption('capsule');
+    await page.getByRole('spinbutton', { name: 'New object radius (mm)' }).fill('15');
+    await page.getByRole('spinbutton', { name: 'New object length (mm)' }).fill('200');
+    await page.getByRole('spinbutton', { name: 'New object y (mm)' }).fill('250');
+    await page.getByRole('spinbutton', { name: 'New object pitch (deg)' }).fill('400');
+    const none = await sentTo(page, '/api/v1/scene/objects/pipe', async () => {
+      await page.getByRole('button', { name: 'Add object' }).click();
+    });
+    assert.ok(await page.getByText('New object pitch (deg): 400 is outside -360..360 deg').isVisible());
+    assert.deepEqual(none, [], 'nothing sent');
+    await page.getByRole('spinbutton', { name: 'New object pitch (deg)' }).fill('45');
+    await page.getByRole('button', { name: 'Add object' }).click();
+    await waitFor(async () => (await script.get('/api/v1/scene')).objects.length === 1, 'the capsule in the scene');
+    const pipe = (await script.get('/api/v1/scene')).objects[0];
+    assert.deepEqual([pipe.capsule, pipe.at], [{ radius: 15, length: 200 }, [150, 250, 30]]);
+    assert.ok(near(pipe.rpy, [0, 45, 0], 1e-6), JSON.stringify(pipe.rpy));
+    await waitFor(async () => (await objectNamed(page, 'pipe'))?.kind === 'capsule', 'the capsule drawn');
+    await page.getByRole('spinbutton', { name: 'New object pitch (deg)' }).fill('0');
+    await page.getByRole('button', { name: 'Remove pipe' }).click();
+    await waitFor(async () => (await view(page, 'sceneObjects')).length === 0, 'the capsule gone from the view');
     assert.deepEqual(problems, []);
   });
 

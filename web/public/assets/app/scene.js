@@ -11,8 +11,9 @@ const POLL_MS = 2000;
 // The scene file's limits (docs/scene.md "Scene files"): checked here too, so that each
 // field says what is wrong before anything is sent; the server checks them again.
 const NAME = /^[A-Za-z0-9_.-]{1,40}$/;
-const SIZE = { min: 0.1, max: 10000 };
-const COORDINATE = { min: -10000, max: 10000 };
+const SIZE = { min: 0.1, max: 10000, unit: 'mm' };
+const COORDINATE = { min: -10000, max: 10000, unit: 'mm' };
+const ANGLE = { min: -360, max: 360, unit: 'deg' };
 
 const listeners = new Set();
 let current = null;
@@ -66,7 +67,7 @@ function numberField(label, range, value = '') {
     const v = Number(text);
     let problem = '';
     if (text === '') problem = 'required';
-    else if (!Number.isFinite(v) || v < range.min || v > range.max) problem = `${text} is outside ${range.min}..${range.max} mm`;
+    else if (!Number.isFinite(v) || v < range.min || v > range.max) problem = `${text} is outside ${range.min}..${range.max} ${range.unit}`;
     error.textContent = problem ? `${label}: ${problem}` : '';
     input.setAttribute('aria-invalid', String(Boolean(problem)));
     return problem ? null : v;
@@ -138,6 +139,8 @@ export function initScene() {
   shape.addEventListener('change', showSizes);
   showSizes();
   const position = ['x', 'y', 'z'].map((a, i) => numberField(`New object ${a} (mm)`, COORDINATE, [150, 0, 25][i]));
+  // Turned (Z-Y-X, as the scene file's rpy): a cylinder or capsule lying down, a box at an angle.
+  const turn = ['roll', 'pitch', 'yaw'].map((a) => numberField(`New object ${a} (deg)`, ANGLE, 0));
   const keepOut = el('input', { type: 'checkbox', 'aria-label': 'Keep-out zone' });
   const add = el('button', { type: 'button', onclick: (e) => busy(e.currentTarget, async () => {
     const n = name.value.trim();
@@ -145,8 +148,10 @@ export function initScene() {
     name.setAttribute('aria-invalid', String(!NAME.test(n)));
     const size = sizeFields.map(({ key, field }) => [key, field.check()]);
     const at = position.map((f) => f.check());
-    if (!NAME.test(n) || size.some(([, v]) => v === null) || at.some((v) => v === null)) return;
+    const rpy = turn.map((f) => f.check());
+    if (!NAME.test(n) || size.some(([, v]) => v === null) || at.some((v) => v === null) || rpy.some((v) => v === null)) return;
     const object = { at };
+    if (rpy.some((v) => v !== 0)) object.rpy = rpy;
     if (shape.value === 'box') object.box = size.map(([, v]) => v);
     else object[shape.value] = Object.fromEntries(size);
     if (keepOut.checked) object.keep_out = true;
@@ -170,6 +175,7 @@ export function initScene() {
     el('div', { class: 'row', role: 'group', 'aria-label': 'Add an object' },
       el('span', { class: 'field' }, name, nameError), shape, sizes,
       el('span', { class: 'muted' }, 'at'), position.map((f) => f.wrap),
+      el('span', { class: 'muted' }, 'turned'), turn.map((f) => f.wrap),
       el('label', {}, keepOut, ' keep-out'), add),
     el('div', { class: 'row' }, save, file),
     formError, status);
