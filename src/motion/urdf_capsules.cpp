@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <tinyxml.h>
 
+#include "core/printable.hpp"
+
 namespace armctl::motion {
 
 namespace {
@@ -16,7 +18,7 @@ Result<double> size_of(const TiXmlElement& capsule, const char* attribute, const
   double v = 0;
   if (capsule.QueryDoubleAttribute(attribute, &v) != TIXML_SUCCESS || !std::isfinite(v) || !(v > 0))
     return config_error(fmt::format("URDF {}: <capsule {}=\"{}\">: wants a length above 0 (m)", what, attribute,
-                                    capsule.Attribute(attribute) ? capsule.Attribute(attribute) : "(missing)"));
+                                    capsule.Attribute(attribute) ? printable(capsule.Attribute(attribute)) : "(missing)"));
   return v;
 }
 
@@ -44,7 +46,7 @@ Result<UrdfWithoutCapsules> without_capsules(const std::string& xml) {
         TiXmlElement* geometry = e->FirstChildElement("geometry");
         TiXmlElement* capsule = geometry ? geometry->FirstChildElement("capsule") : nullptr;
         if (capsule == nullptr) continue;
-        const std::string what = fmt::format("link '{}' <{}> {}", name, kind, n + 1);
+        const std::string what = fmt::format("link '{}' <{}> {}", printable(name), kind, n + 1);
         auto radius = size_of(*capsule, "radius", what);
         if (!radius) return radius.error();
         auto length = size_of(*capsule, "length", what);

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <tinyxml.h>
 
+#include "core/printable.hpp"
 #include "motion/urdf_model.hpp"
 
 namespace armctl::motion {
@@ -25,13 +26,12 @@ const OriginLength* length_of(std::span<const OriginLength> lengths, const char*
 }
 
 // The <collision> or <visual> element `shape` (its geometry a <capsule>) made the capsule's
-// cylinder, and a copy of it with a sphere put after it for each end. `origin` is the
-// element's pose as urdfdom read it (the text's own when it gives none: identity).
-void expand_capsule(TiXmlElement& shape, const urdf::Pose& origin) {
-  TiXmlElement* capsule = shape.FirstChildElement("geometry")->FirstChildElement("capsule");
-  const double radius = std::stod(capsule->Attribute("radius"));
-  const double length = std::stod(capsule->Attribute("length"));
-  capsule->SetValue("cylinder");
+// cylinder, and a copy of it with a sphere put after it for each end. `origin` and `size` are
+// the element's pose and its capsule as urdfdom read them (a cylinder of its size:
+// motion/urdf_capsules.hpp, which checked the sizes).
+void expand_capsule(TiXmlElement& shape, const urdf::Pose& origin, const urdf::Cylinder& size) {
+  const double radius = size.radius, length = size.length;
+  shape.FirstChildElement("geometry")->FirstChildElement("capsule")->SetValue("cylinder");
   TiXmlNode* after = &shape;
   for (const double end : {-0.5 * length, 0.5 * length}) {
     TiXmlElement sphere_shape(shape);
@@ -88,17 +88,30 @@ Result<std::string> urdf_for_viewers(std::string_view urdf_xml, std::span<const 
     if (!parsed_link) continue;
     // Collect first: each expansion adds siblings. urdfdom's arrays are in document order.
     for (const char* kind : {"collision", "visual"}) {
-      std::vector<std::pair<TiXmlElement*, urdf::Pose>> found;
+      struct Found {
+        TiXmlElement* element;
+        urdf::Pose origin;
+        urdf::GeometrySharedPtr geometry;
+      };
+      std::vector<Found> found;
       std::size_t n = 0;
       for (TiXmlElement* e = link->FirstChildElement(kind); e; e = e->NextSiblingElement(kind), ++n) {
         const TiXmlElement* geometry = e->FirstChildElement("geometry");
         if (!geometry || !geometry->FirstChildElement("capsule")) continue;
         const bool collision = std::string(kind) == "collision";
         const std::size_t count = collision ? parsed_link->collision_array.size() : parsed_link->visual_array.size();
-        if (n >= count) return config_error(fmt::format("URDF link '{}': its <{}> elements are not as read", link->Attribute("name"), kind));
-        found.emplace_back(e, collision ? parsed_link->collision_array[n]->origin : parsed_link->visual_array[n]->origin);
+        Found f{e, {}, nullptr};
+        if (n < count) {
+          f.origin = collision ? parsed_link->collision_array[n]->origin : parsed_link->visual_array[n]->origin;
+          f.geometry = collision ? parsed_link->collision_array[n]->geometry : parsed_link->visual_array[n]->geometry;
+        }
+        if (!f.geometry || f.geometry->type != urdf::Geometry::CYLINDER)
+          return config_error(fmt::format("URDF link '{}': its <{}> elements are not as read",
+                                          printable(link->Attribute("name") ? link->Attribute("name") : ""), kind));
+        found.push_back(std::move(f));
       }
-      for (auto& [element, origin] : found) expand_capsule(*element, origin);
+      for (const Found& f : found)
+        expand_capsule(*f.element, f.origin, static_cast<const urdf::Cylinder&>(*f.geometry));
     }
   }
   TiXmlPrinter printer;

@@ -29,6 +29,16 @@ const pagePost = (page, p, body) => page.evaluate(async ({ p: path_, b }) => {
   await api.post(path_, b);
 }, { p, b: body });
 
+// The page's Add object form filled in: `name`, `shape`, and each field by its label after
+// "New object " ('radius (mm)': 20), in the order given (a shape shows its own size fields).
+async function fillNewObject(page, fields) {
+  for (const [key, value] of Object.entries(fields)) {
+    if (key === 'name') await page.getByRole('textbox', { name: 'New object name' }).fill(value);
+    else if (key === 'shape') await page.getByRole('combobox', { name: 'New object shape' }).selectOption(value);
+    else await page.getByRole('spinbutton', { name: `New object ${key}` }).fill(String(value));
+  }
+}
+
 // The console's line for a refused request comes a moment after the answer: waited for,
 // then taken off the list (expectRefused).
 async function refusedLogged(problems, status) {
@@ -210,12 +220,7 @@ describe('xArm', () => {
     await page.getByRole('button', { name: 'Add object' }).click();
     assert.ok(await page.getByText('New object name: 1..40 of a-z A-Z 0-9 _ - .').isVisible());
 
-    await page.getByRole('textbox', { name: 'New object name' }).fill('crate');
-    await page.getByRole('spinbutton', { name: 'New object size y (mm)' }).fill('40');
-    await page.getByRole('spinbutton', { name: 'New object z (mm)' }).fill('30');
-    await page.getByRole('combobox', { name: 'New object shape' }).selectOption('cylinder');
-    await page.getByRole('spinbutton', { name: 'New object radius (mm)' }).fill('20');
-    await page.getByRole('spinbutton', { name: 'New object length (mm)' }).fill('60');
+    await fillNewObject(page, { name: 'crate', 'size y (mm)': 40, 'z (mm)': 30, shape: 'cylinder', 'radius (mm)': 20, 'length (mm)': 60 });
     await page.getByRole('button', { name: 'Add object' }).click();
     await waitFor(async () => (await script.get('/api/v1/scene')).objects.length === 1, 'the cylinder in the scene');
     const added = (await script.get('/api/v1/scene')).objects[0];
@@ -246,12 +251,7 @@ describe('xArm', () => {
     await waitFor(async () => (await view(page, 'sceneObjects')).length === 0, 'the crate gone from the view');
 
     // A capsule at a slant: turned 45 deg about y. An angle past the file's limits says so.
-    await page.getByRole('textbox', { name: 'New object name' }).fill('pipe');
-    await page.getByRole('combobox', { name: 'New object shape' }).selectOption('capsule');
-    await page.getByRole('spinbutton', { name: 'New object radius (mm)' }).fill('15');
-    await page.getByRole('spinbutton', { name: 'New object length (mm)' }).fill('200');
-    await page.getByRole('spinbutton', { name: 'New object y (mm)' }).fill('250');
-    await page.getByRole('spinbutton', { name: 'New object pitch (deg)' }).fill('400');
+    await fillNewObject(page, { name: 'pipe', shape: 'capsule', 'radius (mm)': 15, 'length (mm)': 200, 'y (mm)': 250, 'pitch (deg)': 400 });
     const none = await sentTo(page, '/api/v1/scene/objects/pipe', async () => {
       await page.getByRole('button', { name: 'Add object' }).click();
     });
