@@ -21,6 +21,7 @@ struct CollisionWorld::Item {
   Eigen::Vector3d low = Eigen::Vector3d::Zero(), high = Eigen::Vector3d::Zero();  // fixed ones: bounds
   std::vector<int> chain;  // the links with a joint it hangs from, its own first; none when fixed
   BodyId id;               // which link or scene object it is
+  double radius = 0;       // motion::bounding_radius(shape), asked at every step of a motion check
 };
 
 }  // namespace armctl::scene

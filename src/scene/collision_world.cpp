@@ -98,6 +98,7 @@ Result<std::shared_ptr<const CollisionWorld>> CollisionWorld::build(ArmBodies ar
     }
   }
   for (Item& item : w->items_) {
+    item.radius = motion::bounding_radius(item.shape);
     for (int b = item.body; b >= 0; b = links.bodies[std::size_t(b)].parent)
       if (links.bodies[std::size_t(b)].joint >= 0 && std::size_t(links.bodies[std::size_t(b)].joint) < arm.joint_reach.size())
         item.chain.push_back(b);
@@ -330,6 +331,11 @@ double CollisionWorld::step_displacement_bound(const Placement& at, std::span<co
     const int j = links.bodies[std::size_t(body)].joint;
     return std::size_t(j) < n ? std::abs(travel[std::size_t(j)]) : 0.0;
   };
+  // Each moving link's axis in the base frame, once: the items below share them.
+  thread_local std::vector<Eigen::Vector3d> axes;
+  axes.resize(links.bodies.size());
+  for (std::size_t b = 0; b < links.bodies.size(); ++b)
+    if (links.bodies[b].joint >= 0 && !links.bodies[b].prismatic) axes[b] = at.bodies[b].linear() * links.bodies[b].axis;
   // Per item, how far its points move for the first k links of its chain (its own link up):
   // two bounds, each summed over the joints: from the geometry at `from` (local) and from the
   // farthest the item can ever be from each axis (reach_). The smaller one holds.
@@ -346,17 +352,15 @@ double CollisionWorld::step_displacement_bound(const Placement& at, std::span<co
     local.push_back(0);
     far.push_back(0);
     const Eigen::Vector3d& centre = at.centres[i];
-    const double own = motion::bounding_radius(item.shape);
     for (const int b : item.chain) {
       const motion::LinkBody& body = links.bodies[std::size_t(b)];
       const double d = dq(b);
       if (body.prismatic) {
         l += d;
         f += d;
-      } else {
+      } else if (d > 0) {
         // The joint's axis passes through its link's origin (URDF: the joint frame is the child's).
-        const Eigen::Vector3d axis = at.bodies[std::size_t(b)].linear() * body.axis;
-        l += d * (axis.cross(centre - at.bodies[std::size_t(b)].translation()).norm() + own + pad);
+        l += d * (axes[std::size_t(b)].cross(centre - at.bodies[std::size_t(b)].translation()).norm() + item.radius + pad);
         f += d * reach_[i][std::size_t(body.joint)];
       }
       local.push_back(l);
