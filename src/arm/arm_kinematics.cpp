@@ -63,9 +63,16 @@ bool has_shapes(const ArmModel& m) {
 
 ArmKinematics::ArmKinematics(ArmModel model, std::optional<Protocol> device)
     : model_(std::move(model)), device_(device) {
-  // The arm file's names were checked against the URDF when it was read: value() cannot throw
-  // for a model that parse_arm_model made.
-  if (has_shapes(model_)) collisions_ = scene::CollisionWorld::build(arm_bodies(model_), scene::Scene{}).value();
+  // The arm file's names, fence and reduced mode were checked when it was read: install
+  // cannot fail for a model that parse_arm_model made.
+  if (has_shapes(model_))
+    if (auto ok = install(scene::Scene{}); !ok) throw ArmctlError(ok.error());
+}
+
+scene::Scene with_arm_limits(scene::Scene scene, const ArmModel& model) {
+  if (!scene.fence) scene.fence = model.fence;
+  if (!scene.reduced) scene.reduced = model.reduced;
+  return scene;
 }
 
 namespace {
@@ -87,6 +94,13 @@ Result<std::shared_ptr<const scene::CollisionWorld>> scene_only_world(const ArmM
 
 Result<std::shared_ptr<const ArmKinematics>> ArmKinematics::with_scene(scene::Scene scene) const {
   if (auto ok = check_shapes(model_); !ok) return ok.error();
+  auto out = std::make_shared<ArmKinematics>(*this);
+  if (auto ok = out->install(std::move(scene)); !ok) return ok.error();
+  return std::shared_ptr<const ArmKinematics>(std::move(out));
+}
+
+Status ArmKinematics::install(scene::Scene scene) {
+  scene = with_arm_limits(std::move(scene), model_);
   scene::ArmBodies bodies = arm_bodies(model_);
   std::optional<ReducedLimits> reduced;
   if (scene.reduced) {
@@ -100,10 +114,9 @@ Result<std::shared_ptr<const ArmKinematics>> ArmKinematics::with_scene(scene::Sc
   }
   auto world = scene::CollisionWorld::build(std::move(bodies), std::move(scene));
   if (!world) return world.error();
-  auto out = std::make_shared<ArmKinematics>(*this);
-  out->collisions_ = std::move(world).value();
-  out->reduced_ = std::move(reduced);
-  return std::shared_ptr<const ArmKinematics>(std::move(out));
+  collisions_ = std::move(world).value();
+  reduced_ = std::move(reduced);
+  return Ok{};
 }
 
 motion::JointVector ArmKinematics::chain_of(const std::vector<double>& positions) const {

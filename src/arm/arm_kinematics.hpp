@@ -44,7 +44,8 @@ class ArmKinematics {
   // What the planner checks every motion against (docs/scene.md): the arm's links (self-
   // collision) and the scene's objects. Null when no link of the URDF has a <collision> shape.
   const std::shared_ptr<const scene::CollisionWorld>& collisions() const { return collisions_; }
-  // The same kinematics checking against `scene` (an empty scene: self-collision only).
+  // The same kinematics checking against `scene` (an empty scene: self-collision only), with
+  // the arm file's fence and reduced mode where the scene sets none (with_arm_limits).
   // Errors (invalid_config) when the arm has no collision shapes to check a scene against.
   Result<std::shared_ptr<const ArmKinematics>> with_scene(scene::Scene scene) const;
   // Reduced mode while it is on (docs/scene.md "Fence and reduced mode"): its joint ranges
@@ -99,11 +100,17 @@ class ArmKinematics {
                                                             const std::vector<bool>& sent) const;
 
  private:
+  // Builds the collision world of `scene` (with the arm's limits) and reduced mode's limits.
+  Status install(scene::Scene scene);
   ArmModel model_;
   std::optional<Protocol> device_;
   std::shared_ptr<const scene::CollisionWorld> collisions_;
   std::optional<ReducedLimits> reduced_;
 };
+
+// `scene` with the arm file's fence and reduced mode (ArmModel::fence, reduced) where it sets
+// none of its own: a scene's fence replaces the arm file's, its reduced mode likewise.
+scene::Scene with_arm_limits(scene::Scene scene, const ArmModel& model);
 
 // "30.000 deg" / "120.000 mm" for joint `index` of `model`.
 std::string format_joint_value(const ArmModel& model, int index, double si);

@@ -11,6 +11,7 @@
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "arm/reduced_mode.hpp"
 #include "core/arm_file_sections.hpp"
 #include "core/config_files.hpp"
 #include "core/json_reader.hpp"
@@ -311,6 +312,10 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
     }
     c.finish();
   }
+  // The fence and reduced mode, as a scene file writes them (docs/scene.md "Fence and reduced
+  // mode"): where the arm stands for good, its own file may carry them.
+  if (const json* fence = r.find("fence")) m.fence = scene::read_fence(source, *fence, "fence");
+  if (const json* reduced = r.find("reduced")) m.reduced = scene::read_reduced(source, *reduced, "reduced");
   // The sections of the boxes that run the arm, each read by its box (core/arm_file_sections.hpp).
   (void)r.find(std::string(arm_file::kSimulatorSection));
   (void)r.find(std::string(arm_file::kControllerSection));
@@ -338,6 +343,17 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
   auto drawn = motion::urdf_for_viewers(urdf_text, m.link_lengths);
   if (!drawn) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, drawn.error().message));
   m.urdf_text = std::move(drawn).value();
+  if (m.fence || m.reduced) {
+    const auto& b = m.bodies->bodies;
+    if (std::none_of(b.begin(), b.end(), [](const motion::LinkBody& body) { return !body.shapes.empty(); }))
+      throw ArmctlError(ErrorKind::invalid_config,
+                        fmt::format("{}: {}: {} gives no link a <collision> shape, so it cannot be checked", source,
+                                    m.fence ? "fence" : "reduced", urdf_source));
+  }
+  if (m.reduced) {
+    auto ranges = reduced_limits(m, *m.reduced);
+    if (!ranges) throw ArmctlError(ranges.error().prefixed(source + ": "));
+  }
   return m;
 }
 

@@ -18,6 +18,7 @@
 #include "core/quantity.hpp"
 #include "motion/kinematics.hpp"
 #include "motion/link_bodies.hpp"
+#include "scene/scene_limits.hpp"
 #include "motion/urdf_chain.hpp"
 
 namespace armctl::arm {
@@ -111,6 +112,10 @@ struct ArmModel {
   std::shared_ptr<const motion::LinkBodies> bodies;
   std::vector<std::pair<std::string, std::string>> allowed_collisions;
   std::string tool_link;
+  // The fence and reduced mode the arm file sets (docs/scene.md "Fence and reduced mode"),
+  // read and checked as a scene file's: in force wherever a scene sets none of its own.
+  std::optional<scene::Fence> fence;
+  std::optional<scene::ReducedMode> reduced;
 
   int chain_joints() const { return kinematics ? kinematics->joint_count() : 0; }
   int joint_count() const { return static_cast<int>(joints.size()); }

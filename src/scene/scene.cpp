@@ -248,7 +248,9 @@ Result<Scene> with_object(const Scene& scene, std::string_view object_json, std:
 
 Result<Scene> with_fence(const Scene& scene, bool on) {
   if (!scene.fence)
-    return Error{ErrorKind::invalid_argument, "the scene sets no fence: give one in a scene file's \"fence\" (docs/scene.md)"};
+    return Error{ErrorKind::invalid_argument,
+                 "the scene sets no fence, nor does the arm file: give one in a scene file's or the arm file's "
+                 "\"fence\" (docs/scene.md)"};
   Scene out = scene;
   out.fence->on = on;
   return out;
@@ -257,7 +259,8 @@ Result<Scene> with_fence(const Scene& scene, bool on) {
 Result<Scene> with_reduced_mode(const Scene& scene, bool on) {
   if (!scene.reduced)
     return Error{ErrorKind::invalid_argument,
-                 "the scene sets no reduced mode: give one in a scene file's \"reduced\" (docs/scene.md)"};
+                 "the scene sets no reduced mode, nor does the arm file: give one in a scene file's or the arm file's "
+                 "\"reduced\" (docs/scene.md)"};
   Scene out = scene;
   out.reduced->on = on;
   return out;

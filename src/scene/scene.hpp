@@ -57,7 +57,8 @@ Result<Scene> with_object(const Scene& scene, std::string_view object_json, std:
 Result<Scene> without_object(const Scene& scene, std::string_view name);
 
 // The scene with its fence / reduced mode switched on or off (Scene::fence, Scene::reduced:
-// what Arm::set_fence and --fence change). Errors (invalid_argument): the scene sets none.
+// what Arm::set_fence and --fence change). Errors (invalid_argument): the scene sets none
+// (given the arm file's where it sets none: arm::with_arm_limits, so the error says so).
 Result<Scene> with_fence(const Scene& scene, bool on);
 Result<Scene> with_reduced_mode(const Scene& scene, bool on);
 // Its fence and reduced mode as a scene file writes them, {"fence": ..., "reduced": ...}

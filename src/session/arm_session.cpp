@@ -46,6 +46,8 @@ Result<std::unique_ptr<ArmSession>> open_arm_session(const std::string& arm_name
   if (!options.scene.empty() || options.fence || options.reduced_mode) {
     auto loaded = options.scene.empty() ? Result<scene::Scene>(scene::Scene{}) : scene::load_scene(options.scene);
     if (!loaded) return loaded.error();
+    // --fence / --reduced-mode switch the scene's, or else the arm file's.
+    loaded = arm::with_arm_limits(std::move(loaded).value(), *model);
     if (options.fence && loaded) loaded = scene::with_fence(*loaded, *options.fence);
     if (options.reduced_mode && loaded) loaded = scene::with_reduced_mode(*loaded, *options.reduced_mode);
     if (!loaded) return loaded.error();

@@ -112,7 +112,55 @@ TEST(SceneCli, TheFenceAndReducedModeAreShownCheckedAndSwitched) {
   EXPECT_TRUE(contains(reduced.out, "joint 'servo1' beyond its reduced range")) << reduced.out;
   auto none = run_armctl("arm --arm xarm --fence on limits");
   EXPECT_EQ(none.status, 1) << none.out;
-  EXPECT_TRUE(contains(none.out, "the scene sets no fence")) << none.out;
+  EXPECT_TRUE(contains(none.out, "the scene sets no fence, nor does the arm file")) << none.out;
+}
+
+// The arm file may carry the fence and reduced mode too (where the arm stands for good): in
+// force with no scene, switched like a scene's, replaced by a scene's own.
+TEST(SceneCli, TheArmFilesFenceHoldsWithoutASceneAndAScenesOwnReplacesIt) {
+  const auto dir = temp_dir() / "fenced-arm";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path config = std::filesystem::path(ARMCTL_SOURCE_DIR) / "config";
+  std::filesystem::copy_file(config / "xarm.urdf", dir / "xarm.urdf", std::filesystem::copy_options::overwrite_existing);
+  nlohmann::json arm = nlohmann::json::parse(std::ifstream(config / "xarm.arm.json"));
+  arm["fence"] = nlohmann::json::parse(R"({"min": [-300, -300, 0], "max": [150, 300, 450]})");
+  arm["reduced"] = nlohmann::json::parse(R"({"joints": {"servo1": [-90, 90]}, "on": false})");
+  const std::string arm_file = (dir / "xarm.arm.json").string();
+  write(arm_file, arm.dump(2));
+
+  auto shown = run_armctl("arm --arm " + arm_file + " limits");
+  ASSERT_EQ(shown.status, 0) << shown.out;
+  EXPECT_TRUE(contains(shown.out, "fence: on: the tool point within x -300.0..150.0")) << shown.out;
+  EXPECT_TRUE(contains(shown.out, "reduced mode: off")) << shown.out;
+  auto out = run_armctl("arm --arm " + arm_file + " move-to x=200 y=0 z=150");
+  EXPECT_EQ(out.status, 1) << out.out;
+  EXPECT_TRUE(contains(out.out, "would leave the fence")) << out.out;
+  EXPECT_FALSE(contains(out.out, "moving")) << out.out;
+  EXPECT_EQ(run_armctl("arm --arm " + arm_file + " --fence off move-to x=200 y=0 z=150").status, 0);
+  auto reduced = run_armctl("arm --arm " + arm_file + " --reduced-mode on --fence off move-joints servo1=100deg");
+  EXPECT_EQ(reduced.status, 1) << reduced.out;
+  EXPECT_TRUE(contains(reduced.out, "joint 'servo1' beyond its reduced range")) << reduced.out;
+  // A scene's own fence replaces the arm file's; a scene that sets none keeps it.
+  const std::string wider = (dir / "wider.json").string();
+  write(wider, R"({"fence": {"min": [-300, -300, 0], "max": [250, 300, 450]}})");
+  EXPECT_EQ(run_armctl("arm --arm " + arm_file + " --scene " + wider + " move-to x=200 y=0 z=150").status, 0);
+  auto desk = run_armctl("arm --arm " + arm_file + " --scene " + kScene + " move-to x=200 y=0 z=150");
+  EXPECT_EQ(desk.status, 1) << desk.out;
+  EXPECT_TRUE(contains(desk.out, "would leave the fence")) << desk.out;
+
+  // Checked when the arm file is read, naming the file and the key.
+  arm["fence"]["max"][2] = -10;
+  write(arm_file, arm.dump(2));
+  auto bad = run_armctl("arm --arm " + arm_file + " limits");
+  EXPECT_EQ(bad.status, 1) << bad.out;
+  EXPECT_TRUE(contains(bad.out, "xarm.arm.json: fence.max: z -10 mm is not above min's 0 mm")) << bad.out;
+  arm["fence"]["max"][2] = 450;
+  arm["reduced"]["joints"]["servo1"] = nlohmann::json::array({-200, 90});
+  write(arm_file, arm.dump(2));
+  bad = run_armctl("arm --arm " + arm_file + " limits");
+  EXPECT_EQ(bad.status, 1) << bad.out;
+  EXPECT_TRUE(contains(bad.out, "xarm.arm.json: reduced.joints.servo1: [-200, 90] deg is not inside joint servo1's own"))
+      << bad.out;
 }
 
 TEST(SceneCli, AProgramLineThroughTheTableIsRefusedWithItsLine) {

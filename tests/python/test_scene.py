@@ -81,4 +81,4 @@ def test_switching_a_limit_the_scene_does_not_set_raises():
         assert arm.reduced_mode is None
         with pytest.raises(armctl.Error) as e:
             arm.fence = True
-        assert "the scene sets no fence" in str(e.value)
+        assert "the scene sets no fence, nor does the arm file" in str(e.value)

@@ -7,7 +7,11 @@
 #include <fmt/core.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <numbers>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "arm/arm_kinematics.hpp"
 #include "arm/plan_moves.hpp"
@@ -193,6 +197,60 @@ TEST_P(FenceAndReduced, AReducedRangeOutsideTheJointsOwnLimitsIsRefused) {
   auto unknown = plain->with_scene(reduced(R"({"joints": {"elbow9": [-10, 10]}})"));
   ASSERT_FALSE(unknown.ok());
   EXPECT_NE(unknown.error().message.find("no joint 'elbow9'"), std::string::npos) << unknown.error().message;
+}
+
+std::string text_of(const std::filesystem::path& file) {
+  std::ostringstream text;
+  text << std::ifstream(file).rdbuf();
+  return text.str();
+}
+
+// The arm file may set the fence and reduced mode itself: they hold with no scene and with a
+// scene that sets none, switch like a scene's, and give way to a scene's own.
+TEST_P(FenceAndReduced, TheArmFilesFenceAndReducedModeHoldWhereTheSceneSetsNone) {
+  const auto file = arm_file_path(arm.name);
+  nlohmann::json doc = nlohmann::json::parse(text_of(file));
+  const Eigen::Vector3d low = (tool - Eigen::Vector3d::Constant(0.02)) * 1e3, high = (tool + Eigen::Vector3d::Constant(0.02)) * 1e3;
+  doc["fence"] = {{"min", {low.x(), low.y(), low.z()}}, {"max", {high.x(), high.y(), high.z()}}};
+  doc["reduced"] = {{"joints", {{joint_name(), {-10, 10}}}}, {"on", false}};
+  const std::string urdf = doc["urdf"].get<std::string>();
+  auto model = parse_arm_model(doc.dump(), "fenced.arm.json", text_of(file.parent_path() / urdf), urdf);
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const auto own = std::make_shared<const ArmKinematics>(*model);
+  const std::vector<Move> moves{turn(30)};
+  for (const auto& k : {own, own->with_scene(scene::Scene{}).value()}) {
+    auto plan = plan_moves(*k, arm.start, moves);
+    ASSERT_FALSE(plan.ok());
+    const auto* d = plan.error().detail_as<CollisionDetail>();
+    ASSERT_NE(d, nullptr) << plan.error().message;
+    EXPECT_EQ(d->contact.limit, scene::Limit::fence);
+  }
+  const scene::Scene theirs = with_arm_limits(scene::Scene{}, *model);
+  ASSERT_TRUE(theirs.fence && theirs.reduced);
+  EXPECT_TRUE(plan_moves(*own->with_scene(scene::with_fence(theirs, false).value()).value(), arm.start, moves).ok());
+  // A scene's own fence replaces the arm file's: one around the whole reach lets it pass.
+  const double reach = plain->model().reach;
+  EXPECT_TRUE(plan_moves(*own->with_scene(fenced(Eigen::Vector3d::Constant(-reach), Eigen::Vector3d::Constant(reach))).value(),
+                         arm.start, moves)
+                  .ok());
+  // Reduced mode, off in the file, switched on: the 30 deg turn leaves its 10 deg.
+  scene::Scene reduced_on = scene::with_reduced_mode(scene::with_fence(theirs, false).value(), true).value();
+  auto beyond = plan_moves(*own->with_scene(reduced_on).value(), arm.start, moves);
+  ASSERT_FALSE(beyond.ok());
+  EXPECT_NE(beyond.error().message.find("beyond its reduced range"), std::string::npos) << beyond.error().message;
+
+  // Checked as the file is read: the key, the value and what is allowed, naming the file.
+  doc["reduced"]["joints"][joint_name()] = {-400, 10};
+  auto bad = parse_arm_model(doc.dump(), "fenced.arm.json", text_of(file.parent_path() / urdf), urdf);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().kind, ErrorKind::invalid_config);
+  EXPECT_EQ(bad.error().message.rfind("fenced.arm.json: reduced.joints." + joint_name() + ": [-400, 10]", 0), 0u)
+      << bad.error().message;
+  doc["reduced"]["joints"][joint_name()] = {-10, 10};
+  doc["fence"]["walls"] = 2;
+  bad = parse_arm_model(doc.dump(), "fenced.arm.json", text_of(file.parent_path() / urdf), urdf);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().message.rfind("fenced.arm.json: fence.walls: unknown key", 0), 0u) << bad.error().message;
 }
 
 // The tool point's largest speed along every motion of `plan`, from its samples 1 ms apart

@@ -125,7 +125,7 @@ TEST(WebFence, ALimitTheSceneDoesNotSetIsRefused) {
   EXPECT_TRUE(api.get("/api/v1/state", "page").body["limits"]["fence"].is_null());
   r = api.send("PUT", "/api/v1/scene/limits", R"({"fence": true})", "page");
   EXPECT_EQ(r.status, 409);
-  EXPECT_NE(error_of(r).find("the scene sets no fence"), std::string::npos) << r.text;
+  EXPECT_NE(error_of(r).find("the scene sets no fence, nor does the arm file"), std::string::npos) << r.text;
 }
 
 }  // namespace
