@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "arm/arm_model.hpp"
+#include "arm/reduced_mode.hpp"
 #include "json_edits.hpp"
 
 namespace {
@@ -33,6 +34,10 @@ void check_model(const armctl::arm::ArmModel& m) {
     for (const auto& [protocol, map] : j.devices)
       check(std::isfinite(map.device_per_unit()) && map.device_per_unit() != 0, "mapping slope");
   }
+  if (m.fence)
+    check(m.fence->low.allFinite() && m.fence->high.allFinite() && (m.fence->low.array() < m.fence->high.array()).all(),
+          "fence corners finite and in order");
+  if (m.reduced) check(armctl::arm::reduced_limits(m, *m.reduced).ok(), "reduced ranges inside the joints' limits");
   if (m.gripper) {
     const auto& g = m.joints[std::size_t(m.gripper->joint)];
     check(g.limits.contains(m.gripper->open) && g.limits.contains(m.gripper->closed), "gripper inside limits");

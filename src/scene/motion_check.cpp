@@ -1,7 +1,6 @@
 #include "scene/motion_check.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 namespace armctl::scene {
@@ -40,7 +39,7 @@ std::optional<Contact> LimitsBeyond::deeper(std::span<const double> joints, Coll
 MotionCheck check_motion(const CollisionWorld& world, double duration,
                          const std::function<void(double, std::vector<double>&)>& sample, double resolution) {
   MotionCheck out;
-  std::vector<double> q0, q1;
+  std::vector<double> q0, q1, mid;
   sample(0, q0);
   const std::size_t n_pairs = world.pairs_checked();
   // apart[p]: how far apart pair p's bodies are at least, now (0 at first: they may touch).
@@ -106,54 +105,31 @@ MotionCheck check_motion(const CollisionWorld& world, double duration,
   CollisionWorld::Placement at0, at1;
   world.place(q0, at0);
   if (!check(0, q0, at0) || !(duration > 0)) return out;
-  // A step is taken when every pair it can bring nearer stays provably apart: its bodies come
-  // at most the resolution nearer (the 2 mm guarantee, relative to each other), or no nearer
-  // than keeps them apart and not below the smallest clearance so far less the resolution (a
-  // continuous check: conservative advancement). The world's limits (fence, joint ranges)
-  // keep the plain guarantee: nothing moves more than the resolution. Steps halve until that
-  // holds and grow towards 90 % of it again (at most doubling).
-  //
-  // A step's joint travel is summed over pieces that each move about the resolution at the
-  // last step's rate (at least two: each joint's travel to the middle and on to the end), so
-  // that a joint turning back within a long step is seen as within a short one. The bound
-  // takes the arm's geometry at the step's start for all of it, padded by twice the most any
-  // point moves in it.
-  const double floor_pad = 2 * resolution;
-  std::vector<double> closing, travel, piece, before;
-  double t = 0, h = std::min(duration, 0.01), rate = 0;  // rate: the last step's bound per second
+  // Steps halve until the bound on how far any point moves is within the resolution, and
+  // grow towards 90 % of it again (at most doubling). The bound is over both halves of the
+  // step (each joint's travel to the middle and on to the end), so that a joint turning back
+  // within it is seen; the arm's geometry at the step's start holds for all of it (pad).
+  const double pad = 2 * resolution;
+  std::vector<double> closing, travel;
+  double t = 0, h = std::min(duration, 0.01);
   while (t < duration) {
     const double t1 = std::min(duration, t + h);
-    const int pieces = std::clamp(int(std::ceil(2 * rate * (t1 - t) / resolution)), 2, 64);
-    travel.assign(q0.size(), 0.0);
-    before = q0;
-    for (int k = 1; k <= pieces; ++k) {
-      sample(k == pieces ? t1 : t + (t1 - t) * double(k) / double(pieces), piece);
-      for (std::size_t j = 0; j < q0.size(); ++j) travel[j] += std::abs(piece[j] - before[j]);
-      std::swap(before, piece);
-    }
-    q1 = before;
-    double pad = std::max(floor_pad, 3 * rate * (t1 - t));
-    double moved = world.step_displacement_bound(at0, travel, pad, &closing);
-    if (moved > pad / 2) {
-      pad = 3 * moved;
-      moved = world.step_displacement_bound(at0, travel, pad, &closing);
-    }
-    double ratio = moved > pad / 2 ? 2.0 : world.has_limits() ? moved / resolution : 0.0;
-    const double keep = std::max(out.clearance.distance - resolution, 0.0);
-    for (std::size_t p = 0; p < n_pairs; ++p)
-      if (asked[p]) ratio = std::max(ratio, closing[p] / std::max(resolution, apart[p] - keep));
-    if (ratio > 1 && h > 1e-6) {
+    sample(0.5 * (t + t1), mid);
+    sample(t1, q1);
+    travel.resize(q0.size());
+    for (std::size_t j = 0; j < q0.size(); ++j) travel[j] = std::abs(mid[j] - q0[j]) + std::abs(q1[j] - mid[j]);
+    const double moved = world.step_displacement_bound(at0, travel, pad, &closing);
+    if (moved > resolution && h > 1e-6) {
       h *= 0.5;
       continue;
     }
     for (std::size_t p = 0; p < n_pairs; ++p) apart[p] -= closing[p];
     world.place(q1, at1);
     if (!check(t1, q1, at1)) return out;
-    rate = moved / (t1 - t);
     t = t1;
     std::swap(q0, q1);
     std::swap(at0, at1);
-    h *= ratio > 0 ? std::clamp(0.9 / ratio, 0.5, 2.0) : 2.0;
+    h *= moved > 0 ? std::clamp(0.9 * resolution / moved, 0.5, 2.0) : 2.0;
   }
   return out;
 }

@@ -1,7 +1,7 @@
-// A whole motion checked against the collision world: at every step small enough that no two
-// bodies that could touch come more than the resolution (2 mm) nearer to each other between
-// two checks unless they are known to stay apart, every pair of bodies that could touch is
-// asked; a pair known to be apart is not (docs/scene.md, "How a motion is checked"). The world's limits (the fence, reduced mode's joint ranges) are asked
+// A whole motion checked against the collision world: at every step small enough that no
+// point of any body moves more than the resolution (2 mm) between two checks, every pair of
+// bodies that could touch is asked; a pair known to be apart is not (docs/scene.md, "How a
+// motion is checked"). The world's limits (the fence, reduced mode's joint ranges) are asked
 // at every check; a limit broken is a contact whose `limit` says which.
 #pragma once
 

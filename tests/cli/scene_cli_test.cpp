@@ -82,6 +82,26 @@ TEST(SceneCli, BehindTheBoxIsRefusedDirectAndPlannedAroundWithAvoid) {
   EXPECT_TRUE(contains(linear.out, "--avoid is not allowed with --linear")) << linear.out;
 }
 
+// A fence of x -300..150 mm and reduced mode (off) with servo1 narrowed to -90..90 deg, set by
+// what `given` names (--arm, --scene): shown, a move out of the fence refused before anything
+// moves and allowed with the fence off, a joint move beyond the range refused with reduced
+// mode on.
+void expect_the_fence_and_reduced_mode_hold(const std::string& given) {
+  auto shown = run_armctl("arm " + given + " limits");
+  ASSERT_EQ(shown.status, 0) << shown.out;
+  EXPECT_TRUE(contains(shown.out, "fence: on: the tool point within x -300.0..150.0")) << shown.out;
+  EXPECT_TRUE(contains(shown.out, "reduced mode: off")) << shown.out;
+  auto out = run_armctl("arm " + given + " move-to x=200 y=0 z=150");
+  EXPECT_EQ(out.status, 1) << out.out;
+  EXPECT_TRUE(contains(out.out, "would leave the fence")) << out.out;
+  EXPECT_FALSE(contains(out.out, "moving")) << out.out;
+  auto off = run_armctl("arm " + given + " --fence off move-to x=200 y=0 z=150");
+  EXPECT_EQ(off.status, 0) << off.out;
+  auto reduced = run_armctl("arm " + given + " --reduced-mode on --fence off move-joints servo1=100deg");
+  EXPECT_EQ(reduced.status, 1) << reduced.out;
+  EXPECT_TRUE(contains(reduced.out, "joint 'servo1' beyond its reduced range")) << reduced.out;
+}
+
 // The fence and reduced mode from the CLI (docs/scene.md "Fence and reduced mode"): shown by
 // `armctl arm limits`, a move out of the fence refused until `--fence off`, reduced mode
 // switched on by `--reduced-mode on` refusing a joint move beyond its range, and a switch
@@ -91,25 +111,14 @@ TEST(SceneCli, TheFenceAndReducedModeAreShownCheckedAndSwitched) {
   const std::string file = (dir / "fenced.json").string();
   write(file, R"({"fence": {"min": [-300, -300, 0], "max": [150, 300, 450]},
       "reduced": {"tool_speed": 50, "joints": {"servo1": [-90, 90]}, "on": false}})");
+  expect_the_fence_and_reduced_mode_hold("--arm xarm --scene " + file);
   auto shown = run_armctl("arm --arm xarm --scene " + file + " limits");
-  ASSERT_EQ(shown.status, 0) << shown.out;
-  EXPECT_TRUE(contains(shown.out, "fence: on: the tool point within x -300.0..150.0")) << shown.out;
   EXPECT_TRUE(contains(shown.out, "reduced mode: off: tool speed up to 50.0 mm/s; servo1 -90..90 deg")) << shown.out;
   auto json_shown = run_armctl("arm --arm xarm --scene " + file + " --fence off --reduced-mode on --json limits");
   ASSERT_EQ(json_shown.status, 0) << json_shown.out;
   const auto limits = nlohmann::json::parse(json_shown.out).at("limits");
   EXPECT_EQ(limits.at("fence").at("on"), false);
   EXPECT_EQ(limits.at("reduced").at("on"), true);
-
-  auto out = run_armctl("arm --arm xarm --scene " + file + " move-to x=200 y=0 z=150");
-  EXPECT_EQ(out.status, 1) << out.out;
-  EXPECT_TRUE(contains(out.out, "would leave the fence")) << out.out;
-  EXPECT_FALSE(contains(out.out, "moving")) << out.out;
-  auto off = run_armctl("arm --arm xarm --scene " + file + " --fence off move-to x=200 y=0 z=150");
-  EXPECT_EQ(off.status, 0) << off.out;
-  auto reduced = run_armctl("arm --arm xarm --scene " + file + " --reduced-mode on move-joints servo1=100deg");
-  EXPECT_EQ(reduced.status, 1) << reduced.out;
-  EXPECT_TRUE(contains(reduced.out, "joint 'servo1' beyond its reduced range")) << reduced.out;
   auto none = run_armctl("arm --arm xarm --fence on limits");
   EXPECT_EQ(none.status, 1) << none.out;
   EXPECT_TRUE(contains(none.out, "the scene sets no fence, nor does the arm file")) << none.out;
@@ -128,18 +137,7 @@ TEST(SceneCli, TheArmFilesFenceHoldsWithoutASceneAndAScenesOwnReplacesIt) {
   const std::string arm_file = (dir / "xarm.arm.json").string();
   write(arm_file, arm.dump(2));
 
-  auto shown = run_armctl("arm --arm " + arm_file + " limits");
-  ASSERT_EQ(shown.status, 0) << shown.out;
-  EXPECT_TRUE(contains(shown.out, "fence: on: the tool point within x -300.0..150.0")) << shown.out;
-  EXPECT_TRUE(contains(shown.out, "reduced mode: off")) << shown.out;
-  auto out = run_armctl("arm --arm " + arm_file + " move-to x=200 y=0 z=150");
-  EXPECT_EQ(out.status, 1) << out.out;
-  EXPECT_TRUE(contains(out.out, "would leave the fence")) << out.out;
-  EXPECT_FALSE(contains(out.out, "moving")) << out.out;
-  EXPECT_EQ(run_armctl("arm --arm " + arm_file + " --fence off move-to x=200 y=0 z=150").status, 0);
-  auto reduced = run_armctl("arm --arm " + arm_file + " --reduced-mode on --fence off move-joints servo1=100deg");
-  EXPECT_EQ(reduced.status, 1) << reduced.out;
-  EXPECT_TRUE(contains(reduced.out, "joint 'servo1' beyond its reduced range")) << reduced.out;
+  expect_the_fence_and_reduced_mode_hold("--arm " + arm_file);
   // A scene's own fence replaces the arm file's; a scene that sets none keeps it.
   const std::string wider = (dir / "wider.json").string();
   write(wider, R"({"fence": {"min": [-300, -300, 0], "max": [250, 300, 450]}})");
