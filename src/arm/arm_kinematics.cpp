@@ -6,6 +6,7 @@
 
 #include <fmt/core.h>
 
+#include "arm/collision_shapes.hpp"
 #include "core/quantity.hpp"
 
 namespace armctl::arm {
@@ -54,18 +55,13 @@ scene::ArmBodies arm_bodies(const ArmModel& m, bool self = true) {
   return a;
 }
 
-bool has_shapes(const ArmModel& m) {
-  if (!m.bodies) return false;
-  return std::any_of(m.bodies->bodies.begin(), m.bodies->bodies.end(), [](const auto& b) { return !b.shapes.empty(); });
-}
-
 }  // namespace
 
 ArmKinematics::ArmKinematics(ArmModel model, std::optional<Protocol> device)
     : model_(std::move(model)), device_(device) {
   // The arm file's names, fence and reduced mode were checked when it was read: install
   // cannot fail for a model that parse_arm_model made.
-  if (has_shapes(model_))
+  if (has_collision_shapes(model_))
     if (auto ok = install(scene::Scene{}); !ok) throw ArmctlError(ok.error());
 }
 
@@ -77,7 +73,7 @@ scene::Scene with_arm_limits(scene::Scene scene, const ArmModel& model) {
 
 namespace {
 Status check_shapes(const ArmModel& m) {
-  if (has_shapes(m)) return Ok{};
+  if (has_collision_shapes(m)) return Ok{};
   return Error{ErrorKind::invalid_config,
                fmt::format("arm '{}': its URDF ({}) gives no link a <collision> shape, so a scene cannot be checked",
                            m.name, m.urdf.string())};

@@ -11,6 +11,7 @@
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "arm/collision_shapes.hpp"
 #include "arm/reduced_mode.hpp"
 #include "core/arm_file_sections.hpp"
 #include "core/config_files.hpp"
@@ -343,13 +344,10 @@ ArmModel parse(std::string_view arm_json, const std::string& source, std::string
   auto drawn = motion::urdf_for_viewers(urdf_text, m.link_lengths);
   if (!drawn) throw ArmctlError(ErrorKind::invalid_config, fmt::format("{}: {}", urdf_source, drawn.error().message));
   m.urdf_text = std::move(drawn).value();
-  if (m.fence || m.reduced) {
-    const auto& b = m.bodies->bodies;
-    if (std::none_of(b.begin(), b.end(), [](const motion::LinkBody& body) { return !body.shapes.empty(); }))
-      throw ArmctlError(ErrorKind::invalid_config,
-                        fmt::format("{}: {}: {} gives no link a <collision> shape, so it cannot be checked", source,
-                                    m.fence ? "fence" : "reduced", urdf_source));
-  }
+  if ((m.fence || m.reduced) && !has_collision_shapes(m))
+    throw ArmctlError(ErrorKind::invalid_config,
+                      fmt::format("{}: {}: {} gives no link a <collision> shape, so it cannot be checked", source,
+                                  m.fence ? "fence" : "reduced", urdf_source));
   if (m.reduced) {
     auto ranges = reduced_limits(m, *m.reduced);
     if (!ranges) throw ArmctlError(ranges.error().prefixed(source + ": "));
@@ -450,6 +448,12 @@ Result<ArmModel> load_arm_model(const std::filesystem::path& arm_file) {
 std::filesystem::path arm_file_path(std::string_view arm) {
   if (arm == "xarm" || arm == "scara") return find_config_file(std::string(arm) + ".arm.json");
   return std::filesystem::path(arm);
+}
+
+bool has_collision_shapes(const ArmModel& model) {
+  if (!model.bodies) return false;
+  const auto& b = model.bodies->bodies;
+  return std::any_of(b.begin(), b.end(), [](const motion::LinkBody& body) { return !body.shapes.empty(); });
 }
 
 }  // namespace armctl::arm

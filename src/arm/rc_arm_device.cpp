@@ -20,7 +20,12 @@ RcArmDevice::RcArmDevice(const ArmModel& model, robot_commands::Client& client) 
 
 std::string RcArmDevice::description() const { return client_.link().describe(); }
 
+// A servo reads back its shaft, commanded + offset (client.hpp held_offsets): less the
+// offset, a reading is in the frame moves are commanded in, whatever offset the servo holds
+// (one the calibration wizard wrote as the joint's zero, or one set with the maker's tool).
 Result<std::vector<double>> RcArmDevice::read_positions() {
+  auto offsets = client_.held_offsets(servos_);
+  if (!offsets) return offsets.error();
   auto read = client_.read_positions(servos_);
   if (!read) return read.error();
   std::vector<double> out(servos_.size());
@@ -28,7 +33,7 @@ Result<std::vector<double>> RcArmDevice::read_positions() {
     bool found = false;
     for (const auto& p : *read)
       if (p.servo == servos_[i]) {
-        out[i] = p.position;
+        out[i] = p.position - (*offsets)[i];
         found = true;
       }
     if (!found)

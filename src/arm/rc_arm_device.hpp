@@ -21,6 +21,8 @@ class RcArmDevice final : public ArmDevice {
   std::string description() const override;
   const Clock& clock() const override { return client_.clock(); }
   Duration poll_interval() const override { return client_.options().poll_interval; }
+  // In the commanded frame: each servo's read-back less the offset it holds (read once,
+  // then known to the client: the first read costs one ServoOffsetRead more).
   Result<std::vector<double>> read_positions() override;
   // The board moves every servo linearly over the time (0..30 s); positions round to whole
   // servo units.

@@ -183,6 +183,7 @@ Result<ZeroResult> CalibrationSession::zero_here(int joint, double mark) {
   if (step->kind == ZeroStep::Kind::servo_offset && step->servo_offset) {
     a.servo_offset = step->servo_offset->units;
     a.servo = step->servo_offset->servo;
+    a.held_offset = at.servo_offset;
     a.offset_shift = shift;
     a.zero_shift.reset();
     out.kind = ZeroStep::Kind::servo_offset;
@@ -385,8 +386,16 @@ std::string CalibrationSession::describe() const {
       out += fmt::format(" limits {} .. {};", format_quantity(m.dimension, j.limits->lower), format_quantity(m.dimension, j.limits->upper));
     out.back() = '\n';
   }
-  for (const ServoOffset& o : c->servo_offsets)
-    out += fmt::format("  {}: servo {} offset {} units (written to the servo)\n", o.joint, o.servo, o.units);
+  for (const ServoOffset& o : c->servo_offsets) {
+    // ServoOffsetAdjust acts at once: a servo holding its position turns by the change.
+    const int i = *model().find_joint(o.joint);
+    const int turn = o.units - joints_.at(i).held_offset;
+    const arm::JointModel& m = model().joints[std::size_t(i)];
+    const double per_unit = std::abs(m.map(arm_.device().protocol())->device_per_unit());
+    out += fmt::format("  {}: servo {} offset {} units (written to the servo, which turns by {} units, {}, if its "
+                       "torque is on)\n",
+                       o.joint, o.servo, o.units, turn, format_quantity(m.dimension, std::abs(turn) / per_unit));
+  }
   if (c->gripper && model().gripper) {
     const Dimension d = model().joints[std::size_t(model().gripper->joint)].dimension;
     out += fmt::format("  gripper: open {}, closed {}\n", format_quantity(d, c->gripper->open), format_quantity(d, c->gripper->closed));

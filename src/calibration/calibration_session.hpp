@@ -134,6 +134,7 @@ class CalibrationSession {
     std::optional<double> zero_shift;      // in the old readings: new = sign * old + shift
     std::optional<int> servo_offset;       // units, with the servo's ID below
     int servo = 0;
+    int held_offset = 0;                   // the offset the servo held at the zero step
     double offset_shift = 0;               // the same zero in old readings (for verify/fit)
     std::optional<std::pair<double, double>> ends;  // old readings
     double fit_correction = 0;             // added to the new reading

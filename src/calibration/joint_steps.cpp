@@ -54,16 +54,17 @@ Result<ZeroStep> zero_at_mark(const arm::ArmModel& model, arm::Protocol protocol
     if (at.servo_offset < -125 || at.servo_offset > 125)
       return refuse(fmt::format("servo {} ({}): offset {} read back is outside -125..125", map->id, j.name, at.servo_offset));
     // Commanded `want` (the device position of the mark) must put the shaft at the mark:
-    // the shaft stands at commanded + offset, and it stands at the mark now.
+    // the shaft stands at commanded + offset (the reading, in the commanded frame, plus the
+    // offset held now), and it stands at the mark now.
     const double want = map->to_device(at.mark);
-    const double shaft = at.reads_shaft ? at.device : at.device + at.servo_offset;
+    const double shaft = at.device + at.servo_offset;
     const long units = std::lround(shaft - want);
     if (units >= -125 && units <= 125) {
       step.kind = ZeroStep::Kind::servo_offset;
       step.servo_offset = ServoOffset{j.name, map->id, int(units)};
-      step.why = fmt::format("servo {} reads {:.0f} at the mark of {}, {:.0f} wanted: its offset becomes {} (within "
-                             "-125..125)",
-                             map->id, at.device, j.name, want, units);
+      step.why = fmt::format("servo {}'s shaft stands at {:.0f} at the mark of {}, {:.0f} wanted: its offset becomes {} "
+                             "(within -125..125)",
+                             map->id, shaft, j.name, want, units);
       return step;
     }
     return file_zero(at.reading, fmt::format("servo {} would need offset {}, beyond its -125..125 (30 deg): the arm "

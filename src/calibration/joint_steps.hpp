@@ -33,15 +33,13 @@ std::optional<JointChange> direction_from_answer(const arm::ArmModel& model, int
 struct JointAtMark {
   int joint = 0;
   double reading = 0;   // the joint's value as read now (SI, the current arm file)
-  double device = 0;    // its device position now (servo units, clicks)
+  // Its device position now (servo units, clicks), as the Arm API reads it: a Robot Commands
+  // servo's in the commanded frame (its read-back less the offset it holds, rc_arm_device.hpp).
+  double device = 0;
   double mark = 0;      // the joint's true value at the mark (SI; 0: the mark is the zero)
   // The device keeps a zero of its own: an xArm bus servo (ServoOffsetAdjust, -125..125 units).
   bool servo_offsets = false;
   int servo_offset = 0;  // the offset the servo holds now (read with ServoOffsetRead)
-  // What the servo's position read-back reports: the shaft (commanded + offset), as
-  // docs/xarm-emulator.md has it, or the commanded frame (shaft - offset). The new offset
-  // is the same either way when the servo holds none.
-  bool reads_shaft = true;
 };
 
 // What the wizard does to give the joint its zero.

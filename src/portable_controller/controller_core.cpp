@@ -825,6 +825,7 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
     // The ramp check needs a ramp from rest; the slower speed keeps its model a lower bound.
     s.ramp_armed = false;
     s.behind_ramp = false;
+    s.left_plan = false;
     s.ramp_percent = moving[k] || idle[k] ? 0 : switch_s > 0.0f ? static_cast<uint8_t>(percent - 1) : percent;
     if (s.ramp_percent != 0)
       s.ramp = ramp_shape(distance[k], float(j.max_speed_cps) * float(s.ramp_percent) * 0.01f, accel);

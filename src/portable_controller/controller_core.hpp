@@ -118,12 +118,15 @@ struct JointState {
   // went out; `ramp_percent` the slower of the move's speeds (0: no ramp check, e.g. a
   // joint still moving when the move was planned). `behind_ramp`: it fell behind that
   // ramp mid-move (a stall) and the move was stopped; until a move names it again.
+  // `left_plan`: it left its move's stretch mid-move (ran away, was pushed back) and the
+  // move was stopped the same way.
   bool ramp_armed;
   bool behind_ramp;
+  bool left_plan;
   uint8_t ramp_percent;
   RampShape ramp;               // its ramp at ramp_percent, shaped when planned
   uint32_t ramp_start_us;       // when its drive_to was answered (the ramp began before)
-  uint32_t stalled_us;          // when it was found behind its ramp
+  uint32_t stalled_us;          // when it was found behind its ramp or off its plan
   // Its setpoint as the controller models it (docs/mega-controller.md "Moving start"): the
   // joint's ramp from `model` at model_us, fed with every speed, drive and loop-on that
   // succeeded, at the instant it took effect. A command is noted when it succeeds (integers

@@ -15,7 +15,7 @@ namespace jb = ::armctl::joint_bus;
 
 void ControllerCore::check_following(uint8_t index, int16_t before, uint32_t now_us) {
   JointState& s = state_[index];
-  if (s.behind_ramp && !s.planned) {
+  if ((s.behind_ramp || s.left_plan) && !s.planned) {
     // Its move was stopped; the joint may still raise a fault of its own (a stall that is a
     // runaway in its first moments, a following error).
     const bool fault_known = s.diagnostics_read && s.diagnostics[jb::diagnostic_faults] != 0;
@@ -35,7 +35,8 @@ void ControllerCore::check_following(uint8_t index, int16_t before, uint32_t now
   if (off < 0) off = -off;
   const bool approaching = was_off - off >= approaching_clicks;
   int32_t gap = 0;
-  if (reached(now_us, s.plan_end_us + settle_us)) {
+  const bool under_way = !reached(now_us, s.plan_end_us + settle_us);
+  if (!under_way) {
     gap = at - s.plan_to;
     if (gap < 0) gap = -gap;
   } else {
@@ -61,6 +62,13 @@ void ControllerCore::check_following(uint8_t index, int16_t before, uint32_t now
   }
   if (gap > not_following_clicks && !approaching) {
     if (s.following) {
+      if (under_way) {
+        // Out of its stretch mid-move (a runaway found before the ramp check saw it behind):
+        // the move stops as for a stall, and its faults are read until one shows.
+        s.left_plan = true;
+        s.stalled_us = now_us;
+        stop_move(index, now_us);
+      }
       lost_following(index, now_us);
     } else if (!(s.diagnostics_read && s.diagnostics[jb::diagnostic_faults] != 0) &&
                static_cast<uint32_t>(now_us - s.faults_read_us) >= fault_recheck_us) {

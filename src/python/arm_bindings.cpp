@@ -901,10 +901,10 @@ void define_arm(py::module_& m) {
             const auto turn = a.gate_.enter();
             return make_calibration(a.arm(), a.gate_, a.session_->board, servo_offsets);
           },
-          "servo_offsets"_a = false, py::keep_alive<0, 1>(),
+          "servo_offsets"_a = true, py::keep_alive<0, 1>(),
           "The guided calibration (armctl.Calibration), for a with block: each step as a method, nothing written\n"
-          "until confirm(). servo_offsets: an xArm joint's zero goes to the servo's own offset when it fits\n"
-          "-125..125 units (else, and by default, to the arm file; docs/calibration.md).")
+          "until confirm(). servo_offsets (default): an xArm joint's zero goes to the servo's own offset when it\n"
+          "fits -125..125 units, else to the arm file; False: every zero to the arm file (docs/calibration.md).")
       .def("set_torque", in_turn(&PyArm::set_torque), "on"_a, "off: the arm can be moved by hand; on: hold where it stands.")
       .def("gripper", in_turn(&PyArm::gripper), "closed_fraction"_a, "duration"_a = py::none(), "speed"_a = motion::kDefaultGripperSpeed,
            "wait"_a = false, "timeout"_a = seconds(arm::kArrivalTimeout), "The gripper: 0 = open, 1 = closed, anything between.")

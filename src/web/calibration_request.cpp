@@ -50,7 +50,7 @@ CalibrationRequest parse_calibration_request(const arm::ArmModel& model, const s
   q.step = step;
   BodyReader r(body);
   if (step == "start") {
-    q.servo_offsets = r.optional_boolean("servo_offsets").value_or(false);
+    q.servo_offsets = r.optional_boolean("servo_offsets").value_or(true);
   } else if (step == "wiggle" || step == "nudge" || step == "read") {
     q.joint = joint_field(model, r, "joint");
   } else if (step == "which") {

@@ -31,7 +31,7 @@ struct CalibrationRequest {
   double open = 0, closed = 0;    // gripper: readings open and closed, SI
   std::string name;               // touch: the point's name
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // touch: where it is (m, base frame)
-  bool servo_offsets = false;     // start: zeros into the xArm servos' own offsets when they fit
+  bool servo_offsets = true;      // start: zeros into the xArm servos' own offsets when they fit
 };
 
 // `step` from the URL (one of kCalibrationSteps, else 404 is the router's: here 400), `body`

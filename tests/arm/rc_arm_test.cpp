@@ -196,6 +196,49 @@ TEST_F(RcArm, StopHoldsWhereTheServosAre) {
   EXPECT_LT(at_stop, 60 * kDeg);
 }
 
+// A servo holding an offset reads back its shaft, commanded + offset (robot-commands.json,
+// "BusServoInfoRead reply"); the device reads it in the commanded frame, so the arm neither
+// misreads the joint nor moves it when asked to hold: a stop once commanded every servo to
+// its read-back, turning one with offset 40 by 40 more units (9.6 deg).
+TEST_F(RcArm, AServosOffsetIsLeftOutOfItsReadingsSoHoldingDoesNotTurnIt) {
+  xarm::XarmServos& servos = link.emulator().servos();
+  ASSERT_TRUE(client.adjust_offset(4, 40));  // servo4 is joint 2
+  ASSERT_TRUE(arm.device().idle(std::chrono::seconds(1)));
+  const double shaft = servos.true_position(4);
+  EXPECT_NEAR(shaft, 540, 1) << "the offset turns the shaft";
+  auto read = arm.read();
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_NEAR(read->device[2], 500, 0.5);
+  EXPECT_NEAR(read->positions[2], 0, 0.3 * kDeg);
+  ASSERT_TRUE(arm.stop());
+  ASSERT_TRUE(arm.device().idle(std::chrono::seconds(1)));
+  EXPECT_NEAR(servos.true_position(4), shaft, 1) << "holding where it reads must not turn it";
+
+  // Moved, it arrives (the closed-loop wait reads it where it was sent) with the shaft the
+  // offset further along.
+  auto t = none();
+  t[2] = 20 * kDeg;
+  ASSERT_TRUE(arm.move_joints(t));
+  auto s = arm.wait();
+  ASSERT_TRUE(s) << s.error().message;
+  EXPECT_NEAR(s->positions[2], 20 * kDeg, 0.5 * kDeg);
+  const double commanded = s->device[2];
+  EXPECT_NEAR(servos.true_position(4), commanded + 40, 1);
+
+  // The offset is read once; a new one (adjusted through this client) is read again.
+  auto offset_reads = [&] {
+    return std::count_if(link.sent.begin(), link.sent.end(), [](const rc::Frame& f) { return f.cmd == 23; });
+  };
+  EXPECT_EQ(offset_reads(), 1);
+  ASSERT_TRUE(client.adjust_offset(4, -20));
+  ASSERT_TRUE(arm.device().idle(std::chrono::seconds(1)));
+  auto after = arm.read();
+  ASSERT_TRUE(after) << after.error().message;
+  EXPECT_EQ(offset_reads(), 2);
+  EXPECT_NEAR(after->device[2], commanded, 0.5) << "still where it was commanded";
+  EXPECT_NEAR(servos.true_position(4), commanded - 20, 1);
+}
+
 // A calibration confirmed (Arm::use_model): the arm drives with the new model at once, the
 // scene and reduced mode kept, and a reference to the model given out before still reads the
 // old one. A model of other joints or IDs is refused and changes nothing.

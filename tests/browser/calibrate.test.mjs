@@ -65,8 +65,9 @@ test('which joint, direction and zero on servo3: highlighted, answered, listed; 
 
   await page.getByRole('button', { name: 'Run Zero' }).click();
   await clickAnswered(page, page.getByRole('button', { name: 'At the mark' }), '/calibration/zero');
-  await waitFor(async () => (await state('Zero').textContent()).startsWith('servo3: zero moves by'), 'the zero answered');
-  await waitFor(async () => /zero moved by/.test(await pendingText()), 'the zero pending');
+  // The xArm's zero goes to the servo's own offset (it fits -125..125 units).
+  await waitFor(async () => (await state('Zero').textContent()).startsWith('servo3: servo offset'), 'the zero answered');
+  await waitFor(async () => /servo3: servo 3 offset -?\d+ units/.test(await pendingText()), 'the zero pending');
 
   await page.getByRole('button', { name: 'Skip Limits' }).click();
   assert.equal(await state('Limits').textContent(), 'skipped');

@@ -49,16 +49,13 @@ TEST(Zero, AnXarmServoTakesTheOffsetWhenItFits) {
   EXPECT_EQ(step->servo_offset->servo, 4);
   EXPECT_EQ(step->servo_offset->units, 30);
   EXPECT_FALSE(step->change);
-  // An offset already held: a servo that reports its shaft (the emulator) needs the shaft
-  // less the mark's position; one that reports the commanded frame adds what it holds.
+  // An offset already held: the reading (in the commanded frame) plus what the servo holds is
+  // where its shaft stands, 510; 500 wanted.
   at.servo_offset = -20;
   step = zero_at_mark(m, Protocol::robot_commands, at);
   ASSERT_TRUE(step);
-  EXPECT_EQ(step->servo_offset->units, 30);
-  at.reads_shaft = false;
-  step = zero_at_mark(m, Protocol::robot_commands, at);
-  ASSERT_TRUE(step);
   EXPECT_EQ(step->servo_offset->units, 10);
+  EXPECT_NE(step->why.find("shaft stands at 510"), std::string::npos) << step->why;
 }
 
 TEST(Zero, BeyondTheServosOffsetRangeTheFileTakesIt) {

@@ -156,7 +156,8 @@ TEST(WebCalibration, CancelWritesNothingAndConfirmWritesTheFileThatTheServerThen
   EXPECT_FALSE(fs::exists(file.string() + ".prev"));
   EXPECT_EQ(api.get("/api/v1/calibration", "page").body["active"], false);
 
-  ASSERT_EQ(api.post(kCal + "start", json::object(), "page").status, 200);
+  // Zeros into the arm file (ConfirmWritesAServosOffset... has the default, the servo's own).
+  ASSERT_EQ(api.post(kCal + "start", {{"servo_offsets", false}}, "page").status, 200);
   ASSERT_EQ(api.post(kCal + "direction", {{"joint", "servo3"}, {"went_as_shown", false}}, "page").status, 200);
   // servo4 stands where it reads 5 deg when true (its mark): its zero moves, by 5 deg
   // (the API's units) since the arm stands at its zeros.
@@ -187,6 +188,48 @@ TEST(WebCalibration, CancelWritesNothingAndConfirmWritesTheFileThatTheServerThen
   r = api.post(kCal + "read", {{"joint", "servo4"}}, "page");
   ASSERT_EQ(r.status, 200) << r.text;
   EXPECT_NEAR(r.body["value"].get<double>(), 5, 0.5);
+  ASSERT_EQ(api.post(kCal + "cancel", json::object(), "page").status, 200);
+}
+
+// The default zero step on the xArm: the servo's own offset. Confirmed, the board's servo holds
+// it (saved), its shaft turned by it, and the server reads the joint in the commanded frame
+// (the read-back less the offset): where it was commanded, 0, now truly at its zero.
+TEST(WebCalibration, ConfirmWritesAServosOffsetThatTheServerThenReadsThrough) {
+  xarm::EmulatorRunner board(xarm::EmulatorRunnerOptions{});
+  board.start();
+  const fs::path file = arm_copy();
+  ApiServer api(file.string(), {}, "serial:" + board.device_path());
+  api.first_positions();
+  api.take("page");
+  const std::size_t servo4 = std::size_t(*api.worker().model().find_joint("servo4"));
+  const double per_deg = api.worker().model().joints[servo4].map(arm::Protocol::robot_commands)->device_per_unit() * M_PI / 180;
+  ASSERT_EQ(api.post(kCal + "start", json::object(), "page").status, 200);
+  Reply r = api.post(kCal + "zero", {{"joint", "servo4"}, {"mark", 5}}, "page");
+  ASSERT_EQ(r.status, 200) << r.text;
+  EXPECT_EQ(r.body["zero"]["kind"], "servo_offset");
+  const int units = r.body["zero"]["servo_offset"].get<int>();
+  EXPECT_NEAR(units, -5 * per_deg, 1.0);
+  ASSERT_EQ(r.body["changes"]["servo_offsets"].size(), 1u);
+  EXPECT_NE(r.body["describe"].get<std::string>().find("turns by"), std::string::npos) << r.body["describe"];
+  double shaft_before = 0;
+  board.with_servos([&](xarm::XarmServos& s) { shaft_before = s.true_position(4); });
+  r = api.post(kCal + "confirm", json::object(), "page");
+  ASSERT_EQ(r.status, 200) << r.text;
+  const arm::ArmModel written = arm::load_arm_model(file).value();
+  const arm::ArmModel shipped = arm::load_arm_model(fs::path(ARMCTL_SOURCE_DIR) / "config" / "xarm.arm.json").value();
+  EXPECT_EQ(written.joints[servo4].map(arm::Protocol::robot_commands)->device_a,
+            shipped.joints[servo4].map(arm::Protocol::robot_commands)->device_a)
+      << "the zero is in the servo, not the file";
+  board.with_servos([&](xarm::XarmServos& s) {
+    EXPECT_EQ(s.offset(4), units);
+    EXPECT_EQ(s.saved_offset(4), units);
+    EXPECT_NEAR(s.true_position(4), shaft_before + units, 1.0);
+  });
+  // Read through the offset: where it was commanded (0), not off by it.
+  ASSERT_EQ(api.post(kCal + "start", json::object(), "page").status, 200);
+  r = api.post(kCal + "read", {{"joint", "servo4"}}, "page");
+  ASSERT_EQ(r.status, 200) << r.text;
+  EXPECT_NEAR(r.body["value"].get<double>(), 0, 0.5);
   ASSERT_EQ(api.post(kCal + "cancel", json::object(), "page").status, 200);
 }
 

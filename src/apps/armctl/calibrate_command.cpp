@@ -37,10 +37,9 @@ struct CalibrateArgs {
   std::string device;
   std::string joint;
   std::string step = "all";
-  // --zero-in servo|file. The file by default: whether a bus servo's read-back follows its
-  // offset is not settled (docs/calibration.md "Known limit"), and the file's zero holds
-  // either way.
-  std::string zero_in = "file";
+  // --zero-in servo|file: an xArm joint's zero in the servo's own offset when it fits (the
+  // default), or always in the arm file.
+  std::string zero_in = "servo";
   std::string pictures;  // --pictures FILE: write the joints' pictures and stop
 };
 
@@ -414,8 +413,8 @@ void add_calibrate_command(CLI::App& app) {
   add_arm_options(cmd, args->arm, args->device);
   cmd->add_option("--joint", args->joint, "Only this joint (its name or number 1..N)");
   cmd->add_option("--zero-in", args->zero_in,
-                  "file (default): every zero goes to the arm file; servo: an xArm joint's zero goes to the servo's "
-                  "own offset when it fits -125..125 units (see docs/calibration.md: not yet for the emulator)");
+                  "servo (default): an xArm joint's zero goes to the servo's own offset when it fits -125..125 "
+                  "units, else to the arm file; file: every zero goes to the arm file");
   cmd->add_option("--pictures", args->pictures,
                   "Write the pictures of each joint's mark and positive direction (SVG) to this file and stop; no "
                   "device is opened");

@@ -258,7 +258,19 @@ Result<std::vector<ServoOffset>> Client::read_offsets(const std::vector<std::uin
                              servo_list_text(servos), link_.describe(),
                              servo_list_text(answered))};
   }
+  for (const auto& o : offsets) held_offsets_[o.servo] = o.offset;
   return offsets;
+}
+
+Result<std::vector<int>> Client::held_offsets(const std::vector<std::uint8_t>& servos) {
+  std::vector<std::uint8_t> unknown;
+  for (std::uint8_t s : servos)
+    if (!held_offsets_.contains(s)) unknown.push_back(s);
+  if (!unknown.empty())
+    if (auto read = read_offsets(unknown); !read) return read.error();
+  std::vector<int> out;
+  for (std::uint8_t s : servos) out.push_back(held_offsets_.at(s));
+  return out;
 }
 
 Status Client::adjust_offset(std::uint8_t servo, int offset) {
@@ -269,6 +281,7 @@ Status Client::adjust_offset(std::uint8_t servo, int offset) {
   }
   auto f = build(rc::ServoOffsetAdjust{servo, static_cast<std::int16_t>(offset)});
   if (!f) return f.error();
+  held_offsets_.erase(servo);  // read again when next asked: what the servo took, not what was sent
   return send(*f);
 }
 
@@ -301,6 +314,7 @@ Result<BusServoInfoReply> Client::read_bus_servo_info() {
 Status Client::write_bus_servo_info(const BusServoInfoWrite& info) {
   auto f = build(info);
   if (!f) return f.error();
+  held_offsets_.clear();  // a servo took a new ID: which servo holds which offset is read again
   return send(*f);
 }
 

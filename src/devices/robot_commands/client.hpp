@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -86,6 +87,13 @@ class Client {
   Result<std::vector<ServoOffset>> read_offsets(const std::vector<std::uint8_t>& servos);
   Status adjust_offset(std::uint8_t servo, int offset);  // -125..125, lost at power-off
   Status save_offsets(const std::vector<std::uint8_t>& servos);
+  // The offset each listed servo holds, as this client last read it; the servos it has not
+  // read since connecting, or has since changed (adjust_offset, write_bus_servo_info), are
+  // read now in one ServoOffsetRead. A servo's position read-back is its shaft, commanded +
+  // offset (robot-commands.json, "BusServoInfoRead reply"), so whoever compares read-backs
+  // with commanded positions subtracts these (arm/rc_arm_device.hpp). An offset another
+  // program changes on the board meanwhile is not seen.
+  Result<std::vector<int>> held_offsets(const std::vector<std::uint8_t>& servos);
   // ServoSpeed. `speed` is the motor-mode speed, -1000..1000 (negative = reverse; a board
   // ignores the value in servo mode); it travels as the spec's u16 in two's complement, so
   // a raw u16 such as static_cast<std::uint16_t>(-500) converts to the same speed. Values
@@ -162,6 +170,7 @@ class Client {
   EventCallback callback_;
   bool stop_sent_ = false;  // tells "stopped" from "finished" for a bare CMD 7
   std::optional<bool> has_joint_faults_;
+  std::map<std::uint8_t, int> held_offsets_;  // servo -> offset, as last read (held_offsets)
   ClientStats stats_;
 };
 

@@ -333,7 +333,7 @@ class Arm:
         """Until every joint of the last move is there and at rest; Error (timeout) names the late joints."""
     def stop(self) -> None:
         """Stops every joint where it is and holds it; what other threads run on the arm stops first."""
-    def calibration(self, servo_offsets: bool = False) -> Calibration:
+    def calibration(self, servo_offsets: bool = True) -> Calibration:
         """The guided calibration (docs/calibration.md "Python") for a with block: nothing is written
         until confirm(); leaving the block without it writes nothing."""
     def set_torque(self, on: bool) -> None:
