@@ -82,9 +82,11 @@ class TimedDevice final : public arm::ArmDevice {
     if (read_as) return read_as();
     return read_inner();
   }
-  // One read of the device itself; `took` its time on the device's clock.
+  // One read of the device itself (or the reply to request_read); `took` its time on the
+  // device's clock.
   Result<std::vector<double>> read_inner(Duration* took = nullptr) {
-    ++reads;
+    if (!requested_) ++reads;
+    requested_ = false;
     const TimePoint t0 = clock().now();
     auto r = cpu_.run([&] { return inner_->read_positions(); });
     if (took) *took = clock().now() - t0;
@@ -108,6 +110,21 @@ class TimedDevice final : public arm::ArmDevice {
     return s;
   }
   Status idle(Duration d) override { return cpu_.run([&] { return inner_->idle(d); }); }
+  // A read in two halves (the xArm's full-duplex line): the request holds the line after the
+  // point before it; the reply comes back while the next point goes out.
+  std::optional<Duration> read_request_time() const override { return inner_->read_request_time(); }
+  // One joint at a time (the SCARA's half-duplex bus): each holds the bus for its read.
+  std::optional<Duration> joint_read_time() const override { return inner_->joint_read_time(); }
+  Result<double> read_joint(int joint) override {
+    ++reads;
+    return cpu_.run([&] { return inner_->read_joint(joint); });
+  }
+  Status request_read() override {
+    ++reads;
+    requested_ = true;
+    line_free_ = std::max(clock().now(), line_free_) + *inner_->read_request_time();
+    return cpu_.run([&] { return inner_->request_read(); });
+  }
 
   std::function<Result<std::vector<double>>()> read_as;  // instead of a plain read
   std::function<void(TimePoint)> on_stream;  // a command's first byte on this device's clock
@@ -118,6 +135,7 @@ class TimedDevice final : public arm::ArmDevice {
   std::unique_ptr<arm::ArmDevice> inner_;
   SimulatorCpu& cpu_;
   TimePoint line_free_{};
+  bool requested_ = false;  // a request_read's reply not yet taken
 };
 
 const arm::ArmModel& model(const std::string& name) {

@@ -61,6 +61,26 @@ class ArmDevice {
   // arriving at `velocities` (device units/s). No read-back, no planning: the executor has
   // checked the whole motion before the first point.
   virtual Status stream(const std::vector<double>& targets, const std::vector<double>& velocities, Duration in) = 0;
+  // A position read in two halves, on a device whose line is full duplex (a Robot Commands
+  // board: a stream point has no reply): request_read sends the request and returns, and the
+  // next read_positions returns its reply. The points streamed in between go out while the
+  // reply comes back, so a loop that reads the arm back every few cycles does not hold a
+  // point behind the read (arm/run_servo.cpp). read_request_time: how long the request
+  // holds the outgoing line; nothing for a device that reads only whole (the default:
+  // request_read is then not called).
+  virtual std::optional<Duration> read_request_time() const { return std::nullopt; }
+  virtual Status request_read() { return Ok{}; }
+  // A device whose line is half duplex but reads every joint in a transaction of its own
+  // (the joint bus): read_joint reads one joint, so that a loop can spread a read-back over
+  // its cycles, one joint after each point, instead of holding the line for every joint at
+  // once (arm/run_servo.cpp). joint_read_time: how long one joint's read holds the line;
+  // nothing for a device that reads only whole (the default: read_joint is then not called).
+  virtual std::optional<Duration> joint_read_time() const { return std::nullopt; }
+  virtual Result<double> read_joint(int joint) {
+    auto all = read_positions();
+    if (!all) return all.error();
+    return all->at(std::size_t(joint));
+  }
   // Lets `d` pass on the device's clock (a simulated device runs meanwhile); an error if the
   // link failed meanwhile.
   virtual Status idle(Duration d) = 0;

@@ -39,6 +39,14 @@ Result<std::vector<double>> BusArmDevice::read_positions() {
   return out;
 }
 
+Result<double> BusArmDevice::read_joint(int joint) {
+  if (joint < 0 || std::size_t(joint) >= numbers_.size())
+    return Error{ErrorKind::invalid_argument, fmt::format("no joint {} to read (the arm has {})", joint, numbers_.size())};
+  auto p = master_.get_position(numbers_[std::size_t(joint)]);
+  if (!p) return p.error();
+  return double(*p);
+}
+
 Status BusArmDevice::move(const std::vector<std::optional<double>>& targets, Duration duration) {
   auto now = read_positions();
   if (!now) return now.error();

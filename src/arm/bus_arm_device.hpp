@@ -23,6 +23,9 @@ class BusArmDevice final : public ArmDevice {
   // One sweep of position reads (7 transactions: 58 ms at 9600) is already a poll.
   Duration poll_interval() const override { return std::chrono::milliseconds(20); }
   Result<std::vector<double>> read_positions() override;
+  // One get_position: a servo loop's read-back one joint per cycle.
+  std::optional<Duration> joint_read_time() const override { return transaction_; }
+  Result<double> read_joint(int joint) override;
   Status move(const std::vector<std::optional<double>>& targets, Duration duration) override;
   // set_speed 0 to every joint, back to back: each brakes at its own deceleration and holds.
   Status stop() override;

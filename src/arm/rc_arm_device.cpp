@@ -24,10 +24,26 @@ std::string RcArmDevice::description() const { return client_.link().describe();
 // offset, a reading is in the frame moves are commanded in, whatever offset the servo holds
 // (one the calibration wizard wrote as the joint's zero, or one set with the maker's tool).
 Result<std::vector<double>> RcArmDevice::read_positions() {
+  if (auto offsets = client_.held_offsets(servos_); !offsets) return offsets.error();  // known before the read
+  return commanded_frame(client_.position_request_pending() ? client_.collect_positions()
+                                                            : client_.read_positions(servos_));
+}
+
+std::optional<Duration> RcArmDevice::read_request_time() const {
+  return client_.link().frame_time(5 + servos_.size());  // header 2, length, command, count, ids
+}
+
+Status RcArmDevice::request_read() {
+  // The offsets known first (a ServoOffsetRead the first time): only moves go out while the
+  // reply comes back.
+  if (auto offsets = client_.held_offsets(servos_); !offsets) return offsets.error();
+  return client_.request_positions(servos_);
+}
+
+Result<std::vector<double>> RcArmDevice::commanded_frame(Result<std::vector<rc::ServoPosition>> read) {
+  if (!read) return read.error();
   auto offsets = client_.held_offsets(servos_);
   if (!offsets) return offsets.error();
-  auto read = client_.read_positions(servos_);
-  if (!read) return read.error();
   std::vector<double> out(servos_.size());
   for (std::size_t i = 0; i < servos_.size(); ++i) {
     bool found = false;
@@ -63,6 +79,8 @@ Status RcArmDevice::move(const std::vector<std::optional<double>>& targets, Dura
 }
 
 Status RcArmDevice::hold_where_they_stand() {
+  // Not a requested read's reply: that one may be from before the arm was stopped.
+  if (client_.position_request_pending()) (void)client_.collect_positions();
   auto now = read_positions();
   if (!now) return now.error();
   std::vector<std::optional<double>> hold(now->begin(), now->end());

@@ -22,8 +22,13 @@ class RcArmDevice final : public ArmDevice {
   const Clock& clock() const override { return client_.clock(); }
   Duration poll_interval() const override { return client_.options().poll_interval; }
   // In the commanded frame: each servo's read-back less the offset it holds (read once,
-  // then known to the client: the first read costs one ServoOffsetRead more).
+  // then known to the client: the first read costs one ServoOffsetRead more). After
+  // request_read: that request's reply.
   Result<std::vector<double>> read_positions() override;
+  // A ServoPositionRead's request (5 + n bytes) sent now, its reply collected by the next
+  // read_positions (client.hpp request_positions).
+  std::optional<Duration> read_request_time() const override;
+  Status request_read() override;
   // The board moves every servo linearly over the time (0..30 s); positions round to whole
   // servo units.
   Status move(const std::vector<std::optional<double>>& targets, Duration duration) override;
@@ -44,7 +49,9 @@ class RcArmDevice final : public ArmDevice {
   DeviceHealth health() override;
 
  private:
-  Status hold_where_they_stand();  // a move to where every servo reads, in no time
+  Status hold_where_they_stand();  // a move to where every servo reads now, in no time
+  // Each servo's read-back less its held offset, from a reply or a read now.
+  Result<std::vector<double>> commanded_frame(Result<std::vector<rc::ServoPosition>> read);
 
   robot_commands::Client& client_;
   RcActionGroups groups_{client_};

@@ -107,7 +107,22 @@ class ServoLoop {
 
     report_.period = options_.period.value_or(device_.stream_period(false));
     if (report_.period <= Duration{0}) report_.period = std::chrono::milliseconds(1);
-    const Duration read_time = device_.stream_period(true) - device_.stream_period(false);
+    // How the arm is read back (docs/servo.md "One cycle"): on a full-duplex line in two
+    // halves, the request after one cycle's point and the reply taken after the next one's;
+    // where every joint is read alone (the joint bus), one joint after each point until all
+    // are read; otherwise whole, after a point. The first two hold the line for a request or
+    // one joint only, so a point never waits long behind a read-back. `read_time`: how much
+    // longer a cycle with a read lasts.
+    Duration read_time = device_.stream_period(true) - device_.stream_period(false);
+    if (const auto request = device_.read_request_time()) {
+      read_way_ = ReadWay::halves;
+      read_time = *request;
+    } else if (const auto joint = device_.joint_read_time()) {
+      read_way_ = ReadWay::joint_by_joint;
+      read_time = *joint;
+      swept_device_.assign(n_, 0.0);
+      swept_sent_.assign(n_, 0.0);
+    }
     const Duration read_every =
         options_.executor.read_interval.value_or(std::max(device_.poll_interval(), 4 * report_.period));
     const TimePoint start = clock_.now();
@@ -126,7 +141,7 @@ class ServoLoop {
       if (command_ && !commanded && !newest.finish) status.slowdown = ServoSlowdown::command_timeout;
       // The point goes out now and is reached `in` from now (a cycle with a read-back lasts
       // longer): the generator steps by as much.
-      const bool read_now = now >= next_read;
+      const bool read_now = now >= next_read || swept_ > 0;
       const Duration in = report_.period + (read_now ? read_time : Duration{0});
       step(seconds(in), status);
 
@@ -139,13 +154,11 @@ class ServoLoop {
       if (auto s = device_.stream(dq, dv, in); !s) return halted(s.error());
       ++report_.cycles;
       if (status.slowdown != ServoSlowdown::none) ++report_.slowed[std::size_t(status.slowdown)];
-      if (read_now) {
-        // (A stall has stopped the arm and released the joint: a halt would hold it again.)
-        if (auto f = read_back(); !f) return stall_of(f.error()) ? f.error() : halted(f.error());
-        next_read = clock_.now() + read_every;
-      }
+      // (A stall has stopped the arm and released the joint: a halt would hold it again.)
+      if (auto f = read_after_point(read_now); !f) return stall_of(f.error()) ? f.error() : halted(f.error());
+      if (read_now && swept_ == 0) next_read = clock_.now() + read_every;  // a read made or requested
       sent_ = positions_;
-      status.elapsed = clock_.now() - start;
+      status.elapsed = now + in - start;  // when the point is due (a read-back's wait is not in it)
       status.positions = positions_;
       status.velocities = velocities_;
       status.commanded = commanded;
@@ -157,6 +170,8 @@ class ServoLoop {
       if (due_next > clock_.now())
         if (auto s = device_.idle(due_next - clock_.now()); !s) return halted(s.error());
     }
+    if (requested_)  // the last request's reply, so that no late reply is left on the line
+      if (auto f = read_back(requested_sent_); !f) return stall_of(f.error()) ? f.error() : halted(f.error());
     arm_.expect_at(positions_);
     report_.positions = positions_;
     report_.elapsed = clock_.now() - start;
@@ -430,20 +445,61 @@ class ServoLoop {
     (void)beyond_.deeper(now, placed_, true);
   }
 
-  Status read_back() {
+  // The cycle's part of a read-back, after its point (`read_now`: one is due or under way).
+  Status read_after_point(bool read_now) {
+    switch (read_way_) {
+      case ReadWay::whole:
+        return read_now ? read_back(sent_) : Status{Ok{}};
+      case ReadWay::halves:
+        if (requested_) {
+          requested_ = false;
+          if (auto f = read_back(requested_sent_); !f) return f;
+        }
+        if (!read_now) return Ok{};
+        if (auto r = device_.request_read(); !r) return r;
+        requested_ = true;
+        requested_sent_ = sent_;
+        return Ok{};
+      case ReadWay::joint_by_joint: {
+        if (!read_now) return Ok{};
+        const std::size_t j = swept_;
+        auto q = device_.read_joint(int(j));
+        if (!q) return q.error();
+        swept_device_[j] = *q;
+        swept_sent_[j] = sent_[j];
+        if (++swept_ < n_) return Ok{};
+        swept_ = 0;
+        JointState s;
+        s.time = clock_.now();
+        s.device = swept_device_;
+        s.positions = model_.from_device(device_.protocol(), s.device);
+        return check_read(s, swept_sent_);
+      }
+    }
+    return Ok{};
+  }
+
+  // `sent`: the point before the one sent last when the read was made (or requested).
+  Status read_back(const std::vector<double>& sent) {
     auto s = arm_.read();
     if (!s) return s.error();
+    return check_read(*s, sent);
+  }
+
+  // A reading of every joint; `sent` per joint, the point before the one sent last when it
+  // was read.
+  Status check_read(const JointState& s, const std::vector<double>& sent) {
     ++report_.reads;
-    if (options_.executor.on_read) options_.executor.on_read(*s);
+    if (options_.executor.on_read) options_.executor.on_read(s);
     // The device is on its way to the point sent last; it was sent the one before it.
-    if (auto f = check_following(model_, s->positions, sent_, options_.executor, "servo", 0,
+    if (auto f = check_following(model_, s.positions, sent, options_.executor, "servo", 0,
                                  report_.largest_following_error, report_.largest_following_joint);
         !f)
       return f;
     // Stall protection (arm/stall_watch.hpp): a joint driven but standing still (something the
     // scene does not know in the way) stops the arm and has its torque released.
-    driven_.assign(sent_.begin(), sent_.end());
-    if (auto stall = stall_.read(s->time, s->positions, driven_)) return arm_.stalled(std::move(*stall), "servo");
+    driven_.assign(sent.begin(), sent.end());
+    if (auto stall = stall_.read(s.time, s.positions, driven_)) return arm_.stalled(std::move(*stall), "servo");
     return Ok{};
   }
 
@@ -465,6 +521,12 @@ class ServoLoop {
   motion::ServoGenerator generator_;
   std::vector<motion::ServoGoal> goals_;
   std::vector<double> positions_, velocities_, sent_;
+  enum class ReadWay { whole, halves, joint_by_joint };
+  ReadWay read_way_ = ReadWay::whole;
+  bool requested_ = false;              // halves: a read's request is out, its reply not yet taken
+  std::vector<double> requested_sent_;  // sent_ when it went out
+  std::size_t swept_ = 0;               // joint by joint: the joints read so far in this read
+  std::vector<double> swept_device_, swept_sent_;  // each one's reading, and sent_ then
   std::shared_ptr<const scene::CollisionWorld> world_;
   std::vector<int> skip_;
   scene::LimitsBeyond beyond_;

@@ -35,7 +35,7 @@ inline constexpr int kServoSlowdowns = 6;
 const char* to_string(ServoSlowdown why);
 
 struct ServoStatus {
-  Duration elapsed{};
+  Duration elapsed{};  // since the session began, when the arm is due at the point sent
   std::vector<double> positions, velocities;  // the point just sent (SI, every joint)
   double scale = 1;  // of the command's speed this cycle (1: as asked)
   ServoSlowdown slowdown = ServoSlowdown::none;

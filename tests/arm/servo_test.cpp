@@ -123,6 +123,36 @@ TEST_F(XarmServo, ATwistMovesTheToolAlongALineAndStopsWhenTheInputEnds) {
     }
 }
 
+// The xArm's line is full duplex: a read-back's request goes out after one cycle's point and
+// its reply is taken after the next one's, so a cycle with a read-back lasts one point and
+// the request (not the whole read), and no reply is left over.
+TEST_F(XarmServo, AReadBackHoldsTheLineOnlyForItsRequest) {
+  std::vector<TimePoint> cycles;
+  Script script(input, twist({0, 20, 0}), 0, 0.5, 0.5);
+  ServoOptions o;
+  o.executor.read_interval = milliseconds(20);
+  o.before_cycle = [&](TimePoint now) {
+    cycles.push_back(now);
+    script(now);
+  };
+  o.on_cycle = std::ref(trace);
+  const std::size_t stale_before = client.stats().stale_replies;
+  auto r = run_servo(arm, input, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_GE(r->reads, 20u);
+  EXPECT_LT(r->largest_following_error, 2 * kDeg);
+  auto& device = arm.device();
+  const Duration request = *device.read_request_time();
+  const Duration whole_read = device.stream_period(true) - device.stream_period(false);
+  ASSERT_LT(request + milliseconds(1), whole_read);  // what the test tells apart
+  Duration longest{0};
+  for (std::size_t k = 1; k < cycles.size(); ++k) longest = std::max(longest, cycles[k] - cycles[k - 1]);
+  EXPECT_GT(longest, r->period);  // the cycles with a request
+  EXPECT_LE(longest, r->period + request + std::chrono::microseconds(10));
+  EXPECT_FALSE(client.position_request_pending());
+  EXPECT_EQ(client.stats().stale_replies, stale_before);
+}
+
 TEST_F(XarmServo, ATwistInTheToolFrameFollowsTheToolsAxes) {
   const Eigen::Vector3d before = tool_mm();
   const Eigen::Vector3d tool_z = arm.pose().value().orientation * Eigen::Vector3d::UnitZ();
@@ -438,6 +468,76 @@ TEST_F(ScaraServo, AJointHeldByAnObstacleHaltsTheArmWithAFollowingError) {
   const auto* f = following_error_of(r.error());
   ASSERT_NE(f, nullptr) << r.error().message;
   EXPECT_EQ(f->joint, 1);
+}
+
+// The SCARA's device, passed through, counting its reads: whole, and one joint at a time.
+class CountedReads final : public ArmDevice {
+ public:
+  explicit CountedReads(std::unique_ptr<ArmDevice> inner) : inner_(std::move(inner)) {}
+  Protocol protocol() const override { return inner_->protocol(); }
+  std::string description() const override { return inner_->description(); }
+  const Clock& clock() const override { return inner_->clock(); }
+  Duration poll_interval() const override { return inner_->poll_interval(); }
+  Result<std::vector<double>> read_positions() override {
+    ++whole;
+    return inner_->read_positions();
+  }
+  std::optional<Duration> joint_read_time() const override { return inner_->joint_read_time(); }
+  Result<double> read_joint(int joint) override {
+    ++joints;
+    return inner_->read_joint(joint);
+  }
+  Status move(const std::vector<std::optional<double>>& t, Duration d) override { return inner_->move(t, d); }
+  Status stop() override { return inner_->stop(); }
+  Status set_torque(bool on) override { return inner_->set_torque(on); }
+  Status release(int joint) override { return inner_->release(joint); }
+  Duration stream_period(bool with_read) const override { return inner_->stream_period(with_read); }
+  Duration stream_latency() const override { return inner_->stream_latency(); }
+  Status stream(const std::vector<double>& q, const std::vector<double>& v, Duration in) override {
+    return inner_->stream(q, v, in);
+  }
+  Status idle(Duration d) override { return inner_->idle(d); }
+  int whole = 0, joints = 0;
+
+ private:
+  std::unique_ptr<ArmDevice> inner_;
+};
+
+// The joint bus is half duplex, and each joint is read in a transaction of its own: the
+// servo mode reads the arm back one joint after each point, so that no point waits behind a
+// read of all seven; every seventh joint read completes a reading that is checked.
+TEST_F(SimulatedScara, AReadBackTakesOneJointAfterEachPoint) {
+  auto counted = std::make_unique<CountedReads>(
+      std::make_unique<BusArmDevice>(testing::shipped("scara"), master, sim->link(), "simulated SCARA"));
+  CountedReads& device = *counted;
+  Arm scara(testing::shipped("scara"), std::move(counted));
+  ServoInput in{scara.model()};
+  std::vector<double> v(std::size_t(scara.model().joint_count()), 0.0);
+  v[0] = -0.02;  // Z down, 20 mm/s
+  v[2] = 0.3;    // UAE
+  Script script(in, ServoCommand{JointVelocities{v}, std::nullopt}, 0, 0.6, 0.6);
+  int most_in_a_cycle = 0, at_cycle = 0, whole_at_start = -1;
+  std::size_t readings = 0;
+  ServoOptions o;
+  o.before_cycle = [&](TimePoint now) {
+    if (whole_at_start < 0) whole_at_start = device.whole;  // after the start's read
+    most_in_a_cycle = std::max(most_in_a_cycle, device.joints - at_cycle);
+    at_cycle = device.joints;
+    script(now);
+  };
+  o.executor.on_read = [&](const JointState& s) {
+    ++readings;
+    EXPECT_EQ(s.positions.size(), v.size());
+  };
+  auto r = run_servo(scara, in, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_EQ(device.whole, whole_at_start) << "no read of every joint at once while servoing";
+  EXPECT_EQ(most_in_a_cycle, 1);
+  EXPECT_GE(r->reads, 3u);
+  EXPECT_EQ(readings, r->reads);
+  EXPECT_GE(device.joints, int(r->reads) * 7);
+  EXPECT_LT(device.joints, int(r->reads + 1) * 7);
+  EXPECT_LT(r->largest_following_error, 3 * kDeg);
 }
 
 // Stall protection in the servo mode: a joint held by something no scene knows, driven

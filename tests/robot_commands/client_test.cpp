@@ -153,6 +153,87 @@ TEST(ClientReplies, AnswerForOtherServosIsAProtocolError) {
   EXPECT_NE(r.error().message.find("asked for servos 1"), std::string::npos);
 }
 
+// ------------------------------------------------------------ a read in two halves
+
+// The servo mode's read-back on a full-duplex line: the request goes out, moves follow it
+// while the reply comes back, and the reply is there when collected.
+TEST(ClientSplitRead, MovesGoOutWhileTheRequestedReplyComesBack) {
+  EmulatedLink link(115200);
+  Client c(link);
+  ASSERT_TRUE(c.move({{1, 300}}, 0));
+  ASSERT_TRUE(c.pump_events(link.sim_clock().now() + 500ms));  // the board moves servo 1 there
+  const TimePoint asked = link.sim_clock().now();
+  ASSERT_TRUE(c.request_positions({1, 2}));
+  EXPECT_TRUE(c.position_request_pending());
+  EXPECT_EQ(link.sim_clock().now(), asked);  // nothing waited for
+  ASSERT_TRUE(c.move({{2, 600}}, 20));
+  ASSERT_TRUE(c.pump_events(asked + 1ms));  // receives meanwhile, as a servo loop's idle does
+  ASSERT_TRUE(c.move({{2, 610}}, 20));
+  auto p = c.collect_positions();
+  ASSERT_TRUE(p) << p.error().message;
+  ASSERT_EQ(p->size(), 2u);
+  EXPECT_EQ((*p)[0].position, 300);
+  EXPECT_FALSE(c.position_request_pending());
+  // The reply's time on the wire: request (7 bytes) and reply (11 bytes) at 115200 baud; the
+  // moves sent after the request did not delay it.
+  EXPECT_LE(link.sim_clock().now() - asked, link.frame_time(7) + link.frame_time(11) + 1ms);
+  EXPECT_EQ(c.stats().stale_replies, 0u);
+  ASSERT_EQ(link.sent.size(), 4u);
+  EXPECT_EQ(link.sent[1].cmd, 21);  // request, then the two moves
+  EXPECT_EQ(link.sent[2].cmd, 3);
+  // Nothing left in flight: collecting again is a caller's mistake, said so.
+  auto again = c.collect_positions();
+  ASSERT_FALSE(again);
+  EXPECT_EQ(again.error().kind, ErrorKind::invalid_argument);
+}
+
+// A reply that never comes: a timeout as for read_positions, or its retries when asked.
+TEST(ClientSplitRead, AMissingReplyTimesOutOrIsReadAgain) {
+  int requests = 0;
+  ScriptedLink link([&](const rc::Frame& f) -> std::vector<ScriptedLink::Timed> {
+    if (f.cmd == 21 && ++requests >= 2) return {{5ms, rc::Frame{21, {1, 1, 0xF4, 0x01}}}};
+    return {};
+  });
+  {
+    Client c(link, ClientOptions{.reply_timeout = 100ms});
+    const TimePoint asked = link.sim_clock().now();
+    ASSERT_TRUE(c.request_positions({1}));
+    auto p = c.collect_positions();
+    ASSERT_FALSE(p);
+    EXPECT_EQ(p.error().kind, ErrorKind::timeout);
+    EXPECT_NE(p.error().message.find("ServoPositionRead"), std::string::npos) << p.error().message;
+    EXPECT_EQ(link.sim_clock().now() - asked, 100ms);
+    EXPECT_EQ(requests, 1);
+  }
+  requests = 0;
+  Client c(link, ClientOptions{.reply_timeout = 100ms, .read_attempts = 2});
+  ASSERT_TRUE(c.request_positions({1}));
+  auto p = c.collect_positions();
+  ASSERT_TRUE(p) << p.error().message;
+  EXPECT_EQ((*p)[0].position, 500);
+  EXPECT_EQ(requests, 2);
+  EXPECT_EQ(c.stats().read_retries, 1u);
+}
+
+// A read while a request is in flight waits for that request's reply first, so the older
+// reply is never taken for the newer read's.
+TEST(ClientSplitRead, AReadAfterARequestIsNotAnsweredByTheRequestsReply) {
+  std::uint8_t position = 100;
+  ScriptedLink link([&](const rc::Frame& f) -> std::vector<ScriptedLink::Timed> {
+    if (f.cmd != 21) return {};
+    const std::uint8_t now = position;
+    position = std::uint8_t(position + 100);
+    return {{3ms, rc::Frame{21, {1, 1, now, 0}}}};
+  });
+  Client c(link);
+  ASSERT_TRUE(c.request_positions({1}));
+  auto p = c.read_positions({1});
+  ASSERT_TRUE(p) << p.error().message;
+  EXPECT_EQ((*p)[0].position, 200);
+  EXPECT_FALSE(c.position_request_pending());
+  EXPECT_EQ(c.stats().stale_replies, 0u);
+}
+
 // -------------------------------------------------------------------- notifications
 
 TEST(ClientEvents, RealBoardVariants) {

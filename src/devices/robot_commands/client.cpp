@@ -103,6 +103,11 @@ std::optional<rc::BoardMessage> Client::take(const rc::Frame& frame) {
     deliver(*n);
     return std::nullopt;
   }
+  if (auto* positions = std::get_if<rc::ServoPositionReply>(&msg.value()); positions && pending_read_ &&
+                                                                          !pending_read_->reply) {
+    pending_read_->reply = std::move(*positions);  // request_positions' reply: kept for collect_positions
+    return std::nullopt;
+  }
   return msg.value();
 }
 
@@ -116,8 +121,8 @@ Status Client::take_arrived() {
   }
 }
 
-Result<rc::BoardMessage> Client::transact_read(const rc::Frame& frame) {
-  for (int attempt = 1;; ++attempt) {
+Result<rc::BoardMessage> Client::transact_read(const rc::Frame& frame, int attempts_made) {
+  for (int attempt = attempts_made + 1;; ++attempt) {
     auto reply = transact(frame, std::nullopt, options_.reply_timeout);
     if (reply || reply.error().kind != ErrorKind::timeout || attempt >= options_.read_attempts) {
       if (!reply && attempt > 1) {
@@ -190,11 +195,61 @@ Status Client::move(const std::vector<ServoTarget>& targets, std::uint16_t time_
 }
 
 Result<std::vector<ServoPosition>> Client::read_positions(const std::vector<std::uint8_t>& servos) {
+  return read_positions_after(servos, 0);
+}
+
+Result<std::vector<ServoPosition>> Client::read_positions_after(const std::vector<std::uint8_t>& servos,
+                                                                int attempts_made) {
   auto f = build(rc::ServoPositionRead{servos});
   if (!f) return f.error();
-  auto reply = transact_read(*f);
+  if (pending_read_) (void)collect_positions();  // its reply must not be taken for this one's
+  auto reply = transact_read(*f, attempts_made);
   if (!reply) return reply.error();
-  const auto& positions = std::get<rc::ServoPositionReply>(*reply).positions;
+  return positions_answering(servos, std::move(std::get<rc::ServoPositionReply>(*reply).positions));
+}
+
+Status Client::request_positions(const std::vector<std::uint8_t>& servos) {
+  auto f = build(rc::ServoPositionRead{servos});
+  if (!f) return f.error();
+  if (pending_read_) (void)collect_positions();
+  if (auto drained = take_arrived(); !drained) return drained;
+  if (auto sent = send(*f); !sent) return sent;
+  pending_read_ = PendingRead{servos, link_.clock().now() + options_.reply_timeout, std::nullopt};
+  return Ok{};
+}
+
+Result<std::vector<ServoPosition>> Client::collect_positions() {
+  if (!pending_read_)
+    return Error{ErrorKind::invalid_argument, "collect_positions: no position request is in flight"};
+  while (!pending_read_->reply) {
+    auto f = receive(pending_read_->deadline);
+    if (!f) {
+      pending_read_.reset();
+      return f.error();
+    }
+    if (!*f) {
+      // No reply in time: the request was the first attempt; read_positions makes the rest.
+      const std::vector<std::uint8_t> servos = std::move(pending_read_->servos);
+      pending_read_.reset();
+      if (options_.read_attempts <= 1)
+        return Error{ErrorKind::timeout,
+                     fmt::format("no ServoPositionRead reply (CMD {}) from {} within {} ms: the board may be "
+                                 "unreachable",
+                                 int(rc::Command::ServoPositionRead), link_.describe(),
+                                 std::chrono::duration_cast<std::chrono::milliseconds>(options_.reply_timeout)
+                                     .count())};
+      ++stats_.read_retries;
+      return read_positions_after(servos, 1);
+    }
+    if (take(**f)) ++stats_.stale_replies;
+  }
+  PendingRead done = std::move(*pending_read_);
+  pending_read_.reset();
+  return positions_answering(done.servos, std::move(done.reply->positions));
+}
+
+Result<std::vector<ServoPosition>> Client::positions_answering(const std::vector<std::uint8_t>& servos,
+                                                               std::vector<ServoPosition> positions) const {
   std::vector<std::uint8_t> answered;
   for (const auto& p : positions) answered.push_back(p.servo);
   if (answered != servos) {

@@ -79,6 +79,18 @@ class Client {
   Status move(const std::vector<ServoTarget>& targets, std::uint16_t time_ms);
   Result<std::vector<ServoPosition>> read_positions(const std::vector<std::uint8_t>& servos);
   Result<std::vector<ServoPosition>> read_all_positions();
+  // A position read in two halves, for a loop that keeps sending moves while the reply comes
+  // back (a Robot Commands line is full duplex and a move has no reply): request_positions
+  // sends the ServoPositionRead and returns; collect_positions returns its reply, waiting
+  // for it until options.reply_timeout after the request, and if none came by then reads as
+  // read_positions does (a retry). Frames that arrive meanwhile, the reply among them, are
+  // handled as usual by whatever receives them (a move, pump_events, another request) and
+  // the reply is kept until collected. One request at a time: a second one, and
+  // read_positions, first collect the one in flight (so that its reply is never taken for
+  // theirs).
+  Status request_positions(const std::vector<std::uint8_t>& servos);
+  Result<std::vector<ServoPosition>> collect_positions();
+  bool position_request_pending() const { return pending_read_.has_value(); }
   // Removes torque (per options.servo_off_per_servo), then reads the servos' positions
   // back: replies come in order, so an answer proves the board has handled every off
   // frame. Robot Commands cannot read torque itself, so that is all that can be checked.
@@ -155,7 +167,10 @@ class Client {
   // decode_board_message does not know); other frames are taken as usual meanwhile.
   Result<std::optional<rc::Frame>> transact_raw(const rc::Frame& frame, Duration timeout);
   // transact for a read: up to options_.read_attempts attempts while replies time out.
-  Result<rc::BoardMessage> transact_read(const rc::Frame& frame);
+  // `attempts_made`: attempts already made for this read elsewhere (collect_positions).
+  Result<rc::BoardMessage> transact_read(const rc::Frame& frame, int attempts_made = 0);
+  Result<std::vector<ServoPosition>> read_positions_after(const std::vector<std::uint8_t>& servos,
+                                                          int attempts_made);
   // Takes every frame that has already arrived (queues notifications, counts late
   // replies as stale), so a late answer to an earlier request is not taken for the next.
   Status take_arrived();
@@ -171,6 +186,15 @@ class Client {
   bool stop_sent_ = false;  // tells "stopped" from "finished" for a bare CMD 7
   std::optional<bool> has_joint_faults_;
   std::map<std::uint8_t, int> held_offsets_;  // servo -> offset, as last read (held_offsets)
+  struct PendingRead {  // request_positions' request, until collected
+    std::vector<std::uint8_t> servos;
+    TimePoint deadline;
+    std::optional<rc::ServoPositionReply> reply;
+  };
+  std::optional<PendingRead> pending_read_;
+  // The reply's servos checked against those asked for.
+  Result<std::vector<ServoPosition>> positions_answering(const std::vector<std::uint8_t>& servos,
+                                                         std::vector<ServoPosition> positions) const;
   ClientStats stats_;
 };
 
