@@ -77,9 +77,8 @@ class ArmDevice {
   // nothing for a device that reads only whole (the default: read_joint is then not called).
   virtual std::optional<Duration> joint_read_time() const { return std::nullopt; }
   virtual Result<double> read_joint(int joint) {
-    auto all = read_positions();
-    if (!all) return all.error();
-    return all->at(std::size_t(joint));
+    return Error{ErrorKind::invalid_argument,
+                 "joint " + std::to_string(joint) + ": " + description() + " reads every joint at once"};
   }
   // Lets `d` pass on the device's clock (a simulated device runs meanwhile); an error if the
   // link failed meanwhile.

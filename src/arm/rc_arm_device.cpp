@@ -24,9 +24,11 @@ std::string RcArmDevice::description() const { return client_.link().describe();
 // offset, a reading is in the frame moves are commanded in, whatever offset the servo holds
 // (one the calibration wizard wrote as the joint's zero, or one set with the maker's tool).
 Result<std::vector<double>> RcArmDevice::read_positions() {
-  if (auto offsets = client_.held_offsets(servos_); !offsets) return offsets.error();  // known before the read
-  return commanded_frame(client_.position_request_pending() ? client_.collect_positions()
-                                                            : client_.read_positions(servos_));
+  auto offsets = client_.held_offsets(servos_);  // known before the read (read the first time)
+  if (!offsets) return offsets.error();
+  auto read = client_.position_request_pending() ? client_.collect_positions() : client_.read_positions(servos_);
+  if (!read) return read.error();
+  return commanded_frame(*read, *offsets);
 }
 
 std::optional<Duration> RcArmDevice::read_request_time() const {
@@ -40,16 +42,14 @@ Status RcArmDevice::request_read() {
   return client_.request_positions(servos_);
 }
 
-Result<std::vector<double>> RcArmDevice::commanded_frame(Result<std::vector<rc::ServoPosition>> read) {
-  if (!read) return read.error();
-  auto offsets = client_.held_offsets(servos_);
-  if (!offsets) return offsets.error();
+Result<std::vector<double>> RcArmDevice::commanded_frame(const std::vector<rc::ServoPosition>& read,
+                                                          const std::vector<int>& offsets) const {
   std::vector<double> out(servos_.size());
   for (std::size_t i = 0; i < servos_.size(); ++i) {
     bool found = false;
-    for (const auto& p : *read)
+    for (const auto& p : read)
       if (p.servo == servos_[i]) {
-        out[i] = p.position - (*offsets)[i];
+        out[i] = p.position - offsets[i];
         found = true;
       }
     if (!found)

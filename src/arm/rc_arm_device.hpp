@@ -50,8 +50,9 @@ class RcArmDevice final : public ArmDevice {
 
  private:
   Status hold_where_they_stand();  // a move to where every servo reads now, in no time
-  // Each servo's read-back less its held offset, from a reply or a read now.
-  Result<std::vector<double>> commanded_frame(Result<std::vector<rc::ServoPosition>> read);
+  // Each servo's read-back less the offset it holds (`offsets` per joint).
+  Result<std::vector<double>> commanded_frame(const std::vector<rc::ServoPosition>& read,
+                                              const std::vector<int>& offsets) const;
 
   robot_commands::Client& client_;
   RcActionGroups groups_{client_};

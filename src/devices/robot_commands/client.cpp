@@ -121,6 +121,19 @@ Status Client::take_arrived() {
   }
 }
 
+Error Client::no_reply(const rc::Frame& frame, std::optional<std::uint8_t> sub, Duration timeout) const {
+  const char* name = "reply";
+  if (auto c = rc::command_from_byte(frame.cmd)) name = rc::command_name(*c);
+  // Robot Commands has no refusal: a board that refuses a request (a frame it finds
+  // invalid, a group it cannot store) answers nothing, which looks like this timeout.
+  return Error{ErrorKind::timeout,
+               fmt::format("no {} reply (CMD {}{}) from {} within {} ms: the board may have refused "
+                           "it (a board answers nothing to a request it refuses, e.g. one it "
+                           "could not store; see its log) or be unreachable",
+                           name, frame.cmd, sub ? fmt::format(" sub {}", *sub) : std::string(), link_.describe(),
+                           std::chrono::duration_cast<std::chrono::milliseconds>(timeout).count())};
+}
+
 Result<rc::BoardMessage> Client::transact_read(const rc::Frame& frame, int attempts_made) {
   for (int attempt = attempts_made + 1;; ++attempt) {
     auto reply = transact(frame, std::nullopt, options_.reply_timeout);
@@ -146,18 +159,7 @@ Result<rc::BoardMessage> Client::transact(const rc::Frame& frame, std::optional<
     auto received = receive(deadline);
     if (!received) return received.error();
     const std::optional<rc::Frame>& incoming = *received;
-    if (!incoming) {
-      // Robot Commands has no refusal: a board that refuses a request (a frame it finds
-      // invalid, a group it cannot store) answers nothing, which looks like this timeout.
-      return Error{ErrorKind::timeout,
-                   fmt::format("no {} reply (CMD {}{}) from {} within {} ms: the board may have refused "
-                               "it (a board answers nothing to a request it refuses, e.g. one it "
-                               "could not store; see its log) or be unreachable",
-                               name, frame.cmd, sub ? fmt::format(" sub {}", *sub) : std::string(),
-                               link_.describe(),
-                               std::chrono::duration_cast<std::chrono::milliseconds>(timeout)
-                                   .count())};
-    }
+    if (!incoming) return no_reply(frame, sub, timeout);
     if (incoming->cmd == frame.cmd) {
       // Same CMD: a reply, or (CMD 8 with DATA) a notification, or garbage we must report.
       auto msg = rc::decode_board_message(*incoming);
@@ -214,7 +216,7 @@ Status Client::request_positions(const std::vector<std::uint8_t>& servos) {
   if (pending_read_) (void)collect_positions();
   if (auto drained = take_arrived(); !drained) return drained;
   if (auto sent = send(*f); !sent) return sent;
-  pending_read_ = PendingRead{servos, link_.clock().now() + options_.reply_timeout, std::nullopt};
+  pending_read_ = PendingRead{servos, *f, link_.clock().now() + options_.reply_timeout, std::nullopt};
   return Ok{};
 }
 
@@ -229,17 +231,11 @@ Result<std::vector<ServoPosition>> Client::collect_positions() {
     }
     if (!*f) {
       // No reply in time: the request was the first attempt; read_positions makes the rest.
-      const std::vector<std::uint8_t> servos = std::move(pending_read_->servos);
+      const PendingRead missed = std::move(*pending_read_);
       pending_read_.reset();
-      if (options_.read_attempts <= 1)
-        return Error{ErrorKind::timeout,
-                     fmt::format("no ServoPositionRead reply (CMD {}) from {} within {} ms: the board may be "
-                                 "unreachable",
-                                 int(rc::Command::ServoPositionRead), link_.describe(),
-                                 std::chrono::duration_cast<std::chrono::milliseconds>(options_.reply_timeout)
-                                     .count())};
+      if (options_.read_attempts <= 1) return no_reply(missed.request, std::nullopt, options_.reply_timeout);
       ++stats_.read_retries;
-      return read_positions_after(servos, 1);
+      return read_positions_after(missed.servos, 1);
     }
     if (take(**f)) ++stats_.stale_replies;
   }

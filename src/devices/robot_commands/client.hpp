@@ -171,6 +171,11 @@ class Client {
   Result<rc::BoardMessage> transact_read(const rc::Frame& frame, int attempts_made = 0);
   Result<std::vector<ServoPosition>> read_positions_after(const std::vector<std::uint8_t>& servos,
                                                           int attempts_made);
+  // The reply's servos checked against those asked for.
+  Result<std::vector<ServoPosition>> positions_answering(const std::vector<std::uint8_t>& servos,
+                                                         std::vector<ServoPosition> positions) const;
+  // No reply to `frame` within `timeout`: the timeout error, naming the request.
+  Error no_reply(const rc::Frame& frame, std::optional<std::uint8_t> sub, Duration timeout) const;
   // Takes every frame that has already arrived (queues notifications, counts late
   // replies as stale), so a late answer to an earlier request is not taken for the next.
   Status take_arrived();
@@ -188,13 +193,11 @@ class Client {
   std::map<std::uint8_t, int> held_offsets_;  // servo -> offset, as last read (held_offsets)
   struct PendingRead {  // request_positions' request, until collected
     std::vector<std::uint8_t> servos;
+    rc::Frame request;
     TimePoint deadline;
     std::optional<rc::ServoPositionReply> reply;
   };
   std::optional<PendingRead> pending_read_;
-  // The reply's servos checked against those asked for.
-  Result<std::vector<ServoPosition>> positions_answering(const std::vector<std::uint8_t>& servos,
-                                                         std::vector<ServoPosition> positions) const;
   ClientStats stats_;
 };
 
