@@ -1,12 +1,14 @@
 // Arbitrary bytes into the FrameReceiver; every frame it yields goes through every typed
 // decoder (board side with 6 and 7 servos, host side) and, when it decodes, back through
-// the encoder, which must reproduce the same frame. Must never crash.
+// the encoder, which must reproduce the same frame (armctl's JointFault extensions too).
+// Must never crash.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 
 #include "protocol/robot_commands/frame_receiver.hpp"
 #include "protocol/robot_commands/hid_report.hpp"
+#include "protocol/robot_commands/joint_faults.hpp"
 #include "protocol/robot_commands/messages.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -32,6 +34,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       auto again = encode(*message);
       if (!again || *again != *f) std::abort();
     }
+    // armctl's extensions (JointFaultRead / JointFaultClear replies).
+    if (auto report = decode_joint_fault_reply(*f); report && encode_joint_fault_reply(*report) != *f) std::abort();
+    if (auto cleared = decode_joint_fault_clear_reply(*f); cleared && encode_joint_fault_clear_reply(*cleared) != *f)
+      std::abort();
   }
   (void)decode_hid_report(std::span<const std::uint8_t>(data, size));
   return 0;

@@ -90,6 +90,11 @@ class ArmDevice {
   // Its health, read now (talks to the device: from the thread that owns it). What cannot be
   // read is left out.
   virtual DeviceHealth health() { return {}; }
+  // Clears every joint's held faults (a joint-bus joint's runaway or following error keeps
+  // its H-bridge off until then): each joint holds where it is and drives again. An error
+  // names each joint that could not be cleared (one that does not answer); the others are
+  // cleared all the same. A device that holds no faults (an xArm) has nothing to clear: Ok.
+  virtual Status clear_faults() { return Ok{}; }
 };
 
 }  // namespace armctl::arm

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include "devices/joint_bus/bus_connection.hpp"
 #include "devices/joint_bus/joint_diagnostics.hpp"
@@ -169,6 +170,20 @@ DeviceHealth BusArmDevice::health() {
     if (d->faults != 0) h.faults.push_back(fmt::format("joint {}: {}", j, joint_bus::describe_faults(d->faults)));
   }
   return h;
+}
+
+Status BusArmDevice::clear_faults() {
+  std::vector<std::string> failed;
+  for (int j = 1; j <= master_.joint_count(); ++j) {
+    auto cleared = master_.clear_faults(j);
+    if (cleared) continue;
+    const joint_bus::JointFailure* f = joint_bus::joint_failure(cleared.error());
+    // The original firmware does not know clear_faults: it holds no faults to clear.
+    if (f != nullptr && f->kind == joint_bus::FailureKind::unknown_command) continue;
+    failed.push_back(cleared.error().message);
+  }
+  if (failed.empty()) return Ok{};
+  return Error{ErrorKind::device, fmt::format("faults not cleared: {} (the other joints were)", fmt::join(failed, "; "))};
 }
 
 }  // namespace armctl::arm

@@ -38,6 +38,7 @@ class BusArmDevice final : public ArmDevice {
   Status stream(const std::vector<double>& targets, const std::vector<double>& velocities, Duration in) override;
   Status idle(Duration d) override;
   DeviceHealth health() override;  // the joints' fault flags (firmware without diagnostics: none)
+  Status clear_faults() override;
 
  private:
   Status failed(const Error& e) const;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include "devices/joint_bus/joint_diagnostics.hpp"
 
@@ -148,6 +149,20 @@ DeviceHealth RcArmDevice::health() {
     if (auto line = describe_joint_faults(**report)) h.faults.push_back(*line);
   }
   return h;
+}
+
+Status RcArmDevice::clear_faults() {
+  std::vector<std::string> failed;
+  for (std::uint8_t servo : servos_) {
+    auto reply = client_.clear_joint_faults(servo);
+    if (!reply) return reply.error().prefixed(fmt::format("clearing servo {}'s faults: ", servo));
+    if (!*reply) return Ok{};  // a board without armctl's extension holds no joint faults
+    if (!(*reply)->cleared())
+      failed.push_back(fmt::format("servo {} (its joint answered STATUS {}{})", servo, (*reply)->status,
+                                   (*reply)->status == joint_bus::status_no_answer ? ": no answer" : ""));
+  }
+  if (failed.empty()) return Ok{};
+  return Error{ErrorKind::device, fmt::format("faults not cleared on {}; the others were", fmt::join(failed, ", "))};
 }
 
 std::optional<std::string> describe_joint_faults(const rc::JointFaultReport& r) {

@@ -47,6 +47,7 @@ class RcArmDevice final : public ArmDevice {
   // controller) also each servo's faults. A board without it (an xArm) costs one
   // extension_timeout on the first call, none after.
   DeviceHealth health() override;
+  Status clear_faults() override;
 
  private:
   Status hold_where_they_stand();  // a move to where every servo reads now, in no time

@@ -172,7 +172,7 @@ void ControllerCore::cancel_ops(uint8_t index, bool drives_only) {
   for (uint8_t i = 0; i < op_count_; ++i) {
     // A read of the joint's diagnostic words is kept: a new move does not answer why it
     // stopped following.
-    const bool drop = ops_[i].joint == joints_[index].number && ops_[i].kind != OpKind::diagnostic &&
+    const bool drop = ops_[i].joint == joints_[index].number && !kept_through_moves(ops_[i].kind) &&
                       (!drives_only || ops_[i].kind == OpKind::drive_to);
     if (!drop) ops_[kept++] = ops_[i];
   }
@@ -292,6 +292,7 @@ void ControllerCore::start_next(uint32_t now_us) {
       case OpKind::speed_switch: command = jb::cmd_set_speed; break;
       case OpKind::drive_to: command = jb::cmd_drive_to; break;
       case OpKind::diagnostic: command = jb::cmd_read_diagnostic; break;
+      case OpKind::clear_faults: command = jb::cmd_clear_faults; break;
     }
     if (txns_since_plan_ < 255) ++txns_since_plan_;
     inflight_is_op_ = true;
@@ -414,6 +415,7 @@ bool ControllerCore::fold_pending(uint32_t now_us) {
     const JointState& s = state_[pending_[k].index];
     if (s.model_known && s.loop_on && s.model_events > 0) {
       fold_model(pending_[k].index, now_us);
+      check_stream(pending_[k].index, now_us);  // a stall stops every move, the pending one too
       return true;
     }
   }
@@ -438,6 +440,8 @@ void ControllerCore::take_result(const BusResult& r, uint32_t now_us) {
     if (r.ok) {
       polled_before_ = s.read ? s.clicks : r.response;
       s.clicks = r.response;
+      // Its RESPONSE came before the select fell and STATUS came back (two words).
+      s.read_us = now_us - 2 * master_.word_time_us();
       // In position units once per poll (at the end of this poll(), after the next
       // transaction has started): a ServoPositionRead then only copies (seven divisions in
       // the reply's pass took the Mega 0.5 ms of its round trip).
@@ -453,6 +457,10 @@ void ControllerCore::take_result(const BusResult& r, uint32_t now_us) {
       poll_index_ = 0;
       ++stats_.sweeps;
     }
+    return;
+  }
+  if (inflight_kind_ == OpKind::clear_faults) {
+    faults_cleared(index, r);
     return;
   }
   if (r.ok) {
@@ -506,6 +514,7 @@ void ControllerCore::on_frame(uint8_t command, const uint8_t* data, uint8_t leng
   switch (command) {
     case rc_multi_servo_off:
     case rc_servo_speed:
+    case rc_joint_fault_clear:
     case rc_group_run:
     case rc_group_erase: plan_pending(now_us, true); break;
     default: break;
@@ -543,6 +552,7 @@ void ControllerCore::on_frame(uint8_t command, const uint8_t* data, uint8_t leng
       on_group_speed(data, length);
       return;
     case rc_joint_fault_read: on_joint_fault_read(data, length); return;
+    case rc_joint_fault_clear: on_joint_fault_clear(data, length, now_us); return;
     case rc_get_battery_voltage:
       if (length != 0) break;
       reply_u16(rc_get_battery_voltage, battery_mv_);
@@ -877,7 +887,11 @@ void ControllerCore::on_servo_off(const uint8_t* data, uint8_t length, uint32_t 
 }
 
 void ControllerCore::halt(uint32_t now_us) {
-  op_count_ = 0;
+  // Every command dropped but a clear_faults a host waits for (it moves nothing).
+  uint8_t kept = 0;
+  for (uint8_t i = 0; i < op_count_; ++i)
+    if (ops_[i].kind == OpKind::clear_faults) ops_[kept++] = ops_[i];
+  op_count_ = kept;
   pending_count_ = 0;
   // 0 % brings each joint's setpoint to rest at its acceleration limit and holds it there.
   for (uint8_t i = 0; i < count_; ++i) {

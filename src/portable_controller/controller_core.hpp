@@ -26,6 +26,8 @@
 //                      the soft limit in that direction; servo mode (or a move) ends it
 //   JointFaultRead     (CMD 40, an armctl extension) one joint's fault state: a joint that
 //                      stops following its plan has its 7 read_diagnostic words read
+//   JointFaultClear    (CMD 41, an armctl extension) clear_faults sent to one joint (its
+//                      move stopped first), answered with the joint's STATUS
 // Between commands the joints are polled round robin (get_position), so positions are
 // fresh and a joint that stops answering is known before a move names it.
 //
@@ -75,6 +77,7 @@ static const uint8_t model_unknown_percent = 0xFF;
 
 struct JointState {
   int16_t clicks;     // last good get_position
+  uint32_t read_us;   // when the joint answered it (its RESPONSE)
   int16_t position;   // the same in Robot Commands units (to_position)
   bool read;          // clicks holds a reading
   bool answering;     // the last transaction with the joint worked
@@ -221,7 +224,8 @@ class ControllerCore {
 
  private:
   // speed_switch: the part-way set_speed of a move (plan_move).
-  enum class OpKind : uint8_t { set_zone, loop_on, loop_off, speed, drive_to, diagnostic, speed_switch };
+  // clear_faults: JointFaultClear's, answered upstream with its STATUS.
+  enum class OpKind : uint8_t { set_zone, loop_on, loop_off, speed, drive_to, diagnostic, speed_switch, clear_faults };
   struct Op {
     uint32_t due_us;
     uint8_t joint;
@@ -238,6 +242,9 @@ class ControllerCore {
   int8_t index_of(uint8_t joint) const;
   bool schedule(uint32_t due_us, uint8_t index, OpKind kind, int16_t value);
   void cancel_ops(uint8_t index, bool drives_only);
+  // Kept when a joint's commands are cancelled: reads of its diagnostic words and a
+  // clear_faults (they are not motion, and a host waits for the clear's answer).
+  static bool kept_through_moves(OpKind kind) { return kind == OpKind::diagnostic || kind == OpKind::clear_faults; }
   // The joint's queued op of this kind gets the new value and goes out no later than
   // either due time, keeping its place in the queue; else a new one is queued.
   bool upsert(uint32_t due_us, uint8_t index, OpKind kind, int16_t value);
@@ -251,12 +258,23 @@ class ControllerCore {
   // A joint of a move started at rest more than not_following_clicks behind the least its
   // setpoint ramp can have covered: stalled. Its move is stopped (stop_move). True then.
   bool check_ramp(uint8_t index, uint32_t now_us);
+  // A joint of a streamed move (planned while it moved: no ramp from rest to compare with)
+  // whose last poll is more than not_following_clicks from where its model had the setpoint
+  // then, beyond what the model's acceleration leaves open: stalled (or run away). Checked
+  // when its model is folded for the next point, so found within a point of the stream, not
+  // when the stream ends; every move under way is stopped then (stop_move). True then.
+  bool check_stream(uint8_t index, uint32_t now_us);
   // Every joint of the move that `index` belongs to (same planned end) brought to rest
   // (set_speed 0), and a playing group stopped (CMD 7).
-  void stop_move(uint8_t index, uint32_t now_us);
+  // `every_move`: every joint under a plan instead (a stream's joints each have their own end).
+  void stop_move(uint8_t index, uint32_t now_us, bool every_move = false);
   void lost_following(uint8_t index, uint32_t now_us);
   void read_diagnostics(uint8_t index, uint32_t now_us);
   void on_joint_fault_read(const uint8_t* data, uint8_t length);
+  void on_joint_fault_clear(const uint8_t* data, uint8_t length, uint32_t now_us);
+  // The joint's answer to clear_faults: a cleared joint follows again with no fault known
+  // and holds where it is (its model unknown until a move); the STATUS goes upstream.
+  void faults_cleared(uint8_t index, const BusResult& r);
   // The joint's model (see JointState): a command that took effect noted; forgotten; the
   // noted commands folded in (an unknown model anchored at rest where the joint was last
   // polled, at `now_us`), its phases shaped; anchored at rest on a spot.

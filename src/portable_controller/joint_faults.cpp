@@ -103,7 +103,29 @@ bool ControllerCore::check_ramp(uint8_t index, uint32_t now_us) {
   return true;
 }
 
-void ControllerCore::stop_move(uint8_t index, uint32_t now_us) {
+bool ControllerCore::check_stream(uint8_t index, uint32_t now_us) {
+  JointState& s = state_[index];
+  if (!s.planned || s.ramp_percent != 0 || s.behind_ramp || s.jogging || !s.read || !s.model_known || !s.loop_on)
+    return false;
+  // The setpoint where the model had it when the joint was read: from the model's last
+  // state (x0, v0 at model_us), at worst the acceleration's a dt^2 / 2 either way, as the
+  // ramp never changes speed faster (a few multiplications: no phases evaluated).
+  const float dt = float(static_cast<int32_t>(s.read_us - s.model_us)) * 1e-6f;
+  if (dt > 0.3f || dt < -0.3f) return false;  // too far apart to bound usefully
+  const float open = 0.5f * s.model.accel * dt * dt;
+  float off = s.model.x0 + s.model.v0 * dt - float(s.clicks);
+  if (off < 0.0f) off = -off;
+  // Tracking lag stays under 300 clicks on a healthy joint (docs/arm-controller.md).
+  if (off - open <= float(not_following_clicks)) return false;
+  s.behind_ramp = true;
+  s.stalled_us = now_us;
+  count_up(stats_.stalls);
+  stop_move(index, now_us, true);
+  if (s.following) lost_following(index, now_us);
+  return true;
+}
+
+void ControllerCore::stop_move(uint8_t index, uint32_t now_us, bool every_move) {
   // A synchronized move without one of its joints is not the move asked for (the reason a
   // move naming a dead joint is refused whole): every joint of it comes to rest where it
   // is, as GroupStop brings them. The stalled joint's setpoint stops too, so a freed joint
@@ -113,7 +135,7 @@ void ControllerCore::stop_move(uint8_t index, uint32_t now_us) {
   pending_count_ = 0;
   for (uint8_t i = 0; i < count_; ++i) {
     JointState& s = state_[i];
-    if (!s.planned || s.plan_end_us != end_us) continue;
+    if (!s.planned || (!every_move && s.plan_end_us != end_us)) continue;
     cancel_ops(i, false);
     schedule(now_us, i, OpKind::speed, 0);
     s.planned = false;
@@ -159,6 +181,42 @@ void ControllerCore::on_joint_fault_read(const uint8_t* data, uint8_t length) {
     reply[7 + 2 * k] = static_cast<uint8_t>(s.diagnostics[k] >> 8);
   }
   upstream_->send_frame(rc_joint_fault_read, reply, sizeof reply);
+}
+
+void ControllerCore::on_joint_fault_clear(const uint8_t* data, uint8_t length, uint32_t now_us) {
+  const int8_t found = length == 1 ? index_of(data[0]) : -1;
+  if (found < 0) {
+    count_up(stats_.ignored_frames);
+    return;
+  }
+  const uint8_t index = static_cast<uint8_t>(found);
+  JointState& s = state_[index];
+  // A cleared joint holds where it is (its target := its position): a move it belongs to
+  // would go on without it, so that move stops first, as for a stall. A jog ends too.
+  if (s.planned) stop_move(index, now_us);
+  s.jogging = false;
+  if (!schedule(now_us, index, OpKind::clear_faults, 0)) count_up(stats_.ignored_frames);  // queue full: no reply
+}
+
+void ControllerCore::faults_cleared(uint8_t index, const BusResult& r) {
+  JointState& s = state_[index];
+  if (r.ok) {
+    s.answering = true;
+    s.following = true;
+    s.behind_ramp = false;
+    s.left_plan = false;
+    s.diagnostics_read = false;
+    s.diagnostics[jb::diagnostic_faults] = 0;
+    s.planned = false;
+    s.ramp_armed = false;
+    forget_model(index);  // at rest where it is: the next move plans from its poll
+  } else {
+    count_up(stats_.command_failures);
+    note_fault(index, r.status);
+  }
+  const uint8_t reply[3] = {joints_[index].number, static_cast<uint8_t>(uint16_t(r.status) & 0xFFu),
+                            static_cast<uint8_t>(uint16_t(r.status) >> 8)};
+  upstream_->send_frame(rc_joint_fault_clear, reply, sizeof reply);
 }
 
 }  // namespace controller

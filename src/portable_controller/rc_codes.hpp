@@ -22,9 +22,11 @@ const uint8_t rc_servo_offset_adjust = 24;
 const uint8_t rc_servo_speed = 26;
 const uint8_t rc_bus_servo_info_write = 27;
 const uint8_t rc_bus_servo_info_read = 28;
-// An armctl extension, not in the xArm protocol (an xArm board ignores it as unknown): a
-// joint's fault state and diagnostic words (docs/mega-controller.md "Joint faults").
+// armctl extensions, not in the xArm protocol (an xArm board ignores them as unknown): a
+// joint's fault state and diagnostic words, and clear_faults sent to a joint
+// (docs/mega-controller.md "Joint faults").
 const uint8_t rc_joint_fault_read = 40;
+const uint8_t rc_joint_fault_clear = 41;
 
 const uint16_t rc_null_position = 0xFF00;  // MultiServoMove: leave this servo alone
 const uint16_t rc_max_position = 1000;

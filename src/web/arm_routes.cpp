@@ -1,5 +1,5 @@
 // The arm's own endpoints: model, URDF, state and its event stream, control, STOP and the
-// moves (joints, tool, jog, gripper, torque).
+// moves (joints, tool, jog, gripper, torque), clearing joint faults.
 #include <fmt/core.h>
 
 #include "web/api_error.hpp"
@@ -114,6 +114,14 @@ void add_arm_routes(WebServer::State& s) {
     // Done at once: answered when the worker is free again.
     s.run_to_end(on ? "torque on" : "torque off", [on](arm::Arm& arm, session::JobContext&) { return arm.set_torque(on); });
     c.reply({{"torque", on}});
+  });
+  // The faults the joints hold (shown in the state's `faults`): each joint holds where it is
+  // and drives again. 500 naming the joints that could not be cleared.
+  s.router.add("POST", "/api/v1/clear-faults", [&s](Call& c) {
+    s.lease.require(c.client);
+    parse_empty_request(c.body());
+    s.run_to_end("clear faults", [](arm::Arm& arm, session::JobContext&) { return arm.device().clear_faults(); });
+    c.reply({{"faults_cleared", true}});
   });
 }
 

@@ -66,6 +66,17 @@ TEST_F(ArmCli, HealthOfBothArmsAsTheDashboardShowsIt) {
   EXPECT_TRUE(contains(s.out, "faults   none")) << s.out;
 }
 
+TEST_F(ArmCli, ClearFaultsOnBothArms) {
+  // The emulated xArm holds no joint faults (it ignores armctl's extension): nothing to clear.
+  auto x = run_armctl("arm --json clear-faults", "2>/dev/null");
+  ASSERT_EQ(x.status, 0) << x.out;
+  EXPECT_EQ(nlohmann::json::parse(x.out)["faults_cleared"], true);
+  // The SCARA's joints each get clear_faults on the bus and answer it.
+  auto s = run_armctl("arm --arm scara clear-faults");
+  EXPECT_EQ(s.status, 0) << s.out;
+  EXPECT_TRUE(contains(s.out, "faults cleared")) << s.out;
+}
+
 TEST_F(ArmCli, MoveToAPointInMillimetresOnBothArms) {
   for (const char* cmd : {"arm --json move-to x=150 y=50 z=150 --wait",
                           "arm --arm scara --json move-to x=400 y=100 z=300 --wait --time 2s"}) {

@@ -91,6 +91,24 @@ TEST(MegaArm, HealthReportsTheJointFaultsTheMegaFound) {
   EXPECT_EQ(after.faults[0].rfind("servo 3: runaway (bridge off until clear-faults)", 0), 0u) << after.faults[0];
   EXPECT_LT(m.true_positions()[1], 0.25) << "SHOULDER's move (to 0.3 rad) was stopped with UAE's";
   EXPECT_EQ(m.rig.client->has_joint_faults(), true);
+
+  // Cleared (JointFaultClear, CMD 41, through the Mega to each joint): no fault left, and
+  // UAE drives again. Its leads are still swapped (the cause not fixed), so driven it runs
+  // away once more: it moves, where a joint still holding its fault refuses the drive and
+  // stays put.
+  auto cleared = m.arm.device().clear_faults();
+  ASSERT_TRUE(cleared) << cleared.error().message;
+  const auto now = m.arm.device().health();
+  EXPECT_TRUE(now.faults.empty()) << now.faults.front();
+  const int uae_before = m.rig.clicks(3);
+  ASSERT_TRUE(m.arm.move_joints({std::nullopt, std::nullopt, 0.0, std::nullopt, std::nullopt, std::nullopt,
+                                 std::nullopt},
+                                arm::MoveOptions{}));
+  m.rig.mega.advance(2500ms);
+  EXPECT_GT(std::abs(m.rig.clicks(3) - uae_before), 500) << "UAE was driven again after the clear";
+  const auto again = m.arm.device().health();
+  ASSERT_EQ(again.faults.size(), 1u);
+  EXPECT_EQ(again.faults[0].rfind("servo 3: runaway", 0), 0u) << again.faults[0];
 }
 
 }  // namespace

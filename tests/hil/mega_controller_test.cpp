@@ -349,6 +349,49 @@ TEST(MegaController, JointBlockedMidMoveIsFoundBehindItsRampAndItsMoveStopped) {
   EXPECT_FALSE(cleared->behind_ramp);
 }
 
+class MegaStream : public ::testing::TestWithParam<std::uint32_t> {};
+
+TEST_P(MegaStream, AJointBlockedMidStreamIsFoundWhileTheStreamRuns) {
+  // A line streamed as a host streams one: a point every 30 ms, each to be reached in 30 ms,
+  // joints 2 and 3 moving steadily. Joint 3 meets an obstacle 0.6 s in. Its moves are all
+  // planned while it moves (no ramp from rest to check): the Mega compares its polls with
+  // its model's setpoint when the next point is planned, finds it within the stream, and
+  // stops every move (joint 2 comes to rest) instead of letting the others run on without it.
+  MegaRig rig(GetParam());
+  const TimePoint start = rig.now();
+  std::optional<int> blocked_at;
+  std::optional<double> found_ms;
+  const int points = 100;  // 3 s
+  for (int i = 1; i <= points && !found_ms; ++i) {
+    const int p = 500 + 4 * i;  // 500 -> 900
+    ASSERT_TRUE(rig.client->move({{2, p}, {3, p}}, 30).ok());
+    rig.mega.advance(30ms);
+    if (!blocked_at && rig.now() >= start + 600ms) {
+      blocked_at = rig.clicks(3);
+      rig.mega.arm().joint(3).set_obstacle({*blocked_at - 1, *blocked_at + 1});
+    }
+    if (blocked_at && i % 5 == 0) {
+      const auto r = read_joint_faults(rig, 3);
+      if (r && r->behind_ramp) found_ms = ms_between(start, rig.now());
+    }
+  }
+  ASSERT_TRUE(blocked_at.has_value());
+  ASSERT_TRUE(found_ms.has_value()) << "never found while the stream ran";
+  std::printf("%u baud: joint 3 blocked at 600 ms of a 3000 ms stream: found by %.0f ms\n", GetParam(), *found_ms);
+  EXPECT_LT(*found_ms, 1500) << "within the stream, well before its end";
+  rig.mega.advance(500ms);
+  const int two = rig.clicks(2);
+  rig.mega.advance(500ms);
+  EXPECT_NEAR(rig.clicks(2), two, 20) << "joint 2 at rest: every move was stopped";
+  EXPECT_LT(two, clicks_for(2, 900) - 1000) << "short of where the stream went";
+  const auto later = read_joint_faults(rig, 3);
+  ASSERT_TRUE(later.has_value());
+  EXPECT_FALSE(later->following);
+  EXPECT_TRUE(later->words_read) << "its diagnostic words were read";
+}
+
+INSTANTIATE_TEST_SUITE_P(Baud, MegaStream, ::testing::Values(9600u, 115200u));
+
 TEST(MegaController, ResetMidMoveHaltsTheJoints) {
   MegaRig rig;
   ASSERT_TRUE(rig.client->move({{2, 950}}, 3000).ok());

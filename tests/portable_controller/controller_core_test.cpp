@@ -528,6 +528,8 @@ TEST(ControllerCore, StreamedMovesKeepEveryJointOnTheStream) {
     EXPECT_NEAR(rig.joints.position[j], rate[j] * period * points, 30) << "at the end of the line";
   }
   for (int j : {1, 5, 7}) EXPECT_EQ(rig.joints.position[j], 0) << "joint " << j << " stays";
+  EXPECT_EQ(rig.core.stats().stalls, 0) << "no healthy joint is taken for a stalled one";
+  EXPECT_EQ(rig.core.stats().following_lost, 0);
 }
 
 // ------------------------------------------------------------------ joint faults
@@ -579,6 +581,82 @@ TEST(ControllerCoreFaults, AJointThatRefusesItsDriveHasItsFaultWordsReadAndRepor
   // Its faults are known: not read again.
   rig.run_us(1000000);
   EXPECT_EQ(diagnostic_indexes(rig.joints, 3).size(), 7u);
+}
+
+TEST(ControllerCoreFaults, JointFaultClearClearsTheJointAndAnswersWithItsStatus) {
+  CoreRig rig;
+  rig.joints.refuses_drives[3] = true;
+  rig.joints.diagnostics[3][jb::diagnostic_faults] = jb::fault_runaway;
+  rig.request(rc_multi_servo_move, CoreRig::move(1000, {{3, 600}}));
+  rig.run_us(300000);
+  ASSERT_FALSE(rig.core.joint_state(3).following);
+  ASSERT_EQ(rig.core.joint_state(3).diagnostics[jb::diagnostic_faults], jb::fault_runaway);
+
+  // CMD 41: clear_faults goes to the joint, and its STATUS comes back once it answered.
+  rig.upstream.frames.clear();
+  rig.joints.log.clear();
+  rig.request(rc_joint_fault_clear, {3});
+  EXPECT_TRUE(rig.upstream.frames.empty()) << "no answer before the joint's";
+  rig.run_us(50000);
+  ASSERT_EQ(rig.joints.commands_of(jb::cmd_clear_faults).size(), 1u);
+  EXPECT_EQ(rig.joints.commands_of(jb::cmd_clear_faults)[0].joint, 3);
+  ASSERT_EQ(rig.upstream.frames.size(), 1u);
+  EXPECT_EQ(rig.upstream.frames[0].command, rc_joint_fault_clear);
+  EXPECT_EQ(rig.upstream.frames[0].data, (std::vector<std::uint8_t>{3, 510 & 0xFF, 510 >> 8}));
+  const JointState& s = rig.core.joint_state(3);
+  EXPECT_TRUE(s.following);
+  EXPECT_FALSE(s.diagnostics_read);
+  EXPECT_EQ(s.diagnostics[jb::diagnostic_faults], 0);
+  rig.upstream.frames.clear();
+  rig.request(rc_joint_fault_read, {3});
+  ASSERT_EQ(rig.upstream.frames.size(), 1u);
+  EXPECT_EQ(rig.upstream.frames[0].data[1], 1 | 2) << "answering and following, no fault words held";
+  // It drives again.
+  rig.request(rc_multi_servo_move, CoreRig::move(500, {{3, 650}}));
+  rig.run_us(800000);
+  EXPECT_EQ(rig.joints.position[3], rig.core.to_clicks(3, 650));
+  EXPECT_TRUE(rig.core.joint_state(3).following);
+
+  // A joint that does not answer: its STATUS is the master's 990, and nothing is cleared.
+  rig.joints.dead[5] = true;
+  rig.upstream.frames.clear();
+  rig.request(rc_joint_fault_clear, {5});
+  rig.run_us(100000);
+  ASSERT_EQ(rig.upstream.frames.size(), 1u);
+  EXPECT_EQ(rig.upstream.frames[0].data, (std::vector<std::uint8_t>{5, 990 & 0xFF, 990 >> 8}));
+  EXPECT_FALSE(rig.core.joint_state(5).answering);
+  // Not a configured joint, or a malformed request: ignored, nothing sent.
+  rig.upstream.frames.clear();
+  rig.joints.log.clear();
+  rig.request(rc_joint_fault_clear, {9});
+  rig.request(rc_joint_fault_clear, {3, 4});
+  rig.request(rc_joint_fault_clear, {});
+  rig.run_us(50000);
+  EXPECT_TRUE(rig.upstream.frames.empty());
+  EXPECT_TRUE(rig.joints.commands_of(jb::cmd_clear_faults).empty());
+}
+
+TEST(ControllerCoreFaults, ClearingAJointMidMoveStopsItsMoveAndGroupStopKeepsTheClear) {
+  CoreRig rig;
+  rig.joints.ramps_from(scara_joints, scara_joint_count, rig.now);  // a long move under way
+  rig.request(rc_multi_servo_move, CoreRig::move(2000, {{1, 700}, {2, 700}}));
+  rig.run_us(300000);
+  ASSERT_TRUE(rig.core.joint_state(1).planned);
+  rig.joints.log.clear();
+  rig.upstream.frames.clear();
+  // A cleared joint holds where it is: the move would go on without it, so it stops whole,
+  // and a GroupStop that comes before the clear went out does not drop it.
+  rig.request(rc_joint_fault_clear, {1});
+  rig.request(rc_group_stop, {});
+  rig.run_us(100000);
+  EXPECT_FALSE(rig.core.joint_state(1).planned);
+  EXPECT_FALSE(rig.core.joint_state(2).planned);
+  EXPECT_EQ(rig.joints.commands_of(jb::cmd_clear_faults).size(), 1u);
+  for (const auto& c : rig.joints.commands_of(jb::cmd_set_speed)) EXPECT_EQ(c.data, 0) << c.joint;
+  EXPECT_TRUE(rig.joints.commands_of(jb::cmd_drive_to).empty());
+  int clears = 0;
+  for (const auto& f : rig.upstream.frames) clears += f.command == rc_joint_fault_clear;
+  EXPECT_EQ(clears, 1);
 }
 
 TEST(ControllerCoreFaults, AJointThatRunsTheWrongWayIsReadAgainUntilItsFaultShows) {
@@ -658,6 +736,54 @@ TEST(ControllerCoreFaults, AJointThatKeepsUpWithItsRampIsNotStalled) {
   }
   EXPECT_EQ(rig.core.stats().stalls, 0);
   EXPECT_TRUE(rig.core.joint_state(3).following);
+}
+
+TEST(ControllerCoreFaults, AJointThatStallsInAStreamIsFoundMidStreamAndEveryMoveStops) {
+  // The same streamed line (a point every 27 ms at 9600 baud); joint 3 is blocked 0.27 s in.
+  // Its moves are planned while it moves (no ramp from rest to check): its polls are
+  // compared with its model's setpoint when the next point folds it, so it is found while
+  // the stream still runs, and every joint of the stream is stopped.
+  CoreRig rig;
+  rig.joints.ramps_from(scara_joints, scara_joint_count, rig.now);
+  const double rate[8] = {0, 0, 3000, -4000, 1500, 0, 0, 0};
+  const double period = 0.027;
+  const int points = 60;
+  auto position_of = [&](int j, double clicks) {
+    const JointSetup& s = scara_joints[j - 1];
+    return static_cast<int>(std::lround(1000.0 * (clicks - s.clicks_at_0) / (s.clicks_at_1000 - s.clicks_at_0)));
+  };
+  int stuck_ms = -1, found_ms = -1, ms = 0;
+  for (int i = 1; i <= points; ++i) {
+    if (i == 10) {
+      rig.joints.stuck[3] = true;
+      stuck_ms = ms;
+    }
+    std::vector<std::pair<int, int>> targets;
+    for (int j = 1; j <= 7; ++j) targets.push_back({j, position_of(j, rate[j] * period * i)});
+    rig.request(rc_multi_servo_move, CoreRig::move(27, targets));
+    for (int k = 0; k < 27; ++k, ++ms) {
+      rig.run_us(1000);
+      if (found_ms < 0 && rig.core.stats().stalls > 0) found_ms = ms;
+    }
+    if (found_ms >= 0) break;  // a host stops streaming when its arm stops following
+  }
+  ASSERT_GE(found_ms, 0) << "found before the stream ended";
+  std::printf("stalled joint found %d ms after it stuck (stream of %d ms)\n", found_ms - stuck_ms,
+              int(period * points * 1000));
+  EXPECT_LT(found_ms - stuck_ms, 800);
+  const JointState& s = rig.core.joint_state(3);
+  EXPECT_TRUE(s.behind_ramp);
+  EXPECT_FALSE(s.following);
+  EXPECT_EQ(rig.core.stats().stalls, 1);
+  rig.run_us(300000);
+  for (int j : {2, 3, 4}) EXPECT_FALSE(rig.core.joint_state(j).planned) << "joint " << j << "'s move stopped";
+  EXPECT_EQ(diagnostic_indexes(rig.joints, 3).size() % 7, 0u);
+  EXPECT_GE(diagnostic_indexes(rig.joints, 3).size(), 7u) << "its words were read";
+  // Brought to rest where they are: nothing moves on.
+  const std::int16_t at2 = rig.joints.position[2], at4 = rig.joints.position[4];
+  rig.run_us(500000);
+  EXPECT_EQ(rig.joints.position[2], at2);
+  EXPECT_EQ(rig.joints.position[4], at4);
 }
 
 TEST(ControllerCoreFaults, AJointPlannedWhileMovingIsCheckedWhenItsMoveEnds) {

@@ -54,6 +54,11 @@ class FakeJoints final : public BusPort {
     if (ramping_ && command == joint_bus::cmd_drive_to && !refuses_drives[j]) target_q8_[j] = std::int32_t{data} * 256;
     if (ramping_ && command == joint_bus::cmd_set_speed) ramp_[j].set_speed_percent(static_cast<std::uint8_t>(data));
     if (command == joint_bus::cmd_ping) response = static_cast<std::int16_t>(data);
+    if (command == joint_bus::cmd_clear_faults) {  // faults := 0, holds where it is
+      refuses_drives[j] = false;
+      diagnostics[j][joint_bus::diagnostic_faults] = 0;
+      target_q8_[j] = std::int32_t{position[j]} * 256;
+    }
     if (command == joint_bus::cmd_read_diagnostic && data >= 0 && data < joint_bus::diagnostic_count)
       response = diagnostics[j][data];
     if (shape.returns_value) queue_word(response);

@@ -1,6 +1,7 @@
-// JointFaultRead (CMD 40, an armctl extension): its codec, the SDK against a board that
-// answers it (scripted) and against boards that do not (the emulated xArm, a silent
-// scripted board): one extension_timeout once, then nothing more is sent.
+// JointFaultRead and JointFaultClear (CMD 40 and 41, armctl extensions): their codecs, the
+// SDK against a board that answers them (scripted) and against boards that do not (the
+// emulated xArm, a silent scripted board): one extension_timeout once, then nothing more
+// is sent.
 #include <gtest/gtest.h>
 
 #include "devices/robot_commands/client.hpp"
@@ -135,6 +136,66 @@ TEST(JointFaultClient, ALateReplyIsStaleNotTakenForTheNextRead) {
   EXPECT_EQ(*mv, 24000);
   EXPECT_EQ(c.stats().stale_replies, 1u);
   EXPECT_EQ(c.stats().unreadable_frames, 0u);
+}
+
+TEST(JointFaultClearCodec, RequestAndReplyAreAsDocumented) {
+  auto request = rc::encode_joint_fault_clear(3, rc::ServoRange::of_count(7));
+  ASSERT_TRUE(request);
+  EXPECT_EQ(request->cmd, 41);
+  EXPECT_EQ(request->data, (std::vector<std::uint8_t>{3}));
+  // docs/mega-controller.md: servo status:u16; 510 = 100 + 10 x 41, the joint's success.
+  const rc::Frame reply = rc::encode_joint_fault_clear_reply({3, 510});
+  EXPECT_EQ(reply.data, (std::vector<std::uint8_t>{3, 0xFE, 0x01}));
+  auto back = rc::decode_joint_fault_clear_reply(reply);
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_TRUE(back->cleared());
+  EXPECT_FALSE((rc::JointFaultClearReply{3, 990}).cleared());
+  rc::Frame torn = reply;
+  torn.data.pop_back();
+  auto bad = rc::decode_joint_fault_clear_reply(torn);
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("2 bytes of DATA (expected 3)"), std::string::npos) << bad.error().message;
+  auto bad_servo = rc::encode_joint_fault_clear(0, rc::ServoRange::of_count(7));
+  ASSERT_FALSE(bad_servo);
+  EXPECT_NE(bad_servo.error().message.find("servo 0"), std::string::npos) << bad_servo.error().message;
+}
+
+TEST(JointFaultClearClient, TheJointsStatusComesBackAndAnotherServosIsAnError) {
+  std::uint16_t status = 510;
+  std::uint8_t answer_for = 0;
+  ScriptedLink link([&](const rc::Frame& f) -> std::vector<ScriptedLink::Timed> {
+    if (f.cmd != 41) return {};
+    const std::uint8_t servo = answer_for != 0 ? answer_for : f.data.at(0);
+    return {{9ms, rc::encode_joint_fault_clear_reply({servo, status})}};
+  });
+  Client c(link, ClientOptions{.servo_count = 7});
+  auto cleared = c.clear_joint_faults(4);
+  ASSERT_TRUE(cleared) << cleared.error().message;
+  ASSERT_TRUE(cleared->has_value());
+  EXPECT_TRUE((*cleared)->cleared());
+  EXPECT_EQ(c.has_joint_faults(), true);
+  status = 990;
+  auto silent_joint = c.clear_joint_faults(4);
+  ASSERT_TRUE(silent_joint);
+  EXPECT_EQ((*silent_joint)->status, 990);
+  answer_for = 2;
+  auto other = c.clear_joint_faults(4);
+  ASSERT_FALSE(other);
+  EXPECT_EQ(other.error().kind, ErrorKind::protocol);
+}
+
+TEST(JointFaultClearClient, ABoardThatIgnoredTheReadIsNotAskedToClear) {
+  EmulatedLink link(9600);
+  Client c(link, ClientOptions{.extension_timeout = 250ms});
+  auto first = c.clear_joint_faults(1);
+  ASSERT_TRUE(first) << first.error().message;
+  EXPECT_FALSE(first->has_value());
+  EXPECT_EQ(link.emulator().board().stats().unknown_command, 1u) << "the board ignored CMD 41";
+  const std::size_t sent = link.sent.size();
+  auto read = c.read_joint_faults(1);
+  ASSERT_TRUE(read);
+  EXPECT_FALSE(read->has_value());
+  EXPECT_EQ(link.sent.size(), sent) << "one extension: nothing more sent";
 }
 
 }  // namespace

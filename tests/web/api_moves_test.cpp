@@ -160,6 +160,12 @@ TEST_F(WebMoves, GripperAndTorque) {
   ASSERT_EQ(r.status, 200) << r.text;
   before_ = api_.worker().snapshot();
   refused("/api/v1/torque", {{"on", 1}}, 400, "on: 1 is not allowed; true or false");
+  // Clearing joint faults: nothing held on this arm, so nothing moves and the answer is yes.
+  r = api_.post("/api/v1/clear-faults", json::object(), "page");
+  ASSERT_EQ(r.status, 200) << r.text;
+  EXPECT_EQ(r.body["faults_cleared"], true);
+  before_ = api_.worker().snapshot();
+  refused("/api/v1/clear-faults", {{"joint", 3}}, 400, "joint");
 }
 
 TEST_F(WebMoves, StopFromAnyoneHaltsAMove) {

@@ -230,7 +230,7 @@ TEST(WebApi, ControlLease) {
   r = api.post("/api/v1/joints", move, "a");
   EXPECT_EQ(r.status, 409);
   EXPECT_NE(r.body["error"].get<std::string>().find("another client has control (since "), std::string::npos);
-  for (const char* path : {"/api/v1/tool", "/api/v1/jog", "/api/v1/gripper", "/api/v1/torque", "/api/v1/points",
+  for (const char* path : {"/api/v1/tool", "/api/v1/jog", "/api/v1/gripper", "/api/v1/torque", "/api/v1/clear-faults", "/api/v1/points",
                            "/api/v1/program/run", "/api/v1/groups/1/run"})
     EXPECT_EQ(api.post(path, json::object(), "a").status, 409) << path;
   EXPECT_EQ(api.post("/api/v1/control", {{"take", true}}).status, 400);  // no client id

@@ -371,6 +371,15 @@ void run_health(const ArmArgs& a) {
   for (const auto& f : h.faults) fmt::print("fault    {}\n", f);
 }
 
+// Clears the faults the joints hold (ArmDevice::clear_faults): each joint holds where it
+// is and drives again. Fix the cause first: a joint whose leads are swapped runs away again.
+void run_clear_faults(const ArmArgs& a) {
+  auto s = session::open_arm_session(a.arm, a.device, with_scene(a.scene)).value();
+  must(s->arm->device().clear_faults());
+  if (a.json) print_json_line(json{{"faults_cleared", true}});
+  else fmt::print("faults cleared\n");
+}
+
 void run_move_to(const ArmArgs& a) {
   if (a.linear && a.avoid) usage("--avoid is not allowed with --linear: a line cannot go around (a PTP can)");
   if (!a.avoid && !a.avoid_time.empty()) usage("--avoid-time needs --avoid");
@@ -528,6 +537,9 @@ void add_arm_command(CLI::App& app) {
   cmd->add_subcommand("stop", "Stop every joint where it stands and hold it")->callback([a] { run_stop(*a); });
   cmd->add_subcommand("health", "Supply voltage and joint faults, as the dashboard shows them")
       ->callback([a] { run_health(*a); });
+  cmd->add_subcommand("clear-faults",
+                      "Clear the faults the joints hold (see health): each holds where it is and drives again")
+      ->callback([a] { run_clear_faults(*a); });
 
   auto* ik = cmd->add_subcommand("ik", "Print every IK solution for a pose; moves nothing");
   add_goal(ik);

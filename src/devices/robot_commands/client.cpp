@@ -387,33 +387,43 @@ Result<std::optional<rc::Frame>> Client::transact_raw(const rc::Frame& frame, Du
   }
 }
 
-Result<std::optional<rc::JointFaultReport>> Client::read_joint_faults(std::uint8_t servo) {
-  auto f = rc::encode_joint_fault_read(servo, servos_);
-  if (!f) return f.error();
-  if (has_joint_faults_ == false) return std::optional<rc::JointFaultReport>{};
-  auto reply = transact_raw(*f, options_.extension_timeout);
+template <typename Reply>
+Result<std::optional<Reply>> Client::extension_request(const Result<rc::Frame>& request, const char* name,
+                                                       std::uint8_t servo, Result<Reply> (*decode)(const rc::Frame&)) {
+  if (!request) return request.error();
+  if (has_joint_faults_ == false) return std::optional<Reply>{};
+  auto reply = transact_raw(*request, options_.extension_timeout);
   if (!reply) return reply.error();
   if (!*reply) {
     if (has_joint_faults_ == true)
       return Error{ErrorKind::timeout,
-                   fmt::format("no JointFaultRead reply (CMD {}) for servo {} from {} within {} ms, though it "
-                               "answered before",
-                               rc::kJointFaultReadCmd, servo, link_.describe(),
+                   fmt::format("no {} reply (CMD {}) for servo {} from {} within {} ms, though it answered before",
+                               name, request->cmd, servo, link_.describe(),
                                std::chrono::duration_cast<std::chrono::milliseconds>(options_.extension_timeout)
                                    .count())};
-    has_joint_faults_ = false;  // a board without armctl's extension: ask no more
-    return std::optional<rc::JointFaultReport>{};
+    has_joint_faults_ = false;  // a board without armctl's extensions: ask no more
+    return std::optional<Reply>{};
   }
-  auto report = rc::decode_joint_fault_reply(**reply);
-  if (!report) {
+  auto decoded = decode(**reply);
+  if (!decoded) {
     ++stats_.unreadable_frames;
-    return Error{report.error().kind, fmt::format("{} (from {})", report.error().message, link_.describe())};
+    return Error{decoded.error().kind, fmt::format("{} (from {})", decoded.error().message, link_.describe())};
   }
-  if (report->servo != servo)
-    return Error{ErrorKind::protocol, fmt::format("JointFaultRead: asked for servo {}, {} answered for servo {}",
-                                                  servo, link_.describe(), report->servo)};
+  if (decoded->servo != servo)
+    return Error{ErrorKind::protocol, fmt::format("{}: asked for servo {}, {} answered for servo {}", name, servo,
+                                                  link_.describe(), decoded->servo)};
   has_joint_faults_ = true;
-  return std::optional<rc::JointFaultReport>{*report};
+  return std::optional<Reply>{*decoded};
+}
+
+Result<std::optional<rc::JointFaultReport>> Client::read_joint_faults(std::uint8_t servo) {
+  return extension_request(rc::encode_joint_fault_read(servo, servos_), "JointFaultRead", servo,
+                           &rc::decode_joint_fault_reply);
+}
+
+Result<std::optional<rc::JointFaultClearReply>> Client::clear_joint_faults(std::uint8_t servo) {
+  return extension_request(rc::encode_joint_fault_clear(servo, servos_), "JointFaultClear", servo,
+                           &rc::decode_joint_fault_clear_reply);
 }
 
 // ------------------------------------------------------------------------ action groups

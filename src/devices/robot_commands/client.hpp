@@ -121,6 +121,11 @@ class Client {
   // reply within options.extension_timeout; from then on nothing is sent. Once a board
   // has answered, a missing reply is a timeout error as for any read.
   Result<std::optional<rc::JointFaultReport>> read_joint_faults(std::uint8_t servo);
+  // JointFaultClear (CMD 41): the board sends clear_faults to the joint (it holds where
+  // it is and drives again) and answers with the joint's STATUS (`cleared()`). A move the
+  // joint belongs to is stopped first. std::nullopt as for read_joint_faults (the two are
+  // one extension: a board that ignored one is not asked the other).
+  Result<std::optional<rc::JointFaultClearReply>> clear_joint_faults(std::uint8_t servo);
   // What the client knows: true answered, false ignored, nullopt not asked yet.
   std::optional<bool> has_joint_faults() const { return has_joint_faults_; }
 
@@ -166,6 +171,12 @@ class Client {
   // Sends `frame` and waits for a frame with the same CMD, undecoded (extensions, which
   // decode_board_message does not know); other frames are taken as usual meanwhile.
   Result<std::optional<rc::Frame>> transact_raw(const rc::Frame& frame, Duration timeout);
+  // An armctl extension's request and its decoded reply for `servo`, or nothing from a
+  // board that ignores the extensions (learnt from the first missing reply, then nothing is
+  // sent). Instantiated in client.cpp only.
+  template <typename Reply>
+  Result<std::optional<Reply>> extension_request(const Result<rc::Frame>& request, const char* name,
+                                                 std::uint8_t servo, Result<Reply> (*decode)(const rc::Frame&));
   // transact for a read: up to options_.read_attempts attempts while replies time out.
   // `attempts_made`: attempts already made for this read elsewhere (collect_positions).
   Result<rc::BoardMessage> transact_read(const rc::Frame& frame, int attempts_made = 0);

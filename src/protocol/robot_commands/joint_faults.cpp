@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include "portable/joint_bus_codes.hpp"
 #include "protocol/robot_commands/wire_bytes.hpp"
 
 namespace armctl::rc {
@@ -53,6 +54,40 @@ Frame encode_joint_fault_reply(const JointFaultReport& report) {
   wire::put_u16(f.data, report.last_failure);
   wire::put_u16(f.data, report.following_lost);
   for (auto w : report.words) wire::put_u16(f.data, w);
+  return f;
+}
+
+bool JointFaultClearReply::cleared() const {
+  return status == static_cast<std::uint16_t>(joint_bus::success_status(joint_bus::cmd_clear_faults));
+}
+
+Result<Frame> encode_joint_fault_clear(std::uint8_t servo, const ServoRange& servos) {
+  if (!servos.contains(servo))
+    return Error{ErrorKind::invalid_argument,
+                 fmt::format("JointFaultClear: servo {} is not on this board (allowed {}..{})", servo,
+                             servos.first, servos.last)};
+  return Frame{kJointFaultClearCmd, {servo}};
+}
+
+Result<JointFaultClearReply> decode_joint_fault_clear_reply(const Frame& f) {
+  if (f.cmd != kJointFaultClearCmd)
+    return Error{ErrorKind::protocol, fmt::format("JointFaultClear reply: CMD {} (expected {})", f.cmd,
+                                                  kJointFaultClearCmd)};
+  if (f.data.size() != kJointFaultClearReplyBytes)
+    return Error{ErrorKind::protocol,
+                 fmt::format("JointFaultClear reply: {} bytes of DATA (expected {}): {}", f.data.size(),
+                             kJointFaultClearReplyBytes, to_hex(f.data))};
+  wire::Reader r(f.data);
+  JointFaultClearReply out;
+  out.servo = r.u8();
+  out.status = r.u16();
+  return out;
+}
+
+Frame encode_joint_fault_clear_reply(const JointFaultClearReply& reply) {
+  Frame f{kJointFaultClearCmd, {}};
+  wire::put_u8(f.data, reply.servo);
+  wire::put_u16(f.data, reply.status);
   return f;
 }
 

@@ -1,12 +1,15 @@
-// JointFaultRead, CMD 40: an armctl extension of Robot Commands, not in the xArm protocol
-// (spec robot-commands.md does not list it). armctl's Mega arm controller answers it with
-// one joint's fault state (docs/mega-controller.md "Joint faults"); an xArm board, the
-// xArm emulator and the Linux daemon ignore it as an unknown CMD, as the spec decides. It
-// is kept out of the spec's Request/BoardMessage variants on purpose: a board that decodes
-// those must go on refusing CMD 40.
+// JointFaultRead, CMD 40, and JointFaultClear, CMD 41: armctl extensions of Robot
+// Commands, not in the xArm protocol (spec robot-commands.md does not list them). armctl's
+// Mega arm controller answers them (docs/mega-controller.md "Joint faults"): one joint's
+// fault state, and clear_faults sent to one joint; an xArm board, the xArm emulator and
+// the Linux daemon ignore them as unknown CMDs, as the spec decides. They are kept out of
+// the spec's Request/BoardMessage variants on purpose: a board that decodes those must go
+// on refusing CMD 40 and 41.
 //
-//   request:  55 55 03 28 servo
-//   reply:    55 55 16 28 servo flags last_failure:u16 following_lost:u16 word0..word6:u16
+//   read request:   55 55 03 28 servo
+//   read reply:     55 55 16 28 servo flags last_failure:u16 following_lost:u16 word0..word6:u16
+//   clear request:  55 55 03 29 servo
+//   clear reply:    55 55 05 29 servo status:u16   (once the joint answered; 510 + 41 = cleared)
 #pragma once
 
 #include <array>
@@ -20,6 +23,8 @@ namespace armctl::rc {
 
 constexpr std::uint8_t kJointFaultReadCmd = 40;
 constexpr std::size_t kJointFaultReplyBytes = 20;
+constexpr std::uint8_t kJointFaultClearCmd = 41;
+constexpr std::size_t kJointFaultClearReplyBytes = 3;
 
 struct JointFaultReport {
   std::uint8_t servo = 0;
@@ -42,5 +47,17 @@ Result<Frame> encode_joint_fault_read(std::uint8_t servo, const ServoRange& serv
 Result<JointFaultReport> decode_joint_fault_reply(const Frame& frame);
 // The reply a board sends (tests, emulators).
 Frame encode_joint_fault_reply(const JointFaultReport& report);
+
+// What a joint answered to the clear_faults the board sent it: the joint bus STATUS word
+// (joint-bus.md: 510 + 41 when it cleared; 990 no answer, 910 wrong joint, ...).
+struct JointFaultClearReply {
+  std::uint8_t servo = 0;
+  std::uint16_t status = 0;
+  bool cleared() const;
+  bool operator==(const JointFaultClearReply&) const = default;
+};
+Result<Frame> encode_joint_fault_clear(std::uint8_t servo, const ServoRange& servos);
+Result<JointFaultClearReply> decode_joint_fault_clear_reply(const Frame& frame);
+Frame encode_joint_fault_clear_reply(const JointFaultClearReply& reply);
 
 }  // namespace armctl::rc
