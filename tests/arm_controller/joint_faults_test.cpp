@@ -24,7 +24,7 @@ TEST(JointFaultReports, ARunawayJointIsReportedWhenItStopsFollowing) {
   EXPECT_EQ(j3.joint_faults, joint_bus::fault_runaway);
   EXPECT_NE(j3.diagnostics.find("faults: runaway"), std::string::npos) << j3.diagnostics;
   EXPECT_TRUE(rig.logged("joint 3 UAE stopped following"));
-  EXPECT_TRUE(rig.logged("armctl bus clear-faults 3"));
+  EXPECT_TRUE(rig.logged("armctl arm clear-faults"));
   // Joint 2 arrived; it never stopped following.
   EXPECT_TRUE(rig.controller().joint_status(2).following);
   EXPECT_EQ(rig.controller().joint_status(2).joint_faults, 0);
@@ -32,6 +32,46 @@ TEST(JointFaultReports, ARunawayJointIsReportedWhenItStopsFollowing) {
   const auto reads = rig.controller().stats().fault_reads;
   rig.run_for(std::chrono::milliseconds(1000));
   EXPECT_EQ(rig.controller().stats().fault_reads, reads);
+}
+
+TEST(JointFaultReports, TheSdkReadsAndClearsThemAsOnTheMegaController) {
+  // JointFaultRead / JointFaultClear (CMD 40 / 41), answered as the Mega answers them, so
+  // `armctl arm health` and `clear-faults` work the same through either arm controller.
+  Rig rig(std::nullopt, 115200, {3});
+  ASSERT_TRUE(rig.client->move({{2, 700}, {3, 700}}, 1500).ok());
+  rig.run_for(std::chrono::milliseconds(2500));
+  auto report = rig.client->read_joint_faults(3);
+  ASSERT_TRUE(report) << report.error().message;
+  ASSERT_TRUE(report->has_value()) << "the daemon answers CMD 40";
+  const rc::JointFaultReport& r = **report;
+  EXPECT_TRUE(r.answering);
+  EXPECT_FALSE(r.following);
+  EXPECT_TRUE(r.words_read);
+  EXPECT_EQ(r.words[0], joint_bus::fault_runaway);
+  EXPECT_EQ(r.following_lost, 1);
+  auto two = rig.client->read_joint_faults(2);
+  ASSERT_TRUE(two && two->has_value());
+  EXPECT_TRUE((*two)->following);
+  EXPECT_FALSE((*two)->words_read);
+
+  auto cleared = rig.client->clear_joint_faults(3);
+  ASSERT_TRUE(cleared) << cleared.error().message;
+  ASSERT_TRUE(cleared->has_value());
+  EXPECT_TRUE((*cleared)->cleared()) << (*cleared)->status;
+  EXPECT_TRUE(rig.logged("joint 3 (UAE): faults cleared"));
+  auto after = rig.client->read_joint_faults(3);
+  ASSERT_TRUE(after && after->has_value());
+  EXPECT_TRUE((*after)->following);
+  EXPECT_EQ((*after)->words[0], 0);
+  // Cleared, it drives again (and, its leads still swapped, runs away again).
+  const int before = rig.clicks(3);
+  ASSERT_TRUE(rig.client->move({{3, 400}}, 1000).ok());
+  rig.run_for(std::chrono::milliseconds(1500));
+  EXPECT_GT(std::abs(rig.clicks(3) - before), 500) << "driven again after the clear";
+  // A servo that is not a joint here, or a malformed request: ignored (the SDK refuses 8).
+  const auto unknown = rig.device->board().stats().unknown_servo;
+  rig.device->handle(rc::Frame{rc::kJointFaultClearCmd, {8}});
+  EXPECT_EQ(rig.device->board().stats().unknown_servo, unknown + 1);
 }
 
 TEST(JointFaultReports, HealthyArmNeverReadsFaults) {

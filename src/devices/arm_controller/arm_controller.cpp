@@ -388,6 +388,8 @@ void ArmController::examine_faults(Joint& j, const std::string& why) {
   const joint_bus::JointDiagnostics& diag = read.value();
   const joint_bus::JointDiagnostics* d = &diag;
   ++stats_.fault_reads;
+  j.status.diagnostic_words = {d->faults, d->bus_events_lost, d->encoder_edges_lost, d->uart_errors,
+                               d->reset_cause, d->abandoned_transactions, d->settings};
   j.status.faults_read_at = clock().now();
   const bool first = j.status.diagnostics.empty() || j.status.joint_faults != d->faults;
   j.status.joint_faults = d->faults;
@@ -396,8 +398,68 @@ void ArmController::examine_faults(Joint& j, const std::string& why) {
   if (d->following_error()) ++stats_.following_error_faults;
   if (!first) return;  // re-read, nothing new: no second log line
   log(fmt::format("joint {} {} stopped following ({}); {}{}", n, j.config.name, why, j.status.diagnostics,
-                  d->faults != 0 ? fmt::format("; fix the cause, then `armctl bus clear-faults {}`", n)
+                  d->faults != 0 ? std::string("; fix the cause, then `armctl arm clear-faults` (JointFaultClear)")
                                  : std::string()));
+}
+
+void ArmController::lost_following(Joint& j, const std::string& why) {
+  j.status.following = false;
+  if (j.status.following_lost < 0xFFFF) ++j.status.following_lost;
+  ++stats_.following_lost;
+  examine_faults(j, why);
+}
+
+rc::JointFaultReport ArmController::joint_faults(ServoId servo) const {
+  const Joint& j = at(servo);
+  rc::JointFaultReport r;
+  r.servo = servo;
+  r.answering = j.status.answering;
+  r.following = j.status.following;
+  r.words_read = !j.status.diagnostics.empty();
+  r.behind_ramp = false;  // the daemon does not stop a move on a stall (docs/arm-controller.md)
+  r.last_failure = j.last_failure ? static_cast<std::uint16_t>(joint_bus::spec_code(j.last_failure->first)) : 0;
+  r.following_lost = j.status.following_lost;
+  r.words = j.status.diagnostic_words;
+  r.words[joint_bus::diagnostic_faults] = j.status.joint_faults;  // 0 once it follows again
+  return r;
+}
+
+rc::JointFaultClearReply ArmController::clear_joint_faults(ServoId servo, TimePoint now) {
+  advance_to(now);
+  Joint& j = at(servo);
+  const TimePoint bus_now = clock().now();
+  // A cleared joint holds where it is (its target := its position): the move it belongs to
+  // (the joints planned to arrive with it) would go on without it, so it stops first.
+  if (j.status.target && j.status.arrive_at > bus_now) {
+    const TimePoint arrive = j.status.arrive_at;
+    for (auto& other : joints_) {
+      if (!other.status.target || other.status.arrive_at != arrive) continue;
+      cancel_ops(other.config.number);
+      schedule(bus_now, other.config.number, OpKind::speed, 0);
+      other.status.target.reset();
+    }
+  }
+  cancel_ops(servo);
+  j.status.jogging = false;
+  j.status.target.reset();
+  std::optional<Error> failure;
+  timed([&] {
+    if (auto r = master_.clear_faults(servo); !r) failure = r.error();
+  });
+  if (failure) {
+    note_fault(j, *failure, "clear_faults");
+    const joint_bus::JointFailure* f = joint_bus::joint_failure(*failure);
+    const int code = f != nullptr ? f->code() : 0;
+    return rc::JointFaultClearReply{servo, static_cast<std::uint16_t>(code != 0 ? code : joint_bus::status_no_answer)};
+  }
+  note_success(j);
+  j.model.forget();  // holds where it is: the next move plans from its poll
+  j.status.following = true;
+  j.status.joint_faults = 0;
+  j.status.diagnostics.clear();
+  j.status.diagnostic_words = {};
+  log(fmt::format("joint {} ({}): faults cleared", int(servo), j.config.name));
+  return rc::JointFaultClearReply{servo, static_cast<std::uint16_t>(joint_bus::success_status(joint_bus::cmd_clear_faults))};
 }
 
 void ArmController::run_op(const Op& op) {
@@ -423,9 +485,7 @@ void ArmController::run_op(const Op& op) {
     if (op.kind == OpKind::drive_to && jf != nullptr && jf->kind == joint_bus::FailureKind::bad_data &&
         j.status.following) {
       // A joint holding a fault refuses every drive with 940: find out why.
-      j.status.following = false;
-      ++stats_.following_lost;
-      examine_faults(j, fmt::format("drive_to {} refused", op.value));
+      lost_following(j, fmt::format("drive_to {} refused", op.value));
     }
     if (op.kind == OpKind::speed || op.kind == OpKind::loop_on) {
       // The drive that should follow would run at a wrong speed or not at all: drop it.
@@ -460,9 +520,7 @@ void ArmController::poll_next() {
         stats_.max_model_gap = std::max(stats_.max_model_gap, double(gap));
         const std::string why = fmt::format("at {} clicks, planned {}", *r, planned);
         if (gap > kNotFollowingClicks && j.status.following) {
-          j.status.following = false;
-          ++stats_.following_lost;
-          examine_faults(j, why);
+          lost_following(j, why);
         } else if (gap > kNotFollowingClicks && j.status.joint_faults == 0 &&
                    clock().now() - j.status.faults_read_at >= kFaultRecheck) {
           // Still off its plan with no fault yet: the joint may raise one any moment (its

@@ -15,6 +15,7 @@
 // not answering is refused whole; a failed poll never replaces the last good reading.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -59,7 +60,10 @@ struct JointStatus {
   bool following = true;
   std::uint16_t joint_faults = 0;  // fault_* bits it reported then (0: none, or not read)
   std::string diagnostics;         // its diagnostic line then ("" if never read)
+  // Its read_diagnostic words then (word 0 = joint_faults), as JointFaultRead answers them.
+  std::array<std::uint16_t, joint_bus::diagnostic_count> diagnostic_words{};
   TimePoint faults_read_at{};      // when they were last read
+  std::uint16_t following_lost = 0;  // times it stopped following (saturating)
 };
 
 // How far (clicks) a polled position may be from the planned setpoint before the joint
@@ -111,6 +115,11 @@ class ArmController final : public rc_board::ArmBackend {
   void set_mode(ServoId servo, rc_board::ServoMode mode, std::int16_t speed, TimePoint now) override;
   rc_board::BusServoInfoReply bus_servo_info() const override;
   Status write_bus_servo_info(const rc_board::BusServoLimits& limits) override;
+  // JointFaultRead / JointFaultClear, as the Mega controller answers them
+  // (docs/arm-controller.md "Joint faults"). The clear is one bus transaction, done at once.
+  bool has_joint_faults() const override { return true; }
+  rc::JointFaultReport joint_faults(ServoId servo) const override;
+  rc::JointFaultClearReply clear_joint_faults(ServoId servo, TimePoint now) override;
 
   // The bus link was lost (ReconnectingLink): every pending command is dropped and every
   // joint counts as not answering (moves naming it are refused) until it answers a poll
@@ -171,6 +180,7 @@ class ArmController final : public rc_board::ArmBackend {
   void note_fault(Joint& j, const Error& f, const char* doing);
   // Reads and logs the joint's faults (once per episode of not following).
   void examine_faults(Joint& j, const std::string& why);
+  void lost_following(Joint& j, const std::string& why);
   void timed(const std::function<void()>& transaction);
   void anchor_model(Joint& j, TimePoint t);
   TimePoint effect_instant() const;

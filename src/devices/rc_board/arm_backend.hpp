@@ -16,6 +16,7 @@
 
 #include "core/clock.hpp"
 #include "core/error.hpp"
+#include "protocol/robot_commands/joint_faults.hpp"
 #include "protocol/robot_commands/messages.hpp"
 
 namespace armctl::rc_board {
@@ -98,6 +99,18 @@ class ArmBackend {
   virtual BusServoInfoReply bus_servo_info() const = 0;
   // An error (device: no such servo here; io: cannot be stored) leaves everything unchanged.
   virtual Status write_bus_servo_info(const BusServoLimits& limits) = 0;
+
+  // armctl's extensions JointFaultRead / JointFaultClear (CMD 40 / 41,
+  // protocol/robot_commands/joint_faults.hpp), for a backend whose servos are joints that
+  // hold faults (the arm controller). Without them (the emulated xArm, as a real xArm) the
+  // Board ignores both CMDs as unknown. clear_joint_faults answers once the joint has, with
+  // its STATUS; the servo was checked present.
+  virtual bool has_joint_faults() const { return false; }
+  virtual rc::JointFaultReport joint_faults(ServoId servo) const { return rc::JointFaultReport{servo}; }
+  virtual rc::JointFaultClearReply clear_joint_faults(ServoId servo, TimePoint now) {
+    (void)now;
+    return rc::JointFaultClearReply{servo, 0};
+  }
 };
 
 }  // namespace armctl::rc_board

@@ -68,6 +68,8 @@ class Board {
 
   // One handler per request (board_requests.cpp).
   void on(const rc::MultiServoMove& m, TimePoint now);
+  // armctl's JointFaultRead / JointFaultClear, for a backend that has them.
+  void on_joint_fault_request(const rc::Frame& frame, TimePoint now);
   void on(const rc::MultiServoOff& m, TimePoint now);
   void on(const rc::ServoPositionRead& m, TimePoint now);
   void on(const rc::ServoSpeed& m, TimePoint now);

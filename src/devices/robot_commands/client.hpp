@@ -116,8 +116,8 @@ class Client {
 
   // ---- armctl extensions (a board that does not know them ignores them)
   // JointFaultRead (CMD 40, protocol/robot_commands/joint_faults.hpp): one joint's fault
-  // state on armctl's Mega arm controller. std::nullopt: the board does not answer it (an
-  // xArm, the xArm emulator, the Linux daemon): learnt from the first request that got no
+  // state on armctl's arm controllers (the Mega, the daemon). std::nullopt: the board does not answer it (an
+  // xArm, the xArm emulator): learnt from the first request that got no
   // reply within options.extension_timeout; from then on nothing is sent. Once a board
   // has answered, a missing reply is a timeout error as for any read.
   Result<std::optional<rc::JointFaultReport>> read_joint_faults(std::uint8_t servo);

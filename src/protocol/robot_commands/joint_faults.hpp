@@ -1,8 +1,8 @@
 // JointFaultRead, CMD 40, and JointFaultClear, CMD 41: armctl extensions of Robot
 // Commands, not in the xArm protocol (spec robot-commands.md does not list them). armctl's
-// Mega arm controller answers them (docs/mega-controller.md "Joint faults"): one joint's
-// fault state, and clear_faults sent to one joint; an xArm board, the xArm emulator and
-// the Linux daemon ignore them as unknown CMDs, as the spec decides. They are kept out of
+// arm controllers (the Mega and the Linux daemon) answer them (docs/mega-controller.md
+// "Joint faults"): one joint's fault state, and clear_faults sent to one joint; an xArm
+// board and the xArm emulator ignore them as unknown CMDs, as the spec decides. They are kept out of
 // the spec's Request/BoardMessage variants on purpose: a board that decodes those must go
 // on refusing CMD 40 and 41.
 //
