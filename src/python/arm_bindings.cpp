@@ -467,6 +467,23 @@ class PyArm {
     command([on](arm::Arm& a) { return a.set_torque(on); });
   }
 
+  // What `armctl arm health` prints (ArmDevice::health): the supply, and a line per fault.
+  py::dict health() {
+    arm::Arm& a = arm();
+    const arm::DeviceHealth h = [&] {
+      py::gil_scoped_release nogil;
+      return a.device().health();
+    }();
+    py::dict out;
+    out["battery_volts"] = h.battery_volts ? py::cast(*h.battery_volts) : py::none();
+    out["faults"] = h.faults;
+    return out;
+  }
+
+  void clear_faults() {
+    command([](arm::Arm& a) { return a.device().clear_faults(); });
+  }
+
   // Runs a plan (arm::run_motion) with the GIL released; `wait`: the wait for arrival at its
   // end (none: a board move returns once sent). Ctrl-C: the runner's stop (a streamed motion
   // decelerates on its path, a board move is halted), then KeyboardInterrupt; close() from
@@ -906,6 +923,12 @@ void define_arm(py::module_& m) {
           "until confirm(). servo_offsets (default): an xArm joint's zero goes to the servo's own offset when it\n"
           "fits -125..125 units, else to the arm file; False: every zero to the arm file (docs/calibration.md).")
       .def("set_torque", in_turn(&PyArm::set_torque), "on"_a, "off: the arm can be moved by hand; on: hold where it stands.")
+      .def("health", in_turn(&PyArm::health),
+           "The supply and the joints' faults, as `armctl arm health` and the dashboard show them:\n"
+           "{'battery_volts': float or None, 'faults': [str]}.")
+      .def("clear_faults", in_turn(&PyArm::clear_faults),
+           "Clears the faults the joints hold (fix the cause first): each holds where it is and drives\n"
+           "again. Error (device) names the joints that could not be cleared; nothing to clear on an xArm.")
       .def("gripper", in_turn(&PyArm::gripper), "closed_fraction"_a, "duration"_a = py::none(), "speed"_a = motion::kDefaultGripperSpeed,
            "wait"_a = false, "timeout"_a = seconds(arm::kArrivalTimeout), "The gripper: 0 = open, 1 = closed, anything between.")
       .def(

@@ -86,6 +86,17 @@ def test_gripper_torque_and_stop(xarm):
     xarm.wait(timeout=2)  # nothing left to wait for after a stop
 
 
+def test_health_and_clearing_faults_on_both_arms(xarm, scara):
+    h = xarm.health()
+    assert h["battery_volts"] > 6.0
+    assert h["faults"] == []
+    xarm.clear_faults()  # the emulated xArm holds none: nothing to clear, no error
+    s = scara.health()
+    assert s["battery_volts"] is None  # nothing measures the supply on the joint bus
+    assert s["faults"] == []
+    scara.clear_faults()  # each joint answers clear_faults on the bus
+
+
 def test_the_scara_on_its_joint_bus(scara):
     assert scara.protocol == "joint_bus"
     assert scara.chain_joints == 6

@@ -338,6 +338,12 @@ class Arm:
         until confirm(); leaving the block without it writes nothing."""
     def set_torque(self, on: bool) -> None:
         """off: the arm can be moved by hand; on: hold where it stands."""
+    def health(self) -> Dict[str, Any]:
+        """The supply and the joints' faults, as `armctl arm health` and the dashboard show them:
+        {'battery_volts': float or None, 'faults': [str]}."""
+    def clear_faults(self) -> None:
+        """Clears the faults the joints hold (fix the cause first): each holds where it is and drives
+        again. Error (device) names the joints that could not be cleared; nothing to clear on an xArm."""
     def gripper(self, closed_fraction: float, duration: Optional[float] = None, speed: float = 0.5,
                 wait: bool = False, timeout: float = 10.0) -> PlannedMove:
         """0 = open, 1 = closed."""
