@@ -273,6 +273,10 @@ MotionOutcome ArmBridge::set_torque(bool on) {
                     [on](arm::Arm& a, session::JobContext&) { return a.set_torque(on); });
 }
 
+MotionOutcome ArmBridge::clear_faults() {
+  return impl_->run("clear faults", [](arm::Arm& a, session::JobContext&) { return a.device().clear_faults(); });
+}
+
 MotionOutcome ArmBridge::gripper(double closed_fraction) {
   if (!std::isfinite(closed_fraction) || closed_fraction < 0 || closed_fraction > 1)
     return refusal_outcome(Error{ErrorKind::invalid_argument,

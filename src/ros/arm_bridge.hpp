@@ -91,6 +91,8 @@ class ArmBridge {
   // PTP to a tool pose in the base frame (m, unit quaternion w x y z); blocks until there.
   MotionOutcome move_to(const std::vector<double>& position, const std::vector<double>& quaternion);
   MotionOutcome set_torque(bool on);
+  // The joints' held faults cleared (ArmDevice::clear_faults): each holds where it is and drives again.
+  MotionOutcome clear_faults();
   MotionOutcome gripper(double closed_fraction);
   MotionOutcome run_action_group(int group, int times);
   MotionOutcome stop_action_group();

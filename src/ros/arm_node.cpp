@@ -113,6 +113,7 @@ struct ArmNode::Impl {
     joint_jog = private_nh.subscribe("delta_joint_cmds", 10, &Impl::on_joint_jog, this);
     services.push_back(private_nh.advertiseService("stop", &Impl::on_stop, this));
     services.push_back(private_nh.advertiseService("set_torque", &Impl::on_torque, this));
+    services.push_back(private_nh.advertiseService("clear_faults", &Impl::on_clear_faults, this));
     services.push_back(private_nh.advertiseService("gripper", &Impl::on_gripper, this));
     services.push_back(private_nh.advertiseService("move_to", &Impl::on_move_to, this));
     services.push_back(private_nh.advertiseService("run_action_group", &Impl::on_run_group, this));
@@ -484,6 +485,10 @@ struct ArmNode::Impl {
   bool on_torque(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
     const bool on = req.data;
     return answer(res, arm.set_torque(on), on ? "torque on: holding where it stands" : "torque off: the arm can be moved by hand");
+  }
+
+  bool on_clear_faults(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+    return answer(res, arm.clear_faults(), "faults cleared: every joint holds where it is and drives again");
   }
 
   bool on_gripper(armctl_msgs::SetGripper::Request& req, armctl_msgs::SetGripper::Response& res) {

@@ -535,6 +535,10 @@ TEST_P(RosNode, ServicesStopTorqueGripperAndActionGroups) {
   b.request.data = true;
   ASSERT_TRUE(torque.call(b));
   EXPECT_TRUE(b.response.success) << b.response.message;
+  auto clear = nh.serviceClient<std_srvs::Trigger>("/armctl_ros/clear_faults");
+  std_srvs::Trigger c;
+  ASSERT_TRUE(clear.call(c));
+  EXPECT_TRUE(c.response.success) << c.response.message;  // nothing held on either arm: cleared
 
   armctl_msgs::SetGripper g;
   g.request.closed_fraction = 1.5;
