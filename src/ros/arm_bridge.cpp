@@ -274,7 +274,10 @@ MotionOutcome ArmBridge::set_torque(bool on) {
 }
 
 MotionOutcome ArmBridge::clear_faults() {
-  return impl_->run("clear faults", [](arm::Arm& a, session::JobContext&) { return a.device().clear_faults(); });
+  return impl_->run("clear faults", [](arm::Arm& a, session::JobContext& ctx) {
+    ctx.status_changed();  // /diagnostics says so at once
+    return a.device().clear_faults();
+  });
 }
 
 MotionOutcome ArmBridge::gripper(double closed_fraction) {

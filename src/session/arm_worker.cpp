@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <utility>
 
 #include "core/source_place.hpp"
 
@@ -41,6 +42,11 @@ void JobContext::progress(const arm::MotionProgress& progress) {
   worker_.snapshot_.progress = progress;
   ++worker_.snapshot_.sequence;
   worker_.changed_.notify_all();
+}
+
+void JobContext::status_changed() {
+  std::lock_guard lock(worker_.mutex_);
+  worker_.status_changed_ = true;
 }
 
 arm::ExecutorOptions JobContext::executor_options(arm::ExecutorOptions base) {
@@ -238,6 +244,9 @@ void ArmWorker::loop() {
       lock.unlock();
       q.done.set_value(std::move(result));
       next_read = arm.clock().now();  // where it ended, at once
+      lock.lock();
+      if (std::exchange(status_changed_, false)) next_status = next_read;
+      lock.unlock();
       continue;
     }
     lock.unlock();

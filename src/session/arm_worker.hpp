@@ -78,6 +78,9 @@ class JobContext {
   void positions(const arm::JointState& state);
   // Publishes a streamed motion's progress (the executor's `on_point`).
   void progress(const arm::MotionProgress& progress);
+  // The job changed what the slower state says (it cleared the joints' faults): it is read
+  // again as soon as the job ends, not at the next status_interval.
+  void status_changed();
   // ExecutorOptions/WaitOptions with command, on_point and on_read wired to this context.
   arm::ExecutorOptions executor_options(arm::ExecutorOptions base = {});
   arm::WaitOptions wait_options(arm::WaitOptions base = {});
@@ -145,6 +148,7 @@ class ArmWorker {
   ArmSnapshot snapshot_;
   std::deque<Queued> queue_;
   bool running_job_ = false;
+  bool status_changed_ = false;  // read the slower state when the running job ends
   arm::MotionCommand pending_ = arm::MotionCommand::none;
   bool halt_ = false;  // Arm::stop wanted on the worker thread
   bool quit_ = false;

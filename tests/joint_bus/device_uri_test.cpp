@@ -12,6 +12,7 @@ TEST(DeviceUri, AcceptsTheThreeForms) {
   EXPECT_FALSE(std::get<SimDevice>(parse_device_uri("sim").value()).baud.has_value());
   EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim?baud=115200").value()).baud, 115200u);
   EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim?dead=2,6").value()).dead_joints, (std::vector<int>{2, 6}));
+  EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim?swapped=3").value()).swapped_joints, (std::vector<int>{3}));
   EXPECT_EQ(std::get<UnixDevice>(parse_device_uri("unix:/tmp/a.sock").value()).path, "/tmp/a.sock");
   EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim").value()).dialect, Dialect::standard);
   EXPECT_EQ(std::get<SimDevice>(parse_device_uri("sim?dialect=legacy").value()).dialect, Dialect::legacy);
@@ -61,6 +62,7 @@ TEST(DeviceUri, RefusesBadInputWithAMessageNamingIt) {
       {"sim?dead=0", "dead joint '0' is not a joint (allowed 1..7"},
       {"sim?dead=", "dead joint '' is not a joint (allowed 1..7"},
       {"sim?dead=2,x", "dead joint 'x'"},
+      {"sim?swapped=8", "swapped joint '8' is not a joint (allowed 1..7"},
       {"unix:", "needs a socket path"},
       {"unix:/a?x=1", "takes no options"},
       {"serial:/dev/ttyAMA0", "needs select="},

@@ -19,6 +19,8 @@ class EmbeddedSim final : public joint_bus::BusConnection {
                                       ? joint_sim::load_arm_config(joint_sim::default_arm_config_path())
                                       : joint_sim::load_arm_config(d.config);
     if (d.baud) config.baud = *d.baud;
+    for (auto& joint : config.joints)
+      for (int n : d.swapped_joints) joint.hardware.leads_swapped = joint.hardware.leads_swapped || joint.number == n;
     // dialect=legacy: every joint as if flashed with DIALECT=legacy (legacy-master mode).
     joint_sim::SimArmOptions options;
     options.joints.legacy_master = d.dialect == joint_bus::Dialect::legacy;

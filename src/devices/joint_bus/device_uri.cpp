@@ -42,28 +42,33 @@ Dialect parse_dialect(std::string_view uri, const std::string& text) {
   return *dialect;
 }
 
+// "2,6": joints 1..7, comma-separated (the sim's dead= and swapped=).
+std::vector<int> parse_joint_list(std::string_view uri, const char* what, std::string_view list) {
+  std::vector<int> joints;
+  while (true) {
+    const auto comma = list.find(',');
+    const std::string_view item = list.substr(0, comma);
+    unsigned joint = 0;
+    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), joint);
+    if (item.empty() || ec != std::errc{} || end != item.data() + item.size() || joint < 1 || joint > 7) {
+      bad(uri, fmt::format("{} joint '{}' is not a joint (allowed 1..7, comma-separated)", what, item));
+    }
+    joints.push_back(static_cast<int>(joint));
+    if (comma == std::string_view::npos) break;
+    list.remove_prefix(comma + 1);
+  }
+  return joints;
+}
+
 SimDevice parse_sim(std::string_view uri, transport::UriParts& parts) {
   if (parts.has_path) bad(uri, "sim takes options after '?', not a path");
-  checked(uri, transport::check_options(parts, {"baud", "config", "dead", "dialect", "miscal"}));
+  checked(uri, transport::check_options(parts, {"baud", "config", "dead", "dialect", "miscal", "swapped"}));
   SimDevice d;
   auto& opts = parts.options;
   if (opts.contains("baud")) d.baud = checked(uri, transport::parse_baud(opts["baud"]));
   if (opts.contains("dialect")) d.dialect = parse_dialect(uri, opts["dialect"]);
-  if (opts.contains("dead")) {
-    std::string_view list = opts["dead"];
-    while (true) {
-      const auto comma = list.find(',');
-      const std::string_view item = list.substr(0, comma);
-      unsigned joint = 0;
-      const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), joint);
-      if (item.empty() || ec != std::errc{} || end != item.data() + item.size() || joint < 1 || joint > 7) {
-        bad(uri, fmt::format("dead joint '{}' is not a joint (allowed 1..7, comma-separated)", item));
-      }
-      d.dead_joints.push_back(static_cast<int>(joint));
-      if (comma == std::string_view::npos) break;
-      list.remove_prefix(comma + 1);
-    }
-  }
+  if (opts.contains("dead")) d.dead_joints = parse_joint_list(uri, "dead", opts["dead"]);
+  if (opts.contains("swapped")) d.swapped_joints = parse_joint_list(uri, "swapped", opts["swapped"]);
   if (opts.contains("miscal")) d.miscal = checked(uri, parse_miscal_seed("miscal", opts["miscal"]));
   if (opts.contains("config")) {
     if (opts["config"].empty()) bad(uri, "config needs a file path");

@@ -4,6 +4,7 @@
 //                            answer: to see how a dead joint is reported)&dialect=legacy
 //                            (joints in legacy-master mode, answering the legacy dialect)
 //                            &miscal=SEED (mis-assembled on purpose: core/miscalibration.hpp)
+//                            &swapped=J[,J...] (motor leads swapped: driven, they run away)
 //   unix:/path               a running `armctl sim scara --listen /path`
 //   serial:/dev/ttyAMA0?baud=115200&chip=gpiochip0&select=17,27,22,5,6,13,19[&dialect=legacy]
 //                            a real bus: UART + one GPIO line per joint (joints 1..N in
@@ -26,6 +27,9 @@ struct SimDevice {
   std::optional<std::uint32_t> baud;  // empty: the config's baud
   std::string config;  // empty: config/scara.arm.json's simulator section
   std::vector<int> dead_joints;  // joints 1..7 whose controller never answers
+  // Joints 1..7 whose motor leads are swapped: driven, each runs away and stops itself with
+  // a runaway fault (to see a fault reported and cleared without hardware).
+  std::vector<int> swapped_joints;
   Dialect dialect = Dialect::standard;  // legacy: every joint in legacy-master mode
   std::optional<std::uint32_t> miscal;  // the seed of a mis-assembly (core/miscalibration.hpp)
 };

@@ -33,6 +33,13 @@ async function stop() {
   } catch { /* shown */ }
 }
 
+// The faults the joints hold (a runaway, a following error): cleared once the cause is
+// fixed; each joint then holds where it is and drives again. Needs control, as a move.
+async function clearFaults() {
+  try { await api.post('/api/v1/clear-faults', {}); } catch { /* shown */ }
+  await refreshState();
+}
+
 async function takeControl() {
   try { await api.post('/api/v1/control', { take: true }); } catch { /* shown */ }
   await refreshState();
@@ -70,6 +77,7 @@ export function initStatus(model) {
   $('#arm-description').textContent = [model.description, model.device].filter(Boolean).join(' · ');
   document.title = `armctl · ${model.arm}`;
   $('#stop').addEventListener('click', stop);
+  $('#clear-faults').addEventListener('click', clearFaults);
   document.addEventListener('keydown', (event) => {
     if (event.key === 'Escape') { event.preventDefault(); stop(); }
   });
@@ -99,6 +107,7 @@ export function initStatus(model) {
     const faults = state.faults || [];
     $('#faults').textContent = faults.length ? faults.join('; ') : 'none';
     $('#faults').className = faults.length ? 'bad' : 'ok';
+    $('#clear-faults').hidden = faults.length === 0;
     // The scene's fence and reduced mode: null where the scene sets none.
     const limits = state.limits || {};
     const words = [['fence', limits.fence], ['reduced mode', limits.reduced]]
