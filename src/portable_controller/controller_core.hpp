@@ -264,6 +264,9 @@ class ControllerCore {
   // when its model is folded for the next point, so found within a point of the stream, not
   // when the stream ends; every move under way is stopped then (stop_move). True then.
   bool check_stream(uint8_t index, uint32_t now_us);
+  // Either check's finding: `behind_ramp`, counted, its move (`every_move`: every move)
+  // stopped and its words read. True.
+  bool stalled(uint8_t index, uint32_t now_us, bool every_move);
   // Every joint of the move that `index` belongs to (same planned end) brought to rest
   // (set_speed 0), and a playing group stopped (CMD 7).
   // `every_move`: every joint under a plan instead (a stream's joints each have their own end).

@@ -95,12 +95,7 @@ bool ControllerCore::check_ramp(uint8_t index, uint32_t now_us) {
   const int32_t moved = s.plan_to < s.plan_from ? int32_t(s.plan_from) - s.clicks : int32_t(s.clicks) - s.plan_from;
   // Tracking lag stays under 300 clicks on a healthy joint (docs/arm-controller.md).
   if (least - float(moved) <= float(not_following_clicks)) return false;
-  s.behind_ramp = true;
-  s.stalled_us = now_us;
-  count_up(stats_.stalls);
-  stop_move(index, now_us);  // first: the joints' set_speed 0 go out before the reads
-  if (s.following) lost_following(index, now_us);
-  return true;
+  return stalled(index, now_us, false);
 }
 
 bool ControllerCore::check_stream(uint8_t index, uint32_t now_us) {
@@ -117,10 +112,15 @@ bool ControllerCore::check_stream(uint8_t index, uint32_t now_us) {
   if (off < 0.0f) off = -off;
   // Tracking lag stays under 300 clicks on a healthy joint (docs/arm-controller.md).
   if (off - open <= float(not_following_clicks)) return false;
+  return stalled(index, now_us, true);
+}
+
+bool ControllerCore::stalled(uint8_t index, uint32_t now_us, bool every_move) {
+  JointState& s = state_[index];
   s.behind_ramp = true;
   s.stalled_us = now_us;
   count_up(stats_.stalls);
-  stop_move(index, now_us, true);
+  stop_move(index, now_us, every_move);  // first: the joints' set_speed 0 go out before the reads
   if (s.following) lost_following(index, now_us);
   return true;
 }

@@ -274,10 +274,7 @@ MotionOutcome ArmBridge::set_torque(bool on) {
 }
 
 MotionOutcome ArmBridge::clear_faults() {
-  return impl_->run("clear faults", [](arm::Arm& a, session::JobContext& ctx) {
-    ctx.status_changed();  // /diagnostics says so at once
-    return a.device().clear_faults();
-  });
+  return impl_->run("clear faults", session::clear_faults);  // /diagnostics says so at once
 }
 
 MotionOutcome ArmBridge::gripper(double closed_fraction) {

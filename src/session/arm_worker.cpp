@@ -49,6 +49,11 @@ void JobContext::status_changed() {
   worker_.status_changed_ = true;
 }
 
+Status clear_faults(arm::Arm& arm, JobContext& context) {
+  context.status_changed();
+  return arm.device().clear_faults();
+}
+
 arm::ExecutorOptions JobContext::executor_options(arm::ExecutorOptions base) {
   base.command = [this, outer = base.command](const arm::MotionProgress& p) {
     const arm::MotionCommand mine = command();

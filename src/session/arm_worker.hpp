@@ -91,6 +91,10 @@ class JobContext {
   ArmWorker& worker_;
 };
 
+// The job that clears the faults the joints hold (ArmDevice::clear_faults), for the apps
+// that serve the arm (HTTP, ROS): the faults are read again as soon as it ends.
+Status clear_faults(arm::Arm& arm, JobContext& context);
+
 struct ArmWorkerOptions {
   // Between position reads while idle; empty: the device's poll interval.
   std::optional<Duration> poll;

@@ -120,10 +120,7 @@ void add_arm_routes(WebServer::State& s) {
   s.router.add("POST", "/api/v1/clear-faults", [&s](Call& c) {
     s.lease.require(c.client);
     parse_empty_request(c.body());
-    s.run_to_end("clear faults", [](arm::Arm& arm, session::JobContext& ctx) {
-      ctx.status_changed();  // the faults shown are read again at once
-      return arm.device().clear_faults();
-    });
+    s.run_to_end("clear faults", session::clear_faults);
     c.reply({{"faults_cleared", true}});
   });
 }

@@ -114,13 +114,13 @@ export async function launchBrowser() {
 }
 
 // One dashboard for a whole test file, through node:test's before/after: `armctl serve` for
-// `arm`, a browser, the page, and a second API client (another client, as a script would
-// be), handed to `use` once they are up. At the end the file fails if the server crashed (a
+// `arm` (with `extra` arguments), a browser, the page, and a second API client (another
+// client, as a script would be), handed to `use` once they are up. At the end the file fails if the server crashed (a
 // sanitizer report) or the page logged an error.
-export function dashboardForFile(arm, use) {
+export function dashboardForFile(arm, use, { extra = [] } = {}) {
   const s = {};
   before(async () => {
-    s.server = await startServer({ arm });
+    s.server = await startServer({ arm, extra });
     s.browser = await launchBrowser();
     ({ page: s.page, problems: s.problems } = await openDashboard(s.browser, s.server));
     s.script = apiClient(s.server);
