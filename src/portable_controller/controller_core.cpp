@@ -886,6 +886,12 @@ void ControllerCore::on_servo_off(const uint8_t* data, uint8_t length, uint32_t 
   }
 }
 
+void ControllerCore::link_lost(uint32_t now_us) {
+  stop_playing(true);
+  halt(now_us);
+  for (uint8_t i = 0; i < count_; ++i) state_[i].answering = false;
+}
+
 void ControllerCore::halt(uint32_t now_us) {
   // Every command dropped but a clear_faults a host waits for (it moves nothing).
   uint8_t kept = 0;

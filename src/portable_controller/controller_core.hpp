@@ -205,6 +205,11 @@ class ControllerCore {
   void poll(uint32_t now_us);
 
   void set_battery_millivolts(uint16_t millivolts) { battery_mv_ = millivolts; }
+  // The bus link was lost (a Linux board's link that closed and reconnects; the Mega's
+  // wires cannot be): playback stops (CMD 7), every queued command is dropped for set_speed
+  // 0 to every joint, and every joint counts as not answering (a move naming it is refused)
+  // until it answers a poll again. Nothing moves after the link returns until a new request.
+  void link_lost(uint32_t now_us);
 
   // Position <-> clicks through the joint's line (rounded to nearest); 0 for no joint.
   int16_t to_clicks(uint8_t joint, uint16_t position) const;

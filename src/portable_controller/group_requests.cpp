@@ -163,7 +163,11 @@ void ControllerCore::play_next(uint32_t now_us) {
   uint8_t moving = 0;
   uint32_t took_ms = 1;  // at least 1 ms per action: a group of 0 ms actions cannot spin
   if (check_targets(servos, positions, play_.servo_count, targets, &moving) == Check::ok && moving > 0) {
-    const uint32_t scaled = uint32_t(ms) * 100u / speeds_[play_.group];
+    uint32_t scaled = uint32_t(ms) * 100u / speeds_[play_.group];
+    // Planned to end when it would have from its due instant: the action starts up to a
+    // transaction late (the bus was busy), and that must not add up over a group.
+    const uint32_t late_ms = (now_us - play_due_us_) / 1000u;
+    scaled = scaled > late_ms + 1u ? scaled - late_ms : 1u;
     plan_move(targets, moving, static_cast<uint16_t>(scaled > rc_max_move_ms ? rc_max_move_ms : scaled), now_us);
     count_up(stats_.actions_played);
     if (planned_ms_ > took_ms) took_ms = planned_ms_;

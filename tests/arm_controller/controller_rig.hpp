@@ -18,9 +18,12 @@
 
 namespace armctl::arm_controller::testing {
 
-class SimRcLink final : public robot_commands::RcLink {
+// The SDK's link to a device in this process (ControllerDevice, or CoreDevice:
+// core_device_test.cpp): while the SDK waits for a reply the device runs in simulated time.
+template <typename Device>
+class DeviceRcLink final : public robot_commands::RcLink {
  public:
-  void attach(ControllerDevice& device) { device_ = &device; }
+  void attach(Device& device) { device_ = &device; }
   void deliver(const rc::Frame& f) { inbox_.push_back(f); }
   void send(const rc::Frame& frame) override { device_->handle(frame); }
   std::optional<rc::Frame> receive(TimePoint deadline) override {
@@ -36,9 +39,10 @@ class SimRcLink final : public robot_commands::RcLink {
   std::string describe() const override { return "in-process controller"; }
 
  private:
-  ControllerDevice* device_ = nullptr;
+  Device* device_ = nullptr;
   std::deque<rc::Frame> inbox_;
 };
+using SimRcLink = DeviceRcLink<ControllerDevice>;
 
 struct Rig {
   // leads_swapped: joints whose motor leads are the other way round (they run away).

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "devices/arm_controller/controller_runner.hpp"
+#include "devices/arm_controller/core_device.hpp"
 #include "transport/paced_link.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
 #include "devices/robot_commands/client.hpp"
@@ -17,14 +18,16 @@ namespace {
 
 using namespace std::chrono_literals;
 
-TEST(PtyEndToEnd, SdkDrivesTheSimulatedArmThroughTheController) {
+// `make_device(link, output)` builds the controller served; `after(device)` checks it once
+// the runner stopped.
+template <typename MakeDevice, typename After>
+void drive_through_the_pty(MakeDevice make_device, After after) {
   auto arm = joint_sim::SimArm::from_default_config();
   ASSERT_TRUE(transport::runs_on_simulated_time(arm->link()));
   transport::PacedLink paced(arm->link());
   ControllerRunner runner(parse_upstream("pty"));
-  ControllerDevice device(paced, {}, load_controller_config(default_controller_config_path()), {},
-                          runner.make_output());
-  std::thread serve([&] { runner.run(device); });
+  auto device = make_device(paced, runner.make_output());
+  std::thread serve([&] { runner.run(*device); });
 
   {
     robot_commands::StreamLink link(transport::SerialPort::open(runner.host_path()), runner.host_path());
@@ -54,7 +57,29 @@ TEST(PtyEndToEnd, SdkDrivesTheSimulatedArmThroughTheController) {
   }
   runner.request_stop();
   serve.join();
-  EXPECT_EQ(device.board().stats().ignored(), 0u);
+  after(*device);
+}
+
+TEST(PtyEndToEnd, SdkDrivesTheSimulatedArmThroughTheController) {
+  drive_through_the_pty(
+      [](transport::JointBusLink& link, auto output) {
+        return std::make_unique<ControllerDevice>(link, joint_bus::MasterOptions{},
+                                                  load_controller_config(default_controller_config_path()),
+                                                  DeviceOptions{}, output);
+      },
+      [](ControllerDevice& device) { EXPECT_EQ(device.board().stats().ignored(), 0u); });
+}
+
+TEST(PtyEndToEnd, SdkDrivesTheSimulatedArmThroughTheCoreOnLinux) {
+  drive_through_the_pty(
+      [](transport::JointBusLink& link, auto output) {
+        return std::make_unique<CoreDevice>(link, load_controller_config(default_controller_config_path()),
+                                            CoreDeviceOptions{}, output);
+      },
+      [](CoreDevice& device) {
+        EXPECT_EQ(device.core().stats().ignored_frames, 0u);
+        EXPECT_EQ(device.core().stats().actions_played, 2u);
+      });
 }
 
 }  // namespace

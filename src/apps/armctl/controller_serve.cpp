@@ -11,6 +11,7 @@
 #include "arm/arm_model.hpp"
 #include "core/error.hpp"
 #include "devices/arm_controller/controller_runner.hpp"
+#include "devices/arm_controller/core_device.hpp"
 #include "transport/paced_link.hpp"
 
 namespace armctl::cli {
@@ -18,6 +19,47 @@ namespace armctl::cli {
 arm_controller::ControllerConfig controller_config_for(const std::string& arm) {
   return arm_controller::load_controller_config(arm::arm_file_path(arm.empty() ? "scara" : arm));
 }
+
+namespace {
+
+// The portable core on this machine (CoreDevice): served like the daemon, its counters
+// reported at the end as the Mega would count them.
+template <typename Started>
+void serve_core(transport::JointBusLink& link, arm_controller::ControllerConfig config,
+                const ControllerServeArgs& args, std::function<std::uint16_t()> supply_millivolts,
+                arm_controller::ControllerRunner& runner, const ServerLog& log, Started started) {
+  namespace ac = arm_controller;
+  ac::CoreDeviceOptions options;
+  if (!args.state_dir.empty()) options.state_dir = args.state_dir;
+  options.supply_millivolts = std::move(supply_millivolts);
+  options.link_losses = args.link_losses;
+  options.log = [&log](const std::string& m) { log.line(m); };
+  ac::CoreDevice device(link, std::move(config), options, runner.make_output());
+  started("core");
+  for (const auto& j : device.config().joints) {
+    const auto& s = device.joint_state(j.number);
+    log.line(fmt::format("joint {} {}: {}", j.number, j.name,
+                         s.answering ? fmt::format("at {} clicks", s.clicks)
+                                     : fmt::format("NOT ANSWERING (status {})", s.last_fault)));
+  }
+
+  runner.run(device);
+
+  const auto& c = device.core().stats();
+  log.stopped({{"frames", c.frames}, {"ignored", c.ignored_frames}, {"moves", c.moves},
+               {"refused_moves", c.refused_moves}, {"polls", c.polls}, {"sweeps", c.sweeps},
+               {"poll_failures", c.poll_failures}, {"command_failures", c.command_failures},
+               {"following_lost", c.following_lost}, {"stalls", c.stalls}, {"runaway_faults", c.runaway_faults},
+               {"following_error_faults", c.following_error_faults}, {"torn_frames", device.torn_frames()}},
+              fmt::format("{}: stopped; {} frames ({} ignored, {} torn); {} moves ({} refused: joint not answering); "
+                          "{} polls in {} sweeps, {} poll failures, {} command failures; {} times a joint stopped "
+                          "following, {} stalls ({} runaway, {} following-error faults reported)",
+                          args.label, c.frames, c.ignored_frames, device.torn_frames(), c.moves, c.refused_moves,
+                          c.polls, c.sweeps, c.poll_failures, c.command_failures, c.following_lost, c.stalls,
+                          c.runaway_faults, c.following_error_faults));
+}
+
+}  // namespace
 
 void serve_controller(transport::JointBusLink& bus, joint_bus::MasterOptions master_options,
                       arm_controller::ControllerConfig config, const ControllerServeArgs& args,
@@ -32,23 +74,34 @@ void serve_controller(transport::JointBusLink& bus, joint_bus::MasterOptions mas
   if (transport::runs_on_simulated_time(bus)) link = &paced.emplace(bus);
 
   ac::ControllerRunner runner(upstream);
+  const ServerLog log(args.label, args.json);
+  auto log_line = [&log](const std::string& m) { log.line(m); };
+  const std::size_t joints = config.joints.size();
+  // Made once the device is up (its first sweep of polls done), as `started` says.
+  std::optional<PtySymlink> symlink;
+  std::optional<StopOnSignals> stop_on_signals;
+  auto started = [&](const char* implementation) {
+    symlink.emplace(args.link, runner.host_path());
+    stop_on_signals.emplace(runner);
+    log.started({{"joints", joints}, {"link", args.link}, {"joint_bus_baud", link->baud()},
+                 {"implementation", implementation}},
+                fmt::format("{}: Robot Commands on {}{} (servos 1..{} = joints), joint bus at {} baud{}; Ctrl-C to stop",
+                            args.label, runner.host_path(), args.link.empty() ? "" : " linked from " + args.link,
+                            joints, link->baud(), args.core ? ", the portable core" : ""),
+                runner.host_path());
+  };
+  if (args.core) {
+    serve_core(*link, std::move(config), args, std::move(supply_millivolts), runner, log, started);
+    return;
+  }
+
   ac::DeviceOptions options;
   if (!args.state_dir.empty()) options.state_dir = args.state_dir;
   options.supply_millivolts = std::move(supply_millivolts);
   options.link_losses = args.link_losses;
-  const ServerLog log(args.label, args.json);
-  options.log = [&log](const std::string& m) { log.line(m); };
-  const std::size_t joints = config.joints.size();
+  options.log = log_line;
   ac::ControllerDevice device(*link, master_options, std::move(config), options, runner.make_output());
-
-  const PtySymlink symlink(args.link, runner.host_path());
-  const StopOnSignals stop_on_signals(runner);
-
-  log.started({{"joints", joints}, {"link", args.link}, {"joint_bus_baud", link->baud()}},
-              fmt::format("{}: Robot Commands on {}{} (servos 1..{} = joints), joint bus at {} baud; Ctrl-C to stop",
-                          args.label, runner.host_path(), args.link.empty() ? "" : " linked from " + args.link,
-                          joints, link->baud()),
-              runner.host_path());
+  started("daemon");
   for (int j : device.arm().servos()) {
     const auto& s = device.arm().joint_status(j);
     log.line(fmt::format("joint {} {}: {}", j, device.arm().config().joint(j)->name,

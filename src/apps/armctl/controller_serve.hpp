@@ -21,6 +21,9 @@ struct ControllerServeArgs {
   // A bus link that can be lost and comes back (ReconnectingLink::losses); empty otherwise.
   std::function<std::uint64_t()> link_losses;
   bool json = false;  // --json: the log as JSON lines on stdout (apps/armctl/server_log.hpp)
+  // --core: the portable core the Mega controller runs (CoreDevice) instead of the daemon's
+  // own implementation (ControllerDevice).
+  bool core = false;
 };
 
 // The controller's config from the arm `--arm` names (scara, xarm or an arm file, as in every

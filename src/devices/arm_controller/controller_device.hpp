@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "devices/arm_controller/arm_controller.hpp"
+#include "devices/arm_controller/served_controller.hpp"
 #include "devices/rc_board/board.hpp"
 #include "devices/rc_board/group_store.hpp"
 
@@ -27,7 +28,7 @@ struct DeviceOptions {
   std::function<std::uint64_t()> link_losses;
 };
 
-class ControllerDevice {
+class ControllerDevice final : public ServedController {
  public:
   // Throws ArmctlError (config/bus mismatch, unusable state dir). Calls arm().start().
   ControllerDevice(transport::JointBusLink& link, joint_bus::MasterOptions master_options,
@@ -37,14 +38,14 @@ class ControllerDevice {
   const ArmController& arm() const { return *arm_; }
   rc_board::Board& board() { return *board_; }
   rc_board::GroupStore& groups() { return *groups_; }
-  const Clock& clock() const { return arm_->clock(); }
+  const Clock& clock() const override { return arm_->clock(); }
 
-  void receive(std::span<const std::uint8_t> bytes) { board_->receive(bytes); }
+  void receive(std::span<const std::uint8_t> bytes) override { board_->receive(bytes); }
   void handle(const rc::Frame& frame) { board_->handle(frame); }
 
   // One bus step (see ArmController::service) with group playback kept on time;
   // `limit` bounds any waiting.
-  void step(TimePoint limit);
+  void step(TimePoint limit) override;
   // Steps until the bus clock reaches `t` (a last poll may end a little after it).
   void run_until(TimePoint t);
   void run_for(Duration d) { run_until(clock().now() + d); }

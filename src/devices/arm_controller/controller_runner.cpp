@@ -64,7 +64,7 @@ ControllerRunner::ControllerRunner(const Upstream& upstream) {
 
 ControllerRunner::~ControllerRunner() = default;
 
-rc_board::Board::Output ControllerRunner::make_output() {
+std::function<void(const rc::Frame&)> ControllerRunner::make_output() {
   return [this](const rc::Frame& frame) {
     for (std::uint8_t b : rc::encode_frame(frame)) output_.push_back(b);
     while (output_.size() > kMaxQueuedOutput) {
@@ -87,7 +87,7 @@ void ControllerRunner::flush_output() {
   }
 }
 
-void ControllerRunner::read_upstream(ControllerDevice& device) {
+void ControllerRunner::read_upstream(ServedController& device) {
   for (;;) {
     pollfd p[1] = {{stream_->fd(), POLLIN, 0}};
     if (!loop_.wait(p, Duration::zero()) || !(p[0].revents & POLLIN)) return;
@@ -99,12 +99,11 @@ void ControllerRunner::read_upstream(ControllerDevice& device) {
   }
 }
 
-void ControllerRunner::run(ControllerDevice& device) {
+void ControllerRunner::run(ServedController& device) {
   // The host is looked at between bus steps (each at most kUpstreamCheck long): the bus
   // link's own wait is the loop's wait, so a stop is seen within one step.
   while (!loop_.stop_requested()) {
     read_upstream(device);
-    device.board().poll();
     flush_output();
     device.step(device.clock().now() + kUpstreamCheck);
   }

@@ -1,4 +1,4 @@
-// Serves a ControllerDevice to a host over a byte stream (a pty it creates, or a serial
+// Serves an arm controller (ControllerDevice, or CoreDevice: served_controller.hpp) to a host over a byte stream (a pty it creates, or a serial
 // port): Robot Commands frames in the serial form upstream, the joint bus downstream. One
 // thread, one loop (transport::ServeLoop, like every server): read what the host sent, let
 // the board act, send replies and notifications, then one bus step (a due command, a short
@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -38,25 +39,25 @@ struct RunnerStats {
 
 class ControllerRunner {
  public:
-  // Opens the upstream (throws ArmctlError io). `device` must outlive the runner; its
-  // output must be routed to on_output() (use make_output()).
+  // Opens the upstream (throws ArmctlError io). The served device's output must be
+  // make_output().
   explicit ControllerRunner(const Upstream& upstream);
   ~ControllerRunner();
   ControllerRunner(const ControllerRunner&) = delete;
   ControllerRunner& operator=(const ControllerRunner&) = delete;
 
-  // What the device's Board::Output should be.
-  rc_board::Board::Output make_output();
+  // Where the device's replies and notifications go.
+  std::function<void(const rc::Frame&)> make_output();
   // The path a host opens: the pty slave, or the serial port's path.
   const std::string& host_path() const { return host_path_; }
 
   // Serves until request_stop() (async-signal-safe).
-  void run(ControllerDevice& device);
+  void run(ServedController& device);
   void request_stop() { loop_.request_stop(); }
   std::size_t dropped_output_bytes() const { return dropped_; }
 
  private:
-  void read_upstream(ControllerDevice& device);
+  void read_upstream(ServedController& device);
   void flush_output();
 
   std::optional<transport::Pty> pty_;

@@ -1,0 +1,141 @@
+#include "devices/arm_controller/core_device.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include <fmt/core.h>
+
+#include "core/error.hpp"
+#include "devices/joint_bus/joint_diagnostics.hpp"
+
+namespace armctl::arm_controller {
+
+namespace {
+
+using namespace std::chrono_literals;
+
+// Longest the loop waits between transactions before polling the core again: due commands
+// are then late by at most this (a Mega main-loop pass is ~12 µs; the host's loop is also
+// the runner's, which looks at the host between steps).
+constexpr Duration kPass = 100us;
+// At start, how long the first sweep of polls may take before serving anyway (joints
+// that do not answer are retried by polling, as on the Mega).
+constexpr Duration kFirstSweep = 2s;
+
+std::optional<std::filesystem::path> memory_path(const CoreDeviceOptions& options) {
+  if (!options.state_dir) return std::nullopt;
+  std::error_code ec;
+  std::filesystem::create_directories(*options.state_dir, ec);
+  if (ec)
+    throw ArmctlError(ErrorKind::io, fmt::format("state dir {}: cannot create it: {}",
+                                                 options.state_dir->string(), ec.message()));
+  return *options.state_dir / CoreDevice::memory_file;
+}
+
+std::vector<controller::JointSetup> checked_setups(const ControllerConfig& config,
+                                                   const transport::JointBusLink& link) {
+  for (const auto& j : config.joints)
+    if (j.number > link.joint_count())
+      throw ArmctlError(ErrorKind::invalid_config,
+                        fmt::format("arm config joint {} ({}) has no select line: the bus has joints 1..{}",
+                                    int(j.number), j.name, link.joint_count()));
+  return core_joint_setups(config);
+}
+
+}  // namespace
+
+void CoreDevice::Upstream::send_frame(std::uint8_t command, const std::uint8_t* data, std::uint8_t length) {
+  out_(rc::Frame{command, std::vector<std::uint8_t>(data, data + length)});
+}
+
+CoreDevice::CoreDevice(transport::JointBusLink& link, ControllerConfig config, CoreDeviceOptions options,
+                       Output output)
+    : link_(link),
+      config_(std::move(config)),
+      options_(std::move(options)),
+      joints_(checked_setups(config_, link)),
+      port_(link),
+      upstream_(std::move(output)),
+      memory_(memory_path(options_)),
+      seen_(joints_.size()) {
+  core_.begin(joints_.data(), static_cast<std::uint8_t>(joints_.size()), &port_, &upstream_, link_.baud(), now_us(),
+              &memory_);
+  const TimePoint give_up = clock().now() + kFirstSweep;
+  while (core_.stats().sweeps == 0 && clock().now() < give_up) step(give_up);
+  for (std::size_t i = 0; i < joints_.size(); ++i) {
+    const controller::JointState& s = core_.joint_state(joints_[i].number);
+    seen_[i] = Seen{s.answering, s.following_lost, s.diagnostics_read, s.diagnostics[0]};
+  }
+  if (options_.link_losses) losses_seen_ = options_.link_losses();
+  started_ = true;
+}
+
+std::uint32_t CoreDevice::now_us() const {
+  // The core's clock is a wrapping microsecond counter; it compares by difference.
+  return static_cast<std::uint32_t>(
+      std::chrono::duration_cast<std::chrono::microseconds>(clock().now().time_since_epoch()).count());
+}
+
+void CoreDevice::receive(std::span<const std::uint8_t> bytes) {
+  for (std::uint8_t b : bytes)
+    if (reader_.on_byte(b, now_us())) core_.on_frame(reader_.command(), reader_.data(), reader_.data_length(), now_us());
+}
+
+void CoreDevice::handle(const rc::Frame& frame) {
+  // What the wire could carry: a longer frame never reaches a board.
+  if (frame.data.size() + 2 > controller::RcFrameReader::max_length) return;
+  core_.on_frame(frame.cmd, frame.data.data(), static_cast<std::uint8_t>(frame.data.size()), now_us());
+}
+
+void CoreDevice::step(TimePoint limit) {
+  if (options_.link_losses && options_.link_losses() != losses_seen_) {
+    losses_seen_ = options_.link_losses();
+    core_.link_lost(now_us());
+    log("joint bus link lost: playback and queued commands ended; joints count as not answering until polled again");
+  }
+  core_.set_battery_millivolts(options_.supply_millivolts ? options_.supply_millivolts() : config_.supply_millivolts);
+  core_.poll(now_us());
+  note_changes();
+  // Mid-transaction the next event is a byte (or the master's timeout, several words away):
+  // wait up to a word for it. Between transactions the core starts the next one at its next
+  // poll, or waits for a due command or the quiet time after a failure: look again soon.
+  const TimePoint now = clock().now();
+  const Duration wait = core_.master().busy() ? std::chrono::microseconds(core_.master().word_time_us()) : kPass;
+  const TimePoint deadline = std::min(limit, now + wait);
+  if (deadline <= now) return;
+  if (auto b = link_.read_byte(deadline)) core_.on_bus_byte(*b, now_us());
+}
+
+void CoreDevice::run_until(TimePoint t) {
+  while (clock().now() < t) step(t);
+}
+
+void CoreDevice::note_changes() {
+  // Before the first sweep is done the start-up log says where every joint is.
+  if (!options_.log || !started_) return;
+  for (std::size_t i = 0; i < joints_.size(); ++i) {
+    const int n = joints_[i].number;
+    const std::string& name = config_.joints[i].name;
+    const controller::JointState& s = core_.joint_state(joints_[i].number);
+    Seen& seen = seen_[i];
+    if (s.answering != seen.answering)
+      log(s.answering ? fmt::format("joint {} {}: answering again", n, name)
+                      : fmt::format("joint {} {}: not answering (status {})", n, name, s.last_fault));
+    if (s.following_lost != seen.following_lost)
+      log(fmt::format("joint {} {}: stopped following its plan; its faults are read", n, name));
+    // Once a read completes, and again when a later read finds other faults (a runaway
+    // shows 100-150 ms after the joint leaves its plan).
+    if (s.diagnostics_read && (!seen.diagnostics_read || s.diagnostics[0] != seen.faults)) {
+      std::array<std::uint16_t, joint_bus::diagnostic_count> words{};
+      std::copy_n(s.diagnostics, words.size(), words.begin());
+      log(fmt::format("joint {} {}: {}", n, name, joint_bus::describe(joint_bus::diagnostics_from_words(words))));
+    }
+    seen = Seen{s.answering, s.following_lost, s.diagnostics_read, s.diagnostics[0]};
+  }
+}
+
+void CoreDevice::log(const std::string& line) const {
+  if (options_.log) options_.log(line);
+}
+
+}  // namespace armctl::arm_controller

@@ -1,0 +1,103 @@
+// The arm controller on Linux running the portable core, the same code the Mega controller
+// runs (portable_controller/controller_core.hpp, docs/mega-controller.md): Robot Commands
+// frames in, joint bus transactions out through a transport::JointBusLink, action groups
+// and servo settings in a file standing in for the Mega's EEPROM. What `armctl controller
+// --core` and `armctl sim scara --robot-commands --core` serve (docs/arm-controller.md,
+// "The core on Linux": what it does, and what the daemon's own implementation still does
+// that it does not).
+//
+// Single-threaded and clock-driven like ControllerDevice: on a simulated bus (SimClock)
+// tests call run_until() and every transaction happens at an exact simulated instant.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "devices/arm_controller/controller_config.hpp"
+#include "devices/arm_controller/core_ports.hpp"
+#include "devices/arm_controller/served_controller.hpp"
+#include "portable_controller/controller_core.hpp"
+#include "portable_controller/rc_frame_reader.hpp"
+#include "protocol/robot_commands/frame.hpp"
+
+namespace armctl::arm_controller {
+
+struct CoreDeviceOptions {
+  // The group memory is kept here as core-memory.bin; nothing = in memory only.
+  std::optional<std::filesystem::path> state_dir;
+  // Measured supply voltage; empty = the config's supply_millivolts.
+  std::function<std::uint16_t()> supply_millivolts;
+  std::function<void(const std::string&)> log;
+  // How many times the bus link has been lost so far (ReconnectingLink::losses); empty for
+  // a link that cannot be lost. On each new loss playback and every queued command end and
+  // every joint counts as not answering until it answers again (ControllerCore::link_lost).
+  std::function<std::uint64_t()> link_losses;
+};
+
+class CoreDevice final : public ServedController {
+ public:
+  using Output = std::function<void(const rc::Frame&)>;
+  static constexpr const char* memory_file = "core-memory.bin";
+
+  // Throws ArmctlError: a config the core cannot hold (invalid_config), a configured joint
+  // without a select line on the link (invalid_config), an unusable state dir (io). Then
+  // halts every joint and polls each once (or until 2 s pass), as the Mega does at reset.
+  CoreDevice(transport::JointBusLink& link, ControllerConfig config, CoreDeviceOptions options, Output output);
+
+  void receive(std::span<const std::uint8_t> bytes) override;
+  // A whole frame (tests): as if its bytes had arrived.
+  void handle(const rc::Frame& frame);
+  // One pass of the core's loop: a poll, then the bus's next byte or a short wait (at most
+  // until `limit`).
+  void step(TimePoint limit) override;
+  void run_until(TimePoint t);
+  void run_for(Duration d) { run_until(clock().now() + d); }
+  const Clock& clock() const override { return link_.clock(); }
+
+  // ---- inspection (tests, the serve log)
+  const controller::ControllerCore& core() const { return core_; }
+  const ControllerConfig& config() const { return config_; }
+  const controller::JointState& joint_state(int joint) const {
+    return core_.joint_state(static_cast<std::uint8_t>(joint));
+  }
+  std::uint16_t torn_frames() const { return reader_.torn_frames(); }
+
+ private:
+  class Upstream final : public controller::UpstreamPort {
+   public:
+    explicit Upstream(Output out) : out_(std::move(out)) {}
+    void send_frame(std::uint8_t command, const std::uint8_t* data, std::uint8_t length) override;
+
+   private:
+    Output out_;
+  };
+  // What the log has said of each joint, so it says each change once.
+  struct Seen {
+    bool answering = false;
+    std::uint16_t following_lost = 0;
+    bool diagnostics_read = false;
+    std::uint16_t faults = 0;  // diagnostics[0] when last read
+  };
+  std::uint32_t now_us() const;
+  void note_changes();
+  void log(const std::string& line) const;
+
+  transport::JointBusLink& link_;
+  ControllerConfig config_;
+  CoreDeviceOptions options_;
+  std::vector<controller::JointSetup> joints_;
+  LinkBusPort port_;
+  Upstream upstream_;
+  FileGroupMemory memory_;
+  controller::ControllerCore core_;
+  controller::RcFrameReader reader_;
+  std::vector<Seen> seen_;
+  std::uint64_t losses_seen_ = 0;
+  bool started_ = false;
+};
+
+}  // namespace armctl::arm_controller
