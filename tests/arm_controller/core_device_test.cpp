@@ -170,6 +170,7 @@ TEST(CoreCommands, TargetsOutsideSoftLimitsAreRefusedWhole) {
   EXPECT_EQ(rig.clicks(3), 0) << "no partial effect";
   EXPECT_EQ(rig.clicks(1), 0);
   EXPECT_EQ(rig.device->core().stats().ignored_frames, 1u);
+  EXPECT_TRUE(rig.logged("MultiServoMove ignored: a servo that is not a joint, a position outside its limits"));
 }
 
 TEST(CoreCommands, ServoOffTurnsTheLoopOffAndALaterMoveTurnsItOn) {
@@ -334,6 +335,7 @@ TEST(CoreGroups, TheFileMemoryHoldsWhatTheMegasEepromCannot) {
   EXPECT_TRUE(r.ok()) << "400 actions of seven joints (8,800 bytes): " << (r.ok() ? "" : r.error().message);
   for (int g = 20; g < 35; ++g) ASSERT_TRUE(rig.client->download_group(g, {{100, {{1, 500}}}}).ok()) << g;
   EXPECT_FALSE(rig.client->download_group(40, {{100, {{1, 500}}}}).ok()) << "a 17th group: no directory entry";
+  EXPECT_TRUE(rig.logged("GroupDownload: the group does not fit the group memory (or no free directory entry)"));
 }
 
 TEST(CorePersistence, GroupsOffsetsAndLimitsSurviveARestart) {
@@ -401,6 +403,7 @@ TEST(CoreJointFaults, DeadJointIsReportedAndAMoveNamingItIsRefused) {
   rig.run_for(800ms);
   EXPECT_EQ(rig.clicks(2), 0) << "refused whole: no joint moved";
   EXPECT_EQ(rig.device->core().stats().refused_moves, 1u);
+  EXPECT_TRUE(rig.logged("MultiServoMove refused: joint 3 (UAE) not answering; no joint moved"));
   ASSERT_TRUE(rig.client->move({{2, 600}}, 1500).ok());
   rig.run_for(2000ms);
   EXPECT_NEAR(rig.clicks(2), 4000, 20);
@@ -464,6 +467,7 @@ TEST(CoreTornFrame, ADeadHostsHalfFrameMovesNoJoint) {
   rig.run_for(25s);
   EXPECT_NEAR(rig.clicks(4), before, 20);
   EXPECT_EQ(rig.device->torn_frames(), 1u);
+  EXPECT_TRUE(rig.logged("a partial frame was dropped"));
 }
 
 // The bus link lost (ReconnectingLink counts it): playback ends with CMD 7, every joint is

@@ -7,6 +7,8 @@
 
 #include "core/error.hpp"
 #include "devices/joint_bus/joint_diagnostics.hpp"
+#include "protocol/robot_commands/command_codes.hpp"
+#include "protocol/robot_commands/messages.hpp"
 
 namespace armctl::arm_controller {
 
@@ -77,14 +79,55 @@ std::uint32_t CoreDevice::now_us() const {
 }
 
 void CoreDevice::receive(std::span<const std::uint8_t> bytes) {
-  for (std::uint8_t b : bytes)
-    if (reader_.on_byte(b, now_us())) core_.on_frame(reader_.command(), reader_.data(), reader_.data_length(), now_us());
+  for (std::uint8_t b : bytes) {
+    const std::uint16_t torn = reader_.torn_frames();
+    if (reader_.on_byte(b, now_us()))
+      take(rc::Frame{reader_.command(),
+                     std::vector<std::uint8_t>(reader_.data(), reader_.data() + reader_.data_length())});
+    if (reader_.torn_frames() != torn) log("a partial frame was dropped (its bytes stopped for over 50 ms): ignored");
+  }
 }
 
 void CoreDevice::handle(const rc::Frame& frame) {
   // What the wire could carry: a longer frame never reaches a board.
   if (frame.data.size() + 2 > controller::RcFrameReader::max_length) return;
+  take(frame);
+}
+
+void CoreDevice::take(const rc::Frame& frame) {
+  const controller::CoreStats before = core_.stats();
   core_.on_frame(frame.cmd, frame.data.data(), static_cast<std::uint8_t>(frame.data.size()), now_us());
+  if (options_.log) explain(frame, before);
+}
+
+void CoreDevice::explain(const rc::Frame& frame, const controller::CoreStats& before) const {
+  // The core only counts; the log says which frame and, where the host's codec can tell,
+  // why (a move naming a joint not answering; a frame malformed as the spec reads it).
+  const controller::CoreStats& after = core_.stats();
+  const auto command = rc::command_from_byte(frame.cmd);
+  const std::string name = command ? rc::command_name(*command) : fmt::format("CMD {}", frame.cmd);
+  auto request = rc::decode_request(frame, rc::ServoRange{0, 255});
+  if (after.refused_moves != before.refused_moves) {
+    std::string joints;
+    if (request)
+      if (const auto* move = std::get_if<rc::MultiServoMove>(&*request))
+        for (const auto& t : move->targets)
+          if (t.position && !core_.joint_state(t.servo).answering)
+            joints += fmt::format("{}joint {} ({})", joints.empty() ? "" : ", ", t.servo,
+                                  config_.joint(t.servo) ? config_.joint(t.servo)->name : "?");
+    log(fmt::format("{} refused: {} not answering; no joint moved", name, joints.empty() ? "a named joint" : joints));
+  } else if (after.download_too_big != before.download_too_big) {
+    log(fmt::format("{}: the group does not fit the group memory (or no free directory entry): refused; "
+                    "erase groups to make room",
+                    name));
+  } else if (after.download_rejected != before.download_rejected) {
+    log(fmt::format("{}: inconsistent with the download in progress: download abandoned; stored group unchanged", name));
+  } else if (after.ignored_frames != before.ignored_frames) {
+    log(request ? fmt::format("{} ignored: a servo that is not a joint, a position outside its limits, or a "
+                              "request the board cannot take now",
+                              name)
+                : fmt::format("{} ignored: {}", name, request.error().message));
+  }
 }
 
 void CoreDevice::step(TimePoint limit) {

@@ -83,6 +83,9 @@ class CoreDevice final : public ServedController {
     std::uint16_t faults = 0;  // diagnostics[0] when last read
   };
   std::uint32_t now_us() const;
+  // A whole frame to the core, and what became of it in the log.
+  void take(const rc::Frame& frame);
+  void explain(const rc::Frame& frame, const controller::CoreStats& before) const;
   void note_changes();
   void log(const std::string& line) const;
 
