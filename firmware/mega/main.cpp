@@ -91,13 +91,14 @@ class MegaUpstream final : public ctl::UpstreamPort {
 // never waits for the EEPROM.
 class MegaEeprom final : public ctl::GroupMemory {
  public:
-  uint16_t size() const override { return E2END + 1; }
-  uint8_t read(uint16_t address) override {
-    return eeprom_read_byte(reinterpret_cast<const uint8_t*>(address));
+  uint32_t size() const override { return E2END + 1; }
+  // Addresses are below size(): 16 bits hold them.
+  uint8_t read(uint32_t address) override {
+    return eeprom_read_byte(reinterpret_cast<const uint8_t*>(static_cast<uint16_t>(address)));
   }
   bool ready() override { return eeprom_is_ready(); }
-  void write(uint16_t address, uint8_t value) override {
-    eeprom_update_byte(reinterpret_cast<uint8_t*>(address), value);
+  void write(uint32_t address, uint8_t value) override {
+    eeprom_update_byte(reinterpret_cast<uint8_t*>(static_cast<uint16_t>(address)), value);
   }
 };
 

@@ -53,7 +53,8 @@ bool switch_time_s(float distance, float time_s, float v1, float v2, float accel
 }  // namespace
 
 void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus, UpstreamPort* upstream,
-                           uint32_t bus_baud, uint32_t now_us, GroupMemory* groups) {
+                           uint32_t bus_baud, uint32_t now_us, GroupMemory* groups,
+                           GroupStore::Entry* directory, uint8_t entries) {
   joints_ = joints;
   count_ = count > max_joints ? max_joints : count;
   upstream_ = upstream;
@@ -74,7 +75,13 @@ void ControllerCore::begin(const JointSetup* joints, uint8_t count, BusPort* bus
   have_groups_ = groups != nullptr;
   memory_ = groups;
   info_index_ = 0;
-  if (have_groups_) groups_.begin(groups, static_cast<uint16_t>(groups->size() - settings_bytes));
+  if (have_groups_) {
+    if (directory == nullptr || entries == 0) {
+      directory = directory_;
+      entries = GroupStore::mega_entries;
+    }
+    groups_.begin(groups, groups->size() - settings_bytes, directory, entries);
+  }
   load_settings();
   awaiting_ = Awaiting::nothing;
   download_stage_ = 0;

@@ -194,10 +194,13 @@ class ControllerCore {
   // then set_zone for every joint: after a reset nothing keeps moving on an old command.
   // `groups`: where action groups are kept (nullptr: group requests are ignored).
   // The last `settings_bytes` of `groups` hold each joint's persisted offset and
-  // BusServoInfo limits (servo_settings.cpp); groups use the rest.
+  // BusServoInfo limits (servo_settings.cpp); groups use the rest. `directory`: room for
+  // the group directory's `entries` (1..255) that outlives the core; nullptr: the core's
+  // own, of GroupStore::mega_entries (the Mega's layout).
   static const uint16_t settings_bytes = 96;
   void begin(const JointSetup* joints, uint8_t count, BusPort* bus, UpstreamPort* upstream,
-             uint32_t bus_baud, uint32_t now_us, GroupMemory* groups = nullptr);
+             uint32_t bus_baud, uint32_t now_us, GroupMemory* groups = nullptr,
+             GroupStore::Entry* directory = nullptr, uint8_t entries = 0);
 
   void on_frame(uint8_t command, const uint8_t* data, uint8_t length, uint32_t now_us);
   void on_bus_byte(uint8_t byte, uint32_t now_us) { master_.on_rx_byte(byte, now_us); }
@@ -205,6 +208,11 @@ class ControllerCore {
   void poll(uint32_t now_us);
 
   void set_battery_millivolts(uint16_t millivolts) { battery_mv_ = millivolts; }
+  // Every queued group-memory write done now, for a memory that is always ready (a file on
+  // Linux, CoreDevice). The Mega's EEPROM takes 3.4 ms a byte: poll() starts one a pass.
+  void flush_group_writes() {
+    while (have_groups_ && !groups_.idle() && memory_->ready()) groups_.service();
+  }
   // The bus link was lost (a Linux board's link that closed and reconnects; the Mega's
   // wires cannot be): playback stops (CMD 7), every queued command is dropped for set_speed
   // 0 to every joint, and every joint counts as not answering (a move naming it is refused)
@@ -323,7 +331,7 @@ class ControllerCore {
   // Persisted servo settings (servo_settings.cpp).
   void load_settings();
   void default_settings(JointState& s) const;
-  uint16_t settings_at(uint8_t index) const;
+  uint32_t settings_at(uint8_t index) const;
   bool save_settings(uint8_t index);  // queued; false (nothing queued) if no room
   void on_offset_write(const uint8_t* data, uint8_t length);
   void on_bus_servo_info_write(const uint8_t* data, uint8_t length);
@@ -370,6 +378,7 @@ class ControllerCore {
   uint8_t commands_in_row_ = 0;     // commands started since the last poll
 
   GroupStore groups_;
+  GroupStore::Entry directory_[GroupStore::mega_entries];
   bool have_groups_ = false;
   GroupMemory* memory_ = nullptr;
   uint8_t info_index_ = 0;  // the joint BusServoInfoWrite/Read address
@@ -379,7 +388,7 @@ class ControllerCore {
   uint8_t download_group_ = 0;
   uint16_t download_count_ = 0;
   uint8_t download_servos_ = 0;
-  uint16_t download_start_ = 0;
+  uint32_t download_start_ = 0;
   uint8_t download_got_[1020 / 8 + 1];  // one bit per action slot
   // Playback.
   bool playing_ = false;

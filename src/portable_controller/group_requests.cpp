@@ -70,7 +70,7 @@ bool ControllerCore::download_step(const uint8_t* data, uint8_t length) {
     const uint8_t n = data[3];
     if (n < 1 || n > count_) return false;
     const uint32_t bytes = uint32_t(download_count_) * GroupStore::action_bytes(n);
-    if (bytes > 0xFFFFu || !groups_.allocate(static_cast<uint16_t>(bytes), &download_start_)) {
+    if (!groups_.allocate(bytes, &download_start_)) {
       count_up(stats_.download_too_big);
       return false;
     }
@@ -100,7 +100,7 @@ bool ControllerCore::download_step(const uint8_t* data, uint8_t length) {
     Target targets[max_joints];
     uint8_t moving = 0;
     if (check_targets(servos, positions, n, targets, &moving) == Check::invalid) return false;
-    if (!groups_.write(static_cast<uint16_t>(download_start_ + slot * record), action, record)) return false;
+    if (!groups_.write(download_start_ + uint32_t(slot) * record, action, record)) return false;
     download_got_[slot / 8] = static_cast<uint8_t>(download_got_[slot / 8] | (1u << (slot % 8)));
     awaiting_ = Awaiting::download_action;
     return true;

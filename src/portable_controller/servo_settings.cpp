@@ -70,22 +70,22 @@ void ControllerCore::default_settings(JointState& s) const {
   s.led_warning = 0;
 }
 
-uint16_t ControllerCore::settings_at(uint8_t index) const {
-  return static_cast<uint16_t>(memory_->size() - settings_bytes + 2 + record_bytes * index);
+uint32_t ControllerCore::settings_at(uint8_t index) const {
+  return memory_->size() - settings_bytes + 2 + uint32_t(record_bytes) * index;
 }
 
 void ControllerCore::load_settings() {
   for (uint8_t i = 0; i < max_joints; ++i) default_settings(state_[i]);
   if (memory_ == nullptr) return;
-  const uint16_t at = static_cast<uint16_t>(memory_->size() - settings_bytes);
-  if (memory_->read(at) != marker[0] || memory_->read(static_cast<uint16_t>(at + 1)) != marker[1]) {
+  const uint32_t at = memory_->size() - settings_bytes;
+  if (memory_->read(at) != marker[0] || memory_->read(at + 1) != marker[1]) {
     for (uint8_t i = 0; i < count_; ++i) save_settings(i);
     groups_.write(at, marker, 2);
     return;
   }
   for (uint8_t i = 0; i < count_; ++i) {
     uint8_t r[record_bytes];
-    for (uint8_t k = 0; k < record_bytes; ++k) r[k] = memory_->read(static_cast<uint16_t>(settings_at(i) + k));
+    for (uint8_t k = 0; k < record_bytes; ++k) r[k] = memory_->read(settings_at(i) + k);
     const int8_t offset = static_cast<int8_t>(r[0]);
     if (offset < -rc_max_offset || offset > rc_max_offset) continue;  // the defaults
     if (take_limits(r + 1, &state_[i])) state_[i].offset = offset;

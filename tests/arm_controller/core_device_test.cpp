@@ -324,18 +324,32 @@ TEST(CoreGroups, SpeedScalesAndContinuousPlayStopsWhereItIs) {
   EXPECT_NEAR(rig.clicks(3), rest[2], 3);
 }
 
-// The group memory is 64 KiB on Linux (the Mega's EEPROM is 4 KiB): a group the Mega could
-// not store fits, and the 16-entry directory is the limit on how many groups.
-TEST(CoreGroups, TheFileMemoryHoldsWhatTheMegasEepromCannot) {
-  CoreRig rig;
+// On Linux the group memory holds what the daemon's group files held: every group number
+// (0..254), each as large as the spec allows (1,020 actions of seven joints); the Mega's
+// 4 KiB holds 16 groups and 168 actions of seven in all.
+TEST(CoreGroups, EveryGroupNumberAndTheLargestGroupFit) {
+  CoreRig rig(std::nullopt, 115200);
   std::vector<GroupAction> big;
-  for (int i = 0; i < 400; ++i)
+  for (int i = 0; i < 1020; ++i)
     big.push_back({20, {{1, 500}, {2, 500}, {3, 500}, {4, 500}, {5, 500}, {6, 500}, {7, 500 + i % 2}}});
-  auto r = rig.client->download_group(9, big);
-  EXPECT_TRUE(r.ok()) << "400 actions of seven joints (8,800 bytes): " << (r.ok() ? "" : r.error().message);
-  for (int g = 20; g < 35; ++g) ASSERT_TRUE(rig.client->download_group(g, {{100, {{1, 500}}}}).ok()) << g;
-  EXPECT_FALSE(rig.client->download_group(40, {{100, {{1, 500}}}}).ok()) << "a 17th group: no directory entry";
+  auto r = rig.client->download_group(200, big);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  for (int g = 0; g < 40; ++g) ASSERT_TRUE(rig.client->download_group(g, {{100, {{1, 500 + g}}}}).ok()) << g;
+  ASSERT_TRUE(rig.client->run_group(39, 1).ok());
+  EXPECT_TRUE(rig.wait_for(GroupEventKind::finished, 2s));
+  EXPECT_NEAR(rig.clicks(1), rig.target(1, 539), 20);
+  EXPECT_EQ(rig.device->core().groups().entries(), 255);
+}
+
+// The one limit the files did not have: a replacement is stored beside the group it
+// replaces (never half-stored), so with all 255 numbers stored it needs one erased first.
+TEST(CoreGroups, WithEveryNumberStoredAReplacementNeedsAnEraseFirst) {
+  CoreRig rig(std::nullopt, 115200);
+  for (int g = 0; g < 255; ++g) ASSERT_TRUE(rig.client->download_group(g, {{100, {{1, 500}}}}).ok()) << g;
+  EXPECT_FALSE(rig.client->download_group(7, {{100, {{1, 600}}}}).ok());
   EXPECT_TRUE(rig.logged("GroupDownload: the group does not fit the group memory (or no free directory entry)"));
+  ASSERT_TRUE(rig.client->erase_group(7).ok());
+  EXPECT_TRUE(rig.client->download_group(7, {{100, {{1, 600}}}}).ok());
 }
 
 TEST(CorePersistence, GroupsOffsetsAndLimitsSurviveARestart) {
@@ -374,7 +388,9 @@ TEST(CorePersistence, AMemoryFileOfAnotherSizeIsAnErrorNotABlankMemory) {
     FAIL() << "took a foreign file as its memory";
   } catch (const ArmctlError& e) {
     EXPECT_EQ(e.error().kind, ErrorKind::invalid_config);
-    EXPECT_NE(std::string(e.what()).find("18 bytes, expected 65535"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("18 bytes, expected " + std::to_string(CoreDevice::memory_size)),
+              std::string::npos)
+        << e.what();
   }
   EXPECT_EQ(std::filesystem::file_size(dir.path / CoreDevice::memory_file), 18u) << "left as it was";
 }

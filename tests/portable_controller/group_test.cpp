@@ -27,7 +27,8 @@ std::vector<Action> wave(int n, int servos = 3) {
 // What the store holds for `group`, as actions (empty if nothing).
 std::vector<Action> stored(RamMemory& memory, std::uint8_t group) {
   GroupStore store;
-  store.begin(&memory);
+  GroupStore::Entry directory[GroupStore::mega_entries];
+  store.begin(&memory, 0, directory, GroupStore::mega_entries);
   GroupInfo info;
   std::vector<Action> out;
   if (!store.find(group, &info)) return out;
@@ -203,6 +204,46 @@ TEST(Groups, StopAndEraseEndThePlayback) {
   EXPECT_TRUE(stored(memory, 1).empty());
   rig.send(rc_group_run, {1, 1, 0});
   EXPECT_FALSE(rig.core.playing()) << "an erased group does not run";
+}
+
+// Linux (CoreDevice) gives the store a memory of megabytes and a directory of 255 entries:
+// a group stored above 64 KiB keeps its 24-bit start across a restart. An entry's third
+// start byte that is 0xFF (the Mega's images before it was written) reads as 0.
+TEST(GroupStoreLayout, ABigMemoryKeepsStartsAbove64KiB) {
+  RamMemory memory(200000);
+  std::vector<GroupStore::Entry> directory(255);
+  GroupStore store;
+  store.begin(&memory, 0, directory.data(), 255);
+  while (!store.idle()) store.service();
+  EXPECT_EQ(store.data_at(), 4u + 8u * 255u);
+  const std::uint8_t action[5] = {0x2C, 0x01, 3, 0xF4, 0x01};  // 300 ms, servo 3 at 500
+  const std::uint32_t start = 70000;
+  ASSERT_TRUE(store.write(start, action, sizeof action));
+  ASSERT_TRUE(store.commit(GroupInfo{200, 1, 1, start}));
+  while (!store.idle()) store.service();
+
+  GroupStore again;
+  std::vector<GroupStore::Entry> directory2(255);
+  again.begin(&memory, 0, directory2.data(), 255);
+  GroupInfo info{};
+  ASSERT_TRUE(again.find(200, &info));
+  EXPECT_EQ(info.start, start);
+  std::uint16_t ms = 0;
+  std::uint8_t servos[7];
+  std::uint16_t positions[7];
+  ASSERT_TRUE(again.read_action(info, 0, &ms, servos, positions));
+  EXPECT_EQ(ms, 300);
+  EXPECT_EQ(servos[0], 3);
+  EXPECT_EQ(positions[0], 500);
+
+  // The entry as an image that left its eighth byte erased would have written it.
+  for (std::uint32_t at = GroupStore::directory_at; at < store.data_at(); at += 8)
+    if (memory.bytes[at] == 200) memory.bytes[at + 7] = 0xFF;
+  GroupStore old;
+  std::vector<GroupStore::Entry> directory3(255);
+  old.begin(&memory, 0, directory3.data(), 255);
+  ASSERT_TRUE(old.find(200, &info));
+  EXPECT_EQ(info.start, start & 0xFFFFu);
 }
 
 }  // namespace

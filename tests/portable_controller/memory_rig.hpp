@@ -17,11 +17,11 @@ namespace armctl::controller::testing {
 // many more byte writes and then ignores the rest (power lost mid-way).
 class RamMemory final : public GroupMemory {
  public:
-  explicit RamMemory(std::uint16_t size = 4096) : bytes(size, 0xFF) {}
-  std::uint16_t size() const override { return static_cast<std::uint16_t>(bytes.size()); }
-  std::uint8_t read(std::uint16_t a) override { return bytes.at(a); }
+  explicit RamMemory(std::uint32_t size = 4096) : bytes(size, 0xFF) {}
+  std::uint32_t size() const override { return static_cast<std::uint32_t>(bytes.size()); }
+  std::uint8_t read(std::uint32_t a) override { return bytes.at(a); }
   bool ready() override { return true; }
-  void write(std::uint16_t a, std::uint8_t v) override {
+  void write(std::uint32_t a, std::uint8_t v) override {
     ++writes;
     if (writes_left == 0) return;
     if (writes_left > 0) --writes_left;

@@ -58,10 +58,11 @@ CoreDevice::CoreDevice(transport::JointBusLink& link, ControllerConfig config, C
       joints_(checked_setups(config_, link)),
       port_(link),
       upstream_(std::move(output)),
-      memory_(memory_path(options_)),
+      memory_(memory_path(options_), memory_size),
+      directory_(group_entries),
       seen_(joints_.size()) {
   core_.begin(joints_.data(), static_cast<std::uint8_t>(joints_.size()), &port_, &upstream_, link_.baud(), now_us(),
-              &memory_);
+              &memory_, directory_.data(), group_entries);
   const TimePoint give_up = clock().now() + kFirstSweep;
   while (core_.stats().sweeps == 0 && clock().now() < give_up) step(give_up);
   for (std::size_t i = 0; i < joints_.size(); ++i) {
@@ -137,6 +138,7 @@ void CoreDevice::step(TimePoint limit) {
     log("joint bus link lost: playback and queued commands ended; joints count as not answering until polled again");
   }
   core_.set_battery_millivolts(options_.supply_millivolts ? options_.supply_millivolts() : config_.supply_millivolts);
+  core_.flush_group_writes();  // a file takes every byte at once (FileGroupMemory)
   core_.poll(now_us());
   note_changes();
   // Mid-transaction the next event is a byte (or the master's timeout, several words away):

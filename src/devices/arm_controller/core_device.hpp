@@ -42,6 +42,12 @@ class CoreDevice final : public ServedController {
  public:
   using Output = std::function<void(const rc::Frame&)>;
   static constexpr const char* memory_file = "core-memory.bin";
+  // Every group number the spec has (0..254), each as large as it allows (1,020 actions of
+  // seven joints): what the daemon's group files held. 5.98 MB (the Mega: 16 groups in 4 KiB).
+  static constexpr std::uint8_t group_entries = 255;
+  static constexpr std::uint32_t memory_size =
+      controller::GroupStore::directory_at + 8u * group_entries +
+      255u * 1020u * controller::GroupStore::action_bytes(7) + controller::ControllerCore::settings_bytes;
 
   // Throws ArmctlError: a config the core cannot hold (invalid_config), a configured joint
   // without a select line on the link (invalid_config), an unusable state dir (io). Then
@@ -96,6 +102,7 @@ class CoreDevice final : public ServedController {
   LinkBusPort port_;
   Upstream upstream_;
   FileGroupMemory memory_;
+  std::vector<controller::GroupStore::Entry> directory_;
   controller::ControllerCore core_;
   controller::RcFrameReader reader_;
   std::vector<Seen> seen_;

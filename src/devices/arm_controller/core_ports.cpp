@@ -28,7 +28,7 @@ std::string io_error(const std::filesystem::path& path, const char* doing) {
 
 }  // namespace
 
-FileGroupMemory::FileGroupMemory(std::optional<std::filesystem::path> path, std::uint16_t size)
+FileGroupMemory::FileGroupMemory(std::optional<std::filesystem::path> path, std::uint32_t size)
     : bytes_(size, 0xFF) {
   if (!path) return;
   fd_ = ::open(path->c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
@@ -61,7 +61,7 @@ FileGroupMemory::~FileGroupMemory() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-void FileGroupMemory::write(std::uint16_t address, std::uint8_t value) {
+void FileGroupMemory::write(std::uint32_t address, std::uint8_t value) {
   if (fd_ >= 0 && ::pwrite(fd_, &value, 1, address) != 1)
     throw ArmctlError(ErrorKind::io, fmt::format("group memory: cannot write byte {}: {}", address, std::strerror(errno)));
   bytes_[address] = value;

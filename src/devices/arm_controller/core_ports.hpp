@@ -34,21 +34,19 @@ class LinkBusPort final : public controller::BusPort {
 // process loses nothing it acknowledged. Without a path: RAM only.
 class FileGroupMemory final : public controller::GroupMemory {
  public:
-  // 65,535 bytes: the most a 16-bit address reaches (the Mega has 4,096).
-  static constexpr std::uint16_t default_size = 0xFFFF;
   // Throws ArmctlError(io) if the file cannot be opened or created, or
   // (invalid_config) if it exists with another size (not a memory this wrote).
-  explicit FileGroupMemory(std::optional<std::filesystem::path> path, std::uint16_t size = default_size);
+  FileGroupMemory(std::optional<std::filesystem::path> path, std::uint32_t size);
   ~FileGroupMemory();
   FileGroupMemory(const FileGroupMemory&) = delete;
   FileGroupMemory& operator=(const FileGroupMemory&) = delete;
 
-  std::uint16_t size() const override { return static_cast<std::uint16_t>(bytes_.size()); }
-  std::uint8_t read(std::uint16_t address) override { return bytes_[address]; }
+  std::uint32_t size() const override { return static_cast<std::uint32_t>(bytes_.size()); }
+  std::uint8_t read(std::uint32_t address) override { return bytes_[address]; }
   bool ready() override { return true; }
   // Throws ArmctlError(io) if the file write fails (a full disk): the core must not take a
   // byte as stored that is not.
-  void write(std::uint16_t address, std::uint8_t value) override;
+  void write(std::uint32_t address, std::uint8_t value) override;
 
  private:
   std::vector<std::uint8_t> bytes_;
