@@ -26,7 +26,7 @@
 #include "arm/bus_arm_device.hpp"
 #include "arm/rc_arm_device.hpp"
 #include "core/config_files.hpp"
-#include "devices/arm_controller/controller_device.hpp"
+#include "devices/arm_controller/core_device.hpp"
 #include "devices/joint_bus/bus_connection.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
 #include "devices/robot_commands/stream_link.hpp"
@@ -117,9 +117,8 @@ void scara_bus(std::uint32_t baud) {
 void scara_controller(std::uint32_t baud) {
   auto sim = sim_arm(baud);
   using namespace armctl::arm_controller;
-  ControllerDevice device(sim->link(), joint_bus::MasterOptions{},
-                          load_controller_config(default_controller_config_path()), DeviceOptions{},
-                          [](const rc::Frame&) {});
+  CoreDevice device(sim->link(), load_controller_config(default_controller_config_path()), CoreDeviceOptions{},
+                    [](const rc::Frame&) {});
   device.run_for(300ms);
   device.handle(*rc::encode(rc::Request{rc::MultiServoMove{3000, {{2, 900}, {3, 100}, {1, 800}}}},
                             rc::ServoRange{1, 7}));

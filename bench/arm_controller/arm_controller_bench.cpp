@@ -5,14 +5,16 @@
 //  - latency the controller adds to an upstream request beyond wire time: a request that
 //    arrives while a poll is on the bus waits for it to end (the loop does one bus
 //    transaction between looks at the host); limit = one poll transaction's wire time.
-// Plus the synchronized-move planner's cost (Google Benchmark).
+// Plus the cost of the joint-bus planner the Arm API uses without a controller
+// (joint_bus::plan_synchronized_move, BusArmDevice; Google Benchmark).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <vector>
 
-#include "devices/arm_controller/controller_device.hpp"
+#include "devices/arm_controller/core_device.hpp"
+#include "devices/joint_bus/sync_plan.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
 #include "protocol/robot_commands/messages.hpp"
 
@@ -28,12 +30,11 @@ struct Bench {
     auto c = joint_sim::load_arm_config(joint_sim::default_arm_config_path());
     c.baud = baud;
     arm = std::make_unique<joint_sim::SimArm>(std::move(c));
-    device = std::make_unique<ControllerDevice>(arm->link(), joint_bus::MasterOptions{},
-                                                load_controller_config(default_controller_config_path()),
-                                                DeviceOptions{}, [this](const rc::Frame&) { ++replies; });
+    device = std::make_unique<CoreDevice>(arm->link(), load_controller_config(default_controller_config_path()),
+                                          CoreDeviceOptions{}, [this](const rc::Frame&) { ++replies; });
   }
   std::unique_ptr<joint_sim::SimArm> arm;
-  std::unique_ptr<ControllerDevice> device;
+  std::unique_ptr<CoreDevice> device;
   std::size_t replies = 0;
 };
 
@@ -41,10 +42,10 @@ double seconds(Duration d) { return std::chrono::duration<double>(d).count(); }
 
 void refresh_rate(std::uint32_t baud) {
   Bench b(baud);
-  const auto sweeps0 = b.device->arm().stats().sweeps;
+  const auto sweeps0 = b.device->core().stats().sweeps;
   const TimePoint t0 = b.device->clock().now();
   b.device->run_for(20s);
-  const double rate = double(b.device->arm().stats().sweeps - sweeps0) / seconds(b.device->clock().now() - t0);
+  const double rate = double(b.device->core().stats().sweeps - sweeps0) / seconds(b.device->clock().now() - t0);
   const double floor_rate = 1.0 / seconds(wire_time(8, baud) * 7);
   std::printf("BENCH arm_controller_refresh_%u %.3f sweeps/s limit %.3f ratio %.3f\n", baud, rate,
               floor_rate, rate / floor_rate);

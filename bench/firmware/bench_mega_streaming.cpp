@@ -6,14 +6,13 @@
 //  - Mega: arm::Arm over RcArmDevice over the Robot Commands SDK over the Mega's UART0 (wire
 //    timing) -> the Mega firmware on an emulated ATmega2560 -> the joint bus (AvrMegaArm).
 //  - daemon: the same Arm/RcArmDevice/SDK over an in-process upstream link with the same
-//    wire timing -> ControllerDevice (rc_board::Board + ArmController, what `armctl
-//    controller` and `armctl sim scara --robot-commands` run) -> the same joints (AvrArm).
-//  - core on Linux: the same, with CoreDevice (the Mega's core on Linux, `armctl controller
-//    --core`) in the daemon's place: the figure that says whether the daemon can be the core.
+//    wire timing -> CoreDevice (the same core on Linux: what `armctl controller` and `armctl
+//    sim scara --robot-commands` run) -> the same joints (AvrArm). Same code, the host's
+//    timing: the figure says what emulated silicon costs the core.
 // The LIN (100 mm at 100 mm/s, planned by arm::plan_path and streamed by the motion
 // executor, as bench_streaming) is the same; path deviation = the largest distance of the
 // tool (the joints' encoders through FK) from the ideal line, sampled after every stream
-// point. Ratio = Mega / daemon and core on Linux / daemon, limit 1.1 each.
+// point. Ratio = Mega / daemon, limit 1.1.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,7 +28,6 @@
 #include "arm/motion_planning.hpp"
 #include "arm/rc_arm_device.hpp"
 #include "devices/arm_controller/controller_config.hpp"
-#include "devices/arm_controller/controller_device.hpp"
 #include "devices/arm_controller/core_device.hpp"
 #include "devices/joint_avr/avr_arm.hpp"
 #include "devices/joint_sim/arm_config.hpp"
@@ -43,12 +41,10 @@ using namespace armctl;
 // The daemon's upstream in process with the serial wire's timing at `baud`: a request
 // reaches the controller when its last byte would have, a reply the host likewise (one
 // direction at a time, back to back).
-// (ControllerDevice, the daemon's own; or CoreDevice, the portable core on Linux.)
-template <typename Device>
 class DaemonRcLink final : public robot_commands::RcLink {
  public:
   explicit DaemonRcLink(std::uint32_t baud) : baud_(baud) {}
-  void attach(Device& device) { device_ = &device; }
+  void attach(arm_controller::CoreDevice& device) { device_ = &device; }
   void deliver(const rc::Frame& f) {
     const TimePoint begins = std::max(device_->clock().now(), up_free_);
     up_free_ = begins + frame_time(rc::encode_frame(f).size());
@@ -88,7 +84,7 @@ class DaemonRcLink final : public robot_commands::RcLink {
     rc::Frame frame;
   };
   std::uint32_t baud_;
-  Device* device_ = nullptr;
+  arm_controller::CoreDevice* device_ = nullptr;
   std::deque<Timed> outbox_, inbox_;
   TimePoint up_free_{}, down_free_{};
 };
@@ -183,27 +179,10 @@ LinResult run_mega(std::uint32_t baud) {
   return r;
 }
 
+// The Linux daemon: the same core on Linux (CoreDevice, what `armctl controller` runs).
 LinResult run_daemon(std::uint32_t baud) {
   joint_avr::AvrArm joints(hil::hil_arm_config(baud));
-  DaemonRcLink<arm_controller::ControllerDevice> link(baud);
-  arm_controller::DeviceOptions options;
-  options.log = [](const std::string&) {};
-  arm_controller::ControllerDevice device(
-      joints.link(), joint_bus::MasterOptions{},
-      arm_controller::load_controller_config(arm_controller::default_controller_config_path()), options,
-      [&](const rc::Frame& f) { link.deliver(f); });
-  link.attach(device);
-  device.run_for(std::chrono::milliseconds(400));
-  robot_commands::Client client(link, client_options());
-  const arm::ArmModel model = scara_model();
-  arm::Arm arm(model, std::make_unique<arm::RcArmDevice>(model, client));
-  return run(arm, [&](int j) { return std::lround(joints.joint(j).hardware().position_clicks()); });
-}
-
-// The Mega's core run on Linux (CoreDevice, `armctl controller --core`) in the daemon's place.
-LinResult run_core(std::uint32_t baud) {
-  joint_avr::AvrArm joints(hil::hil_arm_config(baud));
-  DaemonRcLink<arm_controller::CoreDevice> link(baud);
+  DaemonRcLink link(baud);
   arm_controller::CoreDevice device(
       joints.link(), arm_controller::load_controller_config(arm_controller::default_controller_config_path()), {},
       [&](const rc::Frame& f) { link.deliver(f); });
@@ -221,8 +200,7 @@ int main() {
   for (const std::uint32_t baud : {9600u, 115200u}) {
     const LinResult mega = run_mega(baud);
     const LinResult daemon = run_daemon(baud);
-    const LinResult core = run_core(baud);
-    for (const auto& [who, r] : {std::pair{"Mega", mega}, std::pair{"daemon", daemon}, std::pair{"core on Linux", core}}) {
+    for (const auto& [who, r] : {std::pair{"Mega", mega}, std::pair{"daemon", daemon}}) {
       std::printf("# %u %s: path deviation %.3f mm, %.0f %% along the line at the last point, end error %.3f mm, "
                   "%zu points, largest joint following error %.2f deg\n",
                   baud, who, r.deviation * 1e3, r.along_at_end * 100, r.end_error * 1e3, r.points,
@@ -230,8 +208,6 @@ int main() {
     }
     std::printf("BENCH mega_lin_path_deviation_%u %.3f mm limit %.3f ratio %.3f\n", baud, mega.deviation * 1e3,
                 1.1 * daemon.deviation * 1e3, mega.deviation / (1.1 * daemon.deviation));
-    std::printf("BENCH core_linux_lin_path_deviation_%u %.3f mm limit %.3f ratio %.3f\n", baud, core.deviation * 1e3,
-                1.1 * daemon.deviation * 1e3, core.deviation / (1.1 * daemon.deviation));
   }
   return 0;
 }

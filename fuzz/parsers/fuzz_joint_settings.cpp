@@ -29,7 +29,7 @@ void check(bool ok, const char* what) {
   std::abort();
 }
 
-// The SCARA arm's joints 1..7, as ArmController starts them before loading.
+// The SCARA arm's joints 1..7, as the import of an old state dir starts them before loading.
 const ControllerSettings& defaults() {
   static const ControllerSettings d = [] {
     ControllerSettings s;

@@ -754,7 +754,7 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
   for (uint8_t k = 0; k < n; ++k) {
     if (!moving[k]) continue;
     arrive_k[k] = asked_s;
-    if (phases[k].brake_s > 0.0f || effect_s[k] + fastest_s[k] > arrive_k[k]) arrive_k[k] = effect_s[k] + fastest_s[k];
+    if (effect_s[k] + fastest_s[k] > arrive_k[k]) arrive_k[k] = effect_s[k] + fastest_s[k];
     if (arrive_k[k] > end_s) end_s = arrive_k[k];
   }
   planned_ms_ = static_cast<uint32_t>(end_s * 1000.0f + 0.5f);
@@ -788,7 +788,7 @@ void ControllerCore::plan_move(const Target* targets, uint8_t n, uint16_t time_m
     const float top = top_k[k];
     const float available_s = arrive_k[k] - effect_s[k];
     uint8_t percent = 100;
-    if (phases[k].brake_s <= 0.0f && effect_s[k] + fastest_s[k] + 0.005f < arrive_k[k]) {
+    if (effect_s[k] + fastest_s[k] + 0.005f < arrive_k[k]) {
       const float limit = limit_for_arrival(start[k], phases[k], available_s, top);
       const float p = ceilf(100.0f * limit / top);
       percent = p >= 100.0f ? 100 : p < 1.0f ? 1 : static_cast<uint8_t>(p);

@@ -54,8 +54,8 @@ struct JointSetup {
   int16_t clicks_at_1000;  // position 1000 -> clicks (a straight line between)
   int16_t soft_min;        // clicks; a target outside is refused
   int16_t soft_max;
-  uint16_t max_speed_cps;   // the joint's velocity at set_speed 100 %
-  uint16_t max_accel_cps2;  // its setpoint acceleration limit
+  uint16_t max_speed_cps;   // the joint's velocity at set_speed 100 % (the arm files: 1..50,000)
+  uint32_t max_accel_cps2;  // its setpoint acceleration limit (3,906..1,000,000)
   int16_t zone;             // clicks, sent with set_zone at start
 };
 

@@ -1,7 +1,7 @@
-// Test rig: the SDK (robot_commands::Client) -> controller (Board + ArmController) ->
-// simulated joint bus -> seven simulated joints, all in one thread on the simulated bus's
-// clock. The link hands frames to the controller and, while the SDK waits for a reply,
-// runs the controller (polling, scheduled drives, group playback) in simulated time.
+// Test rig: the SDK (robot_commands::Client) -> the arm controller (CoreDevice: the portable
+// core on Linux) -> simulated joint bus -> seven simulated joints, all in one thread on the
+// simulated bus's clock. While the SDK waits for a reply the controller runs (polling,
+// queued commands, group playback) in simulated time.
 #pragma once
 
 #include <deque>
@@ -12,18 +12,15 @@
 #include <vector>
 
 #include "devices/arm_controller/controller_config.hpp"
-#include "devices/arm_controller/controller_device.hpp"
+#include "devices/arm_controller/core_device.hpp"
 #include "devices/joint_sim/sim_arm.hpp"
 #include "devices/robot_commands/client.hpp"
 
 namespace armctl::arm_controller::testing {
 
-// The SDK's link to a device in this process (ControllerDevice, or CoreDevice:
-// core_device_test.cpp): while the SDK waits for a reply the device runs in simulated time.
-template <typename Device>
-class DeviceRcLink final : public robot_commands::RcLink {
+class SimRcLink final : public robot_commands::RcLink {
  public:
-  void attach(Device& device) { device_ = &device; }
+  void attach(CoreDevice& device) { device_ = &device; }
   void deliver(const rc::Frame& f) { inbox_.push_back(f); }
   void send(const rc::Frame& frame) override { device_->handle(frame); }
   std::optional<rc::Frame> receive(TimePoint deadline) override {
@@ -39,28 +36,31 @@ class DeviceRcLink final : public robot_commands::RcLink {
   std::string describe() const override { return "in-process controller"; }
 
  private:
-  Device* device_ = nullptr;
+  CoreDevice* device_ = nullptr;
   std::deque<rc::Frame> inbox_;
 };
-using SimRcLink = DeviceRcLink<ControllerDevice>;
 
 struct Rig {
   // leads_swapped: joints whose motor leads are the other way round (they run away).
-  explicit Rig(std::optional<std::filesystem::path> state_dir = std::nullopt,
-               std::uint32_t baud = 0, const std::vector<int>& leads_swapped = {}) {
+  explicit Rig(std::optional<std::filesystem::path> dir = std::nullopt, std::uint32_t baud = 0,
+               const std::vector<int>& leads_swapped = {})
+      : state_dir(std::move(dir)) {
     auto sim_config = joint_sim::load_arm_config(joint_sim::default_arm_config_path());
     if (baud != 0) sim_config.baud = baud;
-    for (auto& j : sim_config.joints) {
+    for (auto& j : sim_config.joints)
       for (int n : leads_swapped) j.hardware.leads_swapped = j.hardware.leads_swapped || j.number == n;
-    }
     arm = std::make_unique<joint_sim::SimArm>(std::move(sim_config));
-    DeviceOptions o;
-    o.state_dir = std::move(state_dir);
+    start();
+  }
+  // The controller process started (again) over the same arm and state dir.
+  void start() {
+    client.reset();
+    device.reset();
+    CoreDeviceOptions o;
+    o.state_dir = state_dir;
     o.log = [this](const std::string& line) { log.push_back(line); };
-    device = std::make_unique<ControllerDevice>(
-        arm->link(), joint_bus::MasterOptions{},
-        load_controller_config(default_controller_config_path()), o,
-        [this](const rc::Frame& f) { link.deliver(f); });
+    o.link_losses = [this] { return losses; };
+    device = std::make_unique<CoreDevice>(arm->link(), config, o, [this](const rc::Frame& f) { link.deliver(f); });
     link.attach(*device);
     robot_commands::ClientOptions co;
     co.servo_count = 7;
@@ -72,18 +72,29 @@ struct Rig {
   void run_for(Duration d) { device->run_for(d); }
   // Actual joint position in clicks (the simulated encoder), not the controller's reading.
   int clicks(int joint) { return arm->joint(joint).controller().position(); }
-  ArmController& controller() { return device->arm(); }
+  // Clicks a Robot Commands position maps to for this joint (no offset).
+  int target(int joint, int position) const { return config.joint(joint)->map.to_clicks(position); }
+  const controller::JointState& state(int joint) const { return device->joint_state(joint); }
   bool logged(const std::string& needle) const {
     for (const auto& l : log)
       if (l.find(needle) != std::string::npos) return true;
     return false;
   }
+  // Reads group notifications until one of `kind` (true) or none for `within`.
+  bool wait_for(robot_commands::GroupEventKind kind, Duration within) {
+    while (auto e = client->wait_event(now() + within))
+      if (e->kind == kind) return true;
+    return false;
+  }
 
+  std::optional<std::filesystem::path> state_dir;
+  ControllerConfig config = load_controller_config(default_controller_config_path());
   std::unique_ptr<joint_sim::SimArm> arm;
   SimRcLink link;
-  std::unique_ptr<ControllerDevice> device;
+  std::unique_ptr<CoreDevice> device;
   std::unique_ptr<robot_commands::Client> client;
   std::vector<std::string> log;
+  std::uint64_t losses = 0;
 };
 
 }  // namespace armctl::arm_controller::testing

@@ -35,7 +35,7 @@ struct TempDir {
   std::filesystem::path path;
 };
 
-// What ArmController starts from for an arm whose config has joints 1, 2, 3 and 5.
+// The defaults for an arm whose config has joints 1, 2, 3 and 5 (what the import starts from).
 ControllerSettings defaults() {
   ControllerSettings s;
   for (int n : {1, 2, 3, 5}) {
@@ -218,6 +218,7 @@ TEST(JointSettings, OneBadJointRefusesTheWholeFile) {
   EXPECT_NE(r.error().message.find("joints.5.limits.temp_max 101"), std::string::npos) << r.error().message;
 }
 
+// The earlier implementation's settings file, to be imported at the first start on the core.
 TEST(JointSettings, TheControllerRefusesToStartOnAKeyThatOnlyLooksLikeAJoint) {
   TempDir dir;
   std::FILE* f = std::fopen(arm_controller::settings_path(dir.path).c_str(), "w");
@@ -232,6 +233,7 @@ TEST(JointSettings, TheControllerRefusesToStartOnAKeyThatOnlyLooksLikeAJoint) {
               std::string::npos)
         << e.what();
   }
+  EXPECT_FALSE(std::filesystem::exists(dir.path / arm_controller::CoreDevice::memory_file)) << "nothing created: the next start imports";
 }
 
 }  // namespace

@@ -55,12 +55,11 @@ struct LinkLossRig {
     link = std::make_unique<ReconnectingLink>(
         open, arm->link().clock(), [this](TimePoint t) { arm->run_until(t); },
         [this](const std::string& line) { log.push_back(line); });
-    DeviceOptions o;
+    CoreDeviceOptions o;
     o.log = [this](const std::string& line) { log.push_back(line); };
     o.link_losses = [this] { return link->losses(); };
-    device = std::make_unique<ControllerDevice>(*link, joint_bus::MasterOptions{},
-                                                load_controller_config(default_controller_config_path()), o,
-                                                [this](const rc::Frame& f) { rc_link.deliver(f); });
+    device = std::make_unique<CoreDevice>(*link, load_controller_config(default_controller_config_path()), o,
+                                          [this](const rc::Frame& f) { rc_link.deliver(f); });
     rc_link.attach(*device);
     robot_commands::ClientOptions co;
     co.servo_count = 7;
@@ -86,7 +85,7 @@ struct LinkLossRig {
   int opens = 0;
   std::unique_ptr<ReconnectingLink> link;
   SimRcLink rc_link;
-  std::unique_ptr<ControllerDevice> device;
+  std::unique_ptr<CoreDevice> device;
   std::unique_ptr<robot_commands::Client> client;
   std::vector<std::string> log;
 };
@@ -150,11 +149,11 @@ TEST(LinkLoss, ReconnectsWithBackOffAndReportsEachAttemptAndTheRecovery) {
   EXPECT_TRUE(rig.link->connected());
   EXPECT_EQ(rig.link->recoveries(), 1u);
   EXPECT_EQ(rig.count("joint bus link back after 7 attempts"), 1u);
-  for (int j = 1; j <= 7; ++j) EXPECT_TRUE(rig.device->arm().joint_status(j).answering) << "joint " << j;
+  for (int j = 1; j <= 7; ++j) EXPECT_TRUE(rig.device->joint_state(j).answering) << "joint " << j;
   // And it works again.
   ASSERT_TRUE(rig.client->move({{1, 600}}, 500).ok());
   rig.run_for(1500ms);
-  EXPECT_EQ(rig.target(1), rig.device->arm().target_clicks(1, 600));
+  EXPECT_EQ(rig.target(1), rig.device->config().joint(1)->map.to_clicks(600));
 }
 
 TEST(LinkLoss, WhileDisconnectedMovesAreRefusedAsForDeadJoints) {
@@ -166,7 +165,7 @@ TEST(LinkLoss, WhileDisconnectedMovesAreRefusedAsForDeadJoints) {
   ASSERT_TRUE(rig.client->move({{2, 700}}, 500).ok());  // no reply in Robot Commands: sent
   rig.run_for(500ms);
   EXPECT_GE(rig.count("MultiServoMove refused: joint 2 (SHOULDER) is not answering"), 1u);
-  EXPECT_EQ(rig.device->arm().stats().refused_moves, 1u);
+  EXPECT_EQ(rig.device->core().stats().refused_moves, 1u);
   // Positions are still answered (the last good readings), like for a dead joint.
   auto positions = rig.client->read_positions({1, 2});
   ASSERT_TRUE(positions.ok()) << positions.error().message;
@@ -186,8 +185,8 @@ TEST(LinkLoss, AGroupRunningAtTheLossEndsAndNothingMovesAfterTheRecovery) {
   rig.run_for(1500ms);  // the second action is under way
   rig.close_link();
   rig.run_for(1s);
-  EXPECT_EQ(rig.count("group 3 stopped: joint bus link lost"), 1u);
-  EXPECT_FALSE(rig.device->board().running_group());
+  EXPECT_EQ(rig.count("joint bus link lost: playback and queued commands ended"), 1u);
+  EXPECT_FALSE(rig.device->core().playing());
   // The host is told the run ended: CMD 7 with no DATA, as after a GroupStop (a host that
   // sent no stop reads it as "finished", as the spec asks of hosts).
   bool ended = false;
@@ -201,13 +200,13 @@ TEST(LinkLoss, AGroupRunningAtTheLossEndsAndNothingMovesAfterTheRecovery) {
   ASSERT_TRUE(rig.link->connected());
   const int target1 = rig.target(1), target2 = rig.target(2);
   const int at1 = rig.clicks(1), at2 = rig.clicks(2);
-  const auto commands = rig.device->arm().stats().commands;
+  const auto commands = rig.device->core().stats().commands;
   rig.run_for(8s);  // the rest of the group would have played by now
   EXPECT_EQ(rig.target(1), target1);
   EXPECT_EQ(rig.target(2), target2);
   EXPECT_NEAR(rig.clicks(1), at1, 20);
   EXPECT_NEAR(rig.clicks(2), at2, 20);
-  EXPECT_EQ(rig.device->arm().stats().commands, commands) << "commands sent after the recovery with none asked";
+  EXPECT_EQ(rig.device->core().stats().commands, commands) << "commands sent after the recovery with none asked";
 }
 
 }  // namespace

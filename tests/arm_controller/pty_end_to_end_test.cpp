@@ -63,16 +63,6 @@ void drive_through_the_pty(MakeDevice make_device, After after) {
 TEST(PtyEndToEnd, SdkDrivesTheSimulatedArmThroughTheController) {
   drive_through_the_pty(
       [](transport::JointBusLink& link, auto output) {
-        return std::make_unique<ControllerDevice>(link, joint_bus::MasterOptions{},
-                                                  load_controller_config(default_controller_config_path()),
-                                                  DeviceOptions{}, output);
-      },
-      [](ControllerDevice& device) { EXPECT_EQ(device.board().stats().ignored(), 0u); });
-}
-
-TEST(PtyEndToEnd, SdkDrivesTheSimulatedArmThroughTheCoreOnLinux) {
-  drive_through_the_pty(
-      [](transport::JointBusLink& link, auto output) {
         return std::make_unique<CoreDevice>(link, load_controller_config(default_controller_config_path()),
                                             CoreDeviceOptions{}, output);
       },

@@ -149,8 +149,6 @@ TEST(BusCli, BadArgumentsGetAClearMessageAndNonZeroStatus) {
       {"bus wait --timeout 0", "--timeout: 0 is outside 0..3600 s, 0 excluded"},
       {"bus wait --timeout soon", "--timeout: 'soon' is not a number (allowed 0..3600 s, 0 excluded)"},
       {"sim scara --link /tmp/armctl-x --state-dir /tmp/armctl-y", "belong to --robot-commands"},
-      {"sim scara --core", "--link, --state-dir and --core belong to --robot-commands"},
-      {"sim scara --controller mega --core", "--controller mega takes only --baud and --link"},
       // Numeric options name the option, the value and the range (not "Could not convert").
       {"bus --retries 99 ping", "--retries: 99 is outside 0..10"},
       {"bus --retries -1 ping", "--retries: -1 is outside 0..10"},

@@ -92,7 +92,7 @@ class FakeJoints final : public BusPort {
     for (int i = 0; i < count && i < 7; ++i) {
       const int j = setup[i].number;
       ramp_[j].configure((std::int32_t{setup[i].max_speed_cps} * 32 + 62) / 125,
-                         (std::int32_t{setup[i].max_accel_cps2} * 32 + 62500) / 125000);
+                         (static_cast<std::int32_t>(setup[i].max_accel_cps2) * 32 + 62500) / 125000);
       ramp_[j].set_speed_percent(0);
       ramp_[j].reset(std::int32_t{position[j]} * 256);
       target_q8_[j] = std::int32_t{position[j]} * 256;

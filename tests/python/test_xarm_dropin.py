@@ -108,15 +108,14 @@ def test_move_script_positions(tmp_path):
     assert out[-1].startswith("servos 1, 2, 3:") and numbers(out[-1]) == pytest.approx([500, 500, 500], abs=1)
 
 
-@pytest.fixture(params=[[], ["--core"]], ids=["daemon", "core"])
-def arm_controller(tmp_path, request):
-    """armctl's SCARA arm controller on a pty, as `armctl sim scara --robot-commands` serves it
-    (with --core: the portable core the Mega controller runs, on this machine)."""
+@pytest.fixture
+def arm_controller(tmp_path):
+    """armctl's SCARA arm controller on a pty, as `armctl sim scara --robot-commands` serves it."""
     cli = os.environ.get("ARMCTL_CLI")
     if not cli or not os.path.exists(cli):
         pytest.skip("ARMCTL_CLI (the armctl binary) not set; CTest sets it")
     link = tmp_path / "scara"
-    proc = subprocess.Popen([cli, "sim", "scara", "--robot-commands", "--link", str(link)] + request.param,
+    proc = subprocess.Popen([cli, "sim", "scara", "--robot-commands", "--link", str(link)],
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     try:
         for _ in range(300):

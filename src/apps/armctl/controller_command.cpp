@@ -70,9 +70,6 @@ void add_controller_command(CLI::App& app) {
   c->add_option("--link", args->serve.link, "Also create this symlink to the pty (removed on exit)");
   c->add_option("--state-dir", args->serve.state_dir,
                 "Keep action groups, offsets and limits here (default: in memory)");
-  c->add_flag("--core", args->serve.core,
-              "Run the portable core the Mega controller runs instead of the daemon's own implementation "
-              "(docs/arm-controller.md \"The core on Linux\")");
   c->add_flag("--json", args->serve.json, "Log as JSON lines on stdout (started with the pty path, log, stopped)");
   c->callback([args] { run_controller(*args); });
 }

@@ -21,9 +21,6 @@ struct ControllerServeArgs {
   // A bus link that can be lost and comes back (ReconnectingLink::losses); empty otherwise.
   std::function<std::uint64_t()> link_losses;
   bool json = false;  // --json: the log as JSON lines on stdout (apps/armctl/server_log.hpp)
-  // --core: the portable core the Mega controller runs (CoreDevice) instead of the daemon's
-  // own implementation (ControllerDevice).
-  bool core = false;
 };
 
 // The controller's config from the arm `--arm` names (scara, xarm or an arm file, as in every
@@ -31,7 +28,8 @@ struct ControllerServeArgs {
 // (config/scara-arm.json) is still read, with a warning.
 arm_controller::ControllerConfig controller_config_for(const std::string& arm);
 
-// `link` may be a simulated bus: it is then paced to the wall clock.
+// `link` may be a simulated bus: it is then paced to the wall clock. Joints of the legacy
+// dialect (master_options.dialect) are refused: the controller speaks the standard one.
 void serve_controller(transport::JointBusLink& link, joint_bus::MasterOptions master_options,
                       arm_controller::ControllerConfig config, const ControllerServeArgs& args,
                       std::function<std::uint16_t()> supply_millivolts = {});

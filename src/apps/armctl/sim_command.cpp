@@ -78,15 +78,15 @@ void run_sim_scara(const SimArgs& args) {
                                     "silicon); without --controller, --robot-commands runs the Linux one",
                                     args.controller));
     if (args.robot_commands || !args.arm.empty() || !args.serve.state_dir.empty() || !args.config.empty() ||
-        args.serve.json || args.serve.core || !args.scene.empty() || !args.miscal.empty())
+        args.serve.json || !args.scene.empty() || !args.miscal.empty())
       throw ArmctlError(ErrorKind::invalid_argument,
                         "--controller mega takes only --baud and --link (the firmware has the arm built in)");
     exec_mega_sim(args);
   }
-  if (!args.robot_commands && (!args.serve.link.empty() || !args.serve.state_dir.empty() || args.serve.core))
+  if (!args.robot_commands && (!args.serve.link.empty() || !args.serve.state_dir.empty()))
     throw ArmctlError(ErrorKind::invalid_argument,
-                      "--link, --state-dir and --core belong to --robot-commands (the arm controller's pty); without "
-                      "it the simulated arm serves the joint bus on --listen");
+                      "--link and --state-dir belong to --robot-commands (the arm controller's pty); without it "
+                      "the simulated arm serves the joint bus on --listen");
   // One arm file for the simulator and the controller (--arm, as in every command). The old
   // options still work, with a warning: --config named the simulator's config, and --arm the
   // controller's (config/scara.json, config/scara-arm.json: now the arm file's sections).
@@ -160,9 +160,6 @@ void add_sim_command(CLI::App& app) {
   scara->add_option("--link", args->serve.link,
                     "With --robot-commands or --controller: also create this symlink to the pty");
   scara->add_option("--state-dir", args->serve.state_dir, "With --robot-commands: keep groups, offsets, limits here");
-  scara->add_flag("--core", args->serve.core,
-                  "With --robot-commands: the portable core the Mega controller runs, on this machine, instead of "
-                  "the daemon's own implementation");
   scara->add_option("--controller", args->controller,
                     "mega: the Mega controller firmware driving the joint firmware, all on emulated chips, with "
                     "Robot Commands on a pty (test builds; docs/mega-controller.md)");

@@ -87,7 +87,7 @@ void ControllerRunner::flush_output() {
   }
 }
 
-void ControllerRunner::read_upstream(ServedController& device) {
+void ControllerRunner::read_upstream(CoreDevice& device) {
   for (;;) {
     pollfd p[1] = {{stream_->fd(), POLLIN, 0}};
     if (!loop_.wait(p, Duration::zero()) || !(p[0].revents & POLLIN)) return;
@@ -99,7 +99,7 @@ void ControllerRunner::read_upstream(ServedController& device) {
   }
 }
 
-void ControllerRunner::run(ServedController& device) {
+void ControllerRunner::run(CoreDevice& device) {
   // The host is looked at between bus steps (each at most kUpstreamCheck long): the bus
   // link's own wait is the loop's wait, so a stop is seen within one step.
   while (!loop_.stop_requested()) {

@@ -1,4 +1,4 @@
-// Serves an arm controller (ControllerDevice, or CoreDevice: served_controller.hpp) to a host over a byte stream (a pty it creates, or a serial
+// Serves the arm controller (CoreDevice) to a host over a byte stream (a pty it creates, or a serial
 // port): Robot Commands frames in the serial form upstream, the joint bus downstream. One
 // thread, one loop (transport::ServeLoop, like every server): read what the host sent, let
 // the board act, send replies and notifications, then one bus step (a due command, a short
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "devices/arm_controller/controller_device.hpp"
+#include "devices/arm_controller/core_device.hpp"
 #include "transport/fd_stream.hpp"
 #include "transport/pty.hpp"
 #include "transport/serial_port.hpp"
@@ -31,12 +31,6 @@ struct Upstream {
 // Throws ArmctlError(invalid_argument) naming what was wrong and the accepted forms.
 Upstream parse_upstream(const std::string& text);
 
-struct RunnerStats {
-  rc_board::BoardStats board;
-  ControllerStats controller;
-  std::size_t dropped_output_bytes = 0;
-};
-
 class ControllerRunner {
  public:
   // Opens the upstream (throws ArmctlError io). The served device's output must be
@@ -52,12 +46,12 @@ class ControllerRunner {
   const std::string& host_path() const { return host_path_; }
 
   // Serves until request_stop() (async-signal-safe).
-  void run(ServedController& device);
+  void run(CoreDevice& device);
   void request_stop() { loop_.request_stop(); }
   std::size_t dropped_output_bytes() const { return dropped_; }
 
  private:
-  void read_upstream(ServedController& device);
+  void read_upstream(CoreDevice& device);
   void flush_output();
 
   std::optional<transport::Pty> pty_;

@@ -6,8 +6,10 @@
 #include <fmt/core.h>
 
 #include "core/error.hpp"
+#include "devices/arm_controller/daemon_state_import.hpp"
 #include "devices/joint_bus/joint_diagnostics.hpp"
 #include "protocol/robot_commands/command_codes.hpp"
+#include "protocol/robot_commands/joint_faults.hpp"
 #include "protocol/robot_commands/messages.hpp"
 
 namespace armctl::arm_controller {
@@ -24,14 +26,19 @@ constexpr Duration kPass = 100us;
 // that do not answer are retried by polling, as on the Mega).
 constexpr Duration kFirstSweep = 2s;
 
-std::optional<std::filesystem::path> memory_path(const CoreDeviceOptions& options) {
+// The group memory's file. A state dir of the earlier implementation still to be imported
+// is checked first: a settings file it cannot read stops the start with the reason, before
+// anything is created (else the next start, finding the memory, would never import it).
+std::optional<std::filesystem::path> memory_path(const CoreDeviceOptions& options, const ControllerConfig& config) {
   if (!options.state_dir) return std::nullopt;
   std::error_code ec;
   std::filesystem::create_directories(*options.state_dir, ec);
   if (ec)
     throw ArmctlError(ErrorKind::io, fmt::format("state dir {}: cannot create it: {}",
                                                  options.state_dir->string(), ec.message()));
-  return *options.state_dir / CoreDevice::memory_file;
+  const auto path = *options.state_dir / CoreDevice::memory_file;
+  if (!std::filesystem::exists(path, ec)) check_daemon_state(*options.state_dir, config);
+  return path;
 }
 
 std::vector<controller::JointSetup> checked_setups(const ControllerConfig& config,
@@ -47,7 +54,9 @@ std::vector<controller::JointSetup> checked_setups(const ControllerConfig& confi
 }  // namespace
 
 void CoreDevice::Upstream::send_frame(std::uint8_t command, const std::uint8_t* data, std::uint8_t length) {
-  out_(rc::Frame{command, std::vector<std::uint8_t>(data, data + length)});
+  const rc::Frame frame{command, std::vector<std::uint8_t>(data, data + length)};
+  watch_(frame);
+  out_(frame);
 }
 
 CoreDevice::CoreDevice(transport::JointBusLink& link, ControllerConfig config, CoreDeviceOptions options,
@@ -57,8 +66,8 @@ CoreDevice::CoreDevice(transport::JointBusLink& link, ControllerConfig config, C
       options_(std::move(options)),
       joints_(checked_setups(config_, link)),
       port_(link),
-      upstream_(std::move(output)),
-      memory_(memory_path(options_), memory_size),
+      upstream_(std::move(output), [this](const rc::Frame& f) { watch(f); }),
+      memory_(memory_path(options_, config_), memory_size),
       directory_(group_entries),
       seen_(joints_.size()) {
   core_.begin(joints_.data(), static_cast<std::uint8_t>(joints_.size()), &port_, &upstream_, link_.baud(), now_us(),
@@ -71,6 +80,9 @@ CoreDevice::CoreDevice(transport::JointBusLink& link, ControllerConfig config, C
   }
   if (options_.link_losses) losses_seen_ = options_.link_losses();
   started_ = true;
+  // A state dir the daemon's earlier implementation kept: its groups and settings, once.
+  if (options_.state_dir && memory_.created() && has_daemon_state(*options_.state_dir))
+    for (const std::string& line : import_daemon_state(*options_.state_dir, config_, *this)) log(line);
 }
 
 std::uint32_t CoreDevice::now_us() const {
@@ -116,7 +128,8 @@ void CoreDevice::explain(const rc::Frame& frame, const controller::CoreStats& be
           if (t.position && !core_.joint_state(t.servo).answering)
             joints += fmt::format("{}joint {} ({})", joints.empty() ? "" : ", ", t.servo,
                                   config_.joint(t.servo) ? config_.joint(t.servo)->name : "?");
-    log(fmt::format("{} refused: {} not answering; no joint moved", name, joints.empty() ? "a named joint" : joints));
+    log(fmt::format("{} refused: {} not answering; no joint moved", name,
+                    joints.empty() ? "a named joint is" : joints + (joints.find(',') == std::string::npos ? " is" : " are")));
   } else if (after.download_too_big != before.download_too_big) {
     log(fmt::format("{}: the group does not fit the group memory (or no free directory entry): refused; "
                     "erase groups to make room",
@@ -158,6 +171,11 @@ void CoreDevice::run_until(TimePoint t) {
 void CoreDevice::note_changes() {
   // Before the first sweep is done the start-up log says where every joint is.
   if (!options_.log || !started_) return;
+  if (core_.stats().actions_skipped != actions_skipped_seen_) {
+    actions_skipped_seen_ = core_.stats().actions_skipped;
+    log("GroupRun: an action was skipped (a joint it names is not answering, or its target is outside the joint's "
+        "limits now); the run goes on");
+  }
   for (std::size_t i = 0; i < joints_.size(); ++i) {
     const int n = joints_[i].number;
     const std::string& name = config_.joints[i].name;
@@ -173,10 +191,21 @@ void CoreDevice::note_changes() {
     if (s.diagnostics_read && (!seen.diagnostics_read || s.diagnostics[0] != seen.faults)) {
       std::array<std::uint16_t, joint_bus::diagnostic_count> words{};
       std::copy_n(s.diagnostics, words.size(), words.begin());
-      log(fmt::format("joint {} {}: {}", n, name, joint_bus::describe(joint_bus::diagnostics_from_words(words))));
+      log(fmt::format("joint {} {}: {}{}", n, name, joint_bus::describe(joint_bus::diagnostics_from_words(words)),
+                      words[0] != 0 ? "; fix the cause, then 'armctl arm clear-faults' (JointFaultClear)" : ""));
     }
     seen = Seen{s.answering, s.following_lost, s.diagnostics_read, s.diagnostics[0]};
   }
+}
+
+void CoreDevice::watch(const rc::Frame& frame) const {
+  if (frame.cmd != rc::kJointFaultClearCmd || !options_.log) return;
+  auto reply = rc::decode_joint_fault_clear_reply(frame);
+  if (!reply) return;
+  const auto* joint = config_.joint(reply->servo);
+  const std::string who = fmt::format("joint {} ({})", reply->servo, joint ? joint->name : "?");
+  log(reply->cleared() ? who + ": faults cleared; it holds where it is until a move names it"
+                       : fmt::format("{}: clear_faults answered STATUS {}", who, reply->status));
 }
 
 void CoreDevice::log(const std::string& line) const {

@@ -1,25 +1,27 @@
-// The arm controller on Linux running the portable core, the same code the Mega controller
-// runs (portable_controller/controller_core.hpp, docs/mega-controller.md): Robot Commands
-// frames in, joint bus transactions out through a transport::JointBusLink, action groups
-// and servo settings in a file standing in for the Mega's EEPROM. What `armctl controller
-// --core` and `armctl sim scara --robot-commands --core` serve (docs/arm-controller.md,
-// "The core on Linux": what it does, and what the daemon's own implementation still does
-// that it does not).
+// The arm controller on Linux: the portable core, the same code the Mega controller runs
+// (portable_controller/controller_core.hpp, docs/mega-controller.md), with Robot Commands
+// frames in, joint bus transactions out through a transport::JointBusLink, and its group
+// memory (action groups, the joints' saved settings) as a file in the state dir. What
+// `armctl controller` and `armctl sim scara --robot-commands` serve (docs/arm-controller.md).
+// This layer adds what Linux has and the Mega has not: a log of what happened, a bus link
+// that can be lost and comes back, and the import of a state dir the earlier (non-core)
+// implementation kept.
 //
-// Single-threaded and clock-driven like ControllerDevice: on a simulated bus (SimClock)
-// tests call run_until() and every transaction happens at an exact simulated instant.
+// Single-threaded and clock-driven: on a simulated bus (SimClock) tests call run_until() and
+// every transaction happens at an exact simulated instant.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "devices/arm_controller/controller_config.hpp"
 #include "devices/arm_controller/core_ports.hpp"
-#include "devices/arm_controller/served_controller.hpp"
 #include "portable_controller/controller_core.hpp"
 #include "portable_controller/rc_frame_reader.hpp"
 #include "protocol/robot_commands/frame.hpp"
@@ -38,7 +40,7 @@ struct CoreDeviceOptions {
   std::function<std::uint64_t()> link_losses;
 };
 
-class CoreDevice final : public ServedController {
+class CoreDevice {
  public:
   using Output = std::function<void(const rc::Frame&)>;
   static constexpr const char* memory_file = "core-memory.bin";
@@ -54,15 +56,19 @@ class CoreDevice final : public ServedController {
   // halts every joint and polls each once (or until 2 s pass), as the Mega does at reset.
   CoreDevice(transport::JointBusLink& link, ControllerConfig config, CoreDeviceOptions options, Output output);
 
-  void receive(std::span<const std::uint8_t> bytes) override;
+  // Bytes from the host (Robot Commands, serial form), as they arrived.
+  void receive(std::span<const std::uint8_t> bytes);
   // A whole frame (tests): as if its bytes had arrived.
   void handle(const rc::Frame& frame);
   // One pass of the core's loop: a poll, then the bus's next byte or a short wait (at most
   // until `limit`).
-  void step(TimePoint limit) override;
+  void step(TimePoint limit);
   void run_until(TimePoint t);
   void run_for(Duration d) { run_until(clock().now() + d); }
-  const Clock& clock() const override { return link_.clock(); }
+  const Clock& clock() const { return link_.clock(); }
+  // Where replies and notifications go from now on; returns where they went (the import of
+  // an old state dir talks to the core itself for a moment: daemon_state_import.hpp).
+  Output swap_output(Output output) { return upstream_.swap(std::move(output)); }
 
   // ---- inspection (tests, the serve log)
   const controller::ControllerCore& core() const { return core_; }
@@ -73,13 +79,16 @@ class CoreDevice final : public ServedController {
   std::uint16_t torn_frames() const { return reader_.torn_frames(); }
 
  private:
+  // Every frame the core sends is seen by `watch` (the log), then goes to `out`.
   class Upstream final : public controller::UpstreamPort {
    public:
-    explicit Upstream(Output out) : out_(std::move(out)) {}
+    Upstream(Output out, Output watch) : out_(std::move(out)), watch_(std::move(watch)) {}
     void send_frame(std::uint8_t command, const std::uint8_t* data, std::uint8_t length) override;
+    Output swap(Output out) { return std::exchange(out_, std::move(out)); }
 
    private:
     Output out_;
+    Output watch_;
   };
   // What the log has said of each joint, so it says each change once.
   struct Seen {
@@ -92,6 +101,8 @@ class CoreDevice final : public ServedController {
   // A whole frame to the core, and what became of it in the log.
   void take(const rc::Frame& frame);
   void explain(const rc::Frame& frame, const controller::CoreStats& before) const;
+  // A reply worth a log line (JointFaultClear's).
+  void watch(const rc::Frame& frame) const;
   void note_changes();
   void log(const std::string& line) const;
 
@@ -107,6 +118,7 @@ class CoreDevice final : public ServedController {
   controller::RcFrameReader reader_;
   std::vector<Seen> seen_;
   std::uint64_t losses_seen_ = 0;
+  std::uint16_t actions_skipped_seen_ = 0;
   bool started_ = false;
 };
 

@@ -36,6 +36,7 @@ FileGroupMemory::FileGroupMemory(std::optional<std::filesystem::path> path, std:
   const off_t length = ::lseek(fd_, 0, SEEK_END);
   if (length == 0) {
     // A new memory: blank, written whole once so every later write is one byte in place.
+    created_ = true;
     if (::pwrite(fd_, bytes_.data(), bytes_.size(), 0) != static_cast<ssize_t>(bytes_.size())) {
       const std::string e = io_error(*path, "write");
       ::close(fd_);
@@ -90,7 +91,7 @@ std::vector<controller::JointSetup> core_joint_setups(const ControllerConfig& co
     s.soft_min = j.soft_min;
     s.soft_max = j.soft_max;
     s.max_speed_cps = static_cast<std::uint16_t>(fits(j, "max_speed_cps", j.max_speed_cps, 1, 65535));
-    s.max_accel_cps2 = static_cast<std::uint16_t>(fits(j, "max_accel_cps2", j.max_accel_cps2, 1, 65535));
+    s.max_accel_cps2 = static_cast<std::uint32_t>(fits(j, "max_accel_cps2", j.max_accel_cps2, 1, 4294967295.0));
     s.zone = j.zone_clicks;
     setups.push_back(s);
   }

@@ -41,6 +41,8 @@ class FileGroupMemory final : public controller::GroupMemory {
   FileGroupMemory(const FileGroupMemory&) = delete;
   FileGroupMemory& operator=(const FileGroupMemory&) = delete;
 
+  // The file did not exist before: this memory is blank.
+  bool created() const { return created_; }
   std::uint32_t size() const override { return static_cast<std::uint32_t>(bytes_.size()); }
   std::uint8_t read(std::uint32_t address) override { return bytes_[address]; }
   bool ready() override { return true; }
@@ -51,12 +53,14 @@ class FileGroupMemory final : public controller::GroupMemory {
  private:
   std::vector<std::uint8_t> bytes_;
   int fd_ = -1;
+  bool created_ = false;
 };
 
 // The core's joints from the arm file's arm_controller section: its map's values at
 // positions 0 and 1000, soft limits, speed, acceleration and zone. Throws
 // ArmctlError(invalid_config) naming the joint and value that the core cannot hold
-// (clicks beyond -32768..32767, speed or acceleration beyond 65535, more than 7 joints).
+// (clicks beyond -32768..32767, a speed beyond 65535, more than 7 joints; the arm file's
+// own ranges keep within them).
 std::vector<controller::JointSetup> core_joint_setups(const ControllerConfig& config);
 
 }  // namespace armctl::arm_controller

@@ -81,7 +81,7 @@ void parse_joint(const json& j, const std::string& name, int number, JointSettin
       integer_in(j.at("saved_offset"), name + ".saved_offset", rc::kOffsetMin, rc::kOffsetMax));
   // The ranges BusServoInfoWrite accepts (rc_board/board.cpp): the controller must read back
   // every file it can write. Positions are Robot Commands units, not clicks: the config's
-  // soft limits are applied on top of them (ArmController::position_range), not here.
+  // soft limits are applied on top of them (by the core, at import), not here.
   const std::string ln = name + ".limits";
   const json& l = j.at("limits");
   expect_keys(l, ln,

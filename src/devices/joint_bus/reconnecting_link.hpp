@@ -6,7 +6,7 @@
 // while it opens the link again with back-off: 0.1 s, doubling, at most 2 s between tries.
 // Each attempt and the recovery are logged. Nothing is replayed on recovery: what the
 // controller does about a loss (drop pending commands, stop group playback) is its business
-// (ControllerDevice watches losses()).
+// (CoreDevice watches losses()).
 #pragma once
 
 #include <cstdint>
