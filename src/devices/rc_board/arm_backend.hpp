@@ -1,12 +1,12 @@
 // What an arm does, as seen by the board side of Robot Commands. The Board (board.hpp)
-// validates every request and then calls a backend: the emulated xArm drives six bus
-// servos, the arm controller drives seven joints over the joint bus. The Board only ever
-// passes values it has already checked against what the backend reports (servo IDs present,
-// position ranges), so backends need not re-validate wire input.
+// validates every request and then calls a backend: the emulated xArm's six bus servos.
+// (The SCARA's arm controller is the portable core, portable_controller/, with its own
+// request handling, as on the Mega.) The Board only ever passes values it has already
+// checked against what the backend reports (servo IDs present, position ranges), so
+// backends need not re-validate wire input.
 //
-// Robot Commands calls every addressable thing a "servo"; on the arm controller a servo ID
-// is a joint number. Backends are single-threaded and driven by time: the Board passes the
-// current time into every call that starts or observes motion, so tests use SimClock.
+// Backends are single-threaded and driven by time: the Board passes the current time into
+// every call that starts or observes motion, so tests use SimClock.
 #pragma once
 
 #include <cstdint>
@@ -16,7 +16,6 @@
 
 #include "core/clock.hpp"
 #include "core/error.hpp"
-#include "protocol/robot_commands/joint_faults.hpp"
 #include "protocol/robot_commands/messages.hpp"
 
 namespace armctl::rc_board {
@@ -99,18 +98,6 @@ class ArmBackend {
   virtual BusServoInfoReply bus_servo_info() const = 0;
   // An error (device: no such servo here; io: cannot be stored) leaves everything unchanged.
   virtual Status write_bus_servo_info(const BusServoLimits& limits) = 0;
-
-  // armctl's extensions JointFaultRead / JointFaultClear (CMD 40 / 41,
-  // protocol/robot_commands/joint_faults.hpp), for a backend whose servos are joints that
-  // hold faults (the arm controller). Without them (the emulated xArm, as a real xArm) the
-  // Board ignores both CMDs as unknown. clear_joint_faults answers once the joint has, with
-  // its STATUS; the servo was checked present.
-  virtual bool has_joint_faults() const { return false; }
-  virtual rc::JointFaultReport joint_faults(ServoId servo) const { return rc::JointFaultReport{servo}; }
-  virtual rc::JointFaultClearReply clear_joint_faults(ServoId servo, TimePoint now) {
-    (void)now;
-    return rc::JointFaultClearReply{servo, 0};
-  }
 };
 
 }  // namespace armctl::rc_board

@@ -94,11 +94,6 @@ void Board::handle(const rc::Frame& frame) {
 }
 
 void Board::dispatch(const rc::Frame& frame, TimePoint now) {
-  const bool extension = frame.cmd == rc::kJointFaultReadCmd || frame.cmd == rc::kJointFaultClearCmd;
-  if (extension && arm_.has_joint_faults()) {
-    on_joint_fault_request(frame, now);
-    return;
-  }
   if (!rc::command_from_byte(frame.cmd)) {
     reject(&BoardStats::unknown_command,
            fmt::format("unknown CMD {} (0x{:02X}): frame ignored", frame.cmd, frame.cmd));
@@ -119,21 +114,6 @@ void Board::dispatch(const rc::Frame& frame, TimePoint now) {
   }
   // One handler per request (board_requests.cpp).
   std::visit([&](const auto& message) { on(message, now); }, *request);
-}
-
-void Board::on_joint_fault_request(const rc::Frame& frame, TimePoint now) {
-  if (frame.data.size() != 1) {
-    reject(&BoardStats::invalid_frame, fmt::format("CMD {} with {} bytes of DATA (1 allowed: the servo): frame ignored",
-                                                   frame.cmd, frame.data.size()));
-    return;
-  }
-  const std::uint8_t servo = frame.data[0];
-  if (!all_present(std::span<const std::uint8_t>(&servo, 1), frame.cmd == rc::kJointFaultReadCmd
-                                                                  ? "JointFaultRead"
-                                                                  : "JointFaultClear"))
-    return;
-  if (frame.cmd == rc::kJointFaultReadCmd) send(rc::encode_joint_fault_reply(arm_.joint_faults(servo)));
-  else send(rc::encode_joint_fault_clear_reply(arm_.clear_joint_faults(servo, now)));
 }
 
 bool Board::all_present(std::span<const std::uint8_t> ids, const char* what) {

@@ -1,6 +1,6 @@
 // The board side of Robot Commands: bytes or frames in, replies and notifications out,
-// over an ArmBackend (six bus servos on the emulated xArm, seven joints on the arm
-// controller).
+// over an ArmBackend (the emulated xArm's six bus servos). armctl's extensions CMD 40 and
+// 41 (joint faults) are unknown commands here, as on an xArm.
 //
 // Every request is validated before anything happens (spec "Decisions"): an unknown CMD,
 // a DATA length that disagrees with its count, a servo the arm does not have, or a value
@@ -68,8 +68,6 @@ class Board {
 
   // One handler per request (board_requests.cpp).
   void on(const rc::MultiServoMove& m, TimePoint now);
-  // armctl's JointFaultRead / JointFaultClear, for a backend that has them.
-  void on_joint_fault_request(const rc::Frame& frame, TimePoint now);
   void on(const rc::MultiServoOff& m, TimePoint now);
   void on(const rc::ServoPositionRead& m, TimePoint now);
   void on(const rc::ServoSpeed& m, TimePoint now);
