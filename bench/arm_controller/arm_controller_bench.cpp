@@ -3,8 +3,9 @@
 //  - joint-state refresh: sweeps of get_position over all seven joints per second under
 //    continuous polling, against the wire-time floor (7 x 8 bytes x 10 bits / baud);
 //  - latency the controller adds to an upstream request beyond wire time: a request that
-//    arrives while a poll is on the bus waits for it to end (the loop does one bus
-//    transaction between looks at the host); limit = one poll transaction's wire time.
+//    arrives while the loop is in a bus step waits for the step to end (the runner looks at
+//    the host between steps; a step waits at most a word time mid-transaction);
+//    limit = one poll transaction's wire time.
 // Plus the cost of the joint-bus planner the Arm API uses without a controller
 // (joint_bus::plan_synchronized_move, BusArmDevice; Google Benchmark).
 #include <benchmark/benchmark.h>
@@ -59,7 +60,8 @@ void added_latency(std::uint32_t baud) {
   for (int i = 0; i < 2000; ++i) {
     // Arrivals spread over the transaction cycle (not a multiple of it).
     arrival += std::chrono::microseconds(3137 + (i * 7919) % 5000);
-    while (b.device->clock().now() < arrival) b.device->step(arrival);
+    // As ControllerRunner::run steps: at most 2 ms at a time, the host looked at between steps.
+    while (b.device->clock().now() < arrival) b.device->step(b.device->clock().now() + 2ms);
     const TimePoint seen = b.device->clock().now();
     const auto before = b.replies;
     b.device->handle(frame);

@@ -72,7 +72,7 @@ void expect_synchronized_arrival(std::uint32_t baud, std::uint16_t time_ms, doub
     EXPECT_LE(std::abs(late), tolerance_ms) << "joint " << j << " at " << baud << " baud, " << time_ms << " ms: " << late;
     EXPECT_LE(std::abs(rig.clicks(j) - clicks[j]), rig.config.joint(j)->zone_clicks) << j;
   }
-  std::printf("core: arrival in zone, %u baud, %u ms move: %+.1f .. %+.1f ms from the instant asked\n", baud,
+  std::printf("arrival on target, %u baud, %u ms move: %+.1f .. %+.1f ms from the instant asked\n", baud,
               time_ms, earliest, latest);
 }
 
