@@ -1,8 +1,10 @@
-// What the controller keeps per joint across restarts: the saved zero offset
-// (ServoOffsetWrite) and the limits set with BusServoInfoWrite, plus which joint
-// BusServoInfoRead/Write address. Stored as <state dir>/controller-settings.json, replaced
-// crash-safely (core/atomic_file.hpp). A corrupt file is an error naming what is wrong,
-// never silently replaced by defaults.
+// What the arm controller's earlier implementation kept per joint across restarts: the
+// saved zero offset (ServoOffsetWrite) and the limits set with BusServoInfoWrite, plus which
+// joint BusServoInfoRead/Write address, as <state dir>/controller-settings.json. The
+// controller now keeps them in the core's group memory (core_device.hpp); this file is read
+// once, by the import of such a state dir (daemon_state_import.hpp). A corrupt file is an
+// error naming what is wrong, never silently replaced by defaults. (save_settings writes
+// the format: tests and the fuzz target make files with it.)
 #pragma once
 
 #include <cstdint>
