@@ -6,6 +6,8 @@
 // implementation the case says so.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -383,6 +385,18 @@ TEST(Persistence, AMemoryFileOfAnotherSizeIsAnErrorNotABlankMemory) {
         << e.what();
   }
   EXPECT_EQ(std::filesystem::file_size(dir.path / CoreDevice::memory_file), 18u) << "left as it was";
+}
+
+TEST(Persistence, AMemoryThatIsNotARegularFileIsAnError) {
+  TempDir dir;
+  ASSERT_EQ(::mkfifo((dir.path / CoreDevice::memory_file).c_str(), 0600), 0);
+  try {
+    Rig rig(dir.path);
+    FAIL() << "took a FIFO as its memory";
+  } catch (const ArmctlError& e) {
+    EXPECT_EQ(e.error().kind, ErrorKind::invalid_config);
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ControllerConfigForTheCore, AJointTheCoreCannotHoldIsNamed) {

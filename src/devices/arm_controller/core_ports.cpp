@@ -1,6 +1,7 @@
 #include "devices/arm_controller/core_ports.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -31,8 +32,15 @@ std::string io_error(const std::filesystem::path& path, const char* doing) {
 FileGroupMemory::FileGroupMemory(std::optional<std::filesystem::path> path, std::uint32_t size)
     : bytes_(size, 0xFF) {
   if (!path) return;
-  fd_ = ::open(path->c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  fd_ = ::open(path->c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NONBLOCK, 0644);
   if (fd_ < 0) throw ArmctlError(ErrorKind::io, io_error(*path, "open"));
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    throw ArmctlError(ErrorKind::invalid_config,
+                      fmt::format("group memory {}: not a regular file; move it away to start with no groups",
+                                  path->string()));
+  }
   const off_t length = ::lseek(fd_, 0, SEEK_END);
   if (length == 0) {
     // A new memory: blank, written whole once so every later write is one byte in place.
@@ -47,7 +55,7 @@ FileGroupMemory::FileGroupMemory(std::optional<std::filesystem::path> path, std:
   if (length != static_cast<off_t>(size)) {
     ::close(fd_);
     throw ArmctlError(ErrorKind::invalid_config,
-                      fmt::format("group memory {}: {} bytes, expected {} (a file armctl controller --core "
+                      fmt::format("group memory {}: {} bytes, expected {} (a file the arm controller "
                                   "wrote); move it away to start with no groups",
                                   path->string(), static_cast<long long>(length), size));
   }
