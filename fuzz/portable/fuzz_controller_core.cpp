@@ -9,7 +9,6 @@
 
 #include "fake_joints.hpp"
 #include "memory_rig.hpp"
-#include "portable/joint_bus_codes.hpp"
 #include "portable_controller/controller_core.hpp"
 #include "portable_controller/rc_frame_reader.hpp"
 #include "portable_controller/scara_arm.hpp"
@@ -23,16 +22,6 @@ using namespace armctl::controller::testing;
 // sees requests as often as the firmware would), in steps as long as a main-loop pass.
 constexpr std::uint32_t kByteUs = 87;
 constexpr std::size_t kMaxBytes = 1024;  // longer inputs add nothing but time
-
-void check_drives_within_soft_limits(const FakeJoints& joints) {
-  for (const auto& c : joints.log) {
-    if (c.command != armctl::joint_bus::cmd_drive_to) continue;
-    for (std::uint8_t i = 0; i < scara_joint_count; ++i) {
-      const JointSetup& j = scara_joints[i];
-      if (j.number == c.joint && (c.data < j.soft_min || c.data > j.soft_max)) std::abort();
-    }
-  }
-}
 
 }  // namespace
 
@@ -50,7 +39,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     run_core(core, joints, now, kByteUs, kByteUs);
   }
   run_core(core, joints, now, 200000, 500);  // what was queued goes out
-  check_drives_within_soft_limits(joints);
+  if (!joints.drives_within_soft_limits(scara_joints, scara_joint_count)) std::abort();
   for (const auto& f : upstream.frames)
     if (f.data.size() + 2 > RcFrameReader::max_length) std::abort();
   return 0;

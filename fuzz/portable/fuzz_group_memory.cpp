@@ -14,7 +14,6 @@
 
 #include "fake_joints.hpp"
 #include "memory_rig.hpp"
-#include "portable/joint_bus_codes.hpp"
 #include "portable_controller/controller_core.hpp"
 #include "portable_controller/rc_codes.hpp"
 #include "portable_controller/scara_arm.hpp"
@@ -23,16 +22,6 @@ namespace {
 
 using namespace armctl::controller;
 using namespace armctl::controller::testing;
-
-void check_drives_within_soft_limits(const FakeJoints& joints) {
-  for (const auto& c : joints.log) {
-    if (c.command != armctl::joint_bus::cmd_drive_to) continue;
-    for (std::uint8_t i = 0; i < scara_joint_count; ++i) {
-      const JointSetup& j = scara_joints[i];
-      if (j.number == c.joint && (c.data < j.soft_min || c.data > j.soft_max)) std::abort();
-    }
-  }
-}
 
 }  // namespace
 
@@ -65,7 +54,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::uint8_t servos[5] = {2, 200, 0, 1, 0};
   core.on_frame(rc_group_download, servos, 5, now);
   run_core(core, joints, now, 2000, 500);
-  check_drives_within_soft_limits(joints);
+  if (!joints.drives_within_soft_limits(scara_joints, scara_joint_count)) std::abort();
   if (memory.bytes.size() != (linux_layout ? 12288u : 4096u)) std::abort();
   return 0;
 }

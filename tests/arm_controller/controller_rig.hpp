@@ -4,6 +4,8 @@
 // queued commands, group playback) in simulated time.
 #pragma once
 
+#include <stdlib.h>
+
 #include <deque>
 #include <filesystem>
 #include <memory>
@@ -17,6 +19,16 @@
 #include "devices/robot_commands/client.hpp"
 
 namespace armctl::arm_controller::testing {
+
+// A fresh directory for a state dir, removed at the end.
+struct TempDir {
+  TempDir() {
+    char tmpl[] = "/tmp/armctl-controller-test-XXXXXX";
+    path = ::mkdtemp(tmpl);
+  }
+  ~TempDir() { std::filesystem::remove_all(path); }
+  std::filesystem::path path;
+};
 
 class SimRcLink final : public robot_commands::RcLink {
  public:

@@ -27,14 +27,13 @@ using robot_commands::ServoTarget;
 
 double ms_of(Duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
 
-struct TempDir {
-  TempDir() {
-    char tmpl[] = "/tmp/armctl-core-device-test-XXXXXX";
-    path = ::mkdtemp(tmpl);
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-  std::filesystem::path path;
-};
+// After 600 ms to decelerate, joints 1..3 stay where they came to rest for `watch`.
+void expect_joints_1_to_3_held(Rig& rig, Duration watch) {
+  rig.run_for(600ms);
+  const std::array<int, 3> rest{rig.clicks(1), rig.clicks(2), rig.clicks(3)};
+  rig.run_for(watch);
+  for (int j = 1; j <= 3; ++j) EXPECT_NEAR(rig.clicks(j), rest[j - 1], 3) << "joint " << j;
+}
 
 // Steps until `until`, recording each joint's last instant outside its zone (or `band`
 // clicks) around its target: its arrival.
@@ -268,12 +267,7 @@ TEST(Groups, SpeedScalesAndContinuousPlayStopsWhereItIs) {
   }
   EXPECT_TRUE(stopped);
   EXPECT_FALSE(rig.device->core().playing());
-  rig.run_for(600ms);
-  const std::array<int, 3> rest{rig.clicks(1), rig.clicks(2), rig.clicks(3)};
-  rig.run_for(1000ms);
-  EXPECT_NEAR(rig.clicks(1), rest[0], 3);
-  EXPECT_NEAR(rig.clicks(2), rest[1], 3);
-  EXPECT_NEAR(rig.clicks(3), rest[2], 3);
+  expect_joints_1_to_3_held(rig, 1000ms);
 }
 
 // On Linux the group memory holds what the daemon's group files held: every group number
@@ -516,12 +510,7 @@ TEST(LinkLoss, PlaybackEndsAndNothingMovesAfterwards) {
   EXPECT_TRUE(rig.wait_for(GroupEventKind::finished, 100ms));
   EXPECT_FALSE(rig.device->core().playing());
   EXPECT_TRUE(rig.logged("joint bus link lost"));
-  rig.run_for(600ms);
-  const std::array<int, 3> rest{rig.clicks(1), rig.clicks(2), rig.clicks(3)};
-  rig.run_for(2s);
-  EXPECT_NEAR(rig.clicks(1), rest[0], 3);
-  EXPECT_NEAR(rig.clicks(2), rest[1], 3);
-  EXPECT_NEAR(rig.clicks(3), rest[2], 3);
+  expect_joints_1_to_3_held(rig, 2s);
   for (int j = 1; j <= 7; ++j) EXPECT_TRUE(rig.state(j).answering) << "polled again: " << j;
 }
 

@@ -5,8 +5,6 @@
 // per trial, plus a varied spin so the kill also lands mid-download.
 #include <gtest/gtest.h>
 
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -16,20 +14,16 @@
 
 #include "controller_rig.hpp"
 #include "portable_controller/group_store.hpp"
+#include "support/killed_child.hpp"
 
 namespace armctl::arm_controller::testing {
 namespace {
 
 using robot_commands::GroupAction;
-
-struct TempDir {
-  TempDir() {
-    char tmpl[] = "/tmp/armctl-controller-crash-XXXXXX";
-    path = ::mkdtemp(tmpl);
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-  std::filesystem::path path;
-};
+using armctl::testing::kill_and_reap;
+using armctl::testing::read_u32;
+using armctl::testing::spin;
+using armctl::testing::write_u32;
 
 // Version v of group g: v in every action's time, positions derived from both (joints 2..4,
 // whose whole 0..1000 range is allowed).
@@ -68,24 +62,6 @@ std::optional<std::uint16_t> stored_version(const std::filesystem::path& file, s
   return found[0].time_ms;
 }
 
-void write_u32(int fd, std::uint32_t value) { [[maybe_unused]] ssize_t n = ::write(fd, &value, sizeof value); }
-
-bool read_u32(int fd, std::uint32_t& value) {
-  std::size_t got = 0;
-  auto* p = reinterpret_cast<char*>(&value);
-  while (got < sizeof value) {
-    ssize_t n = ::read(fd, p + got, sizeof value - got);
-    if (n <= 0) return false;
-    got += static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
-void spin(unsigned iterations) {
-  volatile unsigned sink = 0;
-  for (unsigned i = 0; i < iterations; ++i) sink = sink + i;
-}
-
 constexpr std::uint8_t kGroups = 3;
 
 TEST(CrashSafety, KillDuringDownloadsNeverLosesOrCorruptsAnAcknowledgedGroup) {
@@ -116,10 +92,7 @@ TEST(CrashSafety, KillDuringDownloadsNeverLosesOrCorruptsAnAcknowledgedGroup) {
       acked[m >> 16] = static_cast<std::uint16_t>(m & 0xFFFF);
     }
     spin(trial * 30000);
-    ::kill(pid, SIGKILL);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    ASSERT_TRUE(WIFSIGNALED(status)) << "child ended by itself, status " << status;
+    kill_and_reap(pid);
     std::uint32_t m = 0;  // reports written before the kill still count
     while (read_u32(fds[0], m)) acked[m >> 16] = static_cast<std::uint16_t>(m & 0xFFFF);
     ::close(fds[0]);

@@ -24,16 +24,8 @@ namespace {
 using arm_controller::ControllerSettings;
 using arm_controller::JointSettings;
 using arm_controller::testing::Rig;
+using arm_controller::testing::TempDir;
 using nlohmann::json;
-
-struct TempDir {
-  TempDir() {
-    char tmpl[] = "/tmp/armctl-settings-test-XXXXXX";
-    path = ::mkdtemp(tmpl);
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-  std::filesystem::path path;
-};
 
 // The defaults for an arm whose config has joints 1, 2, 3 and 5 (what the import starts from).
 ControllerSettings defaults() {

@@ -82,6 +82,15 @@ class FakeJoints final : public BusPort {
       if (c.command == command) out.push_back(c);
     return out;
   }
+  // Every drive_to sent to a joint of `setup` was within its soft limits.
+  bool drives_within_soft_limits(const JointSetup* setup, int count) const {
+    for (const auto& c : log) {
+      if (c.command != joint_bus::cmd_drive_to) continue;
+      for (int i = 0; i < count; ++i)
+        if (setup[i].number == c.joint && (c.data < setup[i].soft_min || c.data > setup[i].soft_max)) return false;
+    }
+    return true;
+  }
 
   // From now on each joint runs its setpoint ramp as the joint firmware does (1 ms ticks,
   // the joint's limits from `setup`), at rest where it is, and tracks it exactly: its

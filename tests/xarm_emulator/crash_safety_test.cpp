@@ -4,20 +4,23 @@
 // spin so the kill also lands between reports.
 #include "harness.hpp"
 
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <iostream>
 
 #include "core/atomic_file.hpp"
 #include "devices/rc_board/group_store.hpp"
+#include "support/killed_child.hpp"
 
 namespace armctl::xarm::test {
 namespace {
 
 using rc_board::ActionGroup;
 using rc_board::GroupStore;
+using armctl::testing::kill_and_reap;
+using armctl::testing::read_u32;
+using armctl::testing::spin;
+using armctl::testing::write_u32;
 
 // Version v of group g: large enough that a write takes a while; v is in every action's time.
 ActionGroup version(std::uint8_t g, std::uint16_t v) {
@@ -37,33 +40,6 @@ std::optional<std::uint16_t> version_of(const ActionGroup* group, std::uint8_t g
   std::uint16_t v = group->actions[0].milliseconds;
   if (!(*group == version(g, v))) return std::nullopt;
   return v;
-}
-
-void write_u32(int fd, std::uint32_t value) {
-  [[maybe_unused]] ssize_t n = ::write(fd, &value, sizeof value);
-}
-
-bool read_u32(int fd, std::uint32_t& value) {
-  std::size_t got = 0;
-  auto* p = reinterpret_cast<char*>(&value);
-  while (got < sizeof value) {
-    ssize_t n = ::read(fd, p + got, sizeof value - got);
-    if (n <= 0) return false;
-    got += static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
-void spin(unsigned iterations) {
-  volatile unsigned sink = 0;
-  for (unsigned i = 0; i < iterations; ++i) sink = sink + i;
-}
-
-void kill_and_reap(pid_t pid) {
-  ::kill(pid, SIGKILL);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFSIGNALED(status)) << "child ended by itself, status " << status;
 }
 
 constexpr std::uint8_t kGroups = 3;

@@ -6,7 +6,6 @@
 #include <fmt/core.h>
 
 #include "core/error.hpp"
-#include "devices/arm_controller/daemon_state_import.hpp"
 #include "devices/joint_bus/joint_diagnostics.hpp"
 #include "protocol/robot_commands/command_codes.hpp"
 #include "protocol/robot_commands/joint_faults.hpp"
@@ -26,19 +25,25 @@ constexpr Duration kPass = 100us;
 // that do not answer are retried by polling, as on the Mega).
 constexpr Duration kFirstSweep = 2s;
 
-// The group memory's file. A state dir of the earlier implementation still to be imported
-// is checked first: a settings file it cannot read stops the start with the reason, before
-// anything is created (else the next start, finding the memory, would never import it).
-std::optional<std::filesystem::path> memory_path(const CoreDeviceOptions& options, const ControllerConfig& config) {
+// The group memory's file, in the state dir (created if need be).
+std::optional<std::filesystem::path> memory_path(const CoreDeviceOptions& options) {
   if (!options.state_dir) return std::nullopt;
   std::error_code ec;
   std::filesystem::create_directories(*options.state_dir, ec);
   if (ec)
     throw ArmctlError(ErrorKind::io, fmt::format("state dir {}: cannot create it: {}",
                                                  options.state_dir->string(), ec.message()));
-  const auto path = *options.state_dir / CoreDevice::memory_file;
-  if (!std::filesystem::exists(path, ec)) check_daemon_state(*options.state_dir, config);
-  return path;
+  return *options.state_dir / CoreDevice::memory_file;
+}
+
+// What the earlier implementation kept in the state dir, while the core has no memory there
+// yet (once it has, the next start must not import again). Read before the memory file is
+// created: a settings file it cannot read stops the start with nothing created.
+std::optional<DaemonState> state_to_import(const CoreDeviceOptions& options, const ControllerConfig& config) {
+  std::error_code ec;
+  if (!options.state_dir || std::filesystem::exists(*options.state_dir / CoreDevice::memory_file, ec))
+    return std::nullopt;
+  return find_daemon_state(*options.state_dir, config);
 }
 
 std::vector<controller::JointSetup> checked_setups(const ControllerConfig& config,
@@ -67,22 +72,22 @@ CoreDevice::CoreDevice(transport::JointBusLink& link, ControllerConfig config, C
       joints_(checked_setups(config_, link)),
       port_(link),
       upstream_(std::move(output), [this](const rc::Frame& f) { watch(f); }),
-      memory_(memory_path(options_, config_), memory_size),
+      to_import_(state_to_import(options_, config_)),
+      memory_(memory_path(options_), memory_size),
       directory_(group_entries),
       seen_(joints_.size()) {
   core_.begin(joints_.data(), static_cast<std::uint8_t>(joints_.size()), &port_, &upstream_, link_.baud(), now_us(),
               &memory_, directory_.data(), group_entries);
   const TimePoint give_up = clock().now() + kFirstSweep;
   while (core_.stats().sweeps == 0 && clock().now() < give_up) step(give_up);
-  for (std::size_t i = 0; i < joints_.size(); ++i) {
-    const controller::JointState& s = core_.joint_state(joints_[i].number);
-    seen_[i] = Seen{s.answering, s.following_lost, s.diagnostics_read, s.diagnostics[0]};
-  }
+  for (std::size_t i = 0; i < joints_.size(); ++i) seen_[i] = Seen::of(core_.joint_state(joints_[i].number));
   if (options_.link_losses) losses_seen_ = options_.link_losses();
   started_ = true;
   // A state dir the daemon's earlier implementation kept: its groups and settings, once.
-  if (options_.state_dir && memory_.created() && has_daemon_state(*options_.state_dir))
-    for (const std::string& line : import_daemon_state(*options_.state_dir, config_, *this)) log(line);
+  if (to_import_) {
+    for (const std::string& line : import_daemon_state(*to_import_, config_, *this)) log(line);
+    to_import_.reset();
+  }
 }
 
 std::uint32_t CoreDevice::now_us() const {
@@ -117,6 +122,9 @@ void CoreDevice::explain(const rc::Frame& frame, const controller::CoreStats& be
   // The core only counts; the log says which frame and, where the host's codec can tell,
   // why (a move naming a joint not answering; a frame malformed as the spec reads it).
   const controller::CoreStats& after = core_.stats();
+  if (after.refused_moves == before.refused_moves && after.download_too_big == before.download_too_big &&
+      after.download_rejected == before.download_rejected && after.ignored_frames == before.ignored_frames)
+    return;  // taken: nothing to say
   const auto command = rc::command_from_byte(frame.cmd);
   const std::string name = command ? rc::command_name(*command) : fmt::format("CMD {}", frame.cmd);
   auto request = rc::decode_request(frame, rc::ServoRange{0, 255});
@@ -194,7 +202,7 @@ void CoreDevice::note_changes() {
       log(fmt::format("joint {} {}: {}{}", n, name, joint_bus::describe(joint_bus::diagnostics_from_words(words)),
                       words[0] != 0 ? "; fix the cause, then 'armctl arm clear-faults' (JointFaultClear)" : ""));
     }
-    seen = Seen{s.answering, s.following_lost, s.diagnostics_read, s.diagnostics[0]};
+    seen = Seen::of(s);
   }
 }
 

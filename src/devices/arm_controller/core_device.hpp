@@ -22,6 +22,7 @@
 
 #include "devices/arm_controller/controller_config.hpp"
 #include "devices/arm_controller/core_ports.hpp"
+#include "devices/arm_controller/daemon_state_import.hpp"
 #include "portable_controller/controller_core.hpp"
 #include "portable_controller/rc_frame_reader.hpp"
 #include "protocol/robot_commands/frame.hpp"
@@ -96,6 +97,9 @@ class CoreDevice {
     std::uint16_t following_lost = 0;
     bool diagnostics_read = false;
     std::uint16_t faults = 0;  // diagnostics[0] when last read
+    static Seen of(const controller::JointState& s) {
+      return Seen{s.answering, s.following_lost, s.diagnostics_read, s.diagnostics[0]};
+    }
   };
   std::uint32_t now_us() const;
   // A whole frame to the core, and what became of it in the log.
@@ -112,6 +116,7 @@ class CoreDevice {
   std::vector<controller::JointSetup> joints_;
   LinkBusPort port_;
   Upstream upstream_;
+  std::optional<DaemonState> to_import_;  // read before memory_ creates its file
   FileGroupMemory memory_;
   std::vector<controller::GroupStore::Entry> directory_;
   controller::ControllerCore core_;

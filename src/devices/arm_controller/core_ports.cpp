@@ -44,7 +44,6 @@ FileGroupMemory::FileGroupMemory(std::optional<std::filesystem::path> path, std:
   const off_t length = ::lseek(fd_, 0, SEEK_END);
   if (length == 0) {
     // A new memory: blank, written whole once so every later write is one byte in place.
-    created_ = true;
     if (::pwrite(fd_, bytes_.data(), bytes_.size(), 0) != static_cast<ssize_t>(bytes_.size())) {
       const std::string e = io_error(*path, "write");
       ::close(fd_);

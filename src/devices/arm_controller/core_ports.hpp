@@ -41,8 +41,6 @@ class FileGroupMemory final : public controller::GroupMemory {
   FileGroupMemory(const FileGroupMemory&) = delete;
   FileGroupMemory& operator=(const FileGroupMemory&) = delete;
 
-  // The file did not exist before: this memory is blank.
-  bool created() const { return created_; }
   std::uint32_t size() const override { return static_cast<std::uint32_t>(bytes_.size()); }
   std::uint8_t read(std::uint32_t address) override { return bytes_[address]; }
   bool ready() override { return true; }
@@ -53,7 +51,6 @@ class FileGroupMemory final : public controller::GroupMemory {
  private:
   std::vector<std::uint8_t> bytes_;
   int fd_ = -1;
-  bool created_ = false;
 };
 
 // The core's joints from the arm file's arm_controller section: its map's values at

@@ -6,7 +6,6 @@
 #include <fmt/core.h>
 
 #include "devices/arm_controller/core_device.hpp"
-#include "devices/arm_controller/joint_settings.hpp"
 #include "devices/rc_board/group_store.hpp"
 #include "devices/robot_commands/client.hpp"
 
@@ -50,20 +49,18 @@ ControllerSettings default_settings(const ControllerConfig& config) {
 
 }  // namespace
 
-bool has_daemon_state(const fs::path& state_dir) {
+std::optional<DaemonState> find_daemon_state(const fs::path& state_dir, const ControllerConfig& config) {
   std::error_code ec;
-  if (fs::exists(settings_path(state_dir), ec)) return true;
-  for (int g = 0; g < static_cast<int>(rc_board::kGroupCount); ++g)
-    if (fs::exists(state_dir / rc_board::GroupStore::file_name(static_cast<rc_board::GroupNumber>(g)), ec)) return true;
-  return false;
-}
-
-void check_daemon_state(const fs::path& state_dir, const ControllerConfig& config) {
+  bool found = fs::exists(settings_path(state_dir), ec);
+  for (int g = 0; g < static_cast<int>(rc_board::kGroupCount) && !found; ++g)
+    found = fs::exists(state_dir / rc_board::GroupStore::file_name(static_cast<rc_board::GroupNumber>(g)), ec);
+  if (!found) return std::nullopt;
   auto settings = load_settings(state_dir, default_settings(config));
   if (!settings) throw ArmctlError(settings.error());
+  return DaemonState{state_dir, std::move(*settings)};
 }
 
-std::vector<std::string> import_daemon_state(const fs::path& state_dir, const ControllerConfig& config,
+std::vector<std::string> import_daemon_state(const DaemonState& state, const ControllerConfig& config,
                                              CoreDevice& device) {
   std::vector<std::string> log;
   CoreLink link(device);
@@ -78,36 +75,35 @@ std::vector<std::string> import_daemon_state(const fs::path& state_dir, const Co
     return sent.ok() && device.core().stats().ignored_frames == ignored;
   };
 
-  auto settings = load_settings(state_dir, default_settings(config));
-  if (!settings) {
-    log.push_back(fmt::format("{}: not imported: {}", settings_path(state_dir).string(), settings.error().message));
-  } else if (*settings != default_settings(config)) {
+  const ControllerSettings defaults = default_settings(config);
+  const ControllerSettings& settings = state.settings;
+  if (settings != defaults) {
     std::vector<std::uint8_t> offsets;
     int limits = 0;
-    for (const auto& [number, joint] : settings->joints) {
+    for (const auto& [number, joint] : settings.joints) {
       const auto servo = static_cast<std::uint8_t>(number);
-      if (joint.saved_offset != 0) {
-        if (taken(client.adjust_offset(servo, joint.saved_offset))) offsets.push_back(servo);
-        else log.push_back(fmt::format("joint {}: its saved offset {} was not taken", number, joint.saved_offset));
-      }
+      if (joint.saved_offset == 0) continue;
+      if (taken(client.adjust_offset(servo, joint.saved_offset))) offsets.push_back(servo);
+      else log.push_back(fmt::format("joint {}: its saved offset {} was not taken", number, joint.saved_offset));
     }
-    // Limits last for the joint BusServoInfo addressed, so it is the one addressed now.
-    auto ordered = settings->joints;
-    auto addressed = ordered.extract(settings->info_joint);
+    // Each joint's limits that differ from the defaults; the joint BusServoInfo addressed
+    // last (even with its defaults), so that it is the one addressed now.
     auto write_limits = [&](int number, const JointSettings& joint) {
-      if (joint.limits == default_settings(config).joints.at(number).limits && number != settings->info_joint) return;
       if (taken(client.write_bus_servo_info(joint.limits))) ++limits;
       else log.push_back(fmt::format("joint {}: its BusServoInfo limits were not taken", number));
     };
-    for (const auto& [number, joint] : ordered) write_limits(number, joint);
-    if (addressed) write_limits(addressed.key(), addressed.mapped());
+    for (const auto& [number, joint] : settings.joints)
+      if (number != settings.info_joint && joint.limits != defaults.joints.at(number).limits)
+        write_limits(number, joint);
+    if (auto addressed = settings.joints.find(settings.info_joint); addressed != settings.joints.end())
+      write_limits(addressed->first, addressed->second);
     if (!offsets.empty() && !taken(client.save_offsets(offsets)))
       log.push_back("the saved offsets could not be written");
-    log.push_back(fmt::format("imported {}: {} saved offsets, {} joints' limits", settings_path(state_dir).string(),
+    log.push_back(fmt::format("imported {}: {} saved offsets, {} joints' limits", settings_path(state.dir).string(),
                               offsets.size(), limits));
   }
 
-  rc_board::GroupStore old(state_dir);
+  rc_board::GroupStore old(state.dir);
   for (const auto& p : old.problems()) log.push_back("state dir: " + p);
   int groups = 0;
   for (int g = 0; g < static_cast<int>(rc_board::kGroupCount); ++g) {
@@ -124,10 +120,10 @@ std::vector<std::string> import_daemon_state(const fs::path& state_dir, const Co
     }
   }
   if (old.size() > 0)
-    log.push_back(fmt::format("imported {} of {} action groups from {}", groups, old.size(), state_dir.string()));
+    log.push_back(fmt::format("imported {} of {} action groups from {}", groups, old.size(), state.dir.string()));
   device.swap_output(host);
   log.push_back(fmt::format("the state is now {} in {}; the old files are left as they were",
-                            CoreDevice::memory_file, state_dir.string()));
+                            CoreDevice::memory_file, state.dir.string()));
   return log;
 }
 

@@ -6,26 +6,33 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "devices/arm_controller/controller_config.hpp"
+#include "devices/arm_controller/joint_settings.hpp"
 
 namespace armctl::arm_controller {
 
 class CoreDevice;
 
-// True if `state_dir` holds either kind of file.
-bool has_daemon_state(const std::filesystem::path& state_dir);
+// What such a state dir holds, read before the core's memory is created.
+struct DaemonState {
+  std::filesystem::path dir;
+  ControllerSettings settings;  // the defaults if it had no settings file
+};
 
-// Throws ArmctlError (invalid_config, io) if its settings file cannot be read, naming what is
-// wrong: a corrupt file is never taken as the defaults.
-void check_daemon_state(const std::filesystem::path& state_dir, const ControllerConfig& config);
+// The earlier implementation's state in `state_dir`, if it has either kind of file: its
+// settings read now, so that a file it cannot read stops the start with the reason before
+// anything is created (throws ArmctlError: invalid_config, io; a corrupt file is never
+// taken as the defaults). Nothing there: nullopt.
+std::optional<DaemonState> find_daemon_state(const std::filesystem::path& state_dir, const ControllerConfig& config);
 
-// Imports into `device` (just started, its group memory new); returns the log lines: what
-// was imported, and each group or setting that could not be (the reason), e.g. a group
+// Imports `state` into `device` (just started, its group memory new); returns the log lines:
+// what was imported, and each group or setting that could not be (the reason), e.g. a group
 // whose positions the arm file's soft limits no longer allow.
-std::vector<std::string> import_daemon_state(const std::filesystem::path& state_dir, const ControllerConfig& config,
+std::vector<std::string> import_daemon_state(const DaemonState& state, const ControllerConfig& config,
                                              CoreDevice& device);
 
 }  // namespace armctl::arm_controller

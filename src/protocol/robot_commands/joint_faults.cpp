@@ -9,24 +9,32 @@ namespace armctl::rc {
 namespace {
 constexpr std::uint8_t kAnswering = 1, kFollowing = 2, kWordsRead = 4, kBehindRamp = 8;
 constexpr std::uint8_t kKnownFlags = kAnswering | kFollowing | kWordsRead | kBehindRamp;
+
+// Both extensions' requests: CMD and the one servo byte.
+Result<Frame> servo_request(std::uint8_t cmd, const char* name, std::uint8_t servo, const ServoRange& servos) {
+  if (!servos.contains(servo))
+    return Error{ErrorKind::invalid_argument, fmt::format("{}: servo {} is not on this board (allowed {}..{})", name,
+                                                          servo, servos.first, servos.last)};
+  return Frame{cmd, {servo}};
+}
+
+// Both replies: the CMD expected and exactly `bytes` of DATA.
+Status check_reply(const Frame& f, std::uint8_t cmd, std::size_t bytes, const char* name) {
+  if (f.cmd != cmd)
+    return Error{ErrorKind::protocol, fmt::format("{} reply: CMD {} (expected {})", name, f.cmd, cmd)};
+  if (f.data.size() != bytes)
+    return Error{ErrorKind::protocol, fmt::format("{} reply: {} bytes of DATA (expected {}): {}", name,
+                                                  f.data.size(), bytes, to_hex(f.data))};
+  return Ok{};
+}
 }  // namespace
 
 Result<Frame> encode_joint_fault_read(std::uint8_t servo, const ServoRange& servos) {
-  if (!servos.contains(servo))
-    return Error{ErrorKind::invalid_argument,
-                 fmt::format("JointFaultRead: servo {} is not on this board (allowed {}..{})", servo,
-                             servos.first, servos.last)};
-  return Frame{kJointFaultReadCmd, {servo}};
+  return servo_request(kJointFaultReadCmd, "JointFaultRead", servo, servos);
 }
 
 Result<JointFaultReport> decode_joint_fault_reply(const Frame& f) {
-  if (f.cmd != kJointFaultReadCmd)
-    return Error{ErrorKind::protocol, fmt::format("JointFaultRead reply: CMD {} (expected {})", f.cmd,
-                                                  kJointFaultReadCmd)};
-  if (f.data.size() != kJointFaultReplyBytes)
-    return Error{ErrorKind::protocol,
-                 fmt::format("JointFaultRead reply: {} bytes of DATA (expected {}): {}", f.data.size(),
-                             kJointFaultReplyBytes, to_hex(f.data))};
+  if (auto ok = check_reply(f, kJointFaultReadCmd, kJointFaultReplyBytes, "JointFaultRead"); !ok) return ok.error();
   wire::Reader r(f.data);
   JointFaultReport out;
   out.servo = r.u8();
@@ -62,21 +70,12 @@ bool JointFaultClearReply::cleared() const {
 }
 
 Result<Frame> encode_joint_fault_clear(std::uint8_t servo, const ServoRange& servos) {
-  if (!servos.contains(servo))
-    return Error{ErrorKind::invalid_argument,
-                 fmt::format("JointFaultClear: servo {} is not on this board (allowed {}..{})", servo,
-                             servos.first, servos.last)};
-  return Frame{kJointFaultClearCmd, {servo}};
+  return servo_request(kJointFaultClearCmd, "JointFaultClear", servo, servos);
 }
 
 Result<JointFaultClearReply> decode_joint_fault_clear_reply(const Frame& f) {
-  if (f.cmd != kJointFaultClearCmd)
-    return Error{ErrorKind::protocol, fmt::format("JointFaultClear reply: CMD {} (expected {})", f.cmd,
-                                                  kJointFaultClearCmd)};
-  if (f.data.size() != kJointFaultClearReplyBytes)
-    return Error{ErrorKind::protocol,
-                 fmt::format("JointFaultClear reply: {} bytes of DATA (expected {}): {}", f.data.size(),
-                             kJointFaultClearReplyBytes, to_hex(f.data))};
+  if (auto ok = check_reply(f, kJointFaultClearCmd, kJointFaultClearReplyBytes, "JointFaultClear"); !ok)
+    return ok.error();
   wire::Reader r(f.data);
   JointFaultClearReply out;
   out.servo = r.u8();
