@@ -115,11 +115,11 @@ int main() {
   firmware::joint_running = true;
   sei();
 
-  uint32_t fed_at_ms = board::tick_timer_ms();
+  uint8_t fed_at_tick = board::tick_timer_ticks();
   for (;;) {
-    const uint32_t ms = board::tick_timer_ms();
-    if (ms != fed_at_ms) {
-      fed_at_ms = ms;
+    const uint8_t tick = board::tick_timer_ticks();
+    if (tick != fed_at_tick) {
+      fed_at_tick = tick;
       wdt_reset();
     }
     ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {

@@ -6,7 +6,11 @@
 namespace board {
 namespace {
 const uint8_t counts_per_ms = 250;  // 16 MHz / 64 = 250 kHz -> 4 us per count
-volatile uint32_t ms_count = 0;
+// Microseconds at the last tick, kept by the tick itself: reading the clock is then an
+// addition, not a 32-bit multiplication (it is read in every bus interrupt, on the bus's
+// critical path).
+volatile uint32_t us_at_tick = 0;
+volatile uint8_t ticks = 0;
 }  // namespace
 
 void tick_timer_begin() {
@@ -18,24 +22,25 @@ void tick_timer_begin() {
   TIMSK0 = _BV(OCIE0A);
 }
 
-void tick_timer_count_from_isr() { ms_count = ms_count + 1; }
-
-uint32_t tick_timer_ms() {
-  uint32_t ms;
-  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { ms = ms_count; }
-  return ms;
+void tick_timer_count_from_isr() {
+  us_at_tick = us_at_tick + 1000u;
+  ticks = static_cast<uint8_t>(ticks + 1);
 }
 
+uint8_t tick_timer_ticks() { return ticks; }
+
+uint32_t tick_timer_ms() { return tick_timer_us() / 1000u; }
+
 uint32_t tick_timer_us() {
-  uint32_t ms;
+  uint32_t us;
   uint8_t counts;
   ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
-    ms = ms_count;
+    us = us_at_tick;
     counts = TCNT0;
     // A compare match not yet serviced (we are masked): TCNT0 already restarted from 0.
-    if ((TIFR0 & _BV(OCF0A)) && counts < counts_per_ms - 1) ms += 1;
+    if ((TIFR0 & _BV(OCF0A)) && counts < counts_per_ms - 1) us += 1000u;
   }
-  return ms * 1000UL + static_cast<uint32_t>(counts) * 4UL;
+  return us + static_cast<uint16_t>(counts * 4u);
 }
 
 }  // namespace board

@@ -28,11 +28,11 @@ struct FakeEndpoint final : BusEndpoint {
     if (high) to_send.insert(to_send.end(), on_select_high.begin(), on_select_high.end());
   }
   void on_rx_byte(std::uint8_t b, TimePoint t) override { received.emplace_back(b, t); }
-  std::optional<std::uint8_t> next_tx_byte(TimePoint) override {
+  std::optional<TxByte> next_tx_byte(TimePoint t) override {
     if (to_send.empty()) return std::nullopt;
     const std::uint8_t b = to_send.front();
     to_send.pop_front();
-    return b;
+    return TxByte{b, t};
   }
   bool tx_enabled() const override { return driving; }
   TimePoint next_event_time() const override { return TimePoint::max(); }

@@ -7,8 +7,8 @@ namespace armctl::joint_avr {
 namespace {
 
 // While a transaction may be under way the bus looks at the chip this often: the firmware
-// answers a few microseconds after an event, and a byte it starts is put on the wire at
-// most this late (0.6 bit times at 115200 baud).
+// answers a few microseconds after an event, and a byte it starts is found at most this
+// late (0.6 bit times at 115200 baud); it goes on the wire from the cycle it was written.
 constexpr Duration bus_poll_quantum = std::chrono::microseconds(5);
 // After any bus event the chip counts as busy this long (it may still reply).
 constexpr Duration busy_after_bus_event = std::chrono::milliseconds(2);
@@ -99,12 +99,12 @@ void AvrJoint::on_uart_output(std::uint8_t byte, std::uint64_t cycle) {
   last_event_ = LastBusEvent::none;  // only the first byte after an event is a turnaround
 }
 
-std::optional<std::uint8_t> AvrJoint::next_tx_byte(TimePoint t) {
+std::optional<joint_sim::TxByte> AvrJoint::next_tx_byte(TimePoint t) {
   advance_to(t);
   if (tx_queue_.empty()) return std::nullopt;
-  const std::uint8_t b = tx_queue_.front().value;
+  const QueuedByte b = tx_queue_.front();
   tx_queue_.pop_front();
-  return b;
+  return joint_sim::TxByte{b.value, time_at(b.cycle)};
 }
 
 bool AvrJoint::tx_enabled() const {

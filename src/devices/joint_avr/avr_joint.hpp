@@ -8,7 +8,8 @@
 //   chip runs to the end of the step -> H-bridge inputs read from the timer registers and
 //   port pins (OC1B/OC2A duty, D4 enable) -> motor model drive for the next step.
 // Bus: select -> PB4 (PCINT4); a received byte -> UART RXC at its stop-bit end; a byte the
-// firmware writes to UDR0 starts on the wire at that cycle (or when the previous one ends).
+// firmware writes to UDR0 starts on the wire at that cycle (or when the previous one ends),
+// although the bus looks for it only every few microseconds.
 #pragma once
 
 #include <cstdint>
@@ -50,7 +51,7 @@ class AvrJoint final : public joint_sim::BusEndpoint, private joint_sim::Encoder
   void advance_to(TimePoint t) override;
   void on_select(bool high, TimePoint t) override;
   void on_rx_byte(std::uint8_t byte, TimePoint t) override;
-  std::optional<std::uint8_t> next_tx_byte(TimePoint t) override;
+  std::optional<joint_sim::TxByte> next_tx_byte(TimePoint t) override;
   bool tx_enabled() const override;
   TimePoint next_event_time() const override;
 

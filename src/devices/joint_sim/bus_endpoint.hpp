@@ -9,9 +9,11 @@
 //                            cycles) up to t. Called before any event at t.
 //   on_select(high, t)       the joint's select line changed at t.
 //   on_rx_byte(byte, t)      a byte finished arriving on the joint's RX at t (stop bit end).
-//   next_tx_byte(t)          the joint's TX is idle at t: the byte it starts sending now, if
-//                            any. The bus puts it on the wire for 10 bit times; it asks again
-//                            when that byte's stop bit ends.
+//   next_tx_byte(t)          the joint's TX is idle at t: the byte it sends next, if any, and
+//                            when it was handed to the UART (at or before t: an emulated chip
+//                            runs ahead of the bus between polls). The bus puts it on the wire
+//                            from then (not before the previous byte's stop bit) for 10 bit
+//                            times; it asks again when that byte's stop bit ends.
 //   tx_enabled()             the joint drives its TX line (it may be idle-high while doing
 //                            so). Two joints doing this at once is bus contention.
 //   next_event_time()        the earliest time after the last advance_to() at which the
@@ -32,6 +34,12 @@
 
 namespace armctl::joint_sim {
 
+// A byte a joint sends, and when its UART was given it.
+struct TxByte {
+  std::uint8_t value;
+  TimePoint written;
+};
+
 class BusEndpoint {
  public:
   virtual ~BusEndpoint() = default;
@@ -39,7 +47,7 @@ class BusEndpoint {
   virtual void advance_to(TimePoint t) = 0;
   virtual void on_select(bool high, TimePoint t) = 0;
   virtual void on_rx_byte(std::uint8_t byte, TimePoint t) = 0;
-  virtual std::optional<std::uint8_t> next_tx_byte(TimePoint t) = 0;
+  virtual std::optional<TxByte> next_tx_byte(TimePoint t) = 0;
   virtual bool tx_enabled() const = 0;
   virtual TimePoint next_event_time() const = 0;
 };

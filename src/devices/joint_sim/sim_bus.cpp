@@ -143,13 +143,13 @@ void SimBus::poll_joint_tx(int index, TimePoint t) {
   JointLine& line = lines_[static_cast<std::size_t>(index)];
   const int joint = index + 1;
   for (;;) {
-    const std::optional<std::uint8_t> b = line.endpoint->next_tx_byte(t);
+    const std::optional<TxByte> b = line.endpoint->next_tx_byte(t);
     if (!b) return;
     if (faults_.dead(joint)) {
       ++stats_.suppressed_dead;  // its TX is cut: take the bytes, put nothing on the wire
       continue;
     }
-    std::uint8_t value = *b;
+    std::uint8_t value = b->value;
     if (line.bytes_since_select < 2) {
       if (const auto number = faults_.wrong_number(joint)) {
         const auto word = static_cast<std::uint16_t>(*number);
@@ -169,7 +169,12 @@ void SimBus::poll_joint_tx(int index, TimePoint t) {
     w.deliver = !fate.drop;
     w.corrupt = false;
     w.value = static_cast<std::uint8_t>(value ^ fate.flip_mask);
-    w.start = t + fate.delay;
+    // On the wire from when the joint's UART had it (an emulated chip is polled every few
+    // microseconds, its byte was written in between), after the byte before it; one that
+    // would already have ended (an endpoint advanced lazily) starts now.
+    TimePoint begins = std::max(b->written, w.end);
+    if (begins + byte_time_ <= t) begins = t;
+    w.start = begins + fate.delay;
     w.end = w.start + byte_time_;
     const std::string who = "joint " + std::to_string(joint) + " byte " + hex(value);
     if (fate.drop) {

@@ -61,10 +61,10 @@ void SimJoint::on_rx_byte(std::uint8_t byte, TimePoint t) {
   controller_.on_rx_byte(byte, micros(t));
 }
 
-std::optional<std::uint8_t> SimJoint::next_tx_byte(TimePoint t) {
+std::optional<TxByte> SimJoint::next_tx_byte(TimePoint t) {
   advance_to(t);
   std::uint8_t b = 0;
-  if (controller_.next_tx_byte(&b)) return b;
+  if (controller_.next_tx_byte(&b)) return TxByte{b, t};
   return std::nullopt;
 }
 

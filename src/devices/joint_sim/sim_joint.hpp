@@ -25,7 +25,7 @@ class SimJoint final : public BusEndpoint, private EncoderEdgeSink {
   void advance_to(TimePoint t) override;
   void on_select(bool high, TimePoint t) override;
   void on_rx_byte(std::uint8_t byte, TimePoint t) override;
-  std::optional<std::uint8_t> next_tx_byte(TimePoint t) override;
+  std::optional<TxByte> next_tx_byte(TimePoint t) override;
   bool tx_enabled() const override { return controller_.tx_enabled(); }
   TimePoint next_event_time() const override;
 
