@@ -60,15 +60,23 @@ class MegaBus final : public ctl::BusPort {
       PORTA = static_cast<uint8_t>(PORTA | bit);
     } else {
       lower_ = static_cast<uint8_t>(lower_ | bit);  // once the bytes queued so far are out
-      service();
+      mega::bus_notify_tx_done();
     }
   }
   void send_byte(uint8_t byte) override { mega::uart_send(mega::Port::bus, byte); }
-  void service() {
-    if (lower_ != 0 && mega::uart_tx_idle(mega::Port::bus)) {
-      PORTA = static_cast<uint8_t>(PORTA & ~lower_);
-      lower_ = 0;
-    }
+  // The master runs in the bus's receive interrupt (bus_byte_received) too: every call from
+  // the main loop masks interrupts while it runs (a few dozen cycles).
+  uint8_t hold_rx() override {
+    const uint8_t sreg = SREG;
+    cli();
+    return sreg;
+  }
+  void release_rx(uint8_t held) override { SREG = held; }
+  // A select waiting to fall falls once the last byte before it has left: from the
+  // transmitter's TX-complete interrupt (or at once), never waiting for a main-loop pass.
+  void lower_pending() {
+    PORTA = static_cast<uint8_t>(PORTA & ~lower_);
+    lower_ = 0;
   }
 
  private:
@@ -154,6 +162,16 @@ void measure_battery() {}
 
 }  // namespace
 
+// Each joint bus byte goes to the master at once, from UART1's receive interrupt: COMMAND
+// after READY, the select fall after RESPONSE and the next poll's select after STATUS
+// (BusMaster::chain) leave without waiting for a main-loop pass.
+void mega::bus_tx_done() { bus.lower_pending(); }
+
+// The clock is read only for a byte that ends a word (the first byte is only kept).
+void mega::bus_byte_received(uint8_t byte) {
+  core.on_bus_byte(byte, core.next_bus_byte_ends_word() ? board::tick_timer_us() : 0);
+}
+
 int main() {
   board::tick_timer_begin();
   mega::uart_begin(mega::Port::upstream, ARMCTL_RC_BAUD);
@@ -186,15 +204,13 @@ int main() {
     uint32_t now = board::tick_timer_us();
     uint8_t byte;
     bool framed = false;
-    while (!framed && mega::uart_receive(mega::Port::upstream, &byte)) {
+    while (!framed && mega::uart_receive_upstream(&byte)) {
       if (reader.on_byte(byte, now)) {
         core.on_frame(reader.command(), reader.data(), reader.data_length(), now);
         framed = true;
         now = board::tick_timer_us();
       }
     }
-    while (mega::uart_receive(mega::Port::bus, &byte)) core.on_bus_byte(byte, now);
-    bus.service();
     measure_battery();
     // A pass that handled a request (up to ~1,800 cycles for a reply of seven positions)
     // leaves the bus work to the next pass: no pass is longer than a word at 115200.

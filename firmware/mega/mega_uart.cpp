@@ -9,12 +9,12 @@ namespace mega {
 namespace {
 
 struct Channel {
-  board::RingBuffer<uint8_t, 128> rx;
   board::RingBuffer<uint8_t, 128> tx;
   volatile uint8_t errors;
 };
 
 Channel channels[2];
+board::RingBuffer<uint8_t, 128> upstream_rx;  // the bus has none: bus_byte_received()
 
 uint16_t ubrr_for(uint32_t baud) { return static_cast<uint16_t>((F_CPU / 8 + baud / 2) / baud - 1); }
 
@@ -44,7 +44,7 @@ void uart_begin(Port port, uint32_t baud) {
   }
 }
 
-bool uart_receive(Port port, uint8_t* byte) { return channels[uint8_t(port)].rx.pop(byte); }
+bool uart_receive_upstream(uint8_t* byte) { return upstream_rx.pop(byte); }
 
 namespace {
 
@@ -60,9 +60,32 @@ void start_sending(Port port) {
   }
 }
 
+// The UART is idle and nothing waits: the byte goes out now, not from the UDRE interrupt
+// (a bus turnaround shorter by that interrupt's entry). Interrupts masked: the UDRE
+// interrupt may not take a byte in between.
+bool send_now(Port port, uint8_t byte) {
+  bool sent = false;
+  const uint8_t sreg = SREG;
+  cli();
+  if (channels[uint8_t(port)].tx.empty()) {
+    if (port == Port::upstream && (UCSR0A & _BV(UDRE0)) != 0) {
+      UCSR0A = static_cast<uint8_t>(UCSR0A | _BV(TXC0));
+      UDR0 = byte;
+      sent = true;
+    } else if (port == Port::bus && (UCSR1A & _BV(UDRE1)) != 0) {
+      UCSR1A = static_cast<uint8_t>(UCSR1A | _BV(TXC1));
+      UDR1 = byte;
+      sent = true;
+    }
+  }
+  SREG = sreg;
+  return sent;
+}
+
 }  // namespace
 
 bool uart_send(Port port, uint8_t byte) {
+  if (send_now(port, byte)) return true;
   Channel& c = channels[uint8_t(port)];
   if (!c.tx.push(byte)) return false;
   start_sending(port);
@@ -87,14 +110,27 @@ bool uart_tx_idle(Port port) {
 
 uint8_t uart_rx_errors(Port port) { return channels[uint8_t(port)].errors; }
 
+void bus_notify_tx_done() {
+  const uint8_t sreg = SREG;
+  cli();
+  if (uart_tx_idle(Port::bus)) {
+    SREG = sreg;
+    bus_tx_done();
+    return;
+  }
+  UCSR1B = static_cast<uint8_t>(UCSR1B | _BV(TXCIE1));
+  SREG = sreg;
+}
+
 }  // namespace mega
 
 using mega::channels;
+using mega::upstream_rx;
 
 ISR(USART0_RX_vect) {
   const uint8_t status = UCSR0A;
   const uint8_t byte = UDR0;
-  if ((status & (_BV(FE0) | _BV(DOR0))) != 0 || !channels[0].rx.push(byte)) mega::count_error(channels[0]);
+  if ((status & (_BV(FE0) | _BV(DOR0))) != 0 || !mega::upstream_rx.push(byte)) mega::count_error(channels[0]);
 }
 
 ISR(USART0_UDRE_vect) {
@@ -110,7 +146,18 @@ ISR(USART0_UDRE_vect) {
 ISR(USART1_RX_vect) {
   const uint8_t status = UCSR1A;
   const uint8_t byte = UDR1;
-  if ((status & (_BV(FE1) | _BV(DOR1))) != 0 || !channels[1].rx.push(byte)) mega::count_error(channels[1]);
+  if ((status & (_BV(FE1) | _BV(DOR1))) != 0) {
+    mega::count_error(channels[1]);
+    return;
+  }
+  mega::bus_byte_received(byte);
+}
+
+// The shift register ran empty (TXC1, cleared by running this): done if nothing waits.
+ISR(USART1_TX_vect) {
+  if (!channels[1].tx.empty()) return;
+  UCSR1B = static_cast<uint8_t>(UCSR1B & ~_BV(TXCIE1));
+  mega::bus_tx_done();
 }
 
 ISR(USART1_UDRE_vect) {

@@ -16,17 +16,33 @@ const uint8_t margin_words = 2;
 // Quiet bus after a failure (in word times): a late STATUS or READY dies out meanwhile.
 const uint8_t quiet_words = 4;
 
+// Every call but on_rx_byte() holds the received bytes back while it runs (BusPort::hold_rx).
+class Held {
+ public:
+  explicit Held(BusPort* port) : port_(port), saved_(port->hold_rx()) {}
+  ~Held() { port_->release_rx(saved_); }
+
+ private:
+  BusPort* port_;
+  uint8_t saved_;
+};
+
 }  // namespace
 
 void BusMaster::begin(BusPort* port, uint32_t baud) {
   port_ = port;
+  Held held(port_);
   word_us_ = 20000000UL / baud;  // 2 bytes x 10 bits
   state_ = State::idle;
   result_ready_ = false;
+  current_done_ = false;
+  next_queued_ = false;
   quiet_ = false;
 }
 
 bool BusMaster::can_start(uint32_t now_us) const {
+  if (busy()) return false;  // the common case, without a hold
+  Held held(port_);
   return state_ == State::idle && !result_ready_ && (!quiet_ || reached(now_us, quiet_until_us_));
 }
 
@@ -35,20 +51,47 @@ void BusMaster::arm(uint32_t now_us, uint8_t words_out) {
   have_low_ = false;
 }
 
+namespace {
+bool valid_request(uint8_t joint, int16_t command) {
+  return jb::command_shape(command).known && joint >= 1 && joint <= jb::max_joints;
+}
+}  // namespace
+
 bool BusMaster::start(uint8_t joint, int16_t command, int16_t data, uint32_t now_us) {
-  const jb::CommandShape shape = jb::command_shape(command);
-  if (!shape.known || state_ != State::idle || result_ready_ || joint < 1 || joint > jb::max_joints)
-    return false;
+  Held held(port_);
+  if (!valid_request(joint, command) || state_ != State::idle || result_ready_) return false;
+  const Request request = {joint, command, data};
+  begin_transaction(request, now_us, false);
+  return true;
+}
+
+void BusMaster::begin_transaction(const Request& request, uint32_t now_us, bool selected) {
   // Select first: the joint's turnaround to READY runs while the rest is set up (nothing
-  // received is handled before start() returns).
-  port_->set_select(joint, true);
+  // received is handled before this returns).
+  if (!selected) port_->set_select(request.joint, true);
   quiet_ = false;
-  current_ = BusResult{joint, command, data, jb::status_no_answer, 0, false};
+  current_ = BusResult{request.joint, request.command, request.data, jb::status_no_answer, 0, false, false};
+  const jb::CommandShape shape = jb::command_shape(request.command);
   takes_data_ = shape.takes_data;
   returns_value_ = shape.returns_value;
   state_ = State::await_ready;
   arm(now_us, 0);
+}
+
+bool BusMaster::chain(uint8_t joint, int16_t command, int16_t data) {
+  Held held(port_);
+  if (!valid_request(joint, command) || state_ == State::idle || next_queued_) return false;
+  next_ = Request{joint, command, data};
+  next_queued_ = true;
   return true;
+}
+
+bool BusMaster::unchain() {
+  if (!next_queued_) return false;  // the common case, without a hold
+  Held held(port_);
+  const bool was = next_queued_;
+  next_queued_ = false;
+  return was;
 }
 
 bool BusMaster::take_word(uint8_t byte, int16_t* word) {
@@ -92,8 +135,8 @@ void BusMaster::on_rx_byte(uint8_t byte, uint32_t now_us) {
       return;
     case State::await_response:
       if (!take_word(byte, &word)) return;
-      current_.response = word;
       port_->set_select(current_.joint, false);
+      current_.response = word;
       state_ = State::await_status;
       arm(now_us, 0);
       return;
@@ -110,27 +153,49 @@ void BusMaster::on_rx_byte(uint8_t byte, uint32_t now_us) {
 }
 
 void BusMaster::poll(uint32_t now_us) {
+  if (!busy()) return;
+  Held held(port_);
   if (state_ == State::idle || !reached(now_us, deadline_us_)) return;
   finish(jb::status_no_answer, now_us);
 }
 
 void BusMaster::finish(int16_t status, uint32_t now_us) {
+  const bool ok = status == jb::success_status(current_.command);
+  const bool chain_now = ok && next_queued_ && !result_ready_;
+  // The chained joint's select before anything else: its READY turnaround starts now.
+  if (chain_now) port_->set_select(next_.joint, true);
   if (state_ == State::await_ready || state_ == State::await_response)
     port_->set_select(current_.joint, false);
   current_.status = status;
-  current_.ok = status == jb::success_status(current_.command);
+  current_.ok = ok;
   state_ = State::idle;
-  result_ready_ = true;
-  if (!current_.ok) {
+  next_queued_ = false;
+  current_.chained_started = chain_now;
+  if (result_ready_) {
+    current_done_ = true;  // a chained transaction that ended before the result ahead of it was taken
+  } else {
+    result_ = current_;
+    result_ready_ = true;
+  }
+  if (chain_now) {
+    begin_transaction(next_, now_us, true);
+  } else if (!current_.ok) {
     quiet_ = true;
     quiet_until_us_ = now_us + quiet_words * word_us_;
   }
 }
 
 bool BusMaster::take_result(BusResult* result) {
+  if (!result_ready_) return false;  // the common case, without a hold
+  Held held(port_);
   if (!result_ready_) return false;
-  result_ready_ = false;
-  *result = current_;
+  *result = result_;
+  if (current_done_) {
+    result_ = current_;
+    current_done_ = false;
+  } else {
+    result_ready_ = false;
+  }
   return true;
 }
 

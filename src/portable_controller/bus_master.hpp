@@ -20,6 +20,12 @@ class BusPort {
   // has left the wire (the joint abandons a transaction whose select falls early).
   virtual void set_select(uint8_t joint, bool high) = 0;
   virtual void send_byte(uint8_t byte) = 0;  // queued behind earlier bytes
+  // An owner that delivers bytes from an interrupt (the Mega's UART1 receive interrupt)
+  // masks it here: the master brackets every call made from elsewhere with these, so
+  // on_rx_byte() never sees its state half changed. Where bytes are delivered by the
+  // thread that calls everything else (Linux), nothing to do.
+  virtual uint8_t hold_rx() { return 0; }         // returns what release_rx() restores
+  virtual void release_rx(uint8_t /*held*/) {}
  protected:
   ~BusPort() {}
 };
@@ -31,20 +37,37 @@ struct BusResult {
   int16_t status;    // success_status(command) when it worked
   int16_t response;  // valid when the command returns a value and it worked
   bool ok;
+  bool chained_started;  // the transaction chain() queued started as this one ended
 };
 
 class BusMaster {
  public:
   void begin(BusPort* port, uint32_t baud);
 
+  // busy(), chained() and result_pending() read one byte each: no hold needed.
   bool busy() const { return state_ != State::idle; }
   // Idle and the quiet time after a failure has passed.
   bool can_start(uint32_t now_us) const;
   // Starts a transaction; false (nothing done) if busy or the command is not in the table.
   bool start(uint8_t joint, int16_t command, int16_t data, uint32_t now_us);
+  // The transaction to start the moment the one under way ends well (its STATUS is the
+  // success code and its result has room: the one before was taken), from on_rx_byte()
+  // itself: no main-loop pass between the STATUS and the next select edge. It is dropped
+  // if the one under way fails. False (nothing queued) if idle, one is queued already, or
+  // the command is not in the table.
+  bool chain(uint8_t joint, int16_t command, int16_t data);
+  // Drops the queued transaction if it has not started; false if none was queued.
+  bool unchain();
+  bool chained() const { return next_queued_; }
+  bool result_pending() const { return result_ready_; }
+  // The only call that may come from an interrupt (BusPort::hold_rx). `now_us` is read
+  // only when the byte completes a word (next_byte_ends_word()): an interrupt handler may
+  // skip reading its clock for the first byte of a word.
   void on_rx_byte(uint8_t byte, uint32_t now_us);
+  bool next_byte_ends_word() const { return have_low_ && state_ != State::idle; }
   void poll(uint32_t now_us);
-  // The result of the transaction that just ended, once: true and *result filled.
+  // The results of the transactions that ended, oldest first, each once: true and *result
+  // filled (at most two wait: one, and the chained one that ended before it was taken).
   bool take_result(BusResult* result);
 
   uint32_t word_time_us() const { return word_us_; }
@@ -54,15 +77,28 @@ class BusMaster {
 
  private:
   enum class State : uint8_t { idle, await_ready, await_response, await_status };
+  struct Request {
+    uint8_t joint;
+    int16_t command;
+    int16_t data;
+  };
+  // `selected`: its select is raised already.
+  void begin_transaction(const Request& request, uint32_t now_us, bool selected);
   void finish(int16_t status, uint32_t now_us);
   void arm(uint32_t now_us, uint8_t words_out);
   bool take_word(uint8_t byte, int16_t* word);
 
   BusPort* port_ = nullptr;
   uint32_t word_us_ = 0;
-  State state_ = State::idle;
+  // Changed by on_rx_byte() (on the Mega from an interrupt), read alone by busy(),
+  // result_pending() and chained(): volatile.
+  volatile State state_ = State::idle;
   BusResult current_{};
-  bool result_ready_ = false;
+  BusResult result_{};     // the oldest result not taken
+  volatile bool result_ready_ = false;
+  bool current_done_ = false;  // current_ ended too, behind result_
+  Request next_{};
+  volatile bool next_queued_ = false;
   bool returns_value_ = false;
   bool takes_data_ = false;
   uint8_t low_byte_ = 0;

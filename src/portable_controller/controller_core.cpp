@@ -190,8 +190,9 @@ void ControllerCore::poll(uint32_t now_us) {
   last_now_us_ = now_us;
   if (have_groups_) service_groups();
   master_.poll(now_us);
-  BusResult r;
+  BusResult r = BusResult();
   if (master_.take_result(&r)) take_result(r, now_us);
+  chain_poll(now_us);
   // Moves are planned between transactions (see plan_pending). Planning takes long enough
   // on the Mega that `now_us` is stale afterwards: the next transaction starts at the next
   // poll, with a fresh time (else its timeout would run from before the planning).
@@ -320,6 +321,24 @@ void ControllerCore::start_next(uint32_t now_us) {
   master_.start(joints_[poll_index_].number, jb::cmd_get_position, 0, now_us);
 }
 
+bool ControllerCore::may_chain_poll(uint32_t now_us) const {
+  if (count_ == 0 || pending_count_ > 0 || playing_) return false;
+  return op_count_ == 0 ||
+         static_cast<int32_t>(ops_[0].due_us - now_us) > int32_t(2 * master_.transaction_estimate_us());
+}
+
+void ControllerCore::chain_poll(uint32_t now_us) {
+  if (!may_chain_poll(now_us)) {
+    master_.unchain();
+    return;
+  }
+  // Behind a poll the next joint's; behind a command the joint whose poll is due.
+  if (master_.result_pending() || !master_.busy() || master_.chained()) return;
+  uint8_t index = poll_index_;
+  if (!inflight_is_op_ && ++index == count_) index = 0;
+  master_.chain(joints_[index].number, jb::cmd_get_position, 0);
+}
+
 void ControllerCore::note_model(uint8_t index, uint8_t kind, int16_t value, uint32_t at_us) {
   JointState& s = state_[index];
   if (!s.model_known) return;
@@ -439,6 +458,15 @@ void ControllerCore::note_fault(uint8_t index, int16_t status) {
 }
 
 void ControllerCore::take_result(const BusResult& r, uint32_t now_us) {
+  handle_result(r, now_us);
+  if (!r.chained_started) return;
+  // The chained poll (chain_poll) is the transaction under way now.
+  commands_in_row_ = 0;
+  inflight_is_op_ = false;
+  ++stats_.polls;
+}
+
+void ControllerCore::handle_result(const BusResult& r, uint32_t now_us) {
   const int8_t found = index_of(r.joint);
   if (found < 0) return;
   const uint8_t index = static_cast<uint8_t>(found);

@@ -204,6 +204,8 @@ class ControllerCore {
 
   void on_frame(uint8_t command, const uint8_t* data, uint8_t length, uint32_t now_us);
   void on_bus_byte(uint8_t byte, uint32_t now_us) { master_.on_rx_byte(byte, now_us); }
+  // Whether on_bus_byte() will read its time (BusMaster::next_byte_ends_word).
+  bool next_bus_byte_ends_word() const { return master_.next_byte_ends_word(); }
   // Bus work: ends a timed-out transaction, takes a result, starts the next transaction.
   void poll(uint32_t now_us);
 
@@ -262,7 +264,14 @@ class ControllerCore {
   // either due time, keeping its place in the queue; else a new one is queued.
   bool upsert(uint32_t due_us, uint8_t index, OpKind kind, int16_t value);
   void start_next(uint32_t now_us);
+  // The next poll queued behind the transaction under way (BusMaster::chain), so that it
+  // starts from the STATUS itself (on the Mega: from the receive interrupt); only while
+  // the bus has nothing else to do for a while: no plan or group action waiting, no
+  // command due within two transactions. A queued one that no longer qualifies is dropped.
+  bool may_chain_poll(uint32_t now_us) const;
+  void chain_poll(uint32_t now_us);
   void take_result(const BusResult& r, uint32_t now_us);
+  void handle_result(const BusResult& r, uint32_t now_us);
   // The last poll's reading converted and checked (after the next transaction started).
   void after_poll(uint32_t now_us);
   void note_fault(uint8_t index, int16_t status);

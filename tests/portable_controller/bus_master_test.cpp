@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "fake_joints.hpp"
 
 namespace armctl::controller::testing {
@@ -82,4 +84,97 @@ TEST(BusMaster, RefusesUnknownCommandsAndJoints) {
 }
 
 }  // namespace
+
+// Pumps the wire until `results` results were taken (or the bus gave up).
+std::vector<BusResult> take_results(MasterRig& rig, std::size_t results) {
+  std::vector<BusResult> out;
+  for (int i = 0; i < 100000 && out.size() < results; ++i) {
+    rig.joints.pump([&](std::uint8_t b) { rig.master.on_rx_byte(b, rig.now); });
+    BusResult r{};
+    while (rig.master.take_result(&r)) out.push_back(r);
+    rig.now += 100;
+    rig.master.poll(rig.now);
+  }
+  return out;
+}
+
+TEST(BusMaster, AChainedTransactionStartsFromTheStatusItself) {
+  MasterRig rig;
+  rig.joints.position[1] = 11;
+  rig.joints.position[2] = 22;
+  ASSERT_TRUE(rig.master.start(1, jb::cmd_get_position, 0, rig.now));
+  ASSERT_TRUE(rig.master.chain(2, jb::cmd_get_position, 0));
+  EXPECT_TRUE(rig.master.chained());
+  // Only bytes: no poll(), no start() between the two transactions.
+  rig.joints.pump([&](std::uint8_t b) { rig.master.on_rx_byte(b, rig.now); });
+  ASSERT_EQ(rig.joints.log.size(), 2u) << "joint 2's COMMAND went out behind joint 1's STATUS";
+  EXPECT_EQ(rig.joints.log[1].joint, 2);
+  const std::vector<BusResult> results = take_results(rig, 2);
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_EQ(results[0].joint, 1);
+  EXPECT_EQ(results[0].response, 11);
+  EXPECT_TRUE(results[0].chained_started);
+  EXPECT_EQ(results[1].joint, 2);
+  EXPECT_EQ(results[1].response, 22);
+  EXPECT_TRUE(results[1].ok);
+  EXPECT_FALSE(results[1].chained_started);
+  EXPECT_FALSE(rig.master.busy());
+}
+
+TEST(BusMaster, AChainIsDroppedWhenTheTransactionAheadFails) {
+  MasterRig rig;
+  rig.joints.dead[5] = true;
+  ASSERT_TRUE(rig.master.start(5, jb::cmd_get_position, 0, rig.now));
+  ASSERT_TRUE(rig.master.chain(1, jb::cmd_get_position, 0));
+  const std::vector<BusResult> results = take_results(rig, 1);
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_EQ(results[0].status, jb::status_no_answer);
+  EXPECT_FALSE(results[0].chained_started);
+  EXPECT_FALSE(rig.master.chained());
+  EXPECT_FALSE(rig.master.busy()) << "a failed transaction leaves the bus quiet, not chained";
+  EXPECT_TRUE(rig.joints.log.empty());
+}
+
+TEST(BusMaster, AChainWaitsUntilTheResultAheadIsTakenAndResultsComeInOrder) {
+  MasterRig rig;
+  ASSERT_TRUE(rig.master.start(1, jb::cmd_get_position, 0, rig.now));
+  ASSERT_TRUE(rig.master.chain(2, jb::cmd_get_position, 0));
+  // Nobody takes results: joint 2's transaction ends too, behind joint 1's result.
+  for (int i = 0; i < 10; ++i) rig.joints.pump([&](std::uint8_t b) { rig.master.on_rx_byte(b, rig.now); });
+  EXPECT_FALSE(rig.master.busy());
+  // A chain queued now may not start: two results are waiting already.
+  ASSERT_FALSE(rig.master.chain(3, jb::cmd_get_position, 0)) << "idle: nothing to chain behind";
+  BusResult first{}, second{}, none{};
+  ASSERT_TRUE(rig.master.take_result(&first));
+  ASSERT_TRUE(rig.master.take_result(&second));
+  EXPECT_FALSE(rig.master.take_result(&none));
+  EXPECT_EQ(first.joint, 1);
+  EXPECT_EQ(second.joint, 2);
+  EXPECT_TRUE(rig.master.can_start(rig.now));
+}
+
+TEST(BusMaster, UnchainDropsAQueuedTransaction) {
+  MasterRig rig;
+  ASSERT_TRUE(rig.master.start(1, jb::cmd_get_position, 0, rig.now));
+  EXPECT_FALSE(rig.master.unchain());
+  ASSERT_TRUE(rig.master.chain(2, jb::cmd_get_position, 0));
+  EXPECT_FALSE(rig.master.chain(3, jb::cmd_get_position, 0)) << "one queued at most";
+  EXPECT_TRUE(rig.master.unchain());
+  const std::vector<BusResult> results = take_results(rig, 1);
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_FALSE(results[0].chained_started);
+  EXPECT_EQ(rig.joints.log.size(), 1u);
+  EXPECT_FALSE(rig.master.busy());
+}
+
+TEST(BusMaster, ChainRefusesUnknownCommandsJointsAndAnIdleBus) {
+  MasterRig rig;
+  EXPECT_FALSE(rig.master.chain(1, jb::cmd_get_position, 0)) << "idle";
+  ASSERT_TRUE(rig.master.start(1, jb::cmd_get_position, 0, rig.now));
+  EXPECT_FALSE(rig.master.chain(1, 99, 0));
+  EXPECT_FALSE(rig.master.chain(0, jb::cmd_get_position, 0));
+  EXPECT_FALSE(rig.master.chain(8, jb::cmd_get_position, 0));
+  EXPECT_FALSE(rig.master.chained());
+}
+
 }  // namespace armctl::controller::testing
