@@ -76,6 +76,10 @@ __attribute__((noinline)) bool handle_next_bus_event() {
 // with interrupts enabled (OCIE0A is off exactly then: the sharing rules above); the main
 // loop handles what queued meanwhile, in order, and until it has, later events queue
 // behind them.
+bool board::bus_byte_ahead(bool select_high, uint8_t* byte) {
+  return firmware::joint.transaction().first_byte_on_select(select_high, byte);
+}
+
 bool board::bus_events_handled_in_isr() { return (TIMSK0 & _BV(OCIE0A)) != 0; }
 
 void board::bus_events_queued_from_isr() {

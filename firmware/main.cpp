@@ -110,7 +110,6 @@ int main() {
     joint.init_encoder((levels & 1) != 0, (levels & 2) != 0);
   }
   board::uart_begin(config.baud);
-  board::uart_ready_byte = config.joint_number;  // READY = joint number 1..7: low byte
   board::select_line_begin();
   firmware::joint_running = true;
   sei();

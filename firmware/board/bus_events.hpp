@@ -17,6 +17,9 @@ void bus_event_push_from_isr(BusEvent event);
 // Defined by the firmware: the ISRs call it after queuing events (interrupts off), so that
 // it may handle them at once.
 void bus_events_queued_from_isr();
+// Defined by the firmware (joint_isrs.cpp): the first byte of the word the controller will
+// answer a select edge with, if it answers one (board/uart.hpp, uart_send_ahead).
+bool bus_byte_ahead(bool select_high, uint8_t* byte);
 // Defined by the firmware: whether bus_events_queued_from_isr() hands events on at once.
 bool bus_events_handled_in_isr();
 // Main loop: the next event, if any.

@@ -36,9 +36,11 @@ ISR(PCINT0_vect) {
   // not run yet (another ISR was busy), this ISR, which has the higher priority, would
   // queue the select edge before that byte and the joint would abandon the transaction.
   board::uart_take_received_from_isr();
-  // READY's first byte before anything else: the controller is handed this edge in this
-  // interrupt (board/uart.hpp, uart_send_ready_ahead).
-  if (high && !board::bus_events_pending() && board::bus_events_handled_in_isr()) board::uart_send_ready_ahead();
+  // READY's or STATUS's first byte before anything else: the controller is handed this
+  // edge in this interrupt (board/uart.hpp, uart_send_ahead).
+  uint8_t ahead;
+  if (!board::bus_events_pending() && board::bus_events_handled_in_isr() && board::bus_byte_ahead(high, &ahead))
+    board::uart_send_ahead(ahead);
   board::bus_event_push_from_isr(high ? board::select_high_event : board::select_low_event);
   board::bus_events_queued_from_isr();
 }

@@ -15,9 +15,9 @@ RingBuffer<uint8_t, 8> tx_ring;
 // The transmitter is to be turned off as soon as the ring has been handed to the UART.
 volatile bool release_wanted = false;
 volatile uint8_t rx_errors = 0;
-// READY's first byte went out from the select interrupt (uart_send_ready_ahead): the
+// A word's first byte went out from the select interrupt (uart_send_ahead): the
 // controller's copy of it, the next byte queued, is not sent again.
-bool ready_sent_ahead = false;
+bool byte_sent_ahead = false;
 
 // Turning TXEN0 off takes effect only once the data register and the shift register hold
 // nothing more to send (datasheet, "Disabling the Transmitter"): the UART itself lets go
@@ -74,19 +74,17 @@ bool uart_release_transmitter_when_idle() {
 
 bool uart_tx_has_room() { return !tx_ring.full(); }
 
-uint8_t uart_ready_byte = 0;
-
-void uart_send_ready_ahead() {
-  if (uart_ready_byte == 0 || !tx_ring.empty()) return;
-  uart_enable_transmitter();  // as the controller's READY would, a few microseconds later
-  if (!(UCSR0A & _BV(UDRE0))) return;  // still sending: READY goes the usual way
-  UDR0 = uart_ready_byte;
-  ready_sent_ahead = true;
+void uart_send_ahead(uint8_t byte) {
+  if (!tx_ring.empty()) return;
+  uart_enable_transmitter();  // as the controller's word would, a few microseconds later
+  if (!(UCSR0A & _BV(UDRE0))) return;  // still sending: the word goes the usual way
+  UDR0 = byte;
+  byte_sent_ahead = true;
 }
 
 bool uart_queue_tx(uint8_t byte) {
-  if (ready_sent_ahead) {
-    ready_sent_ahead = false;
+  if (byte_sent_ahead) {
+    byte_sent_ahead = false;
     return true;
   }
   // Nothing queued and the data register empty: straight to the hardware, without waiting

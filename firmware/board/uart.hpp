@@ -24,13 +24,12 @@ bool uart_tx_has_room();
 bool uart_queue_tx(uint8_t byte);  // false if the TX ring is full (nothing queued)
 void uart_discard_tx();            // drops queued bytes not yet handed to the hardware
 
-// READY's low byte (the joint number; 0: none), and, from the select interrupt as select
-// rises, that byte written to the UART at once if it is idle: the controller, handed the
-// rising edge right after (in the same interrupt), queues READY, and its first byte is
-// then left out. Only when that edge is handled at once (bus_events_handled_in_isr and
-// nothing queued before it).
-extern uint8_t uart_ready_byte;
-void uart_send_ready_ahead();
+// From the select interrupt: the first byte of the word the controller answers this edge
+// with (READY as select rises, STATUS as it falls: bus_byte_ahead), written to the UART at
+// once if it is idle. The controller, handed the edge right after (in the same interrupt),
+// queues that word, and its first byte is then left out. Only when the edge is handled at
+// once (bus_events_handled_in_isr and nothing queued before it).
+void uart_send_ahead(uint8_t byte);
 
 // From another ISR: moves a byte the UART has received but the RX ISR has not yet taken
 // into the bus event queue, so that it is queued before whatever that ISR queues next.

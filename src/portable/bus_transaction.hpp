@@ -62,6 +62,14 @@ class BusTransaction {
   void complete(int16_t status, bool has_response, int16_t response);
 
   State state() const { return state_; }
+  // Whether the select edge `high` (a change of level) will be answered, and the first
+  // byte of the answer: READY as select rises; STATUS as it falls once the command is
+  // complete and its RESPONSE taken. A board may send that byte ahead, from its select
+  // interrupt (firmware/board/uart.hpp).
+  bool first_byte_on_select(bool high, uint8_t* byte) const {
+    *byte = static_cast<uint8_t>(high ? ready_word_ : status_);
+    return high || (state_ == State::done && tx_count_ == 0 && !legacy_master_);
+  }
   bool selected() const { return selected_; }
   // Silence allowed while waiting for COMMAND/DATA bytes and for STATUS to be taken:
   // 4 word times (80 bit times) + 2 ms for the master's turnaround.

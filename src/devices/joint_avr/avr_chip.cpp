@@ -271,6 +271,22 @@ void AvrChip::set_held_in_reset(bool held) {
   reapply_pins();
 }
 
+void AvrChip::model_uart_data_register() {
+  // A real UART moves a byte written to UDR into its shift register at once when that is
+  // empty, and flags UDRE again: the data register is free while one byte shifts out, so
+  // firmware can hand over the next byte and it follows back to back. simavr 1.6 keeps
+  // UDRE clear until every byte written has gone, which left a gap of the UDRE interrupt's
+  // latency after the first byte of every word on the bus. UDRE is flagged (and its
+  // interrupt, when enabled, made pending) whenever fewer than two bytes are in the UART.
+  for (int u = 0; u < model_.uart_count; ++u) {
+    avr_uart_t* uart = uarts_[static_cast<std::size_t>(u)];
+    if (uart->tx_cnt >= 2 || !avr_regbit_get(avr_, uart->txen)) continue;
+    const bool raised = avr_regbit_get(avr_, uart->udrc.raised) != 0;
+    if (raised && (uart->udrc.pending || !avr_regbit_get(avr_, uart->udrc.enable))) continue;
+    avr_raise_interrupt(avr_, &uart->udrc);
+  }
+}
+
 void AvrChip::correct_uart_frame_time() {
   // simavr 1.6 times a frame as start + data + parity + stop bits even when parity is off:
   // 11 bit times for 8N1 instead of 10. Real UDRE/TXC timing matters here (the firmware
@@ -302,6 +318,7 @@ bool AvrChip::run_to_cycle(std::uint64_t target) {
   avr_cycle_timer_register(avr_, target - avr_->cycle, stop_here, this);
   while (avr_->cycle < target) {
     correct_uart_frame_time();
+    model_uart_data_register();
     const int state = avr_run(avr_);
     if (state == cpu_Done || state == cpu_Crashed || state == cpu_Stopped) {
       avr_cycle_timer_cancel(avr_, stop_here, this);

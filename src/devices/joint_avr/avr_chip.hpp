@@ -108,6 +108,7 @@ class AvrChip {
   void reapply_pins();
   void apply_reset_values();
   void correct_uart_frame_time();
+  void model_uart_data_register();
   bool output_pin(std::uint16_t ddr, std::uint16_t port, int bit) const;
 
   ChipModel model_;
