@@ -17,9 +17,9 @@ extern volatile uint8_t encoder_edges_lost;
 // Hands the queued levels to the controller. Interrupts must be masked.
 void apply_encoder_edges();
 // Moves reply bytes to the UART while the controller allows this joint to drive TX (a
-// byte taken from the controller is always sent in full: a word is never cut in half);
-// whether it may. Interrupts must be masked.
-bool service_tx();
+// byte taken from the controller is always sent in full: a word is never cut in half), and
+// releases TX once it no longer does. Interrupts must be masked.
+void service_tx();
 // Hands the oldest queued bus event (a byte or a select edge) to the controller and moves
 // its reply bytes to the UART; false if none was queued. Interrupts must be masked, and the
 // control computation must not be running (the joint controller's sharing rules).

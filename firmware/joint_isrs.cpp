@@ -41,14 +41,17 @@ void apply_encoder_edges() {
   }
 }
 
-bool service_tx() {
-  const bool enabled = joint.tx_enabled();
-  if (enabled) {
+void service_tx() {
+  if (joint.tx_enabled()) {
     board::uart_enable_transmitter();
     uint8_t byte;
     while (board::uart_tx_has_room() && joint.next_tx_byte(&byte)) board::uart_queue_tx(byte);
   }
-  return enabled;
+  // TX released as soon as the controller lets go of it (its STATUS handed to the UART),
+  // from the interrupt that handed it over too: the main loop may have gone to sleep just
+  // before, and with both STATUS bytes written straight to the UART no later interrupt
+  // wakes it (the next joint's READY then met this joint's TX still driven).
+  if (!joint.tx_enabled()) board::uart_release_transmitter_when_idle();
 }
 
 // Out of line: one copy for the ISRs and the main loop (flash, docs/firmware.md "Budgets").

@@ -73,12 +73,10 @@ void sleep_until_interrupt() {
 // Turns the transmitter off (TX pin high-Z) once this joint may no longer drive TX and the
 // last byte has left. Reply bytes themselves are moved by firmware::handle_next_bus_event.
 void release_tx_when_done() {
-  bool enabled;
   ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
     joint.poll(board::tick_timer_us());
-    enabled = firmware::service_tx();
+    firmware::service_tx();
   }
-  if (!enabled) board::uart_release_transmitter_when_idle();
 }
 
 }  // namespace

@@ -154,5 +154,30 @@ TEST(HilFirmware, StepMoveSettlesLikeThePortableSimulation) {
   }
 }
 
+// Back-to-back transactions to moving joints at 115200: each joint lets go of TX as soon as
+// its STATUS is in its UART, from the interrupt that put it there. (Releasing it only from
+// the main loop left TX driven whenever that loop had gone to sleep just before the select
+// fell: both STATUS bytes went straight to the UART and nothing woke it before the next
+// joint's READY.)
+TEST(HilFirmware, BackToBackTransactionsNeverMeetATransmitterStillDriven) {
+  joint_sim::ArmConfig config = hil_arm_config(115200);
+  joint_avr::AvrArm arm(config);
+  arm.advance(milliseconds(20));
+  BusMaster master(arm.link());
+  int failures = 0;
+  for (int round = 0; round < 6; ++round) {
+    for (int j = 1; j <= 7; ++j) failures += master.drive_to(j, round % 2 == 0 ? 3000 : -1000).ok() ? 0 : 1;
+    for (int step = 0; step < 40; ++step) {
+      for (int j = 1; j <= 7; ++j) {
+        failures += master.ping(j, static_cast<std::int16_t>(step * 7 + j)).ok() ? 0 : 1;
+        failures += master.get_position(j).ok() ? 0 : 1;
+      }
+      arm.advance(milliseconds(10));
+    }
+  }
+  EXPECT_EQ(failures, 0);
+  EXPECT_EQ(arm.bus().stats().contentions, 0u);
+}
+
 }  // namespace
 }  // namespace armctl::hil
