@@ -65,9 +65,17 @@ __attribute__((noinline)) bool handle_next_bus_event() {
   } else if (event == board::select_low_event) {
     joint.on_select(false, now);
   } else {
+    // A get_position's RESPONSE starts before the command is executed (the same position:
+    // no edge is applied in between).
+    uint8_t ahead;
+    if (joint.response_ahead(static_cast<uint8_t>(event), &ahead)) board::uart_send_ahead(ahead);
     joint.on_rx_byte(static_cast<uint8_t>(event), now);
   }
   service_tx();
+  // A byte sent ahead whose word the controller did not queue after all (a command word
+  // completed after the timeout: abandoned) leaves one stray byte on the wire, never a
+  // later byte of ours left out.
+  board::uart_forget_ahead();
   return true;
 }
 

@@ -36,11 +36,12 @@ ISR(PCINT0_vect) {
   // not run yet (another ISR was busy), this ISR, which has the higher priority, would
   // queue the select edge before that byte and the joint would abandon the transaction.
   board::uart_take_received_from_isr();
-  // READY's or STATUS's first byte before anything else: the controller is handed this
-  // edge in this interrupt (board/uart.hpp, uart_send_ahead).
+  // READY's or STATUS's first byte before anything else (board/uart.hpp, uart_send_ahead):
+  // the controller is handed this edge in this interrupt, or, while the control tick
+  // computes, by the main loop right after it (the byte is known already: the tick does not
+  // touch the bus transaction, and nothing is queued before this edge).
   uint8_t ahead;
-  if (!board::bus_events_pending() && board::bus_events_handled_in_isr() && board::bus_byte_ahead(high, &ahead))
-    board::uart_send_ahead(ahead);
+  if (!board::bus_events_pending() && board::bus_byte_ahead(high, &ahead)) board::uart_send_ahead(ahead);
   board::bus_event_push_from_isr(high ? board::select_high_event : board::select_low_event);
   board::bus_events_queued_from_isr();
 }

@@ -74,7 +74,9 @@ bool uart_release_transmitter_when_idle() {
 
 bool uart_tx_has_room() { return !tx_ring.full(); }
 
-void uart_send_ahead(uint8_t byte) {
+void uart_forget_ahead() { byte_sent_ahead = false; }
+
+__attribute__((noinline)) void uart_send_ahead(uint8_t byte) {
   if (!tx_ring.empty()) return;
   uart_enable_transmitter();  // as the controller's word would, a few microseconds later
   if (!(UCSR0A & _BV(UDRE0))) return;  // still sending: the word goes the usual way

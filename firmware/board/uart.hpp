@@ -30,6 +30,9 @@ void uart_discard_tx();            // drops queued bytes not yet handed to the h
 // queues that word, and its first byte is then left out. Only when the edge is handled at
 // once (bus_events_handled_in_isr and nothing queued before it).
 void uart_send_ahead(uint8_t byte);
+// After the controller has queued its answer to the edge or byte: a byte sent ahead that it
+// did not queue is not looked for any more.
+void uart_forget_ahead();
 
 // From another ISR: moves a byte the UART has received but the RX ISR has not yet taken
 // into the bus event queue, so that it is queued before whatever that ISR queues next.

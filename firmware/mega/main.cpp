@@ -72,6 +72,7 @@ class MegaBus final : public ctl::BusPort {
     return sreg;
   }
   void release_rx(uint8_t held) override { SREG = held; }
+  uint32_t now_us() override { return board::tick_timer_us(); }
   // A select waiting to fall falls once the last byte before it has left: from the
   // transmitter's TX-complete interrupt (or at once), never waiting for a main-loop pass.
   void lower_pending() {
@@ -167,10 +168,8 @@ void measure_battery() {}
 // (BusMaster::chain) leave without waiting for a main-loop pass.
 void mega::bus_tx_done() { bus.lower_pending(); }
 
-// The clock is read only for a byte that ends a word (the first byte is only kept).
-void mega::bus_byte_received(uint8_t byte) {
-  core.on_bus_byte(byte, core.next_bus_byte_ends_word() ? board::tick_timer_us() : 0);
-}
+// The clock is read by the master only after the byte's action (MegaBus::now_us).
+void mega::bus_byte_received(uint8_t byte) { core.on_bus_byte(byte); }
 
 int main() {
   board::tick_timer_begin();

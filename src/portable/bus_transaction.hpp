@@ -28,6 +28,8 @@
 
 #include <stdint.h>
 
+#include "portable/joint_bus_codes.hpp"
+
 namespace armctl {
 namespace joint_bus {
 
@@ -62,6 +64,12 @@ class BusTransaction {
   void complete(int16_t status, bool has_response, int16_t response);
 
   State state() const { return state_; }
+  // Whether `byte` completes a COMMAND word equal to `command` while selected (its owner
+  // may then answer ahead, see first_byte_on_select; unless the master paused longer than
+  // the timeout within that word, when on_rx_byte() abandons the transaction instead).
+  bool completes_command(uint8_t byte, int16_t command) const {
+    return state_ == State::await_command && have_low_byte_ && selected_ && word_from(low_byte_, byte) == command;
+  }
   // Whether the select edge `high` (a change of level) will be answered, and the first
   // byte of the answer: READY as select rises; STATUS as it falls once the command is
   // complete and its RESPONSE taken. A board may send that byte ahead, from its select

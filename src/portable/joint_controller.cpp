@@ -97,6 +97,9 @@ int16_t JointController::diagnostic(int16_t index) const {
   return static_cast<int16_t>(word);
 }
 
+// Out of line: get_position and the RESPONSE a board sends ahead share it (flash).
+__attribute__((noinline)) int16_t JointController::position() const { return saturate_to_int16(decoder_.count()); }
+
 CommandResult JointController::execute(int16_t command, int16_t data) {
   // Every branch validates first and changes state last, so a rejected command leaves
   // every value as it was (spec: state changes are atomic).
@@ -113,7 +116,7 @@ CommandResult JointController::execute(int16_t command, int16_t data) {
       if (data != 0 && data != 1) return kBadData;
       loop_.set_enabled(data == 1, count);
       return success(command);
-    case cmd_get_position: return answer(command, saturate_to_int16(count));
+    case cmd_get_position: return answer(command, position());
     case cmd_get_target: return answer(command, loop_.target());
     case cmd_get_joint_number: return answer(command, static_cast<int16_t>(joint_number_));
     case cmd_drive_dist:

@@ -90,6 +90,13 @@ class JointController {
     if (configured_) transaction_.on_select(high, now_us);
   }
   void on_rx_byte(uint8_t byte, uint32_t now_us);
+  // Whether on_rx_byte(byte, ...) completes a get_position, and *first the first byte of
+  // its RESPONSE (the position now): a board may send it ahead, before the command is
+  // executed (firmware/board/uart.hpp). Encoder edges must not be applied in between.
+  bool response_ahead(uint8_t byte, uint8_t* first) const {
+    *first = word_low(position());
+    return transaction_.completes_command(byte, cmd_get_position);
+  }
   void poll(uint32_t now_us) { transaction_.poll(now_us); }  // timeouts; call often
   bool next_tx_byte(uint8_t* byte) { return transaction_.next_tx_byte(byte); }
   bool tx_enabled() const { return transaction_.tx_enabled(); }
@@ -134,7 +141,7 @@ class JointController {
   // Read-only views for tests, simulator and firmware (no side effects).
   bool configured() const { return configured_; }
   uint8_t joint_number() const { return joint_number_; }
-  int16_t position() const { return saturate_to_int16(decoder_.count()); }
+  int16_t position() const;  // get_position's answer
   int32_t encoder_count() const { return decoder_.count(); }
   uint16_t encoder_errors() const { return decoder_.errors(); }
   int16_t target() const { return loop_.target(); }

@@ -47,7 +47,7 @@ bool BusMaster::can_start(uint32_t now_us) const {
 }
 
 void BusMaster::arm(uint32_t now_us, uint8_t words_out) {
-  deadline_us_ = now_us + (words_out + 1u + margin_words) * word_us_ + turnaround_us;
+  deadline_us_ = time(now_us) + (words_out + 1u + margin_words) * word_us_ + turnaround_us;
   have_low_ = false;
 }
 
@@ -103,6 +103,13 @@ bool BusMaster::take_word(uint8_t byte, int16_t* word) {
   have_low_ = false;
   *word = jb::word_from(low_byte_, byte);
   return true;
+}
+
+void BusMaster::on_rx_byte(uint8_t byte) {
+  // Every use of the time below comes after the port calls the byte sets off.
+  time_from_port_ = true;
+  on_rx_byte(byte, 0);
+  time_from_port_ = false;
 }
 
 void BusMaster::on_rx_byte(uint8_t byte, uint32_t now_us) {
@@ -181,7 +188,7 @@ void BusMaster::finish(int16_t status, uint32_t now_us) {
     begin_transaction(next_, now_us, true);
   } else if (!current_.ok) {
     quiet_ = true;
-    quiet_until_us_ = now_us + quiet_words * word_us_;
+    quiet_until_us_ = time(now_us) + quiet_words * word_us_;
   }
 }
 

@@ -26,6 +26,8 @@ class BusPort {
   // thread that calls everything else (Linux), nothing to do.
   virtual uint8_t hold_rx() { return 0; }         // returns what release_rx() restores
   virtual void release_rx(uint8_t /*held*/) {}
+  // The time, for an owner that delivers bytes with BusMaster::on_rx_byte(byte) (no time).
+  virtual uint32_t now_us() { return 0; }
  protected:
   ~BusPort() {}
 };
@@ -60,11 +62,11 @@ class BusMaster {
   bool unchain();
   bool chained() const { return next_queued_; }
   bool result_pending() const { return result_ready_; }
-  // The only call that may come from an interrupt (BusPort::hold_rx). `now_us` is read
-  // only when the byte completes a word (next_byte_ends_word()): an interrupt handler may
-  // skip reading its clock for the first byte of a word.
+  // The only calls that may come from an interrupt (BusPort::hold_rx). The second reads the
+  // time from the port (BusPort::now_us), and only after what the byte sets off (COMMAND
+  // sent, select lowered or raised): an interrupt handler's turnaround without its clock.
   void on_rx_byte(uint8_t byte, uint32_t now_us);
-  bool next_byte_ends_word() const { return have_low_ && state_ != State::idle; }
+  void on_rx_byte(uint8_t byte);
   void poll(uint32_t now_us);
   // The results of the transactions that ended, oldest first, each once: true and *result
   // filled (at most two wait: one, and the chained one that ended before it was taken).
@@ -87,6 +89,8 @@ class BusMaster {
   void finish(int16_t status, uint32_t now_us);
   void arm(uint32_t now_us, uint8_t words_out);
   bool take_word(uint8_t byte, int16_t* word);
+  // `given`, or the port's time when the byte came without one (read when first needed).
+  uint32_t time(uint32_t given) const { return time_from_port_ ? port_->now_us() : given; }
 
   BusPort* port_ = nullptr;
   uint32_t word_us_ = 0;
@@ -99,6 +103,7 @@ class BusMaster {
   bool current_done_ = false;  // current_ ended too, behind result_
   Request next_{};
   volatile bool next_queued_ = false;
+  bool time_from_port_ = false;  // within on_rx_byte(byte)
   bool returns_value_ = false;
   bool takes_data_ = false;
   uint8_t low_byte_ = 0;

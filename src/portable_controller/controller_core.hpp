@@ -204,8 +204,8 @@ class ControllerCore {
 
   void on_frame(uint8_t command, const uint8_t* data, uint8_t length, uint32_t now_us);
   void on_bus_byte(uint8_t byte, uint32_t now_us) { master_.on_rx_byte(byte, now_us); }
-  // Whether on_bus_byte() will read its time (BusMaster::next_byte_ends_word).
-  bool next_bus_byte_ends_word() const { return master_.next_byte_ends_word(); }
+  // From an interrupt handler: the time comes from the bus port (BusMaster::on_rx_byte).
+  void on_bus_byte(uint8_t byte) { master_.on_rx_byte(byte); }
   // Bus work: ends a timed-out transaction, takes a result, starts the next transaction.
   void poll(uint32_t now_us);
 

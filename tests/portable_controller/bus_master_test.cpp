@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <string>
 #include <vector>
 
 #include "fake_joints.hpp"
@@ -83,7 +84,6 @@ TEST(BusMaster, RefusesUnknownCommandsAndJoints) {
   EXPECT_FALSE(rig.master.busy());
 }
 
-}  // namespace
 
 // Pumps the wire until `results` results were taken (or the bus gave up).
 std::vector<BusResult> take_results(MasterRig& rig, std::size_t results) {
@@ -177,4 +177,66 @@ TEST(BusMaster, ChainRefusesUnknownCommandsJointsAndAnIdleBus) {
   EXPECT_FALSE(rig.master.chained());
 }
 
+// A port that logs what the master does to it, and when it asks for the time.
+struct LoggingPort final : BusPort {
+  explicit LoggingPort(FakeJoints& j) : joints(j) {}
+  void set_select(std::uint8_t joint, bool high) override {
+    log.push_back(std::string(high ? "rise " : "fall ") + std::to_string(joint));
+    joints.set_select(joint, high);
+  }
+  void send_byte(std::uint8_t byte) override {
+    log.push_back("byte");
+    joints.send_byte(byte);
+  }
+  std::uint32_t now_us() override {
+    log.push_back("time");
+    return now;
+  }
+  FakeJoints& joints;
+  std::vector<std::string> log;
+  std::uint32_t now = 5000;
+};
+
+TEST(BusMaster, BytesWithoutATimeReadTheClockOnlyAfterTheirAction) {
+  FakeJoints joints;
+  LoggingPort port(joints);
+  BusMaster master;
+  master.begin(&port, 115200);
+  ASSERT_TRUE(master.start(1, jb::cmd_get_position, 0, port.now));
+  ASSERT_TRUE(master.chain(2, jb::cmd_get_position, 0));
+  port.log.clear();
+  joints.pump([&](std::uint8_t b) { master.on_rx_byte(b); });
+  ASSERT_GE(port.log.size(), 8u);
+  const std::vector<std::string> first_transaction(port.log.begin(), port.log.begin() + 8);
+  EXPECT_EQ(first_transaction, (std::vector<std::string>{"byte", "byte", "time",  // READY: COMMAND, then the clock
+                                                          "fall 1", "time",        // RESPONSE: select, then the clock
+                                                          "rise 2", "time",        // STATUS: the chained select first
+                                                          "byte"}));
+  BusResult r{};
+  ASSERT_TRUE(master.take_result(&r));
+  EXPECT_TRUE(r.ok);
+}
+
+TEST(BusMaster, ADeadlineArmedFromThePortsClockTimesOut) {
+  FakeJoints joints;
+  joints.dead[3] = true;
+  LoggingPort port(joints);
+  BusMaster master;
+  master.begin(&port, 115200);
+  ASSERT_TRUE(master.start(1, jb::cmd_get_position, 0, port.now));
+  ASSERT_TRUE(master.chain(3, jb::cmd_get_position, 0));
+  port.now = 70000;  // the chained transaction starts at this time
+  joints.pump([&](std::uint8_t b) { master.on_rx_byte(b); });
+  BusResult r{};
+  ASSERT_TRUE(master.take_result(&r));
+  ASSERT_TRUE(r.chained_started);
+  master.poll(70000 + 2000);
+  EXPECT_FALSE(master.take_result(&r)) << "not timed out from the port's time yet";
+  master.poll(70000 + 3 * master.word_time_us() + 2000 + 1);
+  ASSERT_TRUE(master.take_result(&r));
+  EXPECT_EQ(r.joint, 3);
+  EXPECT_EQ(r.status, jb::status_no_answer);
+}
+
+}  // namespace
 }  // namespace armctl::controller::testing
