@@ -4,8 +4,12 @@
 // 910 wrong joint, 920 bad ping echo, 990 no answer). Every wait is bounded by a timeout
 // derived from the baud rate; after a failed transaction the master keeps the bus quiet
 // for a while so that a late byte cannot be read as the next joint's READY.
-// The Linux daemon's blocking master is devices/joint_bus/bus_master.hpp; this one is for
-// the arm controller core (portable_controller/controller_core.hpp).
+// One transaction may be queued behind the one under way (chain()): it starts from the
+// STATUS itself, so a board that delivers bytes from its receive interrupt (the Mega)
+// selects the next joint without a main-loop pass in between.
+// The host's blocking master, for armctl driving a joint bus itself, is
+// devices/joint_bus/bus_master.hpp; this one is the arm controller core's
+// (portable_controller/controller_core.hpp), on the Mega and in the Linux controller.
 #pragma once
 
 #include <stdint.h>
