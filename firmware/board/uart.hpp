@@ -24,11 +24,11 @@ bool uart_tx_has_room();
 bool uart_queue_tx(uint8_t byte);  // false if the TX ring is full (nothing queued)
 void uart_discard_tx();            // drops queued bytes not yet handed to the hardware
 
-// From the select interrupt: the first byte of the word the controller answers this edge
-// with (READY as select rises, STATUS as it falls: bus_byte_ahead), written to the UART at
-// once if it is idle. The controller, handed the edge right after (in the same interrupt),
-// queues that word, and its first byte is then left out. Only when the edge is handled at
-// once (bus_events_handled_in_isr and nothing queued before it).
+// The first byte of the word the controller will answer an event with, written to the UART
+// at once if it is idle, before the controller computes that word: from the select
+// interrupt READY's as select rises and STATUS's as it falls (bus_byte_ahead, with nothing
+// queued before the edge), from handle_next_bus_event a get_position's RESPONSE. The
+// controller, handed the event next, queues that word, and its first byte is then left out.
 void uart_send_ahead(uint8_t byte);
 // After the controller has queued its answer to the edge or byte: a byte sent ahead that it
 // did not queue is not looked for any more.

@@ -165,11 +165,12 @@ void measure_battery() {}
 
 // Each joint bus byte goes to the master at once, from UART1's receive interrupt: COMMAND
 // after READY, the select fall after RESPONSE and the next poll's select after STATUS
-// (BusMaster::chain) leave without waiting for a main-loop pass.
-void mega::bus_tx_done() { bus.lower_pending(); }
-
-// The clock is read by the master only after the byte's action (MegaBus::now_us).
+// (BusMaster::chain) leave without waiting for a main-loop pass. The master reads the clock
+// only after the byte's action (MegaBus::now_us).
 void mega::bus_byte_received(uint8_t byte) { core.on_bus_byte(byte); }
+
+// From UART1's TX-complete interrupt: a select waiting for the last byte to leave falls.
+void mega::bus_tx_done() { bus.lower_pending(); }
 
 int main() {
   board::tick_timer_begin();

@@ -20,9 +20,7 @@ namespace armctl::arm_controller::testing {
 namespace {
 
 using robot_commands::GroupAction;
-using armctl::testing::kill_and_reap;
-using armctl::testing::read_u32;
-using armctl::testing::spin;
+using armctl::testing::kill_after_reports;
 using armctl::testing::write_u32;
 
 // Version v of group g: v in every action's time, positions derived from both (joints 2..4,
@@ -85,17 +83,8 @@ TEST(CrashSafety, KillDuringDownloadsNeverLosesOrCorruptsAnAcknowledgedGroup) {
         }
     }
     ::close(fds[1]);
-    const unsigned events = 1 + (trial * 5) % 7;
-    for (unsigned i = 0; i < events; ++i) {
-      std::uint32_t m = 0;
-      ASSERT_TRUE(read_u32(fds[0], m)) << "trial " << trial << ": the child ended";
-      acked[m >> 16] = static_cast<std::uint16_t>(m & 0xFFFF);
-    }
-    spin(trial * 30000);
-    kill_and_reap(pid);
-    std::uint32_t m = 0;  // reports written before the kill still count
-    while (read_u32(fds[0], m)) acked[m >> 16] = static_cast<std::uint16_t>(m & 0xFFFF);
-    ::close(fds[0]);
+    ASSERT_TRUE(kill_after_reports(fds[0], pid, 1 + (trial * 5) % 7, trial * 30000, acked))
+        << "trial " << trial << ": the child ended";
 
     for (std::uint8_t g = 0; g < kGroups; ++g) {
       if (acked[g] == 0) continue;  // never acknowledged: absent or the first version, both fine

@@ -41,4 +41,23 @@ inline void kill_and_reap(pid_t pid) {
   ASSERT_TRUE(WIFSIGNALED(status)) << "child ended by itself, status " << status;
 }
 
+// The parent's side of one trial: waits for `reports` reports (each `group << 16 | version`,
+// the newest kept in acked[group]), spins `spin_iterations`, kills the child, takes the
+// reports it wrote before it died, and closes `fd`. False if the child ended before
+// `reports` reports.
+inline bool kill_after_reports(int fd, pid_t pid, unsigned reports, unsigned spin_iterations,
+                               std::uint16_t* acked) {
+  bool all = true;
+  std::uint32_t m = 0;
+  for (unsigned i = 0; i < reports && all; ++i) {
+    all = read_u32(fd, m);
+    if (all) acked[m >> 16] = static_cast<std::uint16_t>(m & 0xFFFF);
+  }
+  if (all) spin(spin_iterations);
+  kill_and_reap(pid);
+  while (read_u32(fd, m)) acked[m >> 16] = static_cast<std::uint16_t>(m & 0xFFFF);
+  ::close(fd);
+  return all;
+}
+
 }  // namespace armctl::testing

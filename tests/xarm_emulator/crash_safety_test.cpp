@@ -17,6 +17,7 @@ namespace {
 
 using rc_board::ActionGroup;
 using rc_board::GroupStore;
+using armctl::testing::kill_after_reports;
 using armctl::testing::kill_and_reap;
 using armctl::testing::read_u32;
 using armctl::testing::spin;
@@ -66,17 +67,8 @@ TEST(CrashSafety, KillDuringStoreWritesNeverLosesOrCorruptsAGroup) {
         }
     }
     ::close(fds[1]);
-    unsigned events = 1 + (trial * 5) % 9;
-    for (unsigned i = 0; i < events; ++i) {
-      std::uint32_t m = 0;
-      ASSERT_TRUE(read_u32(fds[0], m));
-      acked[m >> 16] = static_cast<std::uint16_t>(m & 0xFFFF);
-    }
-    spin(trial * 20000);
-    kill_and_reap(pid);
-    std::uint32_t m = 0;  // reports written before the kill still count
-    while (read_u32(fds[0], m)) acked[m >> 16] = static_cast<std::uint16_t>(m & 0xFFFF);
-    ::close(fds[0]);
+    ASSERT_TRUE(kill_after_reports(fds[0], pid, 1 + (trial * 5) % 9, trial * 20000, acked))
+        << "trial " << trial << ": the child ended";
 
     GroupStore store(dir.path());
     torn += store.problems().size();
